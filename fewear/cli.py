@@ -1,0 +1,103 @@
+"""The ``fewear`` command line: one subcommand per stage, each a thin layer over the library.
+
+Bad input is reported as ``fewear: error: <message>`` on standard error with exit status 2 and no
+traceback; the stage modules raise :class:`fewear.errors.FewearInputError` for it. Handlers are
+imported lazily so that, e.g., ``fewear dynamics`` never imports DOLFINx.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import os
+import sys
+
+from fewear.errors import FewearInputError
+
+# subcommand -> "module:function" that takes the parsed arguments and returns an exit status
+HANDLERS = {
+    "config": "fewear.cli:print_default_config",
+    "contact": "fewear.contact.command:main",
+    "dynamics": "fewear.mbd.command:main",
+    "diagnose": "fewear.calibrate.command:main",
+    "run": "fewear.pipeline:main",
+}
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="fewear",
+        description="Finite-element wear workbench for revolute clearance joints.",
+    )
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    config = sub.add_parser("config", help="print the embedded default config (TOML)")
+    config.add_argument("--out", metavar="FILE.toml", help="write it to FILE instead of stdout")
+
+    contact = sub.add_parser("contact", help="pin-in-bushing FE contact for one joint force")
+    contact.add_argument("--force", nargs=2, type=float, required=True, metavar=("FX", "FY"),
+                         help="joint force on the pin in the bushing frame (N)")
+    _add_config_and_out(contact, "out/contact")
+
+    dynamics = sub.add_parser("dynamics", help="slider-crank dynamics with a clearance joint")
+    dynamics.add_argument("--rod", choices=["rigid", "flexible"], default=None,
+                          help="connecting rod model (default: the config's)")
+    dynamics.add_argument("--joint", choices=["clearance", "ideal"], default=None,
+                          help="rod-slider joint model (default: the config's)")
+    dynamics.add_argument("--cycles", type=int, default=None, metavar="N",
+                          help="crank cycles recorded after the settling cycles (default: config)")
+    _add_config_and_out(dynamics, "out/dynamics")
+
+    diagnose = sub.add_parser("diagnose", help="what a wear model gets wrong on measured data")
+    diagnose.add_argument("measured", metavar="MEASURED.csv", help="pin-on-disc readings")
+    _add_config_and_out(diagnose, "out/diagnose")
+
+    run = sub.add_parser("run", help="the paper's slider-crank wear prediction (main job)")
+    _add_config_and_out(run, "out/run")
+    return parser
+
+
+def _add_config_and_out(parser: argparse.ArgumentParser, default_out: str) -> None:
+    parser.add_argument("--config", metavar="FILE.toml", default=None,
+                        help="configuration (default: the embedded paper case; see `fewear config`)")
+    parser.add_argument("--out", metavar="DIR", default=default_out,
+                        help=f"output folder (default: {default_out})")
+
+
+def print_default_config(args: argparse.Namespace) -> int:
+    from fewear.io.config import default_config_text
+
+    text = default_config_text()
+    if args.out is None:
+        sys.stdout.write(text)
+        return 0
+    try:
+        with open(args.out, "x") as handle:
+            handle.write(text)
+    except OSError as exc:
+        raise FewearInputError(f"cannot write {args.out}: {exc.strerror}") from None
+    return 0
+
+
+def _is_root_rank() -> bool:
+    """True unless this process is a non-zero MPI rank (read from the launcher, no MPI import)."""
+    for variable in ("OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"):
+        if variable in os.environ:
+            return os.environ[variable] == "0"
+    return True
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    module_name, function_name = HANDLERS[args.command].split(":")
+    try:
+        handler = getattr(importlib.import_module(module_name), function_name)
+        return int(handler(args) or 0)
+    except FewearInputError as exc:
+        if _is_root_rank():
+            print(f"fewear: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,137 @@
+"""The workbench configuration: TOML files in SI units, checked against the embedded defaults.
+
+The defaults are the seed paper's case; they live in ``fewear/defaults/*.toml`` (one file per stage,
+each owning its sections) and together form the *embedded default config*. ``fewear config`` prints
+it: a user copies it and edits values.
+
+Rules for a user's file, so that a config is always the complete record of a run:
+
+- every section and key must exist in the defaults (a typo is an error, not silently ignored);
+- a section that the file names is given whole, and every section the command uses is present
+  (a missing key is an error naming it);
+- values have the type of their default (an integer is accepted where a float is expected);
+  a default that is an inline table (dict) accepts any table, checked by the stage that reads it.
+
+Physical checks (pin smaller than the bore, positive moduli, ...) belong to the dataclasses that the
+stages build from these sections.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from pathlib import Path
+from typing import Any, Iterable
+
+from fewear.errors import FewearInputError
+
+DEFAULTS_DIR = Path(__file__).resolve().parent.parent / "defaults"
+
+Config = dict[str, dict[str, Any]]
+
+
+def _default_files() -> list[Path]:
+    return sorted(DEFAULTS_DIR.glob("*.toml"))
+
+
+def default_config_text() -> str:
+    """The embedded default config as TOML text (all stages' sections, with their comments)."""
+    return "\n".join(path.read_text() for path in _default_files())
+
+
+def default_config() -> Config:
+    """The embedded default config as nested dicts; a section defined twice is a developer error."""
+    merged: Config = {}
+    for path in _default_files():
+        for section, table in tomllib.loads(path.read_text()).items():
+            if section in merged:
+                raise RuntimeError(f"section [{section}] defined twice in {DEFAULTS_DIR}")
+            merged[section] = table
+    return merged
+
+
+def load_config(path: str | Path | None, sections: Iterable[str]) -> Config:
+    """The sections a command uses, from the user's file at ``path`` or from the defaults.
+
+    Raises :class:`FewearInputError` naming the file, section and key of any violation of the
+    rules in the module docstring.
+    """
+    sections = list(sections)
+    defaults = default_config()
+    if path is None:
+        return {name: dict(defaults[name]) for name in sections}
+    user = read_toml(path)
+    checked = check_config(user, defaults, source=str(path))
+    missing_sections = [name for name in sections if name not in checked]
+    if missing_sections:
+        names = ", ".join(f"[{name}]" for name in missing_sections)
+        raise FewearInputError(
+            f"config {path}: missing section(s) {names}; this command needs "
+            f"{', '.join(f'[{s}]' for s in sections)} (`fewear config` prints a complete file)"
+        )
+    return {name: checked[name] for name in sections}
+
+
+def read_toml(path: str | Path) -> dict[str, Any]:
+    """Parse a TOML file, turning I/O and syntax errors into input errors."""
+    path = Path(path)
+    try:
+        text = path.read_text()
+    except OSError as exc:
+        raise FewearInputError(f"cannot read config file {path}: {exc.strerror}") from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise FewearInputError(f"config file {path} is not valid TOML: {exc}") from None
+
+
+def check_config(user: dict[str, Any], defaults: Config, source: str) -> Config:
+    """Check a parsed user config against the defaults; return it with floats where floats belong."""
+    checked: Config = {}
+    for section, table in user.items():
+        if section not in defaults:
+            raise FewearInputError(
+                f"config {source}: unknown section [{section}]; allowed sections: "
+                + ", ".join(f"[{name}]" for name in defaults)
+            )
+        if not isinstance(table, dict):
+            raise FewearInputError(f"config {source}: [{section}] must be a table of keys")
+        checked[section] = _check_section(section, table, defaults[section], source)
+    return checked
+
+
+def _check_section(section: str, table: dict, default: dict, source: str) -> dict[str, Any]:
+    unknown = [key for key in table if key not in default]
+    if unknown:
+        raise FewearInputError(
+            f"config {source}: unknown key(s) {', '.join(unknown)} in [{section}]; allowed keys: "
+            + ", ".join(default)
+        )
+    missing = [key for key in default if key not in table]
+    if missing:
+        raise FewearInputError(
+            f"config {source}: [{section}] lacks key(s) {', '.join(missing)}; a section is given "
+            "whole (`fewear config` prints a complete file to start from)"
+        )
+    return {key: _check_value(section, key, table[key], default[key], source) for key in default}
+
+
+def _check_value(section: str, key: str, value: Any, default: Any, source: str) -> Any:
+    where = f"config {source}: [{section}] {key} = {value!r}"
+    if isinstance(default, bool):
+        if not isinstance(value, bool):
+            raise FewearInputError(f"{where}: expected true or false")
+        return value
+    if isinstance(default, float):
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise FewearInputError(f"{where}: expected a number")
+        if not math.isfinite(value):
+            raise FewearInputError(f"{where}: expected a finite number")
+        return float(value)
+    if isinstance(default, int):
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise FewearInputError(f"{where}: expected a whole number")
+        return value
+    if not isinstance(value, type(default)):
+        raise FewearInputError(f"{where}: expected a {type(default).__name__}")
+    return value

@@ -1,0 +1,69 @@
+"""Command outputs written all-or-nothing.
+
+A command writes into a staging folder beside its outputs; only when every file is written are they
+moved into the output folder. A failure part-way leaves the output folder as it was (created empty
+folders are removed again), so a user never finds a half-written result.
+"""
+
+from __future__ import annotations
+
+import shutil
+import tempfile
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Iterator
+
+from fewear.errors import FewearInputError
+
+
+@contextmanager
+def staged_output(out_dir: str | Path, comm=None) -> Iterator[Path]:
+    """Yield a staging folder; on success move its files into ``out_dir``, on failure discard it.
+
+    ``comm``: an mpi4py communicator when the command runs under MPI. Rank 0 makes and moves the
+    folders; every rank gets the same staging path (collective writers such as XDMF need it) and
+    every rank raises together if the folder cannot be made.
+    """
+    out = Path(out_dir).resolve()
+    rank = 0 if comm is None else comm.rank
+    result: tuple[str | None, str | None, bool] = (None, None, False)
+    if rank == 0:
+        result = _make_staging(out)
+    if comm is not None:
+        result = comm.bcast(result, root=0)
+    staging_name, error, created_out = result
+    if error is not None:
+        raise FewearInputError(error)
+    staging = Path(staging_name)
+    try:
+        yield staging
+        if comm is not None:
+            comm.barrier()
+    except BaseException:
+        if rank == 0:
+            shutil.rmtree(staging, ignore_errors=True)
+            if created_out and not any(out.iterdir()):
+                out.rmdir()
+        raise
+    if rank == 0:
+        for item in staging.iterdir():
+            target = out / item.name
+            if target.is_dir() and not target.is_symlink():
+                shutil.rmtree(target)
+            item.replace(target)
+        staging.rmdir()
+    if comm is not None:
+        comm.barrier()
+
+
+def _make_staging(out: Path) -> tuple[str | None, str | None, bool]:
+    """(staging path, error message, whether ``out`` was created here)."""
+    if out.exists() and not out.is_dir():
+        return None, f"output folder {out} exists and is not a folder", False
+    created = not out.exists()
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        staging = tempfile.mkdtemp(prefix=".fewear-staging-", dir=out)
+    except OSError as exc:
+        return None, f"cannot write to output folder {out}: {exc.strerror or exc}", False
+    return staging, None, created
