@@ -1,0 +1,82 @@
+"""The strict config rules of fewear.io.config: typos, gaps and wrong types are errors."""
+
+import tomllib
+
+import pytest
+
+from fewear.errors import FewearInputError
+from fewear.io.config import default_config, default_config_text, load_config
+
+SECTIONS = ["bushing", "pin"]
+
+
+def write(tmp_path, text):
+    path = tmp_path / "case.toml"
+    path.write_text(text)
+    return path
+
+
+def full_sections_text(**overrides):
+    """The default [bushing] and [pin] sections as TOML, with some values replaced."""
+    defaults = default_config()
+    lines = []
+    for section in SECTIONS:
+        lines.append(f"[{section}]")
+        for key, value in defaults[section].items():
+            lines.append(f"{key} = {overrides.get(f'{section}.{key}', value)!r}")
+    return "\n".join(lines) + "\n"
+
+
+def test_default_text_parses_to_default_config():
+    assert tomllib.loads(default_config_text()) == default_config()
+
+
+def test_defaults_are_the_papers_joint():
+    config = load_config(None, SECTIONS)
+    assert config["bushing"]["inner_radius_m"] == 0.010
+    assert config["pin"]["radius_m"] == 0.0095
+    assert config["bushing"]["youngs_modulus_Pa"] == 90e9
+
+
+def test_complete_file_overrides_defaults_and_ints_become_floats(tmp_path):
+    path = write(tmp_path, full_sections_text(**{"bushing.youngs_modulus_Pa": 100_000_000_000}))
+    config = load_config(path, SECTIONS)
+    assert config["bushing"]["youngs_modulus_Pa"] == 1e11
+    assert isinstance(config["bushing"]["youngs_modulus_Pa"], float)
+
+
+@pytest.mark.parametrize(
+    ("text", "names"),
+    [
+        ("[bushing]\ninner_radius = 0.01\n", ["inner_radius", "inner_radius_m"]),
+        ("[bushingg]\n", ["[bushingg]", "[bushing]"]),
+        ("[bushing]\ninner_radius_m = 0.01\n", ["lacks", "outer_radius_m"]),
+        ("[bushing\n", ["not valid TOML"]),
+    ],
+)
+def test_bad_files_name_what_is_wrong(tmp_path, text, names):
+    with pytest.raises(FewearInputError) as caught:
+        load_config(write(tmp_path, text), SECTIONS)
+    for name in names:
+        assert name in str(caught.value)
+
+
+def test_a_needed_section_must_be_present(tmp_path):
+    path = write(tmp_path, full_sections_text().split("[pin]")[0])
+    with pytest.raises(FewearInputError, match=r"missing section\(s\) \[pin\]"):
+        load_config(path, SECTIONS)
+
+
+@pytest.mark.parametrize(
+    ("value", "message"),
+    [("'ten'", "expected a number"), ("nan", "expected a finite number"), ("true", "expected a number")],
+)
+def test_wrong_type_and_nan_are_rejected(tmp_path, value, message):
+    text = full_sections_text().replace("radius_m = 0.0095", f"radius_m = {value}")
+    with pytest.raises(FewearInputError, match=rf"\[pin\] radius_m = .*{message}"):
+        load_config(write(tmp_path, text), SECTIONS)
+
+
+def test_missing_file_is_an_input_error(tmp_path):
+    with pytest.raises(FewearInputError, match="cannot read config file"):
+        load_config(tmp_path / "absent.toml", SECTIONS)
