@@ -1,0 +1,114 @@
+"""Files written by ``fewear contact``: the bore field (CSV), a summary (JSON) and the FE fields (XDMF).
+
+CSV and JSON are written by rank 0 from the plain :class:`fewear.contact.result.ContactResult`
+(every rank holds the whole bore); the XDMF file is written collectively by all ranks with
+``dolfinx.io.XDMFFile``. DOLFINx is imported only inside :func:`write_fields_xdmf`.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from fewear.contact.analytic import HertzLineContact, cosine_law_pressure_Pa
+
+CSV_COLUMNS = ("angle_deg", "x_m", "y_m", "pressure_Pa", "gap_m", "slip_m")
+
+
+def write_contact_csv(path: Path, result) -> None:
+    """One row per bore node, sorted by angle: angle (deg), position (m), pressure (Pa), gap (m),
+    slip increment (m)."""
+    columns = (
+        np.degrees(result.angle_rad), result.x_m, result.y_m,
+        result.pressure_Pa, result.gap_m, result.slip_m,
+    )
+    with open(path, "w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(CSV_COLUMNS)
+        for row in zip(*columns):
+            writer.writerow([repr(float(value)) for value in row])
+
+
+def contact_summary(
+    result, hertz: HertzLineContact, config: dict, timings_s: dict[str, float], ranks: int
+) -> dict[str, Any]:
+    """The figures of one contact solve, with the analytic references beside them (SI units)."""
+    force = np.asarray(result.applied_force_N, dtype=float)
+    load_angle = math.atan2(force[1], force[0])
+    geometry_radius = hertz.bore_radius_m
+    cosine_peak = float(cosine_law_pressure_Pa(
+        np.array([load_angle]), load_angle, hertz.force_N, geometry_radius, hertz.width_m)[0])
+    return {
+        "max_pressure_Pa": float(result.max_pressure_Pa),
+        "contact_half_angle_deg": math.degrees(result.contact_half_angle_rad),
+        "pin_centre_m": [float(value) for value in result.pin_centre_m],
+        "force_balance_rel_error": float(result.force_balance_rel_error),
+        "applied_force_N": force.tolist(),
+        "resultant_force_N": [float(value) for value in result.resultant_force_N],
+        "load_angle_deg": math.degrees(load_angle),
+        "newton_iterations": int(result.newton_iterations),
+        "bore_nodes": int(len(result.angle_rad)),
+        "wall_time_s": timings_s,
+        "mpi_ranks": ranks,
+        "references": {
+            "hertz": {
+                "source": "Johnson, Contact Mechanics (1985), ch. 4; rigid pin, valid while a << R_b",
+                "contact_modulus_Pa": hertz.contact_modulus_Pa,
+                "relative_radius_m": hertz.relative_radius_m,
+                "line_load_N_per_m": hertz.line_load_N_per_m,
+                "half_width_m": hertz.half_width_m,
+                "peak_pressure_Pa": hertz.peak_pressure_Pa,
+                "contact_half_angle_deg": math.degrees(hertz.contact_half_angle_rad),
+            },
+            "cosine_law": {
+                "source": "conformal limit p = 2F/(pi R_b L) cos(theta); Persson (1964)",
+                "peak_pressure_Pa": cosine_peak,
+                "contact_half_angle_deg": 90.0,
+            },
+        },
+        "config": config,
+    }
+
+
+def write_summary_json(path: Path, summary: dict[str, Any]) -> None:
+    """JSON with non-finite numbers written as null (JSON has no NaN)."""
+    with open(path, "w") as handle:
+        json.dump(_finite_or_none(summary), handle, indent=2, allow_nan=False)
+        handle.write("\n")
+
+
+def _finite_or_none(value: Any) -> Any:
+    if isinstance(value, dict):
+        return {key: _finite_or_none(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_finite_or_none(item) for item in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def write_fields_xdmf(path: Path, displacement, pressure) -> None:
+    """Displacement (m) and contact pressure (Pa) on the bushing mesh, for ParaView (collective).
+
+    XDMF stores one value per geometry node, so each field is interpolated into the Lagrange space
+    of the mesh's coordinate degree (Q2 on the 9-node quads): the serendipity dofs of the
+    displacement are not nodal values.
+    """
+    from dolfinx import fem, io
+
+    mesh = displacement.function_space.mesh
+    degree = mesh.geometry.cmap.degree
+    nodal_displacement = fem.Function(
+        fem.VectorFunctionSpace(mesh, ("Lagrange", degree)), name="displacement_m")
+    nodal_displacement.interpolate(displacement)
+    nodal_pressure = fem.Function(fem.FunctionSpace(mesh, ("Lagrange", degree)), name="pressure_Pa")
+    nodal_pressure.interpolate(pressure)
+    with io.XDMFFile(mesh.comm, str(path), "w") as xdmf:
+        xdmf.write_mesh(mesh)
+        xdmf.write_function(nodal_displacement)
+        xdmf.write_function(nodal_pressure)
