@@ -14,12 +14,12 @@ Two limits bracket the FE contact of :mod:`fewear.contact.solver`:
   frictionless cylindrical contact", parts I-II).
 
 The pin is rigid in the FE model, so the contact modulus is the bushing's alone:
-1/E* = (1 - nu_b^2)/E_b (the elastic pin's term (1 - nu_p^2)/E_p is dropped). Line loads are per unit
-joint width: P = F/L, with L the bushing width (plane strain, thickness L).
+1/E* = (1 - nu_b^2)/E_b (the elastic pin's term (1 - nu_p^2)/E_p is dropped). Line loads are per
+unit joint width: P = F/L, with L the bushing width (plane strain, thickness L).
 
-Angles: theta is measured on the bore from the x axis, counter-clockwise, as in the FE results; the
-load angle is the direction of the force on the pin (the pin is pushed towards the bore point at that
-angle).
+Angles: theta is measured on the bore from the x axis, counter-clockwise, as in the FE results;
+the load angle is the direction of the force on the pin (the pin is pushed towards the bore point
+at that angle).
 """
 
 from __future__ import annotations
@@ -58,8 +58,8 @@ class HertzLineContact:
     - pressure                         p(x) = p0 sqrt(1 - x^2/a^2), |x| <= a
     - contact half-angle on the bore   a/R_b (valid while a << R_b: the small-load limit)
 
-    Only pressures, widths and angles are given: in two dimensions the approach of the bodies depends
-    on their size (logarithmic terms), so it is not a property of the contact alone.
+    Only pressures, widths and angles are given: in two dimensions the approach of the bodies
+    depends on their size (logarithmic terms), so it is not a property of the contact alone.
     """
 
     force_N: float
@@ -136,8 +136,8 @@ def cosine_law_pressure_Pa(
 ) -> np.ndarray:
     """Conformal (zero-clearance) limit: p = 2F/(pi R L) cos(theta - theta_load) on the loaded half.
 
-    Its resultant over |theta - theta_load| <= pi/2 is F (the integral of cos^2 is pi/2); the contact
-    half-angle is 90 degrees. Persson (1964); Ciavarella & Decuzzi, IJSS 38 (2001), part I, §3.
+    Its resultant over |theta - theta_load| <= pi/2 is F (the integral of cos^2 is pi/2); the
+    contact half-angle is 90 degrees. Persson (1964); Ciavarella & Decuzzi, IJSS 38 (2001), part I.
     """
     relative = np.cos(wrap_angle_rad(np.asarray(angle_rad) - load_angle_rad))
     return 2.0 * force_N / (math.pi * radius_m * width_m) * np.clip(relative, 0.0, None)
@@ -198,24 +198,44 @@ def fit_hertz_ellipse(arc_m: np.ndarray, pressure_Pa: np.ndarray) -> EllipseFit:
     )
 
 
-def contact_zone_half_width_m(arc_m: np.ndarray, gap_m: np.ndarray) -> float:
-    """Half the arc length of the zone around the deepest node where the gap is negative.
+@dataclass(frozen=True)
+class HertzComparison:
+    """An FE bore field beside the Hertz solution of the same load (relative errors signed).
 
-    Each end is where the gap, interpolated linearly between the last node in contact and the first
-    free one, crosses zero (with a penalty the pressure is k max(0, -gap), so this is also where the
-    interpolated pressure starts). ``arc_m`` increases along the bore; the zone must not wrap around.
+    - peak pressure: the largest nodal pressure (the CLI's ``max_pressure_Pa``);
+    - half-width: from the Hertz ellipse fitted to all loaded nodes (:func:`fit_hertz_ellipse`);
+    - zone half-width: R_b times the half-angle of the p > 0 arc with interpolated ends
+      (``ContactResult.contact_half_angle_rad``), for comparison.
     """
-    arc_m = np.asarray(arc_m, dtype=float)
-    gap_m = np.asarray(gap_m, dtype=float)
-    deepest = int(np.argmin(gap_m))
-    ends = []
-    for step in (-1, 1):
-        inner = deepest
-        while 0 <= inner + step < len(arc_m) and gap_m[inner + step] < 0.0:
-            inner += step
-        outer = inner + step
-        if not 0 <= outer < len(arc_m):
-            raise ValueError("the contact zone reaches the end of the bore arrays")
-        weight = gap_m[inner] / (gap_m[inner] - gap_m[outer])
-        ends.append(arc_m[inner] + weight * (arc_m[outer] - arc_m[inner]))
-    return 0.5 * (ends[1] - ends[0])
+
+    hertz: HertzLineContact
+    peak_pressure_Pa: float
+    fit: EllipseFit
+    zone_half_width_m: float
+
+    @property
+    def peak_pressure_rel_error(self) -> float:
+        return self.peak_pressure_Pa / self.hertz.peak_pressure_Pa - 1.0
+
+    @property
+    def half_width_rel_error(self) -> float:
+        return self.fit.half_width_m / self.hertz.half_width_m - 1.0
+
+    @property
+    def zone_half_width_rel_error(self) -> float:
+        return self.zone_half_width_m / self.hertz.half_width_m - 1.0
+
+
+def compare_with_hertz(result, hertz: HertzLineContact) -> HertzComparison:
+    """Compare a :class:`fewear.contact.result.ContactResult` with the Hertz strip of its load.
+
+    The arc length along the bore is measured from the load direction: s = R_b (theta - theta_F).
+    """
+    force_x, force_y = result.applied_force_N
+    arc_m = hertz.bore_radius_m * wrap_angle_rad(result.angle_rad - math.atan2(force_y, force_x))
+    return HertzComparison(
+        hertz=hertz,
+        peak_pressure_Pa=float(np.max(result.pressure_Pa)),
+        fit=fit_hertz_ellipse(arc_m, result.pressure_Pa),
+        zone_half_width_m=hertz.bore_radius_m * result.contact_half_angle_rad,
+    )

@@ -1,4 +1,4 @@
-"""Files written by ``fewear contact``: the bore field (CSV), a summary (JSON) and the FE fields (XDMF).
+"""Files of ``fewear contact``: the bore field (CSV), a summary (JSON) and the FE fields (XDMF).
 
 CSV and JSON are written by rank 0 from the plain :class:`fewear.contact.result.ContactResult`
 (every rank holds the whole bore); the XDMF file is written collectively by all ranks with
@@ -57,7 +57,7 @@ def contact_summary(
         "mpi_ranks": ranks,
         "references": {
             "hertz": {
-                "source": "Johnson, Contact Mechanics (1985), ch. 4; rigid pin, valid while a << R_b",
+                "source": "Johnson, Contact Mechanics 1985, ch. 4; rigid pin; valid if a << R_b",
                 "contact_modulus_Pa": hertz.contact_modulus_Pa,
                 "relative_radius_m": hertz.relative_radius_m,
                 "line_load_N_per_m": hertz.line_load_N_per_m,
