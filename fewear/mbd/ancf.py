@@ -1,0 +1,343 @@
+"""Planar shear-deformable ANCF beam: 3-node elements with r and r_,y per node (seed eq. 1-3).
+
+Kinematics (seed eq. 2-3). An element of length l has nodes at xi = 0, 1/2, 1 (xi = x/l) with the
+quadratic Lagrange functions N1 = 1 - 3 xi + 2 xi^2, N2 = 4 xi - 4 xi^2, N3 = 2 xi^2 - xi; the seed's
+s2, s4, s6 = l eta N_a = y N_a, so a material point (x, y) of the straight reference beam is at
+
+    r(x, y) = r0(x) + y d(x),   r0 = sum_a N_a r_a,   d = sum_a N_a r_,y^a,
+
+with 12 coordinates per element, stored per node as [r_1, r_2, r_,y1, r_,y2]. The beam of n equal
+elements has 2n + 1 nodes; element e uses nodes 2e, 2e + 1, 2e + 2 (coordinates 8e ... 8e + 11).
+
+Mass and gravity. M = int rho S^T S dV with S the (2, 12) shape matrix, integrated exactly over the
+b x h rectangle (int y dA = 0, int y^2 dA = b h^3 / 12) and along the element (int N_a N_b dxi =
+[[4, 2, -1], [2, 16, 2], [-1, 2, 4]] / 30): constant, the r and r_,y blocks are uncoupled.
+
+Elastic forces: Green-Lagrange strain of the continuum, locking-free by the strategy of Nachbagauer,
+Pechstein, Irschik, Gerstmayr, Multibody Syst. Dyn. 26 (2011) 245-263 (strain energy split into
+axial/bending, shear and transverse-normal parts; plane-stress-like uncoupled normal strains; shear
+correction factor; reduced integration of the parts that lock). With J = [r_,x, r_,y] and the
+reference straight (J0 a rotation, so the strain components below are those of the beam frame):
+
+    eps_xx = 1/2 (r_,x . r_,x - 1) = a + y c + y^2 e / 2,  a = (t.t - 1)/2,  c = t.k,  e = k.k,
+    gamma_xy = r_,x . r_,y        = g + y s,                g = t.d,          s = d.k,
+    eps_yy = 1/2 (r_,y . r_,y - 1) = n = (d.d - 1)/2,
+
+with t = r0_,x, k = d_,x. The energy per element, integrated exactly over the height h and width b,
+
+    U = int_0^l b E/2 [h a^2 + h^3/12 (c^2 + a e) + h^5/320 e^2]   (axial, bending)
+        + b kappa G/2 [h g^2 + h^3/12 s^2]                         (shear)
+        + b E/2 h n^2 dx                                           (transverse normal)
+
+uses E for both normal strains with no Poisson coupling (the constant-in-y thickness strain of this
+element would otherwise stiffen bending by 1/(1 - nu^2): Poisson/thickness locking), G = E/(2(1 + nu))
+and Cowper's kappa = 10 (1 + nu)/(12 + 11 nu) for a rectangle. Integration along x:
+
+- axial, bending and shear parts: 2-point Gauss (reduced). For a straight element the linearised
+  parts (u'^2, theta'^2, (w' - theta)^2, all of degree 2) are integrated exactly, yet the shear strain
+  only has to vanish at 2 points (no shear locking: the quadratic Timoshenko element with reduced
+  shear integration) and so does the stretch of the curved centre line (no membrane locking);
+- transverse normal part: 3-point Lobatto (Simpson, at the nodes). Quadratic interpolation of the
+  nodal slopes cannot keep |d| = 1 between nodes under large rotation; at the nodes it can exactly.
+
+Element rank: 12 - 9 = 3 zero-energy modes, the rigid motions (checked in the tests). In the linear
+limit this is the Timoshenko beam with EA, EI = E b h^3/12 and kappa G A: a cantilever under a tip
+load has w = F L^3/(3 E I) + F L/(kappa G A) for thin and thick beams alike.
+
+The energy is written as U = sum_points 1/2 s^T H s over six strain invariants s_i = z^T S_i z / 2 +
+s0_i of z = (t, d, k), which is linear in q (z = B q). Hence the internal forces F = dU/dq =
+B^T sum_i (H s)_i S_i z and the exact tangent K = dF/dq = B^T [sum_i (H s)_i S_i + sum_ij H_ij
+(S_i z)(S_j z)^T] B, evaluated for all elements at once with einsum.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from fewear.errors import FewearInputError
+
+COORDINATES_PER_NODE = 4
+COORDINATES_PER_ELEMENT = 12
+
+_NODE_XI = np.array([0.0, 0.5, 1.0])
+_GAUSS2_XI = 0.5 + np.array([-0.5, 0.5]) / math.sqrt(3.0)
+_GAUSS2_WEIGHT = np.array([0.5, 0.5])
+_LOBATTO3_WEIGHT = np.array([1.0, 4.0, 1.0]) / 6.0
+_LAGRANGE_MASS = np.array([[4.0, 2.0, -1.0], [2.0, 16.0, 2.0], [-1.0, 2.0, 4.0]]) / 30.0
+_LAGRANGE_INTEGRAL = np.array([1.0, 4.0, 1.0]) / 6.0
+
+
+def _lagrange(xi: np.ndarray) -> np.ndarray:
+    """Quadratic Lagrange functions N1..N3 at xi (seed eq. 3): shape (..., 3)."""
+    xi = np.asarray(xi, dtype=float)
+    return np.stack([1.0 - 3.0 * xi + 2.0 * xi**2, 4.0 * xi - 4.0 * xi**2, 2.0 * xi**2 - xi], -1)
+
+
+def _lagrange_dxi(xi: np.ndarray) -> np.ndarray:
+    """d N_a / d xi at xi: shape (..., 3)."""
+    xi = np.asarray(xi, dtype=float)
+    return np.stack([-3.0 + 4.0 * xi, 4.0 - 8.0 * xi, 4.0 * xi - 1.0], -1)
+
+
+def cowper_shear_correction(poisson_ratio: float) -> float:
+    """Cowper's shear correction of a rectangle, kappa = 10 (1 + nu) / (12 + 11 nu).
+
+    G. R. Cowper, J. Appl. Mech. 33 (1966) 335-340.
+    """
+    return 10.0 * (1.0 + poisson_ratio) / (12.0 + 11.0 * poisson_ratio)
+
+
+def _positive(name: str, value: float) -> None:
+    if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0.0):
+        raise FewearInputError(f"{name} = {value!r}: must be a positive finite number")
+
+
+@dataclass(frozen=True)
+class BeamSection:
+    """Material and rectangular cross-section of a beam (SI units).
+
+    ``height_m`` lies in the plane of motion (the bending thickness), ``width_m`` out of plane.
+    ``shear_correction`` None means Cowper's kappa for a rectangle.
+    """
+
+    youngs_modulus_Pa: float
+    poisson_ratio: float
+    density_kg_m3: float
+    height_m: float
+    width_m: float
+    shear_correction: float | None = None
+
+    def __post_init__(self) -> None:
+        _positive("youngs_modulus_Pa", self.youngs_modulus_Pa)
+        _positive("density_kg_m3", self.density_kg_m3)
+        _positive("height_m", self.height_m)
+        _positive("width_m", self.width_m)
+        nu = self.poisson_ratio
+        if not (isinstance(nu, (int, float)) and -1.0 < nu < 0.5):
+            raise FewearInputError(f"poisson_ratio = {nu!r}: must lie in (-1, 0.5)")
+        if self.shear_correction is not None:
+            kappa = self.shear_correction
+            if not (isinstance(kappa, (int, float)) and 0.0 < kappa <= 1.0):
+                raise FewearInputError(f"shear_correction = {kappa!r}: must lie in (0, 1] or None")
+
+    @property
+    def area_m2(self) -> float:
+        return self.height_m * self.width_m
+
+    @property
+    def second_moment_m4(self) -> float:
+        """I = b h^3 / 12 about the out-of-plane axis."""
+        return self.width_m * self.height_m**3 / 12.0
+
+    @property
+    def shear_modulus_Pa(self) -> float:
+        return self.youngs_modulus_Pa / (2.0 * (1.0 + self.poisson_ratio))
+
+    @property
+    def kappa(self) -> float:
+        """The shear correction used: given, or Cowper's."""
+        if self.shear_correction is None:
+            return cowper_shear_correction(self.poisson_ratio)
+        return self.shear_correction
+
+
+# Strain invariants s_i = z^T S_i z / 2 + s0_i of z = (t, d, k) (each a 2-vector), in this order:
+# a = (t.t - 1)/2, c = t.k, e = k.k, g = t.d, s = d.k, n = (d.d - 1)/2.
+def _invariant_matrices() -> tuple[np.ndarray, np.ndarray]:
+    eye = np.eye(2)
+    blocks = {"t": slice(0, 2), "d": slice(2, 4), "k": slice(4, 6)}
+    pairs = [("t", "t", 1.0), ("t", "k", 1.0), ("k", "k", 2.0), ("t", "d", 1.0), ("d", "k", 1.0),
+             ("d", "d", 1.0)]
+    matrices = np.zeros((6, 6, 6))
+    for i, (u, v, factor) in enumerate(pairs):
+        if u == v:
+            matrices[i, blocks[u], blocks[u]] = factor * eye
+        else:
+            matrices[i, blocks[u], blocks[v]] = eye
+            matrices[i, blocks[v], blocks[u]] = eye
+    offsets = np.array([-0.5, 0.0, 0.0, 0.0, 0.0, -0.5])
+    return matrices, offsets
+
+
+_S, _S0 = _invariant_matrices()
+# S_i z by gathering: each row of S_i has at most one non-zero entry, so (S_i z)_m = f * z[index].
+_SZ_INDEX = np.argmax(_S != 0.0, axis=2)
+_SZ_FACTOR = _S.max(axis=2)
+
+
+class AncfBeam:
+    """A straight beam of ``n_elements`` equal 3-node ANCF elements (2n + 1 nodes).
+
+    Generalised coordinates q (length ``n_coordinates`` = 4 (2n + 1)): node k's
+    [r_x, r_y, r_,y x, r_,y y] at ``node_index(k)``. Equations of motion M q'' + F(q) = Q.
+    """
+
+    def __init__(self, length_m: float, n_elements: int, section: BeamSection):
+        _positive("length_m", length_m)
+        if not (isinstance(n_elements, (int, np.integer)) and n_elements >= 1):
+            raise FewearInputError(f"n_elements = {n_elements!r}: must be an integer >= 1")
+        self.length_m = float(length_m)
+        self.n_elements = int(n_elements)
+        self.section = section
+        self.element_length_m = self.length_m / self.n_elements
+        self.n_nodes = 2 * self.n_elements + 1
+        self.n_coordinates = COORDINATES_PER_NODE * self.n_nodes
+        self._element_dofs = (
+            8 * np.arange(self.n_elements)[:, None] + np.arange(COORDINATES_PER_ELEMENT)[None, :]
+        )
+        self._build_strain_operators()
+        self._build_assembly_indices()
+        self._mass = self._assemble_matrix(
+            np.broadcast_to(self._element_mass(), (self.n_elements, 12, 12))
+        )
+
+    # -- constant operators -------------------------------------------------------------------
+    def _build_strain_operators(self) -> None:
+        """B (points, 6, 12) mapping element coordinates to z = (t, d, k), and weights H."""
+        l = self.element_length_m
+        sec = self.section
+        E, h, b = sec.youngs_modulus_Pa, sec.height_m, sec.width_m
+        kappa_G = sec.kappa * sec.shear_modulus_Pa
+        xi = np.concatenate([_GAUSS2_XI, _NODE_XI])
+        weights = l * np.concatenate([_GAUSS2_WEIGHT, _LOBATTO3_WEIGHT])
+        n, dn = _lagrange(xi), _lagrange_dxi(xi) / l
+        operators = np.zeros((xi.size, 6, COORDINATES_PER_ELEMENT))
+        for node in range(3):
+            r_cols = slice(4 * node, 4 * node + 2)
+            ry_cols = slice(4 * node + 2, 4 * node + 4)
+            for p in range(xi.size):
+                operators[p, 0:2, r_cols] = dn[p, node] * np.eye(2)
+                operators[p, 2:4, ry_cols] = n[p, node] * np.eye(2)
+                operators[p, 4:6, ry_cols] = dn[p, node] * np.eye(2)
+        axial = b * E * np.array(
+            [[h, 0.0, h**3 / 24.0], [0.0, h**3 / 12.0, 0.0], [h**3 / 24.0, 0.0, h**5 / 320.0]]
+        )
+        energy = np.zeros((xi.size, 6, 6))
+        for p in range(2):
+            energy[p, :3, :3] = weights[p] * axial
+            energy[p, 3, 3] = weights[p] * b * kappa_G * h
+            energy[p, 4, 4] = weights[p] * b * kappa_G * h**3 / 12.0
+        for p in range(2, 5):
+            energy[p, 5, 5] = weights[p] * b * E * h
+        self._B = operators
+        self._B_transposed = np.ascontiguousarray(operators.transpose(0, 2, 1))
+        self._H = energy
+
+    def _build_assembly_indices(self) -> None:
+        dofs = self._element_dofs
+        n = self.n_coordinates
+        self._vector_index = dofs.ravel()
+        self._matrix_index = (dofs[:, :, None] * n + dofs[:, None, :]).ravel()
+
+    def _element_mass(self) -> np.ndarray:
+        sec = self.section
+        rho_b_l = sec.density_kg_m3 * sec.width_m * self.element_length_m
+        mass = np.zeros((12, 12))
+        for i in range(3):
+            for j in range(3):
+                m_ij = _LAGRANGE_MASS[i, j] * rho_b_l
+                mass[4 * i : 4 * i + 2, 4 * j : 4 * j + 2] = m_ij * sec.height_m * np.eye(2)
+                mass[4 * i + 2 : 4 * i + 4, 4 * j + 2 : 4 * j + 4] = (
+                    m_ij * sec.height_m**3 / 12.0 * np.eye(2)
+                )
+        return mass
+
+    def _assemble_vector(self, element_vectors: np.ndarray) -> np.ndarray:
+        return np.bincount(
+            self._vector_index, weights=element_vectors.ravel(), minlength=self.n_coordinates
+        )
+
+    def _assemble_matrix(self, element_matrices: np.ndarray) -> np.ndarray:
+        n = self.n_coordinates
+        flat = np.bincount(self._matrix_index, weights=element_matrices.ravel(), minlength=n * n)
+        return flat.reshape(n, n)
+
+    # -- geometry ------------------------------------------------------------------------------
+    def node_index(self, node: int) -> slice:
+        """Where node ``node``'s [r_x, r_y, r_,y x, r_,y y] sit in q (nodes 0 .. 2n, s = node l/2)."""
+        if not (isinstance(node, (int, np.integer)) and -self.n_nodes <= node < self.n_nodes):
+            raise FewearInputError(f"node = {node!r}: must be an integer in [0, {self.n_nodes})")
+        node = int(node) % self.n_nodes
+        return slice(COORDINATES_PER_NODE * node, COORDINATES_PER_NODE * (node + 1))
+
+    def reference_coordinates(self, x0_m: float, y0_m: float, angle_rad: float) -> np.ndarray:
+        """The straight, unstressed beam from (x0, y0) along ``angle_rad`` (from the x axis)."""
+        c, s = math.cos(angle_rad), math.sin(angle_rad)
+        arc = np.arange(self.n_nodes) * (self.element_length_m / 2.0)
+        q = np.empty((self.n_nodes, COORDINATES_PER_NODE))
+        q[:, 0] = x0_m + c * arc
+        q[:, 1] = y0_m + s * arc
+        q[:, 2] = -s
+        q[:, 3] = c
+        return q.ravel()
+
+    def shape_matrix(self, s_m: float, y_m: float = 0.0) -> np.ndarray:
+        """S (2, N) with r(s, y) = S q for the material point at arc length s and height y."""
+        if not (-1e-12 * self.length_m <= s_m <= self.length_m * (1.0 + 1e-12)):
+            raise FewearInputError(f"s_m = {s_m!r}: must lie in [0, {self.length_m}]")
+        element = min(int(s_m / self.element_length_m), self.n_elements - 1)
+        xi = s_m / self.element_length_m - element
+        n = _lagrange(xi)
+        shape = np.zeros((2, self.n_coordinates))
+        for a in range(3):
+            start = 8 * element + 4 * a
+            shape[:, start : start + 2] = n[a] * np.eye(2)
+            shape[:, start + 2 : start + 4] = y_m * n[a] * np.eye(2)
+        return shape
+
+    def position(self, q: np.ndarray, s_m: float, y_m: float = 0.0) -> np.ndarray:
+        """r (2,) of the material point at arc length s and height y."""
+        return self.shape_matrix(s_m, y_m) @ q
+
+    # -- inertia and gravity -------------------------------------------------------------------
+    def mass_matrix(self) -> np.ndarray:
+        """Constant consistent mass matrix (N, N) (a copy)."""
+        return self._mass.copy()
+
+    def gravity_forces(self, g_m_s2: tuple[float, float] = (0.0, -9.81)) -> np.ndarray:
+        """Generalised gravity forces Q = int rho S^T g dV (N,); only the r coordinates load."""
+        sec = self.section
+        element = np.zeros((self.n_elements, 3, 4))
+        weight = sec.density_kg_m3 * sec.area_m2 * self.element_length_m * _LAGRANGE_INTEGRAL
+        element[:, :, 0:2] = weight[:, None] * np.asarray(g_m_s2, dtype=float)[None, :]
+        return self._assemble_vector(element)
+
+    # -- elasticity ----------------------------------------------------------------------------
+    def _strain_state(self, q: np.ndarray):
+        """S_i z (elements, points, 6, 6), invariants s and stresses H s (elements, points, 6)."""
+        q_elements = np.asarray(q, dtype=float)[self._element_dofs]
+        z = (self._B @ q_elements[:, None, :, None])[..., 0]
+        s_z = z[..., _SZ_INDEX] * _SZ_FACTOR
+        invariants = 0.5 * (s_z @ z[..., None])[..., 0] + _S0
+        stress = (self._H @ invariants[..., None])[..., 0]
+        return s_z, invariants, stress
+
+    def strain_energy(self, q: np.ndarray) -> float:
+        """U(q) (J): the sum over points of s^T H s / 2 (module docstring)."""
+        _, invariants, stress = self._strain_state(q)
+        return 0.5 * float(np.einsum("epi,epi->", invariants, stress))
+
+    def elastic_forces(self, q: np.ndarray) -> np.ndarray:
+        """Internal forces F(q) = dU/dq (N,), so that M q'' + F = Q."""
+        s_z, _, stress = self._strain_state(q)
+        return self._assemble_vector(self._element_forces(s_z, stress))
+
+    def stiffness_matrix(self, q: np.ndarray) -> np.ndarray:
+        """Tangent stiffness K(q) = dF/dq (N, N), exact and symmetric."""
+        return self.elastic_forces_and_stiffness(q)[1]
+
+    def elastic_forces_and_stiffness(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """F(q) and K(q) from one evaluation of the strains (for Newton iterations)."""
+        s_z, _, stress = self._strain_state(q)
+        forces = self._assemble_vector(self._element_forces(s_z, stress))
+        geometric = np.tensordot(stress, _S, axes=(2, 0))
+        material = np.swapaxes(s_z, -1, -2) @ (self._H @ s_z)
+        element = (self._B_transposed @ ((geometric + material) @ self._B)).sum(axis=1)
+        return forces, self._assemble_matrix(element)
+
+    def _element_forces(self, s_z: np.ndarray, stress: np.ndarray) -> np.ndarray:
+        f_z = stress[..., None, :] @ s_z
+        return (f_z @ self._B)[..., 0, :].sum(axis=1)
