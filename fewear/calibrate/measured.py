@@ -1,0 +1,424 @@
+"""Measured wear from tribometer tests (pin-on-disc), read from CSV into plain arrays.
+
+The schema: one row per reading, cumulative within a test, SI units in the column names,
+``#`` comment lines allowed anywhere::
+
+    test_id, pressure_Pa, velocity_m_s, sliding_distance_m, wear_volume_m3
+    [, time_s, normal_load_N, friction_coefficient, temperature_C]
+
+Two other forms that tribometer reports give are converted on reading, and each conversion is
+recorded as a sentence in :attr:`MeasuredWear.notes`:
+
+- ``mass_loss_kg`` instead of ``wear_volume_m3``, with a density (column ``density_kg_m3`` or the
+  argument ``density_kg_m3``): V = m / rho.
+- ``specific_wear_rate_m3_N_m`` (k) instead of ``wear_volume_m3``, one row per test, with
+  ``normal_load_N`` and ``sliding_distance_m``: V = k F s (Archard).
+
+Required: ``test_id``, exactly one wear column (``wear_volume_m3``, ``mass_loss_kg`` or
+``specific_wear_rate_m3_N_m``) and ``sliding_distance_m`` (or ``time_s`` with ``velocity_m_s``, from
+which s = v t is derived and noted). Every other variable may be absent: nothing is invented, a
+missing variable is ``None`` and :attr:`MeasuredWear.available` lists what is there.
+
+Bad data raise :class:`~fewear.errors.FewearInputError` naming the file line and the column: a
+missing required column, an unknown column (including known quantities in other units, e.g.
+``wear_volume_mm3``), an empty cell, text or NaN where a number belongs, a negative value, a
+cumulative quantity (wear volume, mass loss, sliding distance, time) that decreases within a test.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from fewear.errors import FewearInputError
+
+DATA_KINDS = ("cumulative_volume", "mass_loss", "specific_wear_rate")
+VARIABLES = ("pressure_Pa", "velocity_m_s", "sliding_distance_m", "wear_volume_m3", "time_s",
+             "normal_load_N", "friction_coefficient", "temperature_C")
+"""The measured variables of :class:`MeasuredWear`, in the order :attr:`available` lists them."""
+WEAR_COLUMNS = {"wear_volume_m3": "cumulative_volume", "mass_loss_kg": "mass_loss",
+                "specific_wear_rate_m3_N_m": "specific_wear_rate"}
+COLUMNS = ("test_id",) + VARIABLES + ("mass_loss_kg", "density_kg_m3", "specific_wear_rate_m3_N_m")
+POSITIVE = {"pressure_Pa", "velocity_m_s", "normal_load_N", "density_kg_m3"}
+CUMULATIVE = ("sliding_distance_m", "time_s", "wear_volume_m3", "mass_loss_kg")
+ABSOLUTE_ZERO_C = -273.15
+
+UNIT_HINTS = {
+    "wear_volume_": "wear_volume_m3 (1 mm^3 = 1e-9 m^3)",
+    "volume_": "wear_volume_m3 (1 mm^3 = 1e-9 m^3)",
+    "pressure_": "pressure_Pa (1 MPa = 1e6 Pa)",
+    "velocity_": "velocity_m_s (1 mm/s = 1e-3 m/s)",
+    "speed_": "velocity_m_s",
+    "sliding_distance_": "sliding_distance_m (1 km = 1e3 m)",
+    "distance_": "sliding_distance_m",
+    "mass_loss_": "mass_loss_kg (1 mg = 1e-6 kg)",
+    "time_": "time_s (1 h = 3600 s)",
+    "normal_load_": "normal_load_N (1 kN = 1e3 N)",
+    "load_": "normal_load_N",
+    "temperature_": "temperature_C",
+    "density_": "density_kg_m3 (1 g/cm^3 = 1e3 kg/m^3)",
+    "specific_wear_rate_": "specific_wear_rate_m3_N_m (1 mm^3/(N m) = 1e-9 m^3/(N m))",
+    "wear_rate_": "specific_wear_rate_m3_N_m (1 mm^3/(N m) = 1e-9 m^3/(N m))",
+}
+
+
+@dataclass(frozen=True, eq=False)
+class MeasuredWear:
+    """Wear readings of tribometer tests, one entry per reading, SI units (see module doc).
+
+    ``test_id`` (str array) names each reading's test; a variable that the data lack is ``None``.
+    ``wear_volume_m3`` and ``sliding_distance_m`` are cumulative from the start of the test.
+    ``line_number`` (int array), when read from a file, is each reading's line in it.
+    """
+
+    source: str
+    data_kind: str
+    test_id: np.ndarray
+    pressure_Pa: np.ndarray | None = None
+    velocity_m_s: np.ndarray | None = None
+    sliding_distance_m: np.ndarray | None = None
+    wear_volume_m3: np.ndarray | None = None
+    time_s: np.ndarray | None = None
+    normal_load_N: np.ndarray | None = None
+    friction_coefficient: np.ndarray | None = None
+    temperature_C: np.ndarray | None = None
+    notes: tuple[str, ...] = ()
+    line_number: np.ndarray | None = None
+
+    def __post_init__(self):
+        if self.data_kind not in DATA_KINDS:
+            raise FewearInputError(
+                f"{self.source}: data_kind {self.data_kind!r}: expected one of {', '.join(DATA_KINDS)}"
+            )
+        test_id = np.asarray(self.test_id).astype(str)
+        if test_id.ndim != 1 or test_id.size == 0:
+            raise FewearInputError(f"{self.source}: test_id must be a non-empty list of names")
+        object.__setattr__(self, "test_id", test_id)
+        object.__setattr__(self, "notes", tuple(self.notes))
+        if self.line_number is not None:
+            object.__setattr__(self, "line_number", np.asarray(self.line_number, dtype=int))
+        where = self._where
+        for name in VARIABLES:
+            value = getattr(self, name)
+            if value is None:
+                continue
+            array = np.array(value, dtype=float)
+            if array.shape != test_id.shape:
+                raise FewearInputError(
+                    f"{self.source}: {name} has {array.size} values for {test_id.size} readings"
+                )
+            _check_values(name, array, where)
+            array.setflags(write=False)
+            object.__setattr__(self, name, array)
+        if self.sliding_distance_m is None or self.wear_volume_m3 is None:
+            raise FewearInputError(
+                f"{self.source}: sliding_distance_m and wear_volume_m3 are required"
+            )
+        if self.data_kind != "specific_wear_rate":
+            for name in CUMULATIVE:
+                if getattr(self, name, None) is not None:
+                    _check_cumulative(name, getattr(self, name), self.tests(), test_id, where)
+
+    def _where(self, index: int) -> str:
+        if self.line_number is not None:
+            return f"{self.source} line {self.line_number[index]}"
+        return f"{self.source} reading {index}"
+
+    @property
+    def available(self) -> tuple[str, ...]:
+        """The names of the variables the data hold (of :data:`VARIABLES`)."""
+        return tuple(name for name in VARIABLES if getattr(self, name) is not None)
+
+    @property
+    def missing(self) -> tuple[str, ...]:
+        """The names of the variables the data lack."""
+        return tuple(name for name in VARIABLES if getattr(self, name) is None)
+
+    def tests(self) -> list[np.ndarray]:
+        """Index arrays of each test's readings (in file order), tests in order of appearance."""
+        return _tests(self.test_id)
+
+    def test_names(self) -> list[str]:
+        """The test ids in order of appearance (as :meth:`tests`)."""
+        return [str(self.test_id[index[0]]) for index in self.tests()]
+
+
+def read_measured_wear(path: str | Path, *, density_kg_m3: float | None = None) -> MeasuredWear:
+    """Read a measured-wear CSV (module doc); convert mass loss or specific wear rate to volume."""
+    path = Path(path)
+    source = str(path)
+    header_line, header, rows = _read_rows(path)
+    _check_header(source, header_line, header)
+    wear_columns = [name for name in header if name in WEAR_COLUMNS]
+    if len(wear_columns) != 1:
+        found = ", ".join(wear_columns) or "none"
+        raise FewearInputError(
+            f"{source} line {header_line}: expected exactly one wear column of "
+            f"{', '.join(WEAR_COLUMNS)}; found {found}"
+        )
+    wear_column = wear_columns[0]
+    data_kind = WEAR_COLUMNS[wear_column]
+    line_number = np.array([line for line, _ in rows], dtype=int)
+
+    def where(index: int) -> str:
+        return f"{source} line {line_number[index]}"
+
+    test_id = np.array([row[header.index("test_id")].strip() for _, row in rows])
+    for index, name in enumerate(test_id):
+        if not name:
+            raise FewearInputError(f"{where(index)}, column test_id: empty test name")
+    columns = {}
+    for name in header:
+        if name != "test_id":
+            columns[name] = _numeric_column(name, [row[header.index(name)] for _, row in rows], where)
+            _check_values(name, columns[name], where)
+    notes = []
+    if "sliding_distance_m" not in columns:
+        _derive_distance(columns, notes)
+    tests = _tests(test_id)
+    if data_kind == "specific_wear_rate":
+        _check_one_row_per_test(tests, test_id, where)
+        _specific_wear_rate_to_volume(source, header_line, columns, notes)
+    else:
+        for name in CUMULATIVE:
+            if name in columns:
+                _check_cumulative(name, columns[name], tests, test_id, where)
+    if data_kind == "mass_loss":
+        _mass_loss_to_volume(source, header_line, columns, density_kg_m3, notes)
+    elif density_kg_m3 is not None:
+        notes.append(f"The density argument ({density_kg_m3} kg/m^3) was not needed and not used.")
+    if "density_kg_m3" in columns and data_kind != "mass_loss":
+        notes.append("The density_kg_m3 column was not needed (no mass loss) and not used.")
+    return MeasuredWear(
+        source=source, data_kind=data_kind, test_id=test_id,
+        **{name: columns.get(name) for name in VARIABLES},
+        notes=tuple(notes), line_number=line_number,
+    )
+
+
+def write_measured_wear(path: str | Path, data: MeasuredWear, *, comment: str = "") -> None:
+    """Write ``data`` in the cumulative-volume schema (with ``comment`` as ``#`` header lines)."""
+    names = ["test_id"] + list(data.available)
+    lines = [f"# {line}".rstrip() for line in comment.splitlines()] if comment else []
+    lines.append(",".join(names))
+    for index in range(data.test_id.size):
+        values = [str(data.test_id[index])]
+        values += [repr(float(getattr(data, name)[index])) for name in names[1:]]
+        lines.append(",".join(values))
+    Path(path).write_text("\n".join(lines) + "\n")
+
+
+def wear_coefficient_samples(
+    data: MeasuredWear, *, contact_area_m2: float | None = None
+) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
+    """One (p, v, k) sample per test (tests in order of appearance), for fitting k(p, v).
+
+    Archard's law V = k F s with the cumulative readings of a test: k is the least-squares slope
+    through the origin of V against F s, k = sum(F s V) / sum((F s)^2) (for a single reading
+    k = V / (F s)). The normal force F is ``normal_load_N`` when the data hold it, else
+    ``pressure_Pa x contact_area_m2`` (the apparent contact area, e.g. the pin's face, given by the
+    caller); without either the coefficient is not computed (error). The pressure is
+    ``pressure_Pa``, else ``normal_load_N / contact_area_m2``. ``velocity`` is ``None`` when the data
+    lack it. Pressure and velocity must be constant within a test.
+    """
+    force, pressure = _force_and_pressure(data, contact_area_m2)
+    product = force * data.sliding_distance_m
+    samples_p, samples_v, samples_k = [], [], []
+    for index in data.tests():
+        name = data.test_id[index[0]]
+        samples_p.append(_constant_in_test(data, "pressure_Pa", pressure, index, name))
+        if data.velocity_m_s is not None:
+            samples_v.append(_constant_in_test(data, "velocity_m_s", data.velocity_m_s, index, name))
+        denominator = np.sum(product[index] ** 2)
+        if denominator == 0.0:
+            raise FewearInputError(
+                f"{data.source}: test {name} has no sliding (F s = 0 in every reading); "
+                "its wear coefficient is undefined"
+            )
+        samples_k.append(np.sum(product[index] * data.wear_volume_m3[index]) / denominator)
+    velocity = np.array(samples_v) if data.velocity_m_s is not None else None
+    return np.array(samples_p), velocity, np.array(samples_k)
+
+
+def _force_and_pressure(data: MeasuredWear, contact_area_m2: float | None):
+    if contact_area_m2 is not None and not (math.isfinite(contact_area_m2) and contact_area_m2 > 0):
+        raise FewearInputError(f"contact_area_m2 = {contact_area_m2!r}: expected a positive area")
+    force, pressure = data.normal_load_N, data.pressure_Pa
+    if force is None and pressure is not None and contact_area_m2 is not None:
+        force = pressure * contact_area_m2
+    if pressure is None and force is not None and contact_area_m2 is not None:
+        pressure = force / contact_area_m2
+    if force is None or pressure is None:
+        have = ", ".join(name for name in ("normal_load_N", "pressure_Pa")
+                         if getattr(data, name) is not None) or "neither"
+        raise FewearInputError(
+            f"{data.source}: the wear coefficient k = V / (F s) at pressure p needs normal_load_N "
+            f"and pressure_Pa, or one of them and the apparent contact area (contact_area_m2); "
+            f"the data hold {have}"
+        )
+    return force, pressure
+
+
+def _constant_in_test(data, name, values, index, test_name) -> float:
+    spread = values[index]
+    if np.ptp(spread) > 1e-9 * np.max(np.abs(spread)):
+        raise FewearInputError(
+            f"{data.source}: {name} varies within test {test_name} ({spread.min():g} to "
+            f"{spread.max():g}); one k(p, v) sample per test needs it constant"
+        )
+    return float(spread[0])
+
+
+def _read_rows(path: Path) -> tuple[int, list[str], list[tuple[int, list[str]]]]:
+    """The header's line number, its column names, and the (line number, cells) of data rows."""
+    try:
+        text = path.read_text()
+    except OSError as exc:
+        raise FewearInputError(f"cannot read measured data {path}: {exc.strerror}") from None
+    header_line, header, rows = 0, None, []
+    for line_number, line in enumerate(text.splitlines(), start=1):
+        stripped = line.strip()
+        if not stripped or stripped.startswith("#"):
+            continue
+        cells = next(csv.reader([line]))
+        if header is None:
+            header_line, header = line_number, [cell.strip() for cell in cells]
+            continue
+        if len(cells) != len(header):
+            raise FewearInputError(
+                f"{path} line {line_number}: {len(cells)} values for the {len(header)} columns "
+                f"{', '.join(header)}"
+            )
+        rows.append((line_number, cells))
+    if header is None:
+        raise FewearInputError(f"{path}: no header line (column names) found")
+    if not rows:
+        raise FewearInputError(f"{path}: no data rows after the header (line {header_line})")
+    return header_line, header, rows
+
+
+def _check_header(source: str, line: int, header: list[str]) -> None:
+    for name in header:
+        if name not in COLUMNS:
+            raise FewearInputError(f"{source} line {line}, column {name!r}: {_unknown_column(name)}")
+    duplicates = sorted({name for name in header if header.count(name) > 1})
+    if duplicates:
+        raise FewearInputError(f"{source} line {line}: column(s) {', '.join(duplicates)} repeated")
+    if "test_id" not in header:
+        raise FewearInputError(f"{source} line {line}: missing required column test_id")
+    if "sliding_distance_m" not in header and not {"time_s", "velocity_m_s"} <= set(header):
+        raise FewearInputError(
+            f"{source} line {line}: missing required column sliding_distance_m "
+            "(or time_s and velocity_m_s to derive it)"
+        )
+
+
+def _unknown_column(name: str) -> str:
+    for prefix, hint in UNIT_HINTS.items():
+        if name.startswith(prefix):
+            return f"unknown column or unit; fewear reads SI units only: use {hint}"
+    return "unknown column; allowed columns: " + ", ".join(COLUMNS)
+
+
+def _numeric_column(name: str, cells: list[str], where: Callable[[int], str]) -> np.ndarray:
+    values = np.empty(len(cells))
+    for index, cell in enumerate(cells):
+        text = cell.strip()
+        if not text:
+            raise FewearInputError(f"{where(index)}, column {name}: empty value")
+        try:
+            values[index] = float(text)
+        except ValueError:
+            raise FewearInputError(
+                f"{where(index)}, column {name}: {text!r} is not a number"
+            ) from None
+    return values
+
+
+def _check_values(name: str, values: np.ndarray, where: Callable[[int], str]) -> None:
+    """Finite; positive (POSITIVE), above absolute zero (temperature) or non-negative (others)."""
+    if name == "temperature_C":
+        bad, allowed = ~(values > ABSOLUTE_ZERO_C), "a finite temperature above -273.15 C"
+    elif name in POSITIVE:
+        bad, allowed = ~(values > 0.0), "a positive number"
+    else:
+        bad, allowed = ~(values >= 0.0), "a non-negative number"
+    bad |= ~np.isfinite(values)
+    if np.any(bad):
+        index = int(np.flatnonzero(bad)[0])
+        raise FewearInputError(f"{where(index)}, column {name}: {values[index]!r}; expected {allowed}")
+
+
+def _tests(test_id: np.ndarray) -> list[np.ndarray]:
+    names, first = np.unique(test_id, return_index=True)
+    return [np.flatnonzero(test_id == names[i]) for i in np.argsort(first)]
+
+
+def _check_cumulative(name, values, tests, test_id, where) -> None:
+    """A cumulative quantity must not decrease from one reading of a test to the next."""
+    for index in tests:
+        drops = np.flatnonzero(np.diff(values[index]) < 0.0)
+        if drops.size:
+            previous, current = index[drops[0]], index[drops[0] + 1]
+            raise FewearInputError(
+                f"{where(current)}, column {name}: {values[current]!r} is less than "
+                f"{values[previous]!r} of the previous reading of test {test_id[current]} "
+                f"({where(previous)}); readings are cumulative and must not decrease"
+            )
+
+
+def _check_one_row_per_test(tests, test_id, where) -> None:
+    for index in tests:
+        if index.size > 1:
+            raise FewearInputError(
+                f"{where(index[1])}, column test_id: test {test_id[index[0]]} appears again; "
+                "a specific wear rate table has one row per test"
+            )
+
+
+def _derive_distance(columns, notes) -> None:
+    columns["sliding_distance_m"] = columns["velocity_m_s"] * columns["time_s"]
+    notes.append("No sliding_distance_m column: the sliding distance was derived as s = v t "
+                 "from velocity_m_s and time_s.")
+
+
+def _specific_wear_rate_to_volume(source, line, columns, notes) -> None:
+    if "normal_load_N" not in columns:
+        raise FewearInputError(
+            f"{source} line {line}, column normal_load_N: missing; a specific wear rate "
+            "(specific_wear_rate_m3_N_m) is converted to a wear volume V = k F s with the load"
+        )
+    rate = columns.pop("specific_wear_rate_m3_N_m")
+    columns["wear_volume_m3"] = rate * columns["normal_load_N"] * columns["sliding_distance_m"]
+    notes.append("Specific wear rates (specific_wear_rate_m3_N_m, one row per test) were converted "
+                 "to wear volumes V = k F s with normal_load_N and sliding_distance_m.")
+
+
+def _mass_loss_to_volume(source, line, columns, density_kg_m3, notes) -> None:
+    mass = columns.pop("mass_loss_kg")
+    if "density_kg_m3" in columns:
+        if density_kg_m3 is not None:
+            raise FewearInputError(
+                f"{source} line {line}, column density_kg_m3: the density is given both as a "
+                f"column and as an argument ({density_kg_m3} kg/m^3); give it once"
+            )
+        columns["wear_volume_m3"] = mass / columns.pop("density_kg_m3")
+        notes.append("Mass losses (mass_loss_kg) were converted to wear volumes V = m / rho with "
+                     "the density_kg_m3 column.")
+        return
+    if density_kg_m3 is None:
+        raise FewearInputError(
+            f"{source} line {line}, column mass_loss_kg: a mass loss needs a density to become a "
+            "wear volume: add a density_kg_m3 column or give the density argument"
+        )
+    if not (math.isfinite(density_kg_m3) and density_kg_m3 > 0.0):
+        raise FewearInputError(f"density_kg_m3 = {density_kg_m3!r}: expected a positive density")
+    columns["wear_volume_m3"] = mass / density_kg_m3
+    notes.append(f"Mass losses (mass_loss_kg) were converted to wear volumes V = m / rho with "
+                 f"the given density rho = {density_kg_m3:g} kg/m^3.")
+
