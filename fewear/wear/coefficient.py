@@ -311,11 +311,13 @@ def wear_section_toml(section: dict[str, Any], name: str = "wear") -> str:
     """``section`` as TOML text under ``[name]``: floats, ints, bools, strings, (nested) arrays
     and tables of those (tables written inline, their arrays one row per line)."""
     lines = [f"[{name}]"]
-    lines += [f"{key} = {_toml_value(value)}" for key, value in section.items()]
+    lines += [f"{key} = {toml_value(value)}" for key, value in section.items()]
     return "\n".join(lines) + "\n"
 
 
-def _toml_value(value: Any, indent: str = "") -> str:
+def toml_value(value: Any, indent: str = "") -> str:
+    """One TOML value; arrays of arrays or of more than four numbers span lines (allowed inside
+    inline tables, since the line breaks are within a value)."""
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, (int, np.integer)):
@@ -330,17 +332,17 @@ def _toml_value(value: Any, indent: str = "") -> str:
     if isinstance(value, str):
         return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
     if isinstance(value, np.ndarray):
-        return _toml_value(value.tolist(), indent)
+        return toml_value(value.tolist(), indent)
     if isinstance(value, (list, tuple)):
-        items = [_toml_value(item, indent + "  ") for item in value]
-        if any(isinstance(item, (list, tuple, np.ndarray)) for item in value):
+        items = [toml_value(item, indent + "  ") for item in value]
+        if len(items) > 4 or any(isinstance(item, (list, tuple, np.ndarray)) for item in value):
             inner = indent + "  "
             return "[\n" + "".join(f"{inner}{item},\n" for item in items) + indent + "]"
         return "[" + ", ".join(items) + "]"
     if isinstance(value, dict):
         if not value:
             return "{}"
-        items = [f"{key} = {_toml_value(item, indent)}" for key, item in value.items()]
+        items = [f"{key} = {toml_value(item, indent)}" for key, item in value.items()]
         return "{" + ", ".join(items) + "}"
     raise TypeError(f"cannot write {type(value).__name__} as TOML")
 
