@@ -18,11 +18,12 @@ Two models, both callable as ``k(pressure_Pa, velocity_m_s) -> k_m2_N`` with Num
     (the paper's bias-free form would shrink ln k towards 0, i.e. k towards 1 m^2/N);
   * centres by k-means (k-means++ seeding, Lloyd iterations) on the distinct standardised inputs;
   * widths by the p-nearest-neighbour rule (Moody & Darken 1989) with p = 2:
-    :math:`\\sigma_i` = ``WIDTH_SCALE`` x mean distance from centre i to its two nearest centres;
+    :math:`\\sigma_i` = width scale x mean distance from centre i to its two nearest centres;
   * output weights by ridge least squares (penalty on the Gaussian weights only);
-  * number of centres and ridge parameter by k-fold cross-validation with the one-standard-error
-    rule (Hastie, Tibshirani & Friedman, *Elements of Statistical Learning*, 2nd ed., sec. 7.10):
-    the simplest model whose CV error is within one standard error of the best;
+  * number of centres, width scale and ridge parameter by k-fold cross-validation with the
+    one-standard-error rule (Hastie, Tibshirani & Friedman, *Elements of Statistical Learning*,
+    2nd ed., sec. 7.10): the simplest model (fewest centres, then largest ridge, then widest units)
+    whose CV error is within one standard error of the best;
   * no extrapolation: inputs are clamped to the training box (the range of ln p and ln v over the
     tests), so outside the tested range k stays at its value on the nearest edge of the box. A
     pressure of zero (no contact) therefore gives k at the lowest tested pressure, and wear k p s = 0.
@@ -41,13 +42,13 @@ import numpy as np
 
 from fewear.errors import FewearInputError
 
-WIDTH_SCALE = 1.0
-"""Factor on the mean distance to the two nearest centres that gives a Gaussian's width."""
+WIDTH_SCALE_GRID = (1.0, 1.5, 2.0)
+"""Factors on the mean distance to the two nearest centres (a Gaussian's width) tried by CV."""
 NEAREST_CENTRES = 2
 """p of the p-nearest-neighbour width rule (Moody & Darken 1989)."""
 CENTRE_GRID = (2, 3, 5, 8, 12, 16, 20, 25, 30)
 """Numbers of hidden units tried by cross-validation (those below the number of distinct tests)."""
-RIDGE_GRID = tuple(float(10.0**e) for e in np.arange(-7.0, 2.01, 0.5))
+RIDGE_GRID = tuple(float(10.0**e) for e in np.arange(-7.0, 2.01, 1.0))
 """Ridge parameters tried by cross-validation (penalty per sample on the Gaussian weights)."""
 MODELS = ("constant", "rbf")
 
@@ -79,17 +80,20 @@ class CrossValidation:
     """How the RBF network's size and ridge parameter were chosen (k-fold cross-validation).
 
     Errors are root-mean-square residuals of ln k on held-out tests (about the relative error of k
-    when small). ``rms_log_error[i, j]`` belongs to ``n_centres_grid[i]`` and ``ridge_grid[j]``;
-    ``standard_error`` is the standard error of that mean over the folds.
+    when small). ``rms_log_error[i, j, l]`` belongs to ``n_centres_grid[i]``,
+    ``width_scale_grid[j]`` and ``ridge_grid[l]``; ``standard_error`` is the standard error of that
+    mean over the folds.
     """
 
     folds: int
     n_samples: int
     n_centres_grid: tuple[int, ...]
+    width_scale_grid: tuple[float, ...]
     ridge_grid: tuple[float, ...]
     rms_log_error: np.ndarray
     standard_error: np.ndarray
     n_centres: int
+    width_scale: float
     ridge: float
     cv_rms_log_error: float
     best_rms_log_error: float
@@ -99,7 +103,7 @@ class CrossValidation:
         """One line for reports."""
         return (
             f"{self.folds}-fold CV over {self.n_samples} tests: {self.n_centres} centres, "
-            f"ridge {self.ridge:.1e}; held-out RMS error of ln k {self.cv_rms_log_error:.3f} "
+            f"width scale {self.width_scale:g}, ridge {self.ridge:.0e}; held-out RMS error of ln k {self.cv_rms_log_error:.3f} "
             f"(best on the grid {self.best_rms_log_error:.3f}), training {self.training_rms_log_error:.3f}"
         )
 
@@ -221,9 +225,10 @@ class RbfWearCoefficient:
     ) -> tuple[RbfWearCoefficient, CrossValidation]:
         """Train the network on tests (p_j, v_j, k_j), one sample per test.
 
-        ``n_centres`` and ``ridge`` fixed when given, else chosen by ``folds``-fold cross-validation
-        over ``CENTRE_GRID`` x ``RIDGE_GRID`` (one-standard-error rule, see module doc); the final
-        network is refitted on all tests with the chosen pair. ``seed`` fixes the fold split and
+        ``n_centres`` and ``ridge`` fixed when given, else chosen with the width scale by
+        ``folds``-fold cross-validation over ``CENTRE_GRID`` x ``WIDTH_SCALE_GRID`` x
+        ``RIDGE_GRID`` (one-standard-error rule, see module doc); the final network is refitted on
+        all tests with the chosen triple. ``seed`` fixes the fold split and
         the k-means seeding, so a fit is reproducible.
         """
         p, v, k = _training_arrays(pressure_Pa, velocity_m_s, k_m2_N)
@@ -240,22 +245,24 @@ class RbfWearCoefficient:
         ridge_grid = _ridge_grid(ridge)
         rng = np.random.default_rng(seed)
         fold_of = rng.permutation(len(y)) % folds
-        errors = np.zeros((folds, len(centre_grid), len(ridge_grid)))
+        shape = (folds, len(centre_grid), len(WIDTH_SCALE_GRID), len(ridge_grid))
+        errors = np.zeros(shape)
         counts = np.bincount(fold_of, minlength=folds)
         for f in range(folds):
             train, test = fold_of != f, fold_of == f
             for i, m in enumerate(centre_grid):
-                centres, widths = _centres_and_widths(z[train], m, seed)
-                for j, lam in enumerate(ridge_grid):
-                    coef = _ridge_solve(z[train], y[train], centres, widths, lam)
-                    residual = _design(z[test], centres, widths) @ coef - y[test]
-                    errors[f, i, j] = np.mean(residual**2)
-        pooled = np.sqrt(np.einsum("f,fij->ij", counts, errors) / counts.sum())
-        fold_rms = np.sqrt(errors)
-        standard_error = fold_rms.std(axis=0, ddof=1) / np.sqrt(folds)
-        i, j = _one_standard_error_choice(pooled, standard_error)
-        centres, widths = _centres_and_widths(z, centre_grid[i], seed)
-        coef = _ridge_solve(z, y, centres, widths, ridge_grid[j])
+                centres, spacing = _centres_and_spacing(z[train], m, seed)
+                for j, scale_factor in enumerate(WIDTH_SCALE_GRID):
+                    for l, lam in enumerate(ridge_grid):
+                        coef = _ridge_solve(z[train], y[train], centres, scale_factor * spacing, lam)
+                        residual = _design(z[test], centres, scale_factor * spacing) @ coef
+                        errors[f, i, j, l] = np.mean((residual - y[test]) ** 2)
+        pooled = np.sqrt(np.einsum("f,fijl->ijl", counts, errors) / counts.sum())
+        standard_error = np.sqrt(errors).std(axis=0, ddof=1) / np.sqrt(folds)
+        i, j, l = _one_standard_error_choice(pooled, standard_error)
+        centres, spacing = _centres_and_spacing(z, centre_grid[i], seed)
+        widths = WIDTH_SCALE_GRID[j] * spacing
+        coef = _ridge_solve(z, y, centres, widths, ridge_grid[l])
         m = len(widths)
         model = cls(
             centres=centres, widths=widths, weights=coef[:m], tail=coef[m:],
@@ -265,8 +272,10 @@ class RbfWearCoefficient:
         training = float(np.sqrt(np.mean((model.log_k(p, v) - y) ** 2)))
         report = CrossValidation(
             folds=folds, n_samples=len(y), n_centres_grid=tuple(centre_grid),
-            ridge_grid=tuple(ridge_grid), rms_log_error=pooled, standard_error=standard_error,
-            n_centres=centre_grid[i], ridge=ridge_grid[j], cv_rms_log_error=float(pooled[i, j]),
+            width_scale_grid=WIDTH_SCALE_GRID, ridge_grid=tuple(ridge_grid),
+            rms_log_error=pooled, standard_error=standard_error, n_centres=centre_grid[i],
+            width_scale=WIDTH_SCALE_GRID[j], ridge=ridge_grid[l],
+            cv_rms_log_error=float(pooled[i, j, l]),
             best_rms_log_error=float(pooled.min()), training_rms_log_error=training,
         )
         return model, report
@@ -394,15 +403,17 @@ def _ridge_grid(ridge) -> list[float]:
     return [float(ridge)]
 
 
-def _one_standard_error_choice(error: np.ndarray, standard_error: np.ndarray) -> tuple[int, int]:
-    """The simplest (fewest centres, then largest ridge) grid point within one SE of the best."""
+def _one_standard_error_choice(error: np.ndarray, standard_error: np.ndarray):
+    """The simplest grid point (fewest centres, then largest ridge, then widest units; axes of
+    ``error``: centres, width scale, ridge) whose error is within one SE of the best."""
     best = np.unravel_index(np.argmin(error), error.shape)
     threshold = error[best] + standard_error[best]
     for i in range(error.shape[0]):
-        within = np.flatnonzero(error[i] <= threshold)
-        if within.size:
-            return i, int(within[-1])
-    return int(best[0]), int(best[1])
+        for l in reversed(range(error.shape[2])):
+            within = np.flatnonzero(error[i, :, l] <= threshold)
+            if within.size:
+                return i, int(within[-1]), l
+    return tuple(int(index) for index in best)
 
 
 def _design(z: np.ndarray, centres: np.ndarray, widths: np.ndarray) -> np.ndarray:
@@ -424,8 +435,9 @@ def _ridge_solve(z, y, centres, widths, ridge) -> np.ndarray:
     return np.linalg.lstsq(augmented, rhs, rcond=None)[0]
 
 
-def _centres_and_widths(z: np.ndarray, m: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
-    """k-means centres on the distinct inputs and p-nearest-neighbour widths (module doc)."""
+def _centres_and_spacing(z: np.ndarray, m: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
+    """k-means centres on the distinct inputs and each centre's mean distance to its nearest
+    ``NEAREST_CENTRES`` centres (times a width scale: the p-nearest-neighbour widths)."""
     points = np.unique(z, axis=0)
     m = min(m, len(points))
     centres = _kmeans(points, m, np.random.default_rng(seed))
@@ -434,7 +446,7 @@ def _centres_and_widths(z: np.ndarray, m: int, seed: int) -> tuple[np.ndarray, n
     distance = np.linalg.norm(centres[:, None, :] - centres[None, :, :], axis=-1)
     distance[np.diag_indices(m)] = np.inf
     nearest = np.sort(distance, axis=1)[:, : min(NEAREST_CENTRES, m - 1)]
-    return centres, WIDTH_SCALE * nearest.mean(axis=1)
+    return centres, nearest.mean(axis=1)
 
 
 def _kmeans(points: np.ndarray, m: int, rng: np.random.Generator, iterations: int = 100):
