@@ -34,14 +34,40 @@ class SliderCrankParameters:
     rod_mass_kg: float = 7800.0 * 0.34 * 0.018 * 0.005
     rod_inertia_kg_m2: float = 7800.0 * 0.34 * 0.018 * 0.005 * 0.34**2 / 12.0
     slider_mass_kg: float = 0.5
+    slider_inertia_kg_m2: float = 0.5e-4
     crank_speed_rad_s: float = 1200.0 * 2.0 * math.pi / 60.0
+    initial_crank_angle_rad: float = 0.0
     gravity_m_s2: float = 9.81
 
 
+def parameters_from_defaults() -> SliderCrankParameters:
+    """The rigid mechanism of fewear's [mechanism] defaults (``fewear/defaults/dynamics.toml``):
+    rod inertia m l^2/12 of the uniform rod, slider inertia 1e-4 m^2 times its mass (its rotation is
+    constrained, so the value does not matter), as in ``fewear.mbd.slider_crank``."""
+    from fewear.io.config import load_config
+
+    mechanism = load_config(None, ["mechanism"])["mechanism"]
+    rod_mass = (mechanism["rod_density_kg_m3"] * mechanism["rod_height_m"]
+                * mechanism["rod_width_m"] * mechanism["rod_length_m"])
+    return SliderCrankParameters(
+        crank_length_m=mechanism["crank_length_m"],
+        crank_mass_kg=mechanism["crank_mass_kg"],
+        crank_inertia_kg_m2=mechanism["crank_inertia_kg_m2"],
+        rod_length_m=mechanism["rod_length_m"],
+        rod_mass_kg=rod_mass,
+        rod_inertia_kg_m2=rod_mass * mechanism["rod_length_m"] ** 2 / 12.0,
+        slider_mass_kg=mechanism["slider_mass_kg"],
+        slider_inertia_kg_m2=mechanism["slider_mass_kg"] * 1e-4,
+        crank_speed_rad_s=mechanism["crank_speed_rpm"] * 2.0 * math.pi / 60.0,
+        initial_crank_angle_rad=math.radians(mechanism["initial_crank_angle_deg"]),
+        gravity_m_s2=mechanism["gravity_m_s2"],
+    )
+
+
 def slider_closed_form(params: SliderCrankParameters, time_s: np.ndarray):
-    """Slider x (m) and x' (m/s) at ``time_s`` for phi = omega t (module docstring)."""
+    """Slider x (m) and x' (m/s) at ``time_s`` for phi = phi0 + omega t (module docstring)."""
     r, l, omega = params.crank_length_m, params.rod_length_m, params.crank_speed_rad_s
-    phi = omega * np.asarray(time_s, dtype=float)
+    phi = params.initial_crank_angle_rad + omega * np.asarray(time_s, dtype=float)
     root = np.sqrt(l**2 - (r * np.sin(phi)) ** 2)
     x = r * np.cos(phi) + root
     x_dot = -r * omega * np.sin(phi) - r**2 * omega * np.sin(phi) * np.cos(phi) / root
@@ -63,9 +89,14 @@ def run_exudyn_slider_crank(step_s: float, end_time_s: float,
     )
 
     r, l, omega = params.crank_length_m, params.rod_length_m, params.crank_speed_rad_s
-    # Start at phi = 0 (top dead centre): consistent positions and velocities.
-    pin_velocity = np.array([0.0, r * omega])
-    rod_omega = -r * omega / l
+    # Consistent initial positions and velocities of the ideal mechanism at phi0.
+    phi = params.initial_crank_angle_rad
+    pin = r * np.array([math.cos(phi), math.sin(phi)])
+    pin_velocity = r * omega * np.array([-math.sin(phi), math.cos(phi)])
+    slider_x, slider_velocity = slider_closed_form(params, 0.0)
+    rod_angle = math.asin(-r * math.sin(phi) / l)
+    rod_omega = -r * omega * math.cos(phi) / (l * math.cos(rod_angle))
+    rod_centre_velocity = (pin_velocity + np.array([float(slider_velocity), 0.0])) / 2
 
     system_container = exu.SystemContainer()
     mbs = system_container.AddSystem()
@@ -84,11 +115,13 @@ def run_exudyn_slider_crank(step_s: float, end_time_s: float,
                                          loadVector=[0.0, -params.gravity_m_s2, 0.0]))
         return node, number
 
-    crank_node, crank = body(params.crank_mass_kg, params.crank_inertia_kg_m2, (r / 2, 0.0), 0.0,
+    crank_node, crank = body(params.crank_mass_kg, params.crank_inertia_kg_m2, pin / 2, phi,
                              pin_velocity / 2, omega)
-    _, rod = body(params.rod_mass_kg, params.rod_inertia_kg_m2, (r + l / 2, 0.0), 0.0,
-                  pin_velocity / 2, rod_omega)
-    slider_node, slider = body(params.slider_mass_kg, 1e-4, (r + l, 0.0), 0.0, (0.0, 0.0), 0.0)
+    _, rod = body(params.rod_mass_kg, params.rod_inertia_kg_m2,
+                  (pin + np.array([float(slider_x), 0.0])) / 2, rod_angle, rod_centre_velocity,
+                  rod_omega)
+    slider_node, slider = body(params.slider_mass_kg, params.slider_inertia_kg_m2,
+                               (float(slider_x), 0.0), 0.0, (float(slider_velocity), 0.0), 0.0)
 
     def marker(body_number, x_local):
         return mbs.AddMarker(MarkerBodyRigid(bodyNumber=body_number,
