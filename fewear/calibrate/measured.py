@@ -93,7 +93,8 @@ class MeasuredWear:
     def __post_init__(self):
         if self.data_kind not in DATA_KINDS:
             raise FewearInputError(
-                f"{self.source}: data_kind {self.data_kind!r}: expected one of {', '.join(DATA_KINDS)}"
+                f"{self.source}: data_kind {self.data_kind!r}: expected one of "
+                + ", ".join(DATA_KINDS)
             )
         test_id = np.asarray(self.test_id).astype(str)
         if test_id.ndim != 1 or test_id.size == 0:
@@ -175,7 +176,8 @@ def read_measured_wear(path: str | Path, *, density_kg_m3: float | None = None) 
     columns = {}
     for name in header:
         if name != "test_id":
-            columns[name] = _numeric_column(name, [row[header.index(name)] for _, row in rows], where)
+            cells = [row[header.index(name)] for _, row in rows]
+            columns[name] = _numeric_column(name, cells, where)
             _check_values(name, columns[name], where)
     notes = []
     if "sliding_distance_m" not in columns:
@@ -223,8 +225,8 @@ def wear_coefficient_samples(
     k = V / (F s)). The normal force F is ``normal_load_N`` when the data hold it, else
     ``pressure_Pa x contact_area_m2`` (the apparent contact area, e.g. the pin's face, given by the
     caller); without either the coefficient is not computed (error). The pressure is
-    ``pressure_Pa``, else ``normal_load_N / contact_area_m2``. ``velocity`` is ``None`` when the data
-    lack it. Pressure and velocity must be constant within a test.
+    ``pressure_Pa``, else ``normal_load_N / contact_area_m2``. ``velocity`` is ``None`` when the
+    data lack it. Pressure and velocity must be constant within a test.
     """
     force, pressure = _force_and_pressure(data, contact_area_m2)
     product = force * data.sliding_distance_m
@@ -233,7 +235,8 @@ def wear_coefficient_samples(
         name = data.test_id[index[0]]
         samples_p.append(_constant_in_test(data, "pressure_Pa", pressure, index, name))
         if data.velocity_m_s is not None:
-            samples_v.append(_constant_in_test(data, "velocity_m_s", data.velocity_m_s, index, name))
+            velocity = data.velocity_m_s
+            samples_v.append(_constant_in_test(data, "velocity_m_s", velocity, index, name))
         denominator = np.sum(product[index] ** 2)
         if denominator == 0.0:
             raise FewearInputError(
@@ -305,7 +308,9 @@ def _read_rows(path: Path) -> tuple[int, list[str], list[tuple[int, list[str]]]]
 def _check_header(source: str, line: int, header: list[str]) -> None:
     for name in header:
         if name not in COLUMNS:
-            raise FewearInputError(f"{source} line {line}, column {name!r}: {_unknown_column(name)}")
+            raise FewearInputError(
+                f"{source} line {line}, column {name!r}: {_unknown_column(name)}"
+            )
     duplicates = sorted({name for name in header if header.count(name) > 1})
     if duplicates:
         raise FewearInputError(f"{source} line {line}: column(s) {', '.join(duplicates)} repeated")
@@ -351,7 +356,9 @@ def _check_values(name: str, values: np.ndarray, where: Callable[[int], str]) ->
     bad |= ~np.isfinite(values)
     if np.any(bad):
         index = int(np.flatnonzero(bad)[0])
-        raise FewearInputError(f"{where(index)}, column {name}: {values[index]!r}; expected {allowed}")
+        raise FewearInputError(
+            f"{where(index)}, column {name}: {values[index]!r}; expected {allowed}"
+        )
 
 
 def _tests(test_id: np.ndarray) -> list[np.ndarray]:

@@ -1,4 +1,4 @@
-"""Fit the RBF wear coefficient k(p, v) to the stand-in data and write ``fewear/defaults/wear.toml``.
+"""Fit the RBF wear coefficient k(p, v) to the stand-in data; write ``fewear/defaults/wear.toml``.
 
 The default ``[wear]`` section carries the network fitted here, so that the default config has a
 real k(p, v) (seed eq. 9, Fig. 4). Rerun after changing the data set or the fitting method::

@@ -82,15 +82,17 @@ def standin_rows() -> list[tuple]:
 def header() -> str:
     return "\n".join("# " + line if line else "#" for line in [
         "SYNTHETIC pin-on-disc data: a STAND-IN, not a measurement.",
-        "CuZn25Al6Fe3Mn3 pin (235 HB) on 42CrMo disc (60 HRC), the pair of Zhao, Zhang & Dai (2013),",
-        "whose test data are unpublished. Made by fewear/data/make_standin_pin_on_disc.py",
+        "CuZn25Al6Fe3Mn3 pin (235 HB) on 42CrMo disc (60 HRC), the pair of Zhao, Zhang & Dai",
+        "(2013), whose test data are unpublished. Made by fewear/data/make_standin_pin_on_disc.py",
         f"(numpy default_rng({SEED})); rerun it to regenerate this file bit for bit.",
         "Law: k(p, v) = K0 (p/P0)^ALPHA [1 + BETA ln^2(v/V0)] [1 + GAMMA q/(q + Q0)], q = MU p v,",
-        f"K0 = {K0_m2_N:g} m^2/N, P0 = {P0_Pa:g} Pa, ALPHA = {ALPHA}, V0 = {V0_m_s} m/s, BETA = {BETA},",
-        f"GAMMA = {GAMMA}, Q0 = {Q0_W_m2:g} W/m^2, MU = {MU_NOMINAL}. Plain Archard: V = k F s, F = p A,",
-        f"pin diameter {PIN_DIAMETER_m:g} m; lognormal scatter {TEST_SCATTER} per test on k and",
-        f"{READING_SCATTER} per reading on V; friction coefficient MU x lognormal(0.08) per test",
-        "x lognormal(0.03) per reading. Tests run in a shuffled order of the 6 x 6 (p, v) matrix.",
+        f"K0 = {K0_m2_N:g} m^2/N, P0 = {P0_Pa:g} Pa, ALPHA = {ALPHA}, V0 = {V0_m_s} m/s,",
+        f"BETA = {BETA}, GAMMA = {GAMMA}, Q0 = {Q0_W_m2:g} W/m^2, MU = {MU_NOMINAL}.",
+        f"Plain Archard: V = k F s with F = p A (pin diameter {PIN_DIAMETER_m:g} m). Lognormal",
+        f"scatter: {TEST_SCATTER} per test on k, {READING_SCATTER} per reading on V; friction "
+        "coefficient MU x lognormal(0.08)",
+        "per test x lognormal(0.03) per reading. Tests run in a shuffled order of the 6 x 6 (p, v)",
+        "matrix.",
         "",
         "One row per reading, cumulative within a test; SI units (in the column names).",
     ]) + "\n"

@@ -12,10 +12,11 @@ Two models, both callable as ``k(pressure_Pa, velocity_m_s) -> k_m2_N`` with Num
   and velocity standardised over the training tests. Choices, each documented where it is made:
 
   * output ln k, so k > 0 everywhere (a network in k itself can turn negative between tests);
-  * a bias and a linear tail :math:`c_0 + c_1 z_p + c_2 z_v` beside the Gaussian units: in log space a
-    power law :math:`k \\propto p^a v^b` is linear, so the tail carries the Archard-type trend and the
-    Gaussians only the curvature; the ridge penalty then shrinks the curvature towards that power law
-    (the paper's bias-free form would shrink ln k towards 0, i.e. k towards 1 m^2/N);
+  * a bias and a linear tail :math:`c_0 + c_1 z_p + c_2 z_v` beside the Gaussian units: in log
+    space a power law :math:`k \\propto p^a v^b` is linear, so the tail carries the Archard-type
+    trend and the Gaussians only the curvature; the ridge penalty then shrinks the curvature
+    towards that power law (the paper's bias-free form would shrink ln k towards 0, i.e. k towards
+    1 m^2/N);
   * centres by k-means (k-means++ seeding, Lloyd iterations) on the distinct standardised inputs;
   * widths by the p-nearest-neighbour rule (Moody & Darken 1989) with p = 2:
     :math:`\\sigma_i` = width scale x mean distance from centre i to its two nearest centres;
@@ -26,7 +27,8 @@ Two models, both callable as ``k(pressure_Pa, velocity_m_s) -> k_m2_N`` with Num
     whose CV error is within one standard error of the best;
   * no extrapolation: inputs are clamped to the training box (the range of ln p and ln v over the
     tests), so outside the tested range k stays at its value on the nearest edge of the box. A
-    pressure of zero (no contact) therefore gives k at the lowest tested pressure, and wear k p s = 0.
+    pressure of zero (no contact) therefore gives k at the lowest tested pressure (and wear
+    k p s = 0).
 
 A model is saved as part of the ``[wear]`` config section (:meth:`to_config`, :func:`wear_section`,
 :func:`wear_section_toml`) and rebuilt with :func:`wear_coefficient_from_config`.
@@ -103,8 +105,9 @@ class CrossValidation:
         """One line for reports."""
         return (
             f"{self.folds}-fold CV over {self.n_samples} tests: {self.n_centres} centres, "
-            f"width scale {self.width_scale:g}, ridge {self.ridge:.0e}; held-out RMS error of ln k {self.cv_rms_log_error:.3f} "
-            f"(best on the grid {self.best_rms_log_error:.3f}), training {self.training_rms_log_error:.3f}"
+            f"width scale {self.width_scale:g}, ridge {self.ridge:.0e}; held-out RMS error of "
+            f"ln k {self.cv_rms_log_error:.3f} (best on the grid {self.best_rms_log_error:.3f}), "
+            f"training {self.training_rms_log_error:.3f}"
         )
 
 
@@ -114,8 +117,8 @@ class RbfWearCoefficient:
 
     Arrays: ``centres`` (m, 2) in standardised coordinates, ``widths`` (m,), ``weights`` (m,),
     ``tail`` (3,) = (c0, c1, c2); ``log_input_mean`` and ``log_input_scale`` (2,) standardise
-    (ln p [Pa], ln v [m/s]); ``pressure_range_Pa`` and ``velocity_range_m_s`` (2,) are the training box
-    to which inputs are clamped.
+    (ln p [Pa], ln v [m/s]); ``pressure_range_Pa`` and ``velocity_range_m_s`` (2,) are the
+    training box to which inputs are clamped.
     """
 
     centres: np.ndarray
@@ -176,8 +179,8 @@ class RbfWearCoefficient:
             logs = np.stack([np.log(np.maximum(p, 0.0)), np.log(np.maximum(v, 0.0))], axis=-1)
         z = np.clip((logs - self.log_input_mean) / self.log_input_scale, self._box[0], self._box[1])
         flat = z.reshape(-1, 2)
-        values = _design(flat, self.centres, self.widths) @ np.concatenate([self.weights, self.tail])
-        return values.reshape(p.shape)
+        coefficients = np.concatenate([self.weights, self.tail])
+        return (_design(flat, self.centres, self.widths) @ coefficients).reshape(p.shape)
 
     def to_config(self) -> dict[str, Any]:
         """The ``[wear]`` keys that describe this model (``rbf`` holds TOML arrays of floats)."""
@@ -253,9 +256,10 @@ class RbfWearCoefficient:
             for i, m in enumerate(centre_grid):
                 centres, spacing = _centres_and_spacing(z[train], m, seed)
                 for j, scale_factor in enumerate(WIDTH_SCALE_GRID):
+                    widths = scale_factor * spacing
                     for l, lam in enumerate(ridge_grid):
-                        coef = _ridge_solve(z[train], y[train], centres, scale_factor * spacing, lam)
-                        residual = _design(z[test], centres, scale_factor * spacing) @ coef
+                        coef = _ridge_solve(z[train], y[train], centres, widths, lam)
+                        residual = _design(z[test], centres, widths) @ coef
                         errors[f, i, j, l] = np.mean((residual - y[test]) ** 2)
         pooled = np.sqrt(np.einsum("f,fijl->ijl", counts, errors) / counts.sum())
         standard_error = np.sqrt(errors).std(axis=0, ddof=1) / np.sqrt(folds)

@@ -27,7 +27,8 @@ V_BOX_m_s = (0.05, 2.0)
 def smooth_law(p, v):
     """A known k(p, v) with curvature in log space: a power law times a saddle-free bump."""
     lp, lv = np.log(p / 3e6), np.log(v / 0.3)
-    return 2e-13 * (p / 3e6) ** 0.2 * (v / 0.3) ** -0.1 * np.exp(0.1 * lv**2 + 0.4 * np.tanh(lp + lv))
+    power_law = 2e-13 * (p / 3e6) ** 0.2 * (v / 0.3) ** -0.1
+    return power_law * np.exp(0.1 * lv**2 + 0.4 * np.tanh(lp + lv))
 
 
 def grid_tests(n):
