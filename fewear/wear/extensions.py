@@ -1,0 +1,273 @@
+"""Physical extensions of Archard's law: a multiplier on the wear coefficient k(p, v).
+
+The seed's wear law (eq. 10) takes k from the RBF network k(p, v) at each contact condition. Real
+sliding pairs depart from it in ways that depend on the *history* of the contact, not only on the
+current (p, v). An extension writes the local wear coefficient as
+
+.. math::  k = k(p, v)\\, m(\\text{state}),
+
+with ``m`` a dimensionless multiplier and the state the history of one contact point: its
+accumulated sliding distance ``s`` [m], time in contact ``t`` [s] and a first-order-lagged frictional
+power ``theta`` [W/m^2]. The catalogue:
+
+- ``none``: m = 1 (plain Archard, the seed).
+- ``running_in``: m(s) = 1 + (r - 1) exp(-s / s0). k falls from an initial value r k_ss to the
+  steady value k_ss over a sliding distance s0 while asperities conform (P. J. Blau, "On the nature
+  of running-in", Tribology International 38 (2005) 1007-1012; the exponential decay of the wear
+  rate is the simplest of the break-in curve shapes classified there).
+- ``time_transient``: m(t) = 1 + (r - 1) exp(-t / tau). The same fall driven by time, as when a
+  protective oxide or tribofilm grows at a rate set by time at temperature rather than by distance
+  (T. F. J. Quinn, "Review of oxidational wear", Tribology International 16 (1983) 257-271 and
+  305-315). At one constant speed v it equals ``running_in`` with s0 = v tau; only tests at
+  different speeds tell the two apart.
+- ``thermal``: m = 1 + beta theta, with theta the frictional power mu p v seen through a first-order
+  lag of time constant tau: d theta / dt = (mu p v - theta) / tau. The bulk temperature rise of a
+  sliding pin is proportional to the frictional power (J. F. Archard, "The temperature of rubbing
+  surfaces", Wear 2 (1959) 438-455) and reaches it with the thermal time constant of the pin; an
+  Arrhenius-type wear rate k ~ exp(-Q / (R T)) (Quinn's oxidational wear) linearised about the
+  ambient temperature gives k = k_b (1 + beta theta). Wear rising with normalised pv is the
+  temperature-controlled regime of the wear-mechanism maps of S. C. Lim and M. F. Ashby, Acta
+  Metallurgica 35 (1987) 1-24.
+
+For constant speed and power (a pin-on-disc test) the wear volume is closed-form:
+V = F k(p, v) S_eff(s, t), with the *effective distance* S_eff = integral of m ds
+(:meth:`effective_distance_m`). A simulation steps the state with :meth:`advance` and multiplies
+k(p, v) by :meth:`multiplier`.
+
+Config: the ``[wear]`` keys ``extension`` (a name above) and ``extension_params`` (an inline table,
+keys below with units in their names); :func:`wear_extension_from_config` builds the extension.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields, replace
+from typing import Any
+
+import numpy as np
+
+from fewear.errors import FewearInputError
+
+
+@dataclass(frozen=True)
+class SlidingState:
+    """The history of one contact point (arrays broadcast; all start at zero).
+
+    ``distance_m``: accumulated sliding distance; ``time_s``: time in sliding contact;
+    ``lagged_power_W_m2``: frictional power mu p v through the thermal lag of :class:`Thermal`
+    (zero for the other extensions).
+    """
+
+    distance_m: np.ndarray | float = 0.0
+    time_s: np.ndarray | float = 0.0
+    lagged_power_W_m2: np.ndarray | float = 0.0
+
+
+def _check_positive(name: str, value: float, allowed: str) -> None:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise FewearInputError(f"[wear] extension_params {name} = {value!r}: expected a number")
+    if not (math.isfinite(value) and value > 0.0):
+        raise FewearInputError(f"[wear] extension_params {name} = {value!r}: expected {allowed}")
+
+
+def _check_ratio(value: float) -> None:
+    _check_positive("k_initial_over_steady", value, "a number >= 1 (k falls to its steady value)")
+    if value < 1.0:
+        raise FewearInputError(
+            f"[wear] extension_params k_initial_over_steady = {value!r}: expected a number >= 1 "
+            "(k falls from the initial to the steady value; a rising k is the thermal extension)"
+        )
+
+
+def _advance_common(state: SlidingState, ds_m, dt_s) -> SlidingState:
+    return replace(state, distance_m=state.distance_m + np.asarray(ds_m),
+                   time_s=state.time_s + np.asarray(dt_s))
+
+
+@dataclass(frozen=True)
+class NoExtension:
+    """Plain Archard: m = 1."""
+
+    name = "none"
+    required_variables = ()
+
+    def multiplier(self, state: SlidingState) -> np.ndarray:
+        return np.ones_like(np.asarray(state.distance_m, dtype=float))
+
+    def advance(self, state: SlidingState, ds_m, dt_s, power_W_m2) -> SlidingState:
+        return _advance_common(state, ds_m, dt_s)
+
+    def effective_distance_m(self, distance_m, time_s=None, power_W_m2=None) -> np.ndarray:
+        return np.asarray(distance_m, dtype=float)
+
+    def params(self) -> dict[str, float]:
+        return {}
+
+
+@dataclass(frozen=True)
+class RunningIn:
+    """m(s) = 1 + (r - 1) exp(-s / s0) (Blau 2005); S_eff = s + (r - 1) s0 (1 - exp(-s / s0)).
+
+    ``k_initial_over_steady`` r >= 1; ``distance_scale_m`` s0 > 0.
+    """
+
+    k_initial_over_steady: float
+    distance_scale_m: float
+    name = "running_in"
+    required_variables = ("sliding_distance_m",)
+
+    def __post_init__(self):
+        _check_ratio(self.k_initial_over_steady)
+        _check_positive("distance_scale_m", self.distance_scale_m, "a positive distance in m")
+
+    def multiplier(self, state: SlidingState) -> np.ndarray:
+        s = np.asarray(state.distance_m, dtype=float)
+        return 1.0 + (self.k_initial_over_steady - 1.0) * np.exp(-s / self.distance_scale_m)
+
+    def advance(self, state: SlidingState, ds_m, dt_s, power_W_m2) -> SlidingState:
+        return _advance_common(state, ds_m, dt_s)
+
+    def effective_distance_m(self, distance_m, time_s=None, power_W_m2=None) -> np.ndarray:
+        s = np.asarray(distance_m, dtype=float)
+        s0 = self.distance_scale_m
+        return s + (self.k_initial_over_steady - 1.0) * s0 * -np.expm1(-s / s0)
+
+    def params(self) -> dict[str, float]:
+        return {"k_initial_over_steady": float(self.k_initial_over_steady),
+                "distance_scale_m": float(self.distance_scale_m)}
+
+
+@dataclass(frozen=True)
+class TimeTransient:
+    """m(t) = 1 + (r - 1) exp(-t / tau) (oxide/tribofilm growth, Quinn 1983).
+
+    At constant speed v = s / t: S_eff = s + (r - 1) v tau (1 - exp(-t / tau)).
+    ``k_initial_over_steady`` r >= 1; ``time_scale_s`` tau > 0.
+    """
+
+    k_initial_over_steady: float
+    time_scale_s: float
+    name = "time_transient"
+    required_variables = ("sliding_distance_m", "time_s")
+
+    def __post_init__(self):
+        _check_ratio(self.k_initial_over_steady)
+        _check_positive("time_scale_s", self.time_scale_s, "a positive time in s")
+
+    def multiplier(self, state: SlidingState) -> np.ndarray:
+        t = np.asarray(state.time_s, dtype=float)
+        return 1.0 + (self.k_initial_over_steady - 1.0) * np.exp(-t / self.time_scale_s)
+
+    def advance(self, state: SlidingState, ds_m, dt_s, power_W_m2) -> SlidingState:
+        return _advance_common(state, ds_m, dt_s)
+
+    def effective_distance_m(self, distance_m, time_s=None, power_W_m2=None) -> np.ndarray:
+        s, t = _distance_and_time(distance_m, time_s, self.name)
+        tau = self.time_scale_s
+        speed = _mean_speed(s, t)
+        return s + (self.k_initial_over_steady - 1.0) * speed * tau * -np.expm1(-t / tau)
+
+    def params(self) -> dict[str, float]:
+        return {"k_initial_over_steady": float(self.k_initial_over_steady),
+                "time_scale_s": float(self.time_scale_s)}
+
+
+@dataclass(frozen=True)
+class Thermal:
+    """m = 1 + beta theta, d theta/dt = (mu p v - theta) / tau (Archard 1959; Quinn; Lim & Ashby).
+
+    At constant speed v = s / t and power q = mu p v:
+    S_eff = s + beta q (s - v tau (1 - exp(-t / tau))).
+    ``beta_m2_W`` >= 0 per unit frictional power [m^2/W]; ``time_scale_s`` tau > 0, the thermal
+    time constant of the pin.
+    """
+
+    beta_m2_W: float
+    time_scale_s: float
+    name = "thermal"
+    required_variables = ("sliding_distance_m", "time_s", "friction_coefficient")
+
+    def __post_init__(self):
+        if isinstance(self.beta_m2_W, bool) or not isinstance(self.beta_m2_W, (int, float)) or not (
+            math.isfinite(self.beta_m2_W) and self.beta_m2_W >= 0.0
+        ):
+            raise FewearInputError(
+                f"[wear] extension_params beta_m2_W = {self.beta_m2_W!r}: expected a number >= 0 "
+                "(k rises with frictional power)"
+            )
+        _check_positive("time_scale_s", self.time_scale_s, "a positive time in s")
+
+    def multiplier(self, state: SlidingState) -> np.ndarray:
+        return 1.0 + self.beta_m2_W * np.asarray(state.lagged_power_W_m2, dtype=float)
+
+    def advance(self, state: SlidingState, ds_m, dt_s, power_W_m2) -> SlidingState:
+        """Exact update of the lag for power held constant over the step."""
+        decay = np.exp(-np.asarray(dt_s, dtype=float) / self.time_scale_s)
+        power = np.asarray(power_W_m2, dtype=float)
+        lagged = power + (np.asarray(state.lagged_power_W_m2) - power) * decay
+        return replace(_advance_common(state, ds_m, dt_s), lagged_power_W_m2=lagged)
+
+    def effective_distance_m(self, distance_m, time_s=None, power_W_m2=None) -> np.ndarray:
+        s, t = _distance_and_time(distance_m, time_s, self.name)
+        if power_W_m2 is None:
+            raise FewearInputError("thermal extension: needs the frictional power mu p v")
+        q = np.asarray(power_W_m2, dtype=float)
+        tau = self.time_scale_s
+        speed = _mean_speed(s, t)
+        return s + self.beta_m2_W * q * (s - speed * tau * -np.expm1(-t / tau))
+
+    def params(self) -> dict[str, float]:
+        return {"beta_m2_W": float(self.beta_m2_W), "time_scale_s": float(self.time_scale_s)}
+
+
+WearExtension = NoExtension | RunningIn | TimeTransient | Thermal
+
+EXTENSIONS: dict[str, type] = {
+    "none": NoExtension,
+    "running_in": RunningIn,
+    "time_transient": TimeTransient,
+    "thermal": Thermal,
+}
+
+
+def _distance_and_time(distance_m, time_s, name: str) -> tuple[np.ndarray, np.ndarray]:
+    if time_s is None:
+        raise FewearInputError(f"{name} extension: needs the sliding time (time_s or a velocity)")
+    s, t = np.broadcast_arrays(np.asarray(distance_m, float), np.asarray(time_s, float))
+    return s, t
+
+
+def _mean_speed(s: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """s / t, the constant sliding speed of a test (0 where t = 0, where s is 0 too)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(t > 0.0, s / np.where(t > 0.0, t, 1.0), 0.0)
+
+
+def make_extension(name: str, params: dict[str, Any]) -> WearExtension:
+    """The extension ``name`` with ``params`` (keys as in the classes above)."""
+    if name not in EXTENSIONS:
+        raise FewearInputError(
+            f"[wear] extension = {name!r}: expected one of {', '.join(map(repr, EXTENSIONS))}"
+        )
+    cls = EXTENSIONS[name]
+    allowed = [f.name for f in fields(cls)]
+    if not isinstance(params, dict):
+        raise FewearInputError(f"[wear] extension_params = {params!r}: expected a table")
+    unknown = sorted(set(params) - set(allowed))
+    missing = [key for key in allowed if key not in params]
+    if unknown or missing:
+        raise FewearInputError(
+            f"[wear] extension_params for extension {name!r}: unknown key(s) {unknown}, missing "
+            f"key(s) {missing}; expected keys: {', '.join(allowed) or 'none (an empty table {})'}"
+        )
+    return cls(**params)
+
+
+def wear_extension_from_config(section: dict[str, Any]) -> WearExtension:
+    """The extension a ``[wear]`` section selects (``extension``, ``extension_params``)."""
+    return make_extension(section.get("extension", "none"), section.get("extension_params", {}))
+
+
+def extension_to_config(extension: WearExtension) -> dict[str, Any]:
+    """The ``[wear]`` keys ``extension`` and ``extension_params`` that rebuild ``extension``."""
+    return {"extension": extension.name, "extension_params": extension.params()}
