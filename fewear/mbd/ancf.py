@@ -166,6 +166,7 @@ _S, _S0 = _invariant_matrices()
 # S_i z by gathering: each row of S_i has at most one non-zero entry, so (S_i z)_m = f * z[index].
 _SZ_INDEX = np.argmax(_S != 0.0, axis=2)
 _SZ_FACTOR = _S.max(axis=2)
+_S_FLAT = _S.reshape(6, 36)
 
 
 class AncfBeam:
@@ -223,7 +224,8 @@ class AncfBeam:
         for p in range(2, 5):
             energy[p, 5, 5] = weights[p] * b * E * h
         self._B = operators
-        self._B_transposed = np.ascontiguousarray(operators.transpose(0, 2, 1))
+        self._B_stacked = operators.reshape(-1, COORDINATES_PER_ELEMENT)
+        self._B_stacked_T = np.ascontiguousarray(self._B_stacked.T)
         self._H = energy
 
     def _build_assembly_indices(self) -> None:
@@ -309,7 +311,7 @@ class AncfBeam:
     def _strain_state(self, q: np.ndarray):
         """S_i z (elements, points, 6, 6), invariants s and stresses H s (elements, points, 6)."""
         q_elements = np.asarray(q, dtype=float)[self._element_dofs]
-        z = (self._B @ q_elements[:, None, :, None])[..., 0]
+        z = (q_elements @ self._B_stacked_T).reshape(self.n_elements, -1, 6)
         s_z = z[..., _SZ_INDEX] * _SZ_FACTOR
         invariants = 0.5 * (s_z @ z[..., None])[..., 0] + _S0
         stress = (self._H @ invariants[..., None])[..., 0]
@@ -333,11 +335,12 @@ class AncfBeam:
         """F(q) and K(q) from one evaluation of the strains (for Newton iterations)."""
         s_z, _, stress = self._strain_state(q)
         forces = self._assemble_vector(self._element_forces(s_z, stress))
-        geometric = np.tensordot(stress, _S, axes=(2, 0))
+        geometric = (stress @ _S_FLAT).reshape(s_z.shape)
         material = np.swapaxes(s_z, -1, -2) @ (self._H @ s_z)
-        element = (self._B_transposed @ ((geometric + material) @ self._B)).sum(axis=1)
+        tangent_B = ((geometric + material) @ self._B).reshape(self.n_elements, -1, 12)
+        element = self._B_stacked_T @ tangent_B
         return forces, self._assemble_matrix(element)
 
     def _element_forces(self, s_z: np.ndarray, stress: np.ndarray) -> np.ndarray:
-        f_z = stress[..., None, :] @ s_z
-        return (f_z @ self._B)[..., 0, :].sum(axis=1)
+        f_z = (stress[..., None, :] @ s_z).reshape(self.n_elements, -1)
+        return f_z @ self._B_stacked
