@@ -223,15 +223,17 @@ class RbfWearCoefficient:
         *,
         n_centres: int | None = None,
         ridge: float | None = None,
+        width_scale: float | None = None,
         folds: int = 5,
         seed: int = 0,
     ) -> tuple[RbfWearCoefficient, CrossValidation]:
         """Train the network on tests (p_j, v_j, k_j), one sample per test.
 
-        ``n_centres`` and ``ridge`` fixed when given, else chosen with the width scale by
+        ``n_centres``, ``ridge`` and ``width_scale`` fixed when given, else chosen by
         ``folds``-fold cross-validation over ``CENTRE_GRID`` x ``WIDTH_SCALE_GRID`` x
         ``RIDGE_GRID`` (one-standard-error rule, see module doc); the final network is refitted on
-        all tests with the chosen triple. ``seed`` fixes the fold split and
+        all tests with the chosen triple (so passing a report's three choices back reproduces
+        the network on the same data). ``seed`` fixes the fold split and
         the k-means seeding, so a fit is reproducible.
         """
         p, v, k = _training_arrays(pressure_Pa, velocity_m_s, k_m2_N)
@@ -245,17 +247,18 @@ class RbfWearCoefficient:
         if not 2 <= folds <= len(y):
             raise FewearInputError(f"folds = {folds}: expected 2 <= folds <= {len(y)} (tests)")
         centre_grid = _centre_grid(n_centres, n_distinct, len(y), folds)
-        ridge_grid = _ridge_grid(ridge)
+        ridge_grid = _positive_grid("ridge", ridge, RIDGE_GRID)
+        width_grid = _positive_grid("width_scale", width_scale, WIDTH_SCALE_GRID)
         rng = np.random.default_rng(seed)
         fold_of = rng.permutation(len(y)) % folds
-        shape = (folds, len(centre_grid), len(WIDTH_SCALE_GRID), len(ridge_grid))
+        shape = (folds, len(centre_grid), len(width_grid), len(ridge_grid))
         errors = np.zeros(shape)
         counts = np.bincount(fold_of, minlength=folds)
         for f in range(folds):
             train, test = fold_of != f, fold_of == f
             for i, m in enumerate(centre_grid):
                 centres, spacing = _centres_and_spacing(z[train], m, seed)
-                for j, scale_factor in enumerate(WIDTH_SCALE_GRID):
+                for j, scale_factor in enumerate(width_grid):
                     widths = scale_factor * spacing
                     for l, lam in enumerate(ridge_grid):
                         coef = _ridge_solve(z[train], y[train], centres, widths, lam)
@@ -265,7 +268,7 @@ class RbfWearCoefficient:
         standard_error = np.sqrt(errors).std(axis=0, ddof=1) / np.sqrt(folds)
         i, j, l = _one_standard_error_choice(pooled, standard_error)
         centres, spacing = _centres_and_spacing(z, centre_grid[i], seed)
-        widths = WIDTH_SCALE_GRID[j] * spacing
+        widths = width_grid[j] * spacing
         coef = _ridge_solve(z, y, centres, widths, ridge_grid[l])
         m = len(widths)
         model = cls(
@@ -276,9 +279,9 @@ class RbfWearCoefficient:
         training = float(np.sqrt(np.mean((model.log_k(p, v) - y) ** 2)))
         report = CrossValidation(
             folds=folds, n_samples=len(y), n_centres_grid=tuple(centre_grid),
-            width_scale_grid=WIDTH_SCALE_GRID, ridge_grid=tuple(ridge_grid),
+            width_scale_grid=tuple(width_grid), ridge_grid=tuple(ridge_grid),
             rms_log_error=pooled, standard_error=standard_error, n_centres=centre_grid[i],
-            width_scale=WIDTH_SCALE_GRID[j], ridge=ridge_grid[l],
+            width_scale=width_grid[j], ridge=ridge_grid[l],
             cv_rms_log_error=float(pooled[i, j, l]),
             best_rms_log_error=float(pooled.min()), training_rms_log_error=training,
         )
@@ -399,12 +402,13 @@ def _centre_grid(n_centres, n_distinct, n_samples, folds) -> list[int]:
     return grid or [1]
 
 
-def _ridge_grid(ridge) -> list[float]:
-    if ridge is None:
-        return list(RIDGE_GRID)
-    if not (math.isfinite(ridge) and ridge > 0.0):
-        raise FewearInputError(f"ridge = {ridge!r}: expected a positive number")
-    return [float(ridge)]
+def _positive_grid(name: str, value: float | None, grid: tuple[float, ...]) -> list[float]:
+    """``grid`` when ``value`` is None, else the one positive ``value``."""
+    if value is None:
+        return list(grid)
+    if not (math.isfinite(value) and value > 0.0):
+        raise FewearInputError(f"{name} = {value!r}: expected a positive number")
+    return [float(value)]
 
 
 def _one_standard_error_choice(error: np.ndarray, standard_error: np.ndarray):

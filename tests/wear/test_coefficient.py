@@ -143,13 +143,19 @@ def test_cross_validation_report_is_consistent(clean_fit):
     assert report.cv_rms_log_error <= report.best_rms_log_error + report.standard_error.max()
 
 
-def test_fit_is_reproducible_with_a_seed():
+def test_fit_is_reproducible_with_a_seed_and_the_reported_choices():
     p, v = grid_tests(6)
     k = smooth_law(p, v) * np.exp(0.1 * np.random.default_rng(8).standard_normal(p.size))
-    first, _ = RbfWearCoefficient.fit(p, v, k, seed=3)
+    first, report = RbfWearCoefficient.fit(p, v, k, seed=3)
     second, _ = RbfWearCoefficient.fit(p, v, k, seed=3)
-    np.testing.assert_array_equal(first.centres, second.centres)
-    np.testing.assert_array_equal(first.weights, second.weights)
+    pinned, pinned_report = RbfWearCoefficient.fit(
+        p, v, k, seed=3, n_centres=report.n_centres, ridge=report.ridge,
+        width_scale=report.width_scale)
+    assert pinned_report.rms_log_error.shape == (1, 1, 1)
+    for model in (second, pinned):
+        np.testing.assert_array_equal(first.centres, model.centres)
+        np.testing.assert_array_equal(first.widths, model.widths)
+        np.testing.assert_array_equal(first.weights, model.weights)
 
 
 @pytest.mark.parametrize(
@@ -163,6 +169,14 @@ def test_fit_is_reproducible_with_a_seed():
 def test_fit_rejects_bad_samples(p, v, k, match):
     with pytest.raises(FewearInputError, match=match):
         RbfWearCoefficient.fit(p, v, k)
+
+
+@pytest.mark.parametrize("option, value", [("ridge", -1.0), ("width_scale", 0.0),
+                                           ("n_centres", 99), ("folds", 1)])
+def test_fit_rejects_bad_options(option, value):
+    p, v = grid_tests(4)
+    with pytest.raises(FewearInputError, match=option):
+        RbfWearCoefficient.fit(p, v, smooth_law(p, v), **{option: value})
 
 
 def test_config_errors_name_the_key():
