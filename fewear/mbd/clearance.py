@@ -1,0 +1,194 @@
+"""The revolute clearance joint as a force element between a pin and a bushing (seed eq. 5-6).
+
+Geometry (Flores & Ambrosio, Comput. Struct. 82, 2004): e = r_pin - r_bushing (centres, global),
+d = |e|, n = e/d (from the bushing centre towards the pin centre), t = k x n. The direction of n in
+the bushing frame, theta = atan2(n) - phi_bushing, gives the clearance c(theta)
+(:class:`fewear.mbd.contact.ClearanceProfile`); the penetration is delta = d - c(theta) and its rate
+delta_dot = e'.n - c'(theta) theta_dot.
+
+Forces: the bushing pushes the pin with f = -F_n n + F_t t at the contact point (pin surface
+point r_pin + R_pin n, bore point r_bushing + R_bushing n); the bushing gets -f. The slip velocity of
+the pin relative to the bushing at the contact point is v_t = e'.t + R_pin omega_pin
+- R_bushing omega_bushing; friction F_t = -mu c_d F_n sign(v_t). Moments: R_pin F_t on the pin,
+-R_bushing F_t on the bushing.
+
+Newton Jacobian: dQ/dq and dQ/dq' are analytic in the joint's kinematic variables
+z = (e, e', omega_pin, omega_bushing, phi_bushing) (tested against finite differences), chained with
+dz/dq, dz/dq' and the points' geometric stiffness d(G^T f)/dq. Left out (second order in the
+Newton step, the iteration still converges, only not quadratically in contact): the dependence of
+e' and the angular velocities on q through the points' Jacobians.
+
+Impact velocity: v_imp = delta_dot at the start of the step in which the contact begins (the
+step controller makes that step end at a penetration below its gap tolerance, so this is the
+approach velocity at impact); it is kept for the whole contact episode.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from fewear.mbd.contact import ClearanceProfile, ContactLaw, Friction
+from fewear.mbd.points import rotation
+
+
+class ClearanceJoint:
+    """Pin (any point) in a bushing fixed to a rigid body (a :class:`RigidPoint`)."""
+
+    def __init__(self, pin, bushing, pin_radius_m: float, bushing_radius_m: float,
+                 profile: ClearanceProfile, law: ContactLaw, friction: Friction):
+        self.pin, self.bushing = pin, bushing
+        self.pin_radius, self.bushing_radius = pin_radius_m, bushing_radius_m
+        self.profile, self.law, self.friction = profile, law, friction
+        self._np = len(pin.indices)
+        self.indices = np.concatenate([pin.indices, bushing.indices])
+        self.impact_velocity_m_s = 0.0
+        self.in_contact = False
+        self._candidate_velocity = 0.0
+
+    # --- kinematics ---------------------------------------------------------------------------
+    def _kinematics(self, q_b, qd_b):
+        qp, qb = q_b[: self._np], q_b[self._np:]
+        qdp, qdb = qd_b[: self._np], qd_b[self._np:]
+        G_p, G_b = self.pin.jacobian(qp), self.bushing.jacobian(qb)
+        g_p, g_b = self.pin.angle_gradient(qp), self.bushing.angle_gradient(qb)
+        e = self.pin.position(qp) - self.bushing.position(qb)
+        e_dot = G_p @ qdp - G_b @ qdb
+        z = np.array([e[0], e[1], e_dot[0], e_dot[1], g_p @ qdp, g_b @ qdb,
+                      self.bushing.angle(qb)])
+        return z, (qp, qb, G_p, G_b, g_p, g_b)
+
+    def gap(self, z):
+        """(delta, delta_dot, theta, d): penetration (m, > 0 in contact), its rate, direction."""
+        e, e_dot, omega_b, phi_b = z[0:2], z[2:4], z[5], z[6]
+        d = math.hypot(e[0], e[1])
+        theta = math.atan2(e[1], e[0]) - phi_b
+        c, dc = self.profile(theta)
+        if d == 0.0:
+            return -c, 0.0, theta, d
+        n = e / d
+        t = np.array([-n[1], n[0]])
+        theta_dot = (e_dot @ t) / d - omega_b
+        return d - c, e_dot @ n - dc * theta_dot, theta, d
+
+    def local_forces(self, z, impact_velocity_m_s: float):
+        """(f (2), F_n, F_t, D): the force on the pin, and D = d(f1, f2, F_t)/dz (3, 7)."""
+        e, e_dot, omega_p, omega_b, phi_b = z[0:2], z[2:4], z[4], z[5], z[6]
+        D = np.zeros((3, 7))
+        d = math.hypot(e[0], e[1])
+        if d == 0.0:
+            return np.zeros(2), 0.0, 0.0, D
+        n = e / d
+        t = np.array([-n[1], n[0]])
+        theta = math.atan2(e[1], e[0]) - phi_b
+        c, dc = self.profile(theta)
+        delta = d - c
+        if delta <= 0.0:
+            return np.zeros(2), 0.0, 0.0, D
+        e_n, e_t = e_dot @ n, e_dot @ t
+        theta_dot = e_t / d - omega_b
+        rate = e_n - dc * theta_dot
+        F_n, dF_ddelta, dF_drate = self.law.normal_force(delta, rate, impact_velocity_m_s)
+        # derivatives of delta and rate with respect to z (c'' = 0: linear profile pieces)
+        ddelta = np.zeros(7)
+        ddelta[0:2] = n - dc * t / d
+        ddelta[6] = dc
+        drate = np.zeros(7)
+        dtheta_dot_de = -(e_n * t + e_t * n) / d**2
+        drate[0:2] = e_t * t / d - dc * dtheta_dot_de
+        drate[2:4] = n - dc * t / d
+        drate[5] = dc
+        dF_n = dF_ddelta * ddelta + dF_drate * drate
+        slip = e_t + self.pin_radius * omega_p - self.bushing_radius * omega_b
+        psi, dpsi = self.friction.factor(slip)
+        dslip = np.zeros(7)
+        dslip[0:2] = -e_n * t / d
+        dslip[2:4] = t
+        dslip[4] = self.pin_radius
+        dslip[5] = -self.bushing_radius
+        mu = self.friction.coefficient
+        F_t = -mu * psi * F_n
+        dF_t = -mu * (psi * dF_n + F_n * dpsi * dslip)
+        f = -F_n * n + F_t * t
+        # dn/de = t t^T / d, dt/de = -n t^T / d
+        D[0:2, :] = -np.outer(n, dF_n) + np.outer(t, dF_t)
+        D[0:2, 0:2] += (-F_n * np.outer(t, t) - F_t * np.outer(n, t)) / d
+        D[2, :] = dF_t
+        return f, F_n, F_t, D
+
+    # --- force element interface -------------------------------------------------------------
+    def evaluate(self, q_b, qd_b, t):
+        z, (qp, qb, G_p, G_b, g_p, g_b) = self._kinematics(q_b, qd_b)
+        v_imp = self.impact_velocity_m_s if self.in_contact else self._candidate_velocity
+        f, F_n, F_t, D = self.local_forces(z, v_imp)
+        n_p = self._np
+        k = len(self.indices)
+        Q = np.empty(k)
+        Q[:n_p] = G_p.T @ f + self.pin_radius * F_t * g_p
+        Q[n_p:] = -G_b.T @ f - self.bushing_radius * F_t * g_b
+        if F_n == 0.0:
+            return Q, None, None
+        B = np.zeros((k, 3))
+        B[:n_p, :2], B[:n_p, 2] = G_p.T, self.pin_radius * g_p
+        B[n_p:, :2], B[n_p:, 2] = -G_b.T, -self.bushing_radius * g_b
+        Z_q = np.zeros((7, k))
+        Z_q[0:2, :n_p], Z_q[0:2, n_p:], Z_q[6, n_p:] = G_p, -G_b, g_b
+        Z_qd = np.zeros((7, k))
+        Z_qd[2:4, :n_p], Z_qd[2:4, n_p:] = G_p, -G_b
+        Z_qd[4, :n_p], Z_qd[5, n_p:] = g_p, g_b
+        BD = B @ D
+        K = BD @ Z_q
+        K[:n_p, :n_p] += self.pin.hessian(qp, f)
+        K[n_p:, n_p:] -= self.bushing.hessian(qb, f)
+        return Q, K, BD @ Z_qd
+
+    def begin_step(self, q, qd):
+        """Remember the approach velocity at the start of a step (the impact velocity if the
+        contact begins in this step)."""
+        z, _ = self._kinematics(q[self.indices], qd[self.indices])
+        delta, rate, _, _ = self.gap(z)
+        self.in_contact = delta > 0.0
+        if not self.in_contact:
+            self._candidate_velocity = rate
+
+    def end_step(self, q, qd):
+        z, _ = self._kinematics(q[self.indices], qd[self.indices])
+        delta = self.gap(z)[0]
+        if delta > 0.0 and not self.in_contact:
+            self.impact_velocity_m_s = self._candidate_velocity
+
+    def step_error(self, q_old, qdd_old, q_new, qdd_new, h):
+        """(local error estimate of e (m), delta at step start, delta at step end).
+
+        The estimate is h^2/6 |e''_{n+1} - e''_n|, i.e. h^3 |e'''| / 6, the size of the leading
+        local error term of a second-order scheme on the pin-centre eccentricity."""
+        idx = self.indices
+        n_p = self._np
+        acc = []
+        gaps = []
+        for q, qdd in ((q_old, qdd_old), (q_new, qdd_new)):
+            q_b, qdd_b = q[idx], qdd[idx]
+            qp, qb = q_b[:n_p], q_b[n_p:]
+            acc.append(self.pin.jacobian(qp) @ qdd_b[:n_p] - self.bushing.jacobian(qb) @ qdd_b[n_p:])
+            z, _ = self._kinematics(q_b, np.zeros_like(q_b))
+            gaps.append(self.gap(z)[0])
+        error = h * h / 6.0 * float(np.linalg.norm(acc[1] - acc[0]))
+        return error, gaps[0], gaps[1]
+
+    # --- output ---------------------------------------------------------------------------------
+    def measure(self, q, qd):
+        """Joint quantities in the bushing frame at (q, q'): see :class:`JointHistory`."""
+        z, _ = self._kinematics(q[self.indices], qd[self.indices])
+        v_imp = self.impact_velocity_m_s if self.in_contact else self._candidate_velocity
+        f, F_n, F_t, _ = self.local_forces(z, v_imp)
+        delta = self.gap(z)[0]
+        to_bushing = rotation(z[6]).T
+        return {
+            "eccentricity_m": to_bushing @ z[0:2],
+            "penetration_m": max(delta, 0.0),
+            "normal_force_N": F_n,
+            "friction_force_N": F_t,
+            "reaction_force_N": to_bushing @ f,
+            "rel_omega_rad_s": z[4] - z[5],
+        }

@@ -1,0 +1,211 @@
+"""Contact laws of the revolute clearance joint: normal force, friction, clearance profile.
+
+Normal force (penetration delta >= 0, rate delta_dot, impact velocity v_imp = delta_dot at the
+start of the contact episode):  F_n = F_el(delta) [1 + chi delta_dot / v_imp],  clipped at 0
+(the damping term would otherwise pull the surfaces together at the end of the restitution phase).
+
+==========================  =================  =====================================
+law                         F_el(delta)        hysteresis factor chi(c_e)
+==========================  =================  =====================================
+``lankarani-nikravesh``     K delta^1.5        3 (1 - c_e^2) / 4   (seed eq. 6;
+                                               Lankarani & Nikravesh, J. Mech. Des. 112, 1990)
+``hunt-crossley``           K delta^1.5        3 (1 - c_e) / 2     (Hunt & Crossley,
+                                               J. Appl. Mech. 42, 1975)
+``flores``                  K delta^1.5        8 (1 - c_e) / (5 c_e)  (Flores, Machado, Silva,
+                                               Martins, Multibody Syst. Dyn. 25, 2011)
+``tabulated``               table(delta)       3 (1 - c_e^2) / 4   (an FE-computed elastic law,
+                                               linear interpolation, linear extrapolation beyond
+                                               the table's last point; LN damping)
+==========================  =================  =====================================
+
+K = 4 / (3 pi (h_i + h_j)) sqrt(R_i R_j / (R_j - R_i)),  h_k = (1 - nu_k^2) / (pi E_k)  (seed eq. 6).
+
+Friction: Coulomb with the dynamic correction coefficient of Ambrosio (Virtual Nonlinear
+Multibody Systems, NATO ASI 2003) that regularises it near zero slip:
+F_t = -mu c_d(|v_t|) F_n sign(v_t),  c_d = 0 for |v| <= v0, (|v| - v0)/(v1 - v0) for
+v0 < |v| < v1, 1 for |v| >= v1 (continuous in v_t; no sticking force below v0).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from fewear.errors import FewearInputError
+
+CONTACT_LAWS = ("lankarani-nikravesh", "hunt-crossley", "flores", "tabulated")
+
+
+def lankarani_nikravesh_stiffness(pin_radius_m: float, bushing_radius_m: float,
+                                  pin_modulus_Pa: float, pin_poisson: float,
+                                  bushing_modulus_Pa: float, bushing_poisson: float) -> float:
+    """K (N/m^1.5) of the seed's eq. 6 for a pin of radius R_i in a bore of radius R_j > R_i."""
+    if not 0.0 < pin_radius_m < bushing_radius_m:
+        raise FewearInputError(
+            f"pin radius {pin_radius_m!r} m and bushing inner radius {bushing_radius_m!r} m: "
+            "expected 0 < pin radius < bushing inner radius (a positive radial clearance)")
+    h_pin = (1.0 - pin_poisson**2) / (math.pi * pin_modulus_Pa)
+    h_bushing = (1.0 - bushing_poisson**2) / (math.pi * bushing_modulus_Pa)
+    radius_term = math.sqrt(pin_radius_m * bushing_radius_m / (bushing_radius_m - pin_radius_m))
+    return 4.0 / (3.0 * math.pi * (h_pin + h_bushing)) * radius_term
+
+
+def hysteresis_factor(law: str, restitution: float) -> float:
+    """chi(c_e) of the table in the module docstring."""
+    if law in ("lankarani-nikravesh", "tabulated"):
+        return 0.75 * (1.0 - restitution**2)
+    if law == "hunt-crossley":
+        return 1.5 * (1.0 - restitution)
+    if law == "flores":
+        return 1.6 * (1.0 - restitution) / restitution
+    raise FewearInputError(f"contact law {law!r}: expected one of {', '.join(CONTACT_LAWS)}")
+
+
+@dataclass(frozen=True)
+class ContactLaw:
+    """A normal contact law (see module docstring).
+
+    stiffness_N_m1_5: K of the power laws; penetration_m / force_N: the table of the tabulated
+    law (increasing penetrations from 0, forces from 0, non-decreasing); restitution: c_e in (0, 1];
+    min_impact_velocity_m_s: the floor of v_imp (a grazing contact would otherwise divide by ~0).
+    """
+
+    law: str = "lankarani-nikravesh"
+    stiffness_N_m1_5: float = 0.0
+    restitution: float = 0.9
+    min_impact_velocity_m_s: float = 1.0e-3
+    penetration_m: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    force_N: np.ndarray = field(default_factory=lambda: np.zeros(0))
+
+    def __post_init__(self):
+        if self.law not in CONTACT_LAWS:
+            raise FewearInputError(
+                f"contact law {self.law!r}: expected one of {', '.join(CONTACT_LAWS)}")
+        if not 0.0 < self.restitution <= 1.0:
+            raise FewearInputError(
+                f"restitution coefficient {self.restitution!r}: expected 0 < c_e <= 1")
+        if not self.min_impact_velocity_m_s > 0.0:
+            raise FewearInputError(
+                f"min_impact_velocity_m_s = {self.min_impact_velocity_m_s!r}: expected > 0")
+        if self.law == "tabulated":
+            pen = np.asarray(self.penetration_m, dtype=float)
+            force = np.asarray(self.force_N, dtype=float)
+            if pen.ndim != 1 or pen.shape != force.shape or pen.size < 2:
+                raise FewearInputError(
+                    "tabulated contact law: penetration_m and force_N must be equal-length lists "
+                    f"of at least 2 numbers (got {pen.size} and {force.size})")
+            if pen[0] != 0.0 or force[0] != 0.0 or np.any(np.diff(pen) <= 0.0) \
+                    or np.any(np.diff(force) < 0.0):
+                raise FewearInputError(
+                    "tabulated contact law: expected penetration_m strictly increasing from 0 "
+                    "and force_N non-decreasing from 0")
+            object.__setattr__(self, "penetration_m", pen)
+            object.__setattr__(self, "force_N", force)
+        elif not self.stiffness_N_m1_5 > 0.0:
+            raise FewearInputError(
+                f"contact stiffness {self.stiffness_N_m1_5!r} N/m^1.5: expected > 0")
+        object.__setattr__(self, "chi", hysteresis_factor(self.law, self.restitution))
+
+    def elastic(self, delta_m: float) -> tuple[float, float]:
+        """(F_el, dF_el/ddelta) for delta >= 0."""
+        if self.law != "tabulated":
+            root = math.sqrt(delta_m)
+            return self.stiffness_N_m1_5 * delta_m * root, 1.5 * self.stiffness_N_m1_5 * root
+        pen, force = self.penetration_m, self.force_N
+        k = min(max(int(np.searchsorted(pen, delta_m)) - 1, 0), pen.size - 2)
+        slope = (force[k + 1] - force[k]) / (pen[k + 1] - pen[k])
+        return force[k] + slope * (delta_m - pen[k]), slope
+
+    def normal_force(self, delta_m: float, rate_m_s: float, impact_velocity_m_s: float):
+        """(F_n, dF_n/ddelta, dF_n/ddelta_dot) (N, N/m, N s/m); zero derivatives when clipped."""
+        if delta_m <= 0.0:
+            return 0.0, 0.0, 0.0
+        v_imp = max(impact_velocity_m_s, self.min_impact_velocity_m_s)
+        elastic, stiffness = self.elastic(delta_m)
+        damping = 1.0 + self.chi * rate_m_s / v_imp
+        if damping <= 0.0:
+            return 0.0, 0.0, 0.0
+        return elastic * damping, stiffness * damping, elastic * self.chi / v_imp
+
+
+@dataclass(frozen=True)
+class Friction:
+    """Regularised Coulomb friction (module docstring): mu, v0 < v1 (m/s)."""
+
+    coefficient: float = 0.1
+    v0_m_s: float = 1.0e-4
+    v1_m_s: float = 1.0e-3
+
+    def __post_init__(self):
+        if not self.coefficient >= 0.0:
+            raise FewearInputError(
+                f"friction coefficient {self.coefficient!r}: expected a number >= 0")
+        if not 0.0 <= self.v0_m_s < self.v1_m_s:
+            raise FewearInputError(
+                f"friction velocities v0 = {self.v0_m_s!r}, v1 = {self.v1_m_s!r} m/s: expected "
+                "0 <= v0 < v1")
+
+    def factor(self, slip_m_s: float) -> tuple[float, float]:
+        """(psi, dpsi/dv) with F_t = -mu F_n psi(v_t): psi = c_d(|v|) sign(v)."""
+        speed = abs(slip_m_s)
+        if speed <= self.v0_m_s:
+            return 0.0, 0.0
+        sign = 1.0 if slip_m_s > 0.0 else -1.0
+        if speed >= self.v1_m_s:
+            return sign, 0.0
+        width = self.v1_m_s - self.v0_m_s
+        return sign * (speed - self.v0_m_s) / width, 1.0 / width
+
+
+@dataclass(frozen=True)
+class ClearanceProfile:
+    """The radial clearance as a function of the contact direction in the bushing frame.
+
+    ``angle_rad``: increasing angles in [0, 2 pi) of the direction from the bushing centre to the
+    pin centre, measured from the bushing frame's x axis (for the slider: the slide direction);
+    ``clearance_m``: the clearance c(theta) > 0 there = (local bore radius) - (pin radius). The
+    profile is periodic (2 pi) and interpolated linearly between the given angles: a single angle
+    gives a constant. The wear stage passes the worn bore here: c(theta) = c0 + wear depth(theta)
+    (valid while the wear depth varies slowly around the bore, so the pin touches the wall in the
+    direction of its centre). Penetration: delta = |e| - c(theta(e)).
+    """
+
+    angle_rad: np.ndarray
+    clearance_m: np.ndarray
+
+    @classmethod
+    def constant(cls, clearance_m: float) -> "ClearanceProfile":
+        return cls(np.array([0.0]), np.array([clearance_m]))
+
+    def __post_init__(self):
+        angle = np.atleast_1d(np.asarray(self.angle_rad, dtype=float))
+        clearance = np.atleast_1d(np.asarray(self.clearance_m, dtype=float))
+        if angle.ndim != 1 or angle.shape != clearance.shape or angle.size == 0:
+            raise FewearInputError(
+                "clearance profile: angle_rad and clearance_m must be equal-length, non-empty")
+        if np.any(np.diff(angle) <= 0.0) or angle[0] < 0.0 or angle[-1] >= 2.0 * math.pi:
+            raise FewearInputError(
+                "clearance profile: angles must increase strictly within [0, 2 pi)")
+        if not np.all(clearance > 0.0):
+            bad = clearance[clearance <= 0.0][0]
+            raise FewearInputError(
+                f"clearance {bad!r} m: the radial clearance must be positive (pin radius < bore)")
+        object.__setattr__(self, "angle_rad", angle)
+        object.__setattr__(self, "clearance_m", clearance)
+        object.__setattr__(self, "is_constant", angle.size == 1)
+
+    def __call__(self, theta_rad: float) -> tuple[float, float]:
+        """(c, dc/dtheta) at the direction theta (any real angle)."""
+        if self.is_constant:
+            return float(self.clearance_m[0]), 0.0
+        angle, clearance = self.angle_rad, self.clearance_m
+        theta = theta_rad % (2.0 * math.pi)
+        k = int(np.searchsorted(angle, theta, side="right")) - 1
+        if k < 0:  # before the first angle: wrap to the last one
+            k, theta = angle.size - 1, theta + 2.0 * math.pi
+        k_next = (k + 1) % angle.size
+        theta_next = angle[k_next] + (2.0 * math.pi if k_next <= k else 0.0)
+        slope = (clearance[k_next] - clearance[k]) / (theta_next - angle[k])
+        return float(clearance[k] + slope * (theta - angle[k])), float(slope)

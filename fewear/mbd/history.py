@@ -1,0 +1,76 @@
+"""The joint-load history of the recorded crank cycle(s): what the wear stage consumes.
+
+One row per accepted time step (the steps are variable when the step-size control is on: resample
+with ``np.interp`` on ``time_s`` or ``crank_angle_rad``). Vectors are in the bushing frame (the
+slider's: x along the slide, y normal to it); for the slider-crank this equals the global frame.
+
+Sign conventions. The eccentricity e = r_pin - r_bushing (pin centre relative to the bushing
+centre). ``reaction_force_N`` is the force exerted BY the bushing (slider) ON the pin (connecting
+rod); in contact it is -F_n n + F_t t with n = e/|e| and t = k x n, so ``normal_force_N`` F_n >= 0
+pushes the pin back to the centre and ``friction_force_N`` F_t is its component along t.
+``rel_omega_rad_s`` is the angular velocity of the pin (rod end) minus that of the bushing.
+
+Modes (``mode``: 0, 1, 2 = ``MODES``):
+- ``free`` (0): penetration <= 0, no contact force;
+- ``impact`` (1): a step of a contact episode (a maximal run of steps with penetration > 0) that
+  lasts at most ``impact_max_duration_s``: a collision followed by rebound;
+- ``contact`` (2): a step of a longer episode: the pin stays on the wall (continuous contact).
+For the ideal joint every step is ``contact``, the eccentricity and penetration are zero and F_n
+is the magnitude of the reaction (friction zero).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+MODES = ("free", "impact", "contact")
+
+
+@dataclass(frozen=True)
+class JointHistory:
+    """Per-step joint quantities (n steps; SI units, see the module docstring)."""
+
+    time_s: np.ndarray
+    crank_angle_rad: np.ndarray
+    slider_x_m: np.ndarray
+    slider_velocity_m_s: np.ndarray
+    eccentricity_m: np.ndarray  # (n, 2)
+    penetration_m: np.ndarray
+    normal_force_N: np.ndarray
+    friction_force_N: np.ndarray
+    reaction_force_N: np.ndarray  # (n, 2)
+    rel_omega_rad_s: np.ndarray
+    mode: np.ndarray  # int, index into MODES
+
+    @property
+    def n_steps(self) -> int:
+        return int(self.time_s.size)
+
+    @property
+    def impacts(self) -> int:
+        """The number of contact episodes classified as impacts."""
+        impact = self.mode == 1
+        return int(np.count_nonzero(impact[1:] & ~impact[:-1]) + (1 if impact[:1].any() else 0))
+
+    @property
+    def peak_contact_force_N(self) -> float:
+        return float(np.max(np.linalg.norm(self.reaction_force_N, axis=1), initial=0.0))
+
+
+def classify_modes(time_s: np.ndarray, penetration_m: np.ndarray,
+                   impact_max_duration_s: float) -> np.ndarray:
+    """The ``mode`` array of the module docstring from the penetration history.
+
+    An episode's duration is measured from the step before its first contact step to its last
+    contact step (the contact began within that step)."""
+    in_contact = penetration_m > 0.0
+    mode = np.zeros(time_s.size, dtype=int)
+    edges = np.diff(np.concatenate([[0], in_contact.astype(int), [0]]))
+    starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+    for start, end in zip(starts, ends):
+        begin_time = time_s[start - 1] if start > 0 else time_s[start]
+        duration = time_s[end - 1] - begin_time
+        mode[start:end] = 1 if duration <= impact_max_duration_s else 2
+    return mode

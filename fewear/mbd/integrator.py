@@ -1,0 +1,233 @@
+"""Generalized-alpha for the index-3 DAE  M q'' + Phi_q^T lambda = Q(q, q', t), Phi(q, t) = 0.
+
+Chung & Hulbert (J. Appl. Mech. 60, 1993) parameters from the spectral radius at infinity:
+alpha_m = (2 rho - 1)/(rho + 1), alpha_f = rho/(rho + 1), gamma = 1/2 + alpha_f - alpha_m,
+beta = (gamma + 1/2)^2 / 4. Constrained form of Arnold & Brüls (Multibody Syst. Dyn. 18, 2007):
+the equations hold at t_{n+1}; the acceleration-like variable ``a`` obeys
+(1 - alpha_m) a_{n+1} + alpha_m a_n = (1 - alpha_f) q''_{n+1} + alpha_f q''_n,
+q_{n+1} = q_n + h q'_n + h^2 (1/2 - beta) a_n + h^2 beta a_{n+1},
+q'_{n+1} = q'_n + h (1 - gamma) a_n + h gamma a_{n+1}.
+Newton on (q_{n+1}, lambda_{n+1}) with q' and q'' following from q: dq' = gamma/(beta h) dq,
+dq'' = (1 - alpha_m)/((1 - alpha_f) beta h^2) dq. The iteration matrix is
+[[beta h^2 S_t, Phi_q^T], [Phi_q, 0]] on (dq, beta h^2 dlambda): the equations of motion are
+multiplied by beta h^2, which is the same as scaling the constraint rows by 1/(beta h^2) (Arnold &
+Brüls sec. 3.3) and makes the matrix's condition independent of h. S_t = M beta' - dQ/dq' gamma'
+- dQ/dq + d(Phi_q^T lambda)/dq, all analytic.
+
+Optional velocity projection (on by default): after each step q' is projected M-orthogonally
+onto Phi_q q' + Phi_t = 0. Index-3 generalized-alpha leaves an O(h^2) drift in the velocity
+constraint; the projection removes it (a driven mechanism then has exact velocities) and keeps the
+scheme second order.
+
+Step-size control (adaptive mode): force elements may offer ``step_error`` returning an estimate of
+the local error of a contact gap (m) and whether the step entered contact too deep; the step is
+rejected and retried shorter when the estimate exceeds the tolerance. See
+:class:`fewear.mbd.clearance.ClearanceJoint` for the estimate used.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from fewear.errors import FewearInputError
+
+
+@dataclass(frozen=True)
+class IntegratorSettings:
+    """Generalized-alpha and step-size parameters (SI units).
+
+    step_s: the (largest) time step; min_step_s: the smallest the controller may take;
+    adaptive: step-size control around impacts (else fixed steps of step_s);
+    gap_tolerance_m: allowed local error of a contact gap and the deepest allowed first penetration;
+    newton_tolerance: convergence when max |dq| < it (m or rad or dimensionless slopes).
+    """
+
+    rho_inf: float = 0.9
+    step_s: float = 2.0e-5
+    min_step_s: float = 1.0e-8
+    adaptive: bool = True
+    gap_tolerance_m: float = 2.0e-8
+    newton_tolerance: float = 1.0e-10
+    max_newton_iterations: int = 12
+    project_velocities: bool = True
+
+    def __post_init__(self):
+        if not (0.0 <= self.rho_inf <= 1.0):
+            raise FewearInputError(f"rho_inf = {self.rho_inf!r}: expected a number in [0, 1]")
+        if not (self.step_s > 0.0 and math.isfinite(self.step_s)):
+            raise FewearInputError(f"time step step_s = {self.step_s!r} s: expected > 0")
+        if not (0.0 < self.min_step_s <= self.step_s):
+            raise FewearInputError(
+                f"min_step_s = {self.min_step_s!r} s: expected 0 < min_step_s <= step_s")
+        if not self.gap_tolerance_m > 0.0:
+            raise FewearInputError(f"gap_tolerance_m = {self.gap_tolerance_m!r}: expected > 0")
+        if not self.newton_tolerance > 0.0:
+            raise FewearInputError(f"newton_tolerance = {self.newton_tolerance!r}: expected > 0")
+        if self.max_newton_iterations < 1:
+            raise FewearInputError(
+                f"max_newton_iterations = {self.max_newton_iterations!r}: expected >= 1")
+
+    @property
+    def coefficients(self) -> tuple[float, float, float, float]:
+        """(alpha_m, alpha_f, gamma, beta) of Chung & Hulbert."""
+        rho = self.rho_inf
+        alpha_m = (2.0 * rho - 1.0) / (rho + 1.0)
+        alpha_f = rho / (rho + 1.0)
+        gamma = 0.5 + alpha_f - alpha_m
+        beta = 0.25 * (gamma + 0.5) ** 2
+        return alpha_m, alpha_f, gamma, beta
+
+
+@dataclass
+class State:
+    """The integrator's state at time t: positions, velocities, accelerations, a, multipliers."""
+
+    t: float
+    q: np.ndarray
+    qd: np.ndarray
+    qdd: np.ndarray
+    a: np.ndarray
+    lam: np.ndarray
+
+
+@dataclass
+class RunStats:
+    steps: int = 0
+    rejected: int = 0
+    newton_iterations: int = 0
+    wall_time_s: float = 0.0
+    smallest_step_s: float = math.inf
+    extra: dict = field(default_factory=dict)
+
+
+class GeneralizedAlpha:
+    """Time integration of a :class:`fewear.mbd.system.MultibodySystem`."""
+
+    def __init__(self, system, settings: IntegratorSettings):
+        self.system = system
+        self.settings = settings
+        self.stats = RunStats()
+        n, m = system.n_coordinates, system.n_constraints
+        self._matrix = np.zeros((n + m, n + m))
+        self._rhs = np.zeros(n + m)
+        self._controlled = [e for e in system.force_elements if hasattr(e, "step_error")]
+
+    def initial_state(self, q0, qd0, t0: float = 0.0) -> State:
+        """A state with consistent accelerations and multipliers (q0, qd0 must be consistent)."""
+        q0 = np.asarray(q0, dtype=float).copy()
+        qd0 = np.asarray(qd0, dtype=float).copy()
+        for element in self._controlled:
+            element.begin_step(q0, qd0)
+        qdd0, lam0 = self.system.consistent_accelerations(q0, qd0, t0)
+        return State(t0, q0, qd0, qdd0, qdd0.copy(), lam0)
+
+    def step(self, s: State, h: float) -> State | None:
+        """One generalized-alpha step of size h; None if Newton does not converge."""
+        sys_, st = self.system, self.settings
+        alpha_m, alpha_f, gamma, beta = st.coefficients
+        n = sys_.n_coordinates
+        t1 = s.t + h
+        qdd1 = s.qdd.copy()
+        a1 = (s.qdd - alpha_m * s.a) / (1.0 - alpha_m)
+        q1 = s.q + h * s.qd + h * h * ((0.5 - beta) * s.a + beta * a1)
+        qd1 = s.qd + h * ((1.0 - gamma) * s.a + gamma * a1)
+        lam1 = s.lam.copy()
+        bh2 = beta * h * h
+        beta_p = (1.0 - alpha_m) / ((1.0 - alpha_f) * bh2)
+        gamma_p = gamma / (beta * h)
+        A, rhs = self._matrix, self._rhs
+        for iteration in range(1, st.max_newton_iterations + 1):
+            Q, K, C = sys_.forces(q1, qd1, t1)
+            jac = sys_.constraint_jacobian(q1)
+            residual = sys_.mass @ qdd1 + jac.T @ lam1 - Q
+            S = beta_p * sys_.mass - gamma_p * C - K + sys_.constraint_hessian(q1, lam1)
+            A[:n, :n] = bh2 * S
+            A[:n, n:] = jac.T
+            A[n:, :n] = jac
+            rhs[:n] = -bh2 * residual
+            rhs[n:] = -sys_.constraint_values(q1, t1)
+            try:
+                x = np.linalg.solve(A, rhs)
+            except np.linalg.LinAlgError:
+                return None
+            dq = x[:n]
+            q1 += dq
+            qd1 += gamma_p * dq
+            qdd1 += beta_p * dq
+            lam1 += x[n:] / bh2
+            self.stats.newton_iterations += 1
+            if not np.all(np.isfinite(dq)):
+                return None
+            if np.max(np.abs(dq)) < st.newton_tolerance:
+                break
+        else:
+            return None
+        a1 = (alpha_f * s.qdd + (1.0 - alpha_f) * qdd1 - alpha_m * s.a) / (1.0 - alpha_m)
+        if st.project_velocities and sys_.n_constraints:
+            qd1 = sys_.project_velocities(q1, qd1, t1)
+        return State(t1, q1, qd1, qdd1, a1, lam1)
+
+    def run(self, state: State, t_end: float, observer=None) -> State:
+        """Integrate from ``state`` to ``t_end``; call ``observer(state, h)`` after every step."""
+        st = self.settings
+        h = self.stats.extra.get("next_step_s", st.step_s)
+        start = time.perf_counter()
+        while state.t < t_end - 1e-14:
+            h = min(h, st.step_s, t_end - state.t)
+            new = self.step(state, h)
+            if new is None:
+                h = self._shrink(h, 0.25, state.t)
+                self.stats.rejected += 1
+                continue
+            h_next = st.step_s
+            if st.adaptive and self._controlled:
+                accept, factor = self._control(state, new, h)
+                if not accept:
+                    h = self._shrink(h, factor, state.t)
+                    self.stats.rejected += 1
+                    continue
+                h_next = h * factor
+            for element in self._controlled:
+                element.end_step(new.q, new.qd)
+            state = new
+            self.stats.steps += 1
+            self.stats.smallest_step_s = min(self.stats.smallest_step_s, h)
+            if observer is not None:
+                observer(state, h)
+            for element in self._controlled:
+                element.begin_step(state.q, state.qd)
+            h = max(h_next, st.min_step_s)
+        self.stats.extra["next_step_s"] = h
+        self.stats.wall_time_s += time.perf_counter() - start
+        return state
+
+    def _shrink(self, h: float, factor: float, t: float) -> float:
+        h_new = h * factor
+        if h_new < self.settings.min_step_s:
+            raise RuntimeError(
+                f"generalized-alpha: step size fell below min_step_s = "
+                f"{self.settings.min_step_s:g} s at t = {t:.6g} s")
+        return h_new
+
+    def _control(self, old: State, new: State, h: float) -> tuple[bool, float]:
+        """(accept, factor): the next step (if accepted) or the retry (if not) is factor * h.
+
+        Rejects a step that enters contact deeper than the gap tolerance (retry aimed, by the
+        secant on the gap, at half the tolerance) or whose local error estimate exceeds it; the
+        next step grows with the error like h^3, by at most 2x."""
+        tol = self.settings.gap_tolerance_m
+        factor = 2.0
+        for element in self._controlled:
+            error_m, gap_old, gap_new = element.step_error(old.q, old.qdd, new.q, new.qdd, h)
+            if gap_old <= 0.0 and gap_new > tol:
+                secant = (0.5 * tol - gap_old) / (gap_new - gap_old)
+                return False, min(0.9, max(0.02, secant))
+            if error_m > tol:
+                return False, max(0.1, 0.8 * (tol / error_m) ** (1.0 / 3.0))
+            if error_m > 0.0:
+                factor = min(factor, 0.9 * (tol / error_m) ** (1.0 / 3.0))
+        return True, max(0.2, min(2.0, factor))

@@ -1,0 +1,167 @@
+"""A small planar multibody system: M q'' + Phi_q^T lambda = Q(q, q', t), Phi(q, t) = 0.
+
+Coordinates are absolute: ``(x, y, phi)`` of each rigid body's centre of mass and the nodal
+coordinates of each ANCF beam. In these coordinates the mass matrix is constant (rigid bodies:
+diag(m, m, J); ANCF: the consistent mass, Shabana 2005 ch. 7) and a planar rigid body has no
+velocity-product inertia terms, so M is assembled once. The forces are gravity (constant), the
+beams' elastic forces and the force elements (the clearance joints); each force element returns its
+generalized force and the analytic derivatives dQ/dq and dQ/dq' used by the Newton iteration.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from fewear.errors import FewearInputError
+
+
+class BeamElasticity:
+    """The elastic forces of an ANCF beam as a force element: Q = -F(q), dQ/dq = -dF/dq."""
+
+    def __init__(self, beam, first_index: int):
+        self.beam = beam
+        self.indices = np.arange(first_index, first_index + beam.n_coordinates)
+
+    def evaluate(self, q_b, qd_b, t):
+        forces, stiffness = self.beam.elastic_forces_and_stiffness(q_b)
+        return -forces, -stiffness, None
+
+
+class MultibodySystem:
+    """Bodies, constraints and force elements; the vectors and matrices the integrator needs."""
+
+    def __init__(self, gravity_m_s2=(0.0, -9.81)):
+        self.gravity = np.asarray(gravity_m_s2, dtype=float)
+        self._mass_blocks: list[tuple[int, np.ndarray]] = []
+        self._gravity_blocks: list[tuple[int, np.ndarray]] = []
+        self.constraints: list = []
+        self.force_elements: list = []
+        self.n_coordinates = 0
+
+    # --- building ---------------------------------------------------------------------------
+    def add_rigid_body(self, mass_kg: float, inertia_kg_m2: float, name: str = "body") -> int:
+        """Add a rigid body; return the index of its first coordinate (x, y, phi follow)."""
+        if not (mass_kg > 0.0 and np.isfinite(mass_kg)):
+            raise FewearInputError(f"{name} mass {mass_kg!r} kg: expected a positive number")
+        if not (inertia_kg_m2 > 0.0 and np.isfinite(inertia_kg_m2)):
+            raise FewearInputError(
+                f"{name} moment of inertia {inertia_kg_m2!r} kg m^2: expected a positive number")
+        first = self.n_coordinates
+        self._mass_blocks.append((first, np.diag([mass_kg, mass_kg, inertia_kg_m2])))
+        self._gravity_blocks.append((first, np.array([*(mass_kg * self.gravity), 0.0])))
+        self.n_coordinates += 3
+        return first
+
+    def add_beam(self, beam) -> int:
+        """Add an ANCF beam (fewear.mbd.ancf.AncfBeam); return the index of its first coordinate."""
+        first = self.n_coordinates
+        self._mass_blocks.append((first, np.asarray(beam.mass_matrix(), dtype=float)))
+        self._gravity_blocks.append((first, np.asarray(beam.gravity_forces(self.gravity))))
+        self.force_elements.append(BeamElasticity(beam, first))
+        self.n_coordinates += beam.n_coordinates
+        return first
+
+    def add_constraint(self, constraint) -> None:
+        self.constraints.append(constraint)
+
+    def add_force(self, element) -> None:
+        self.force_elements.append(element)
+
+    def finalize(self) -> "MultibodySystem":
+        """Assemble the constant mass matrix and gravity forces; fix the constraint row layout."""
+        n = self.n_coordinates
+        self.mass = np.zeros((n, n))
+        self.gravity_forces = np.zeros(n)
+        for first, block in self._mass_blocks:
+            k = block.shape[0]
+            self.mass[first:first + k, first:first + k] = block
+        for first, block in self._gravity_blocks:
+            self.gravity_forces[first:first + len(block)] += block
+        rows, start = [], 0
+        for constraint in self.constraints:
+            rows.append(slice(start, start + constraint.n_rows))
+            start += constraint.n_rows
+        self._rows = rows
+        self.n_constraints = start
+        self._nonlinear = [(c, rows, np.ix_(c.indices, c.indices))
+                           for c, rows in zip(self.constraints, rows) if c.nonlinear]
+        self._force_blocks = [(e, np.ix_(e.indices, e.indices)) for e in self.force_elements]
+        return self
+
+    # --- evaluation -------------------------------------------------------------------------
+    def constraint_values(self, q, t):
+        """Phi(q, t) (m rows)."""
+        phi = np.empty(self.n_constraints)
+        for c, rows in zip(self.constraints, self._rows):
+            phi[rows] = c.value(q[c.indices], t)
+        return phi
+
+    def constraint_jacobian(self, q):
+        """Phi_q (m, n)."""
+        jac = np.zeros((self.n_constraints, self.n_coordinates))
+        for c, rows in zip(self.constraints, self._rows):
+            jac[rows, c.indices] = c.jacobian(q[c.indices])
+        return jac
+
+    def constraint_time_derivative(self, t):
+        """Phi_t (m,)."""
+        out = np.empty(self.n_constraints)
+        for c, rows in zip(self.constraints, self._rows):
+            out[rows] = c.time_derivative(t)
+        return out
+
+    def constraint_hessian(self, q, lam):
+        """d(Phi_q^T lambda)/dq (n, n)."""
+        H = np.zeros((self.n_coordinates, self.n_coordinates))
+        for c, rows, block in self._nonlinear:
+            H[block] += c.hessian(q[c.indices], lam[rows])
+        return H
+
+    def constraint_convective(self, q, qd):
+        """(dPhi_q/dt) q' (m,)."""
+        out = np.empty(self.n_constraints)
+        for c, rows in zip(self.constraints, self._rows):
+            out[rows] = c.convective(q[c.indices], qd[c.indices])
+        return out
+
+    def forces(self, q, qd, t):
+        """Q(q, q', t), dQ/dq and dQ/dq' (dense)."""
+        n = self.n_coordinates
+        Q = self.gravity_forces.copy()
+        K = np.zeros((n, n))
+        C = np.zeros((n, n))
+        for element, block in self._force_blocks:
+            idx = element.indices
+            Q_b, K_b, C_b = element.evaluate(q[idx], qd[idx], t)
+            Q[idx] += Q_b
+            if K_b is not None:
+                K[block] += K_b
+            if C_b is not None:
+                C[block] += C_b
+        return Q, K, C
+
+    def kinetic_energy(self, qd):
+        return 0.5 * qd @ self.mass @ qd
+
+    def gravity_potential(self, q):
+        return -self.gravity_forces @ q
+
+    # --- consistent initial values ------------------------------------------------------------
+    def consistent_accelerations(self, q, qd, t):
+        """Solve M q'' + Phi_q^T lambda = Q, Phi_q q'' = -(dPhi_q/dt) q' for (q'', lambda)."""
+        Q, _, _ = self.forces(q, qd, t)
+        jac = self.constraint_jacobian(q)
+        m = self.n_constraints
+        A = np.block([[self.mass, jac.T], [jac, np.zeros((m, m))]])
+        rhs = np.concatenate([Q, -self.constraint_convective(q, qd)])
+        sol = np.linalg.solve(A, rhs)
+        return sol[: self.n_coordinates], sol[self.n_coordinates:]
+
+    def project_velocities(self, q, qd, t):
+        """The M-orthogonal projection of q' onto Phi_q q' + Phi_t = 0."""
+        jac = self.constraint_jacobian(q)
+        violation = jac @ qd + self.constraint_time_derivative(t)
+        m = self.n_constraints
+        A = np.block([[self.mass, jac.T], [jac, np.zeros((m, m))]])
+        rhs = np.concatenate([np.zeros(self.n_coordinates), -violation])
+        return qd + np.linalg.solve(A, rhs)[: self.n_coordinates]
