@@ -77,13 +77,13 @@ class ConstantWearCoefficient:
         return {"coefficient_model": "constant", "constant_k_m2_N": float(self.k_m2_N)}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class CrossValidation:
     """How the RBF network's size and ridge parameter were chosen (k-fold cross-validation).
 
     Errors are root-mean-square residuals of ln k on held-out tests (about the relative error of k
-    when small). ``rms_log_error[i, j, l]`` belongs to ``n_centres_grid[i]``,
-    ``width_scale_grid[j]`` and ``ridge_grid[l]``; ``standard_error`` is the standard error of that
+    when small). ``rms_log_error[i, j, r]`` belongs to ``n_centres_grid[i]``,
+    ``width_scale_grid[j]`` and ``ridge_grid[r]``; ``standard_error`` is the standard error of that
     mean over the folds.
     """
 
@@ -249,27 +249,15 @@ class RbfWearCoefficient:
         centre_grid = _centre_grid(n_centres, n_distinct, len(y), folds)
         ridge_grid = _positive_grid("ridge", ridge, RIDGE_GRID)
         width_grid = _positive_grid("width_scale", width_scale, WIDTH_SCALE_GRID)
-        rng = np.random.default_rng(seed)
-        fold_of = rng.permutation(len(y)) % folds
-        shape = (folds, len(centre_grid), len(width_grid), len(ridge_grid))
-        errors = np.zeros(shape)
+        fold_of = np.random.default_rng(seed).permutation(len(y)) % folds
+        errors = _fold_errors(z, y, fold_of, (centre_grid, width_grid, ridge_grid), seed)
         counts = np.bincount(fold_of, minlength=folds)
-        for f in range(folds):
-            train, test = fold_of != f, fold_of == f
-            for i, m in enumerate(centre_grid):
-                centres, spacing = _centres_and_spacing(z[train], m, seed)
-                for j, scale_factor in enumerate(width_grid):
-                    widths = scale_factor * spacing
-                    for l, lam in enumerate(ridge_grid):
-                        coef = _ridge_solve(z[train], y[train], centres, widths, lam)
-                        residual = _design(z[test], centres, widths) @ coef
-                        errors[f, i, j, l] = np.mean((residual - y[test]) ** 2)
-        pooled = np.sqrt(np.einsum("f,fijl->ijl", counts, errors) / counts.sum())
+        pooled = np.sqrt(np.einsum("f,fijr->ijr", counts, errors) / counts.sum())
         standard_error = np.sqrt(errors).std(axis=0, ddof=1) / np.sqrt(folds)
-        i, j, l = _one_standard_error_choice(pooled, standard_error)
+        i, j, r = _one_standard_error_choice(pooled, standard_error)
         centres, spacing = _centres_and_spacing(z, centre_grid[i], seed)
         widths = width_grid[j] * spacing
-        coef = _ridge_solve(z, y, centres, widths, ridge_grid[l])
+        coef = _ridge_solve(z, y, centres, widths, ridge_grid[r])
         m = len(widths)
         model = cls(
             centres=centres, widths=widths, weights=coef[:m], tail=coef[m:],
@@ -281,8 +269,8 @@ class RbfWearCoefficient:
             folds=folds, n_samples=len(y), n_centres_grid=tuple(centre_grid),
             width_scale_grid=tuple(width_grid), ridge_grid=tuple(ridge_grid),
             rms_log_error=pooled, standard_error=standard_error, n_centres=centre_grid[i],
-            width_scale=width_grid[j], ridge=ridge_grid[l],
-            cv_rms_log_error=float(pooled[i, j, l]),
+            width_scale=width_grid[j], ridge=ridge_grid[r],
+            cv_rms_log_error=float(pooled[i, j, r]),
             best_rms_log_error=float(pooled.min()), training_rms_log_error=training,
         )
         return model, report
@@ -411,16 +399,34 @@ def _positive_grid(name: str, value: float | None, grid: tuple[float, ...]) -> l
     return [float(value)]
 
 
+def _fold_errors(z, y, fold_of, grids, seed) -> np.ndarray:
+    """Mean squared held-out error of ln k, axes (fold, centres, width scale, ridge)."""
+    centre_grid, width_grid, ridge_grid = grids
+    folds = fold_of.max() + 1
+    errors = np.zeros((folds, len(centre_grid), len(width_grid), len(ridge_grid)))
+    for f in range(folds):
+        train, test = fold_of != f, fold_of == f
+        for i, m in enumerate(centre_grid):
+            centres, spacing = _centres_and_spacing(z[train], m, seed)
+            for j, scale_factor in enumerate(width_grid):
+                widths = scale_factor * spacing
+                for r, ridge in enumerate(ridge_grid):
+                    coef = _ridge_solve(z[train], y[train], centres, widths, ridge)
+                    residual = _design(z[test], centres, widths) @ coef - y[test]
+                    errors[f, i, j, r] = np.mean(residual**2)
+    return errors
+
+
 def _one_standard_error_choice(error: np.ndarray, standard_error: np.ndarray):
     """The simplest grid point (fewest centres, then largest ridge, then widest units; axes of
     ``error``: centres, width scale, ridge) whose error is within one SE of the best."""
     best = np.unravel_index(np.argmin(error), error.shape)
     threshold = error[best] + standard_error[best]
     for i in range(error.shape[0]):
-        for l in reversed(range(error.shape[2])):
-            within = np.flatnonzero(error[i, :, l] <= threshold)
+        for r in reversed(range(error.shape[2])):
+            within = np.flatnonzero(error[i, :, r] <= threshold)
             if within.size:
-                return i, int(within[-1]), l
+                return i, int(within[-1]), r
     return tuple(int(index) for index in best)
 
 
