@@ -280,7 +280,7 @@ def _constant_in_test(data, name, values, index, test_name) -> float:
 def _read_rows(path: Path) -> tuple[int, list[str], list[tuple[int, list[str]]]]:
     """The header's line number, its column names, and the (line number, cells) of data rows."""
     try:
-        text = path.read_text()
+        text = path.read_text(encoding="utf-8-sig")
     except OSError as exc:
         raise FewearInputError(f"cannot read measured data {path}: {exc.strerror}") from None
     header_line, header, rows = 0, None, []

@@ -80,6 +80,13 @@ def test_writer_and_reader_round_trip(tmp_path):
     assert (tmp_path / "b.csv").read_text().startswith("# copy\n# of a.csv\n")
 
 
+def test_spreadsheet_export_with_byte_order_mark_and_crlf(tmp_path):
+    path = write_csv(tmp_path / "excel.csv", cumulative_table())
+    path.write_bytes(b"\xef\xbb\xbf" + path.read_text().replace("\n", "\r\n").encode())
+    data = read_measured_wear(path)
+    np.testing.assert_array_equal(data.wear_volume_m3, column(cumulative_table(), "wear_volume_m3"))
+
+
 def test_tests_are_listed_in_order_of_appearance(tmp_path):
     rows = cumulative_table()
     interleaved = [rows[3], rows[0], rows[4], rows[1]]
