@@ -1,8 +1,9 @@
 """Planar shear-deformable ANCF beam: 3-node elements with r and r_,y per node (seed eq. 1-3).
 
-Kinematics (seed eq. 2-3). An element of length l has nodes at xi = 0, 1/2, 1 (xi = x/l) with the
-quadratic Lagrange functions N1 = 1 - 3 xi + 2 xi^2, N2 = 4 xi - 4 xi^2, N3 = 2 xi^2 - xi; the seed's
-s2, s4, s6 = l eta N_a = y N_a, so a material point (x, y) of the straight reference beam is at
+Kinematics (seed eq. 2-3). An element of length l has nodes at xi = 0, 1/2, 1 (xi = x/l) with
+the quadratic Lagrange functions N1 = 1 - 3 xi + 2 xi^2, N2 = 4 xi - 4 xi^2, N3 = 2 xi^2 - xi; the
+seed's s2, s4, s6 = l eta N_a = y N_a, so a material point (x, y) of the straight reference beam is
+at
 
     r(x, y) = r0(x) + y d(x),   r0 = sum_a N_a r_a,   d = sum_a N_a r_,y^a,
 
@@ -13,11 +14,13 @@ Mass and gravity. M = int rho S^T S dV with S the (2, 12) shape matrix, integrat
 b x h rectangle (int y dA = 0, int y^2 dA = b h^3 / 12) and along the element (int N_a N_b dxi =
 [[4, 2, -1], [2, 16, 2], [-1, 2, 4]] / 30): constant, the r and r_,y blocks are uncoupled.
 
-Elastic forces: Green-Lagrange strain of the continuum, locking-free by the strategy of Nachbagauer,
-Pechstein, Irschik, Gerstmayr, Multibody Syst. Dyn. 26 (2011) 245-263 (strain energy split into
-axial/bending, shear and transverse-normal parts; plane-stress-like uncoupled normal strains; shear
-correction factor; reduced integration of the parts that lock). With J = [r_,x, r_,y] and the
-reference straight (J0 a rotation, so the strain components below are those of the beam frame):
+Elastic forces: Green-Lagrange strain of the continuum, made locking-free with the means of
+Nachbagauer, Pechstein, Irschik, Gerstmayr, Multibody Syst. Dyn. 26 (2011) 245-263 for this element
+(strain energy split into axial/bending, shear and transverse-normal parts; uncoupled normal strains
+instead of the Poisson coupling; Cowper's shear correction; reduced integration of the parts that
+lock). The integration rules listed below are this module's choices, each justified here. With
+J = [r_,x, r_,y] and a straight reference (J0 a rotation, so the strain components below are those
+of the beam frame):
 
     eps_xx = 1/2 (r_,x . r_,x - 1) = a + y c + y^2 e / 2,  a = (t.t - 1)/2,  c = t.k,  e = k.k,
     gamma_xy = r_,x . r_,y        = g + y s,                g = t.d,          s = d.k,
@@ -29,30 +32,34 @@ with t = r0_,x, k = d_,x. The energy per element, integrated exactly over the he
         + b kappa G/2 [h g^2 + h^3/12 s^2]                         (shear)
         + b E/2 h n^2 dx                                           (transverse normal)
 
-uses E for both normal strains with no Poisson coupling (the constant-in-y thickness strain of this
-element would otherwise stiffen bending by 1/(1 - nu^2): Poisson/thickness locking), G = E/(2(1 + nu))
-and Cowper's kappa = 10 (1 + nu)/(12 + 11 nu) for a rectangle. Integration along x:
+uses E for both normal strains with no Poisson coupling (the constant-in-y thickness strain of
+this element would otherwise stiffen bending by 1/(1 - nu^2): Poisson/thickness locking),
+G = E/(2(1 + nu)) and Cowper's kappa = 10 (1 + nu)/(12 + 11 nu) for a rectangle. Integration along
+x:
 
 - axial, bending and shear parts: 2-point Gauss (reduced). For a straight element the linearised
-  parts (u'^2, theta'^2, (w' - theta)^2, all of degree 2) are integrated exactly, yet the shear strain
-  only has to vanish at 2 points (no shear locking: the quadratic Timoshenko element with reduced
-  shear integration) and so does the stretch of the curved centre line (no membrane locking);
+  parts (u'^2, theta'^2, (w' - theta)^2, all of degree 2) are integrated exactly, yet the shear
+  strain only has to vanish at 2 points (no shear locking: the quadratic Timoshenko element with
+  reduced shear integration) and so does the stretch of the curved centre line (no membrane
+  locking);
 - transverse normal part: 3-point Lobatto (Simpson, at the nodes). Quadratic interpolation of the
   nodal slopes cannot keep |d| = 1 between nodes under large rotation; at the nodes it can exactly.
 
-Element rank: 12 - 9 = 3 zero-energy modes, the rigid motions (checked in the tests). In the linear
-limit this is the Timoshenko beam with EA, EI = E b h^3/12 and kappa G A: a cantilever under a tip
-load has w = F L^3/(3 E I) + F L/(kappa G A) for thin and thick beams alike.
+The element stiffness has rank 9: its only zero-energy modes are the 3 rigid motions (tested).
+In the linear limit this is the Timoshenko beam with EA, EI = E b h^3/12 and kappa G A: a cantilever
+under a tip load has w = F L^3/(3 E I) + F L/(kappa G A) for thin and thick beams alike (the nodal
+values of this element are even exact there, with any number of elements).
 
 The energy is written as U = sum_points 1/2 s^T H s over six strain invariants s_i = z^T S_i z / 2 +
 s0_i of z = (t, d, k), which is linear in q (z = B q). Hence the internal forces F = dU/dq =
 B^T sum_i (H s)_i S_i z and the exact tangent K = dF/dq = B^T [sum_i (H s)_i S_i + sum_ij H_ij
-(S_i z)(S_j z)^T] B, evaluated for all elements at once with einsum.
+(S_i z)(S_j z)^T] B, evaluated for all elements at once with batched matrix products.
 """
 
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 
 import numpy as np
@@ -90,8 +97,12 @@ def cowper_shear_correction(poisson_ratio: float) -> float:
     return 10.0 * (1.0 + poisson_ratio) / (12.0 + 11.0 * poisson_ratio)
 
 
+def _is_number(value) -> bool:
+    return isinstance(value, numbers.Real) and not isinstance(value, bool) and math.isfinite(value)
+
+
 def _positive(name: str, value: float) -> None:
-    if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0.0):
+    if not (_is_number(value) and value > 0.0):
         raise FewearInputError(f"{name} = {value!r}: must be a positive finite number")
 
 
@@ -116,11 +127,11 @@ class BeamSection:
         _positive("height_m", self.height_m)
         _positive("width_m", self.width_m)
         nu = self.poisson_ratio
-        if not (isinstance(nu, (int, float)) and -1.0 < nu < 0.5):
+        if not (_is_number(nu) and -1.0 < nu < 0.5):
             raise FewearInputError(f"poisson_ratio = {nu!r}: must lie in (-1, 0.5)")
         if self.shear_correction is not None:
             kappa = self.shear_correction
-            if not (isinstance(kappa, (int, float)) and 0.0 < kappa <= 1.0):
+            if not (_is_number(kappa) and 0.0 < kappa <= 1.0):
                 raise FewearInputError(f"shear_correction = {kappa!r}: must lie in (0, 1] or None")
 
     @property
@@ -259,7 +270,11 @@ class AncfBeam:
 
     # -- geometry ------------------------------------------------------------------------------
     def node_index(self, node: int) -> slice:
-        """Where node ``node``'s [r_x, r_y, r_,y x, r_,y y] sit in q (nodes 0 .. 2n, s = node l/2)."""
+        """Where node ``node``'s [r_x, r_y, r_,y x, r_,y y] sit in q.
+
+        Nodes 0 .. 2n sit at arc length s = node l/2 (l the element length); negative counts from
+        the end.
+        """
         if not (isinstance(node, (int, np.integer)) and -self.n_nodes <= node < self.n_nodes):
             raise FewearInputError(f"node = {node!r}: must be an integer in [0, {self.n_nodes})")
         node = int(node) % self.n_nodes

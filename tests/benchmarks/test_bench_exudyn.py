@@ -4,8 +4,9 @@ The Exudyn model is checked against the closed form (a fast test of the peer its
 side-by-side run is a benchmark (``make bench``): both codes simulate the same mechanism (fewear's
 [mechanism] defaults, rigid rod, ideal joints) for one crank cycle at the same fixed step with
 index-3 generalized-alpha (rho_inf of fewear's [integrator]) and Newton tolerance 1e-10; it prints
-each code's best-of-3 wall time of the time integration alone (model building excluded), the ratio fewear/Exudyn and both slider errors against the closed
-form. It asserts the accuracy (both below 1e-8 m), never the times.
+each code's best-of-3 wall time of the time integration alone (model building excluded), the ratio
+fewear/Exudyn and both slider errors against the closed form. It asserts the accuracy (both below
+1e-8 m), never the times.
 """
 
 import numpy as np
