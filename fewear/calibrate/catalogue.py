@@ -48,7 +48,8 @@ class Candidate:
 # amplitude: ln(r - 1) or ln(beta q_max) in [ln 1e-3, ln 1e3]; scale: ln(s0/S) or ln(tau/T) in
 # [ln 1e-3, ln 10] (a transient much longer than the tests is a curvature, much shorter an offset).
 _BOUNDS = ((np.log(1e-3), np.log(1e3)), (np.log(1e-3), np.log(10.0)))
-_STARTS = tuple((a, b) for a in np.log([0.3, 1.0, 3.0]) for b in np.log([0.01, 0.03, 0.1, 0.3, 1.0]))
+_STARTS = tuple((a, b) for a in np.log([0.3, 1.0, 3.0])
+                for b in np.log([0.01, 0.03, 0.1, 0.3, 1.0]))
 
 
 def _running_in(x, scales: Scales) -> WearExtension:
@@ -73,7 +74,7 @@ CATALOGUE: dict[str, Candidate] = {
         "k falls from an initial to a steady value over time (oxide or tribofilm growth, Quinn)",
     ),
     "thermal": Candidate(
-        "thermal", ("time_s", "friction_coefficient"), _thermal, _BOUNDS, _STARTS,
+        "thermal", ("time_s", "friction_coefficient", "pressure_Pa"), _thermal, _BOUNDS, _STARTS,
         "k rises with the lagged frictional power mu p v of the test (frictional heating, "
         "Archard 1959; Lim & Ashby 1987)",
     ),

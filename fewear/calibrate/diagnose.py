@@ -81,7 +81,9 @@ class DiagnoseSettings:
     def __post_init__(self):
         where = "[diagnose]"
         if self.holdout not in HOLDOUTS:
-            raise FewearInputError(f"{where} holdout = {self.holdout!r}: expected one of {HOLDOUTS}")
+            raise FewearInputError(
+                f"{where} holdout = {self.holdout!r}: expected one of {HOLDOUTS}"
+            )
         if self.noise_model not in NOISE_MODELS:
             raise FewearInputError(
                 f"{where} noise_model = {self.noise_model!r}: expected one of {NOISE_MODELS}"
@@ -132,7 +134,8 @@ class Readings:
     """The readings the diagnosis uses (s > 0 and V > 0), per reading, SI units.
 
     ``velocity_m_s``, ``time_s``: measured or derived from each other (t = s / v), None when
-    neither was measured; ``load_N``, ``friction``, ``temperature_C``: None when not measured.
+    neither was measured; ``pressure_Pa``, ``load_N``, ``friction``, ``temperature_C``: None when
+    not measured.
     ``measured``: the variables present in the table; ``notes``: what was derived or dropped.
     """
 
@@ -140,7 +143,7 @@ class Readings:
     data_kind: str
     test_labels: tuple[str, ...]
     test_index: np.ndarray
-    pressure_Pa: np.ndarray
+    pressure_Pa: np.ndarray | None
     velocity_m_s: np.ndarray | None
     distance_m: np.ndarray
     volume_m3: np.ndarray
@@ -171,7 +174,7 @@ class Readings:
     @property
     def power_W_m2(self) -> np.ndarray | None:
         """Frictional power mu p v per reading, with each test's mean mu (constant in a test)."""
-        if self.friction is None or self.velocity_m_s is None:
+        if self.friction is None or self.velocity_m_s is None or self.pressure_Pa is None:
             return None
         mu = self.per_test(self.friction)[self.test_index]
         return mu * self.pressure_Pa * self.velocity_m_s
@@ -180,12 +183,16 @@ class Readings:
         return {
             "sliding_distance_m": True,
             "time_s": self.time_s is not None,
-            "friction_coefficient": self.friction is not None and self.velocity_m_s is not None,
+            "friction_coefficient": self.friction is not None,
+            "pressure_Pa": self.pressure_Pa is not None,
         }[variable]
 
 
-OPTIONAL_COLUMNS = ("velocity_m_s", "time_s", "normal_load_N", "friction_coefficient",
-                    "temperature_C")
+NEEDS_TEXT = {"time_s": "time_s (or velocity_m_s, from which t = s / v)",
+              "friction_coefficient": "friction_coefficient", "pressure_Pa": "pressure_Pa",
+              "sliding_distance_m": "sliding_distance_m"}
+OPTIONAL_COLUMNS = ("pressure_Pa", "velocity_m_s", "time_s", "normal_load_N",
+                    "friction_coefficient", "temperature_C")
 
 
 def readings_from_columns(
@@ -201,7 +208,7 @@ def readings_from_columns(
     index = rank[index]
     labels = labels[order]
     get = {name: _optional(columns.get(name)) for name in OPTIONAL_COLUMNS}
-    measured = ("test_id", "pressure_Pa", "sliding_distance_m", "wear_volume_m3") + tuple(
+    measured = ("test_id", "sliding_distance_m", "wear_volume_m3") + tuple(
         name for name in OPTIONAL_COLUMNS if get[name] is not None
     )
     s = np.asarray(columns["sliding_distance_m"], float)
@@ -232,7 +239,7 @@ def readings_from_columns(
         source=source, data_kind=data_kind,
         test_labels=tuple(str(labels[j]) for j in kept_tests),
         test_index=remap[index[keep]],
-        pressure_Pa=np.asarray(columns["pressure_Pa"], float)[keep],
+        pressure_Pa=select(get["pressure_Pa"]),
         velocity_m_s=select(velocity), distance_m=s[keep], volume_m3=volume[keep],
         time_s=select(time), load_N=select(get["normal_load_N"]),
         friction=select(get["friction_coefficient"]), temperature_C=select(get["temperature_C"]),
@@ -249,8 +256,7 @@ def _optional(value):
 
 def readings_from_measured(data) -> Readings:
     """Readings from :class:`fewear.calibrate.measured.MeasuredWear`."""
-    columns = {"test_id": data.test_id, "pressure_Pa": data.pressure_Pa,
-               "sliding_distance_m": data.sliding_distance_m,
+    columns = {"test_id": data.test_id, "sliding_distance_m": data.sliding_distance_m,
                "wear_volume_m3": data.wear_volume_m3}
     for name in OPTIONAL_COLUMNS:
         columns[name] = getattr(data, name, None)
@@ -359,10 +365,14 @@ class LevelModel:
 
 
 def _test_conditions(readings: Readings) -> tuple[np.ndarray, np.ndarray, np.ndarray, str]:
-    """Per test: pressure, velocity (ones when not measured), load (ones when not measured) and
-    a note on what the network's k means."""
-    p = readings.per_test(readings.pressure_Pa)
+    """Per test: pressure, velocity, load (ones when not measured) and a note on what the
+    network's k means."""
     note = ""
+    if readings.pressure_Pa is None:
+        p = np.ones(readings.n_tests)
+        note = "pressure not measured: k cannot depend on p. "
+    else:
+        p = readings.per_test(readings.pressure_Pa)
     if readings.velocity_m_s is None:
         v = np.ones(readings.n_tests)
         note = "velocity not measured: the network is k(p) only. "
@@ -455,11 +465,13 @@ def plan_holdout(readings: Readings, settings: DiagnoseSettings) -> Holdout:
 
 @dataclass(frozen=True)
 class Score:
-    """Held-out residuals (NaN where not held out) and the per-test mean squared error."""
+    """Held-out residuals (NaN where not held out), the per-test mean squared error, the RMS
+    error over all held-out readings and the fits of the folds (on their training readings)."""
 
     residuals: np.ndarray
     per_test: np.ndarray
     rms: float
+    fold_fits: tuple[Fit, ...]
 
 
 def score(problem: Problem, candidate: Candidate | None, holdout: Holdout,
@@ -467,8 +479,10 @@ def score(problem: Problem, candidate: Candidate | None, holdout: Holdout,
     readings = problem.readings
     held_residuals = np.full(readings.test_index.size, np.nan)
     p, v, load, _ = _test_conditions(readings)
+    fold_fits = []
     for train, held in holdout.folds:
         fit = problem.fit(candidate, train)
+        fold_fits.append(fit)
         levels = fit.levels
         if holdout.strategy == "tests":
             train_tests = np.unique(readings.test_index[train])
@@ -481,7 +495,8 @@ def score(problem: Problem, candidate: Candidate | None, holdout: Holdout,
     squared = np.where(mask, held_residuals, 0.0) ** 2
     per_test = (np.bincount(readings.test_index, squared, readings.n_tests)
                 / np.bincount(readings.test_index, mask.astype(float), readings.n_tests))
-    return Score(held_residuals, per_test, float(np.sqrt(np.mean(held_residuals[mask] ** 2))))
+    return Score(held_residuals, per_test, float(np.sqrt(np.mean(held_residuals[mask] ** 2))),
+                 tuple(fold_fits))
 
 
 def paired_z(better: np.ndarray, worse: np.ndarray) -> float:
@@ -547,8 +562,9 @@ def diagnose(readings: Readings, settings: DiagnoseSettings | None = None) -> Di
         candidate = CATALOGUE[name]
         missing = [need for need in candidate.needs if not readings.has(need)]
         if missing:
+            text = " and ".join(NEEDS_TEXT[need] for need in missing)
             untestable.append({"name": name, "needs": missing,
-                               "message": f"could not be tested: needs {' and '.join(missing)}"})
+                               "message": f"could not be tested: needs {text}"})
             continue
         fits[name] = problem.fit(candidate, everything)
         scores[name] = score(problem, candidate, holdout, level_model)
@@ -590,6 +606,7 @@ def diagnose(readings: Readings, settings: DiagnoseSettings | None = None) -> Di
             "aicc": aicc(baseline_fit.residuals, readings.n_tests),
             "k_per_test_m2_N": dict(zip(readings.test_labels, _k_per_test(readings,
                                                                           baseline_fit))),
+            "config": wear_section(baseline_network),
         },
         "candidates": candidates,
         "untestable": untestable,
@@ -607,6 +624,19 @@ def diagnose(readings: Readings, settings: DiagnoseSettings | None = None) -> Di
                      extended_score, fits, scores, cause, summary, extended_section)
 
 
+def predict_volume_m3(fit: Fit, readings: Readings, test: int, distance_m) -> np.ndarray:
+    """Wear volume of test ``test`` after sliding ``distance_m`` under ``fit`` (the test's level
+    times the effective distance at the test's own speed and frictional power)."""
+    s = np.asarray(distance_m, float)
+    rows = readings.test_index == test
+    t = None
+    if readings.time_s is not None:
+        t = s * np.sum(readings.time_s[rows]) / np.sum(readings.distance_m[rows])
+    power = readings.power_W_m2
+    q = None if power is None else float(np.mean(power[rows]))
+    return np.exp(fit.levels[test]) * fit.extension.effective_distance_m(s, t, q)
+
+
 def _rms(values: np.ndarray) -> float:
     return float(np.sqrt(np.mean(values**2)))
 
@@ -620,8 +650,8 @@ def _criterion_text(settings: DiagnoseSettings) -> str:
     return (f"paired standard-error rule on held-out tests: accepted when the mean per-test "
             f"reduction of the held-out squared error exceeds {settings.significance_z:g} "
             f"standard errors and the held-out RMS error falls by at least "
-            f"{settings.min_gain:.0%}; the cause is the accepted candidate with the smallest "
-            "held-out error")
+            f"{settings.min_gain:.0%}; among accepted candidates (two parameters each) the cause "
+            "is the one with the smallest AICc on all readings")
 
 
 def _candidate_entry(name, fit: Fit, sc: Score, base: Score, base_fit: Fit,
@@ -632,8 +662,8 @@ def _candidate_entry(name, fit: Fit, sc: Score, base: Score, base_fit: Fit,
     if accepted:
         verdict = "accepted: its held-out improvement stands above the noise"
     elif gain < settings.min_gain:
-        verdict = (f"rejected: held-out error {gain:+.0%} against the baseline (needs at least "
-                   f"-{settings.min_gain:.0%})")
+        verdict = (f"rejected: held-out error reduced by {gain:.0%} (needs at least "
+                   f"{settings.min_gain:.0%})")
     else:
         verdict = (f"rejected: held-out improvement only {z:.1f} standard errors (needs "
                    f"{settings.significance_z:g}): it fits noise")

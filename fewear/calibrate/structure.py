@@ -29,7 +29,8 @@ def _bins(x: np.ndarray, y: np.ndarray, n_bins: int = 4) -> list[dict[str, float
     edges = np.unique(np.quantile(x, np.linspace(0.0, 1.0, n_bins + 1)))
     out = []
     for i in range(len(edges) - 1):
-        inside = (x >= edges[i]) & ((x < edges[i + 1]) if i < len(edges) - 2 else (x <= edges[i + 1]))
+        last = i == len(edges) - 2
+        inside = (x >= edges[i]) & ((x <= edges[i + 1]) if last else (x < edges[i + 1]))
         if inside.sum() == 0:
             continue
         values = y[inside]
@@ -50,8 +51,9 @@ def _trend(name: str, unit: str, x: np.ndarray, y: np.ndarray, subject: str) -> 
     entry.update(rho=float(rho), p_value=float(p_value), bins=_bins(x, y))
     if p_value < SIGNIFICANT_P:
         direction = "rise" if rho > 0 else "fall"
-        entry["sentence"] = (f"{subject} {direction} with {name} (Spearman rho = {rho:+.2f}, "
-                             f"p = {p_value:.1e})")
+        p_text = "p < 1e-12" if p_value < 1e-12 else f"p = {p_value:.1e}"
+        entry["sentence"] = (f"{subject} {direction} with {name} "
+                             f"(Spearman rho = {rho:+.2f}, {p_text})")
     else:
         entry["sentence"] = (f"{subject} show no clear trend with {name} (rho = {rho:+.2f}, "
                              f"p = {p_value:.2f})")
@@ -77,13 +79,14 @@ def residual_structure(readings, residuals: np.ndarray, levels: np.ndarray,
         if readings.velocity_m_s is not None:
             between.append(_trend("sliding speed", "m/s", readings.per_test(readings.velocity_m_s),
                                   slopes, "The per-test trends of the residual along ln s"))
-    p = readings.per_test(readings.pressure_Pa)
+    ones = np.ones(readings.n_tests)
+    p = None if readings.pressure_Pa is None else readings.per_test(readings.pressure_Pa)
     v = None if readings.velocity_m_s is None else readings.per_test(readings.velocity_m_s)
-    load = np.ones_like(p) if readings.load_N is None else readings.per_test(readings.load_N)
-    network_level = np.log(network(p, np.ones_like(p) if v is None else v) * load)
+    load = ones if readings.load_N is None else readings.per_test(readings.load_N)
+    network_level = np.log(network(ones if p is None else p, ones if v is None else v) * load)
     offsets = levels - network_level
     subject = "Across tests, ln k minus the network's ln k(p, v)"
-    across = [_trend("pressure", "Pa", p, offsets, subject)]
+    across = [] if p is None else [_trend("pressure", "Pa", p, offsets, subject)]
     if v is not None:
         across.append(_trend("sliding speed", "m/s", v, offsets, subject))
     if power is not None:
@@ -94,7 +97,7 @@ def residual_structure(readings, residuals: np.ndarray, levels: np.ndarray,
                              offsets, subject))
     across.append(_trend("test order", "-", np.arange(readings.n_tests, dtype=float), offsets,
                          subject))
-    not_measured = [name for name in ("time_s", "velocity_m_s", "normal_load_N",
+    not_measured = [name for name in ("pressure_Pa", "time_s", "velocity_m_s", "normal_load_N",
                                       "friction_coefficient", "temperature_C")
                     if name not in readings.measured]
     sentences = [entry["sentence"] for entry in within + between + across]
@@ -102,6 +105,7 @@ def residual_structure(readings, residuals: np.ndarray, levels: np.ndarray,
         sentences.append("Not measured, so not examined: " + ", ".join(not_measured) + ".")
     return {"within_tests": within, "trend_between_tests": between, "across_tests": across,
             "not_measured": not_measured, "sentences": sentences,
+            "per_test_offset": [float(x) for x in offsets],
             "per_test_slope": None if slopes is None else [float(x) for x in slopes]}
 
 

@@ -7,8 +7,8 @@ current (p, v). An extension writes the local wear coefficient as
 .. math::  k = k(p, v)\\, m(\\text{state}),
 
 with ``m`` a dimensionless multiplier and the state the history of one contact point: its
-accumulated sliding distance ``s`` [m], time in contact ``t`` [s] and a first-order-lagged frictional
-power ``theta`` [W/m^2]. The catalogue:
+accumulated sliding distance ``s`` [m], time in contact ``t`` [s] and a first-order-lagged
+frictional power ``theta`` [W/m^2]. The catalogue:
 
 - ``none``: m = 1 (plain Archard, the seed).
 - ``running_in``: m(s) = 1 + (r - 1) exp(-s / s0). k falls from an initial value r k_ss to the
