@@ -21,8 +21,6 @@ import time
 
 from fewear.errors import FewearInputError
 
-SECTIONS = ("bushing", "pin", "joint", "mesh", "contact")
-
 
 def checked_force_N(force: list[float] | tuple[float, float]) -> tuple[float, float]:
     """The joint force (FX, FY) in N; both components must be finite numbers."""
@@ -38,13 +36,13 @@ def main(args: argparse.Namespace) -> int:
     from mpi4py import MPI
 
     from fewear.contact.analytic import hertz_reference
-    from fewear.contact.params import contact_problem_from_config
+    from fewear.contact.params import CONFIG_SECTIONS, contact_problem_from_config
     from fewear.io.config import load_config
     from fewear.io.output import staged_output
 
     comm = MPI.COMM_WORLD
     force_N = checked_force_N(args.force)
-    config = load_config(args.config, SECTIONS)
+    config = load_config(args.config, CONFIG_SECTIONS)
     problem = contact_problem_from_config(config)
     hertz = hertz_reference(problem, math.hypot(*force_N))
     with staged_output(args.out, comm) as stage:
