@@ -157,9 +157,9 @@ def _simulate(step_s, end_time_s, params, rho_inf, newton_tolerance, cable_eleme
     slider_node, slider = rigid_body(params.slider_mass_kg, params.slider_inertia_kg_m2,
                                      (slider_x, 0.0), 0.0, (slider_velocity, 0.0), 0.0)
     if cable_elements == 0:
-        _, rod = rigid_body(params.rod_mass_kg, params.rod_inertia_kg_m2,
-                            pin + l / 2 * axis, rod_angle, pin_velocity + l / 2 * rod_omega * normal,
-                            rod_omega)
+        centre_velocity = pin_velocity + l / 2 * rod_omega * normal
+        _, rod = rigid_body(params.rod_mass_kg, params.rod_inertia_kg_m2, pin + l / 2 * axis,
+                            rod_angle, centre_velocity, rod_omega)
         rod_start, rod_end = marker(rod, -l / 2), marker(rod, l / 2)
     else:
         element_length = l / cable_elements
