@@ -226,6 +226,8 @@ class GeneralizedAlpha:
             if gap_old <= 0.0 and gap_new > tol:
                 secant = (0.5 * tol - gap_old) / (gap_new - gap_old)
                 return False, min(0.9, max(0.02, secant))
+            if max(gap_old, gap_new) <= 0.0:
+                continue  # free flight: the steps are limited by step_s and the onset rule
             if error_m > tol:
                 return False, max(0.1, 0.8 * (tol / error_m) ** (1.0 / 3.0))
             if error_m > 0.0:
