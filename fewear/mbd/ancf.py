@@ -111,7 +111,9 @@ class BeamSection:
     """Material and rectangular cross-section of a beam (SI units).
 
     ``height_m`` lies in the plane of motion (the bending thickness), ``width_m`` out of plane.
-    ``shear_correction`` None means Cowper's kappa for a rectangle.
+    ``shear_correction`` None means Cowper's kappa for a rectangle. ``damping_time_s`` tau: optional
+    Kelvin-Voigt material damping, stress = H (s + tau s') (0: purely elastic; a mode of circular
+    frequency omega then has the damping ratio omega tau / 2).
     """
 
     youngs_modulus_Pa: float
@@ -120,6 +122,7 @@ class BeamSection:
     height_m: float
     width_m: float
     shear_correction: float | None = None
+    damping_time_s: float = 0.0
 
     def __post_init__(self) -> None:
         _positive("youngs_modulus_Pa", self.youngs_modulus_Pa)
@@ -133,6 +136,9 @@ class BeamSection:
             kappa = self.shear_correction
             if not (_is_number(kappa) and 0.0 < kappa <= 1.0):
                 raise FewearInputError(f"shear_correction = {kappa!r}: must lie in (0, 1] or None")
+        if not (_is_number(self.damping_time_s) and self.damping_time_s >= 0.0):
+            raise FewearInputError(
+                f"damping_time_s = {self.damping_time_s!r}: must be a finite number >= 0")
 
     @property
     def area_m2(self) -> float:
@@ -352,9 +358,37 @@ class AncfBeam:
         forces = self._assemble_vector(self._element_forces(s_z, stress))
         geometric = (stress @ _S_FLAT).reshape(s_z.shape)
         material = np.swapaxes(s_z, -1, -2) @ (self._H @ s_z)
-        tangent_B = ((geometric + material) @ self._B).reshape(self.n_elements, -1, 12)
-        element = self._B_stacked_T @ tangent_B
-        return forces, self._assemble_matrix(element)
+        return forces, self._project(geometric + material)
+
+    def internal_forces(self, q: np.ndarray, qd: np.ndarray):
+        """Elastic plus Kelvin-Voigt damping forces and their exact Jacobians (M q'' + F = Q).
+
+        F = B^T sum_i [H (s + tau s')]_i S_i z with s'_i = (S_i z) . z', z' = B q'. Returns
+        (F (N,), dF/dq (N, N), dF/dq' (N, N)); dF/dq' = tau B^T sum_ij H_ij (S_i z)(S_j z)^T B
+        is tau times the material stiffness (at the unstrained state tau K: stiffness-proportional
+        damping); dF/dq adds tau B^T sum_ij H_ij (S_i z)(S_j z')^T B (not symmetric). The damping
+        forces vanish for rigid motion (s' = 0) and dissipate tau s'^T H s' >= 0.
+        """
+        tau = self.section.damping_time_s
+        s_z, _, stress = self._strain_state(q)
+        qd_elements = np.asarray(qd, dtype=float)[self._element_dofs]
+        z_dot = (qd_elements @ self._B_stacked_T).reshape(self.n_elements, -1, 6)
+        s_dot_z = z_dot[..., _SZ_INDEX] * _SZ_FACTOR
+        strain_rate = (s_z @ z_dot[..., None])[..., 0]
+        total_stress = stress + tau * (self._H @ strain_rate[..., None])[..., 0]
+        forces = self._assemble_vector(self._element_forces(s_z, total_stress))
+        geometric = (total_stress @ _S_FLAT).reshape(s_z.shape)
+        h_s_z = self._H @ s_z
+        material = np.swapaxes(s_z, -1, -2) @ h_s_z
+        rate = np.swapaxes(h_s_z, -1, -2) @ s_dot_z
+        stiffness = self._project(geometric + material + tau * rate)
+        damping = self._project(tau * material)
+        return forces, stiffness, damping
+
+    def _project(self, tangent_z: np.ndarray) -> np.ndarray:
+        """Assemble B^T T B over the points and elements for T (elements, points, 6, 6)."""
+        tangent_B = (tangent_z @ self._B).reshape(self.n_elements, -1, 12)
+        return self._assemble_matrix(self._B_stacked_T @ tangent_B)
 
     def _element_forces(self, s_z: np.ndarray, stress: np.ndarray) -> np.ndarray:
         f_z = (stress[..., None, :] @ s_z).reshape(self.n_elements, -1)

@@ -175,6 +175,59 @@ def test_elastic_forces_are_the_derivative_of_the_energy():
     assert np.abs(gradient - forces).max() < 1e-7 * np.abs(forces).max()
 
 
+def damped_beam(tau_s: float = 2e-5) -> AncfBeam:
+    sec = BeamSection(height_m=0.005, width_m=0.018, damping_time_s=tau_s, **STEEL)
+    return AncfBeam(0.34, 3, sec)
+
+
+def test_kelvin_voigt_jacobians_are_the_derivatives_of_the_forces():
+    beam = damped_beam()
+    q = deformed_state(beam)
+    rng = np.random.default_rng(5)
+    qd = 50.0 * beam.element_length_m * rng.standard_normal(q.size)
+    forces, d_dq, d_dqd = beam.internal_forces(q, qd)
+    step = 1e-7
+    for jacobian, shift in ((d_dq, lambda e: (q + step * e, qd)),
+                            (d_dqd, lambda e: (q, qd + step * e))):
+        columns = []
+        for e in np.eye(q.size):
+            plus = beam.internal_forces(*shift(e))[0]
+            minus = beam.internal_forces(*shift(-e))[0]
+            columns.append((plus - minus) / (2 * step))
+        error = np.abs(np.column_stack(columns) - jacobian).max() / np.abs(jacobian).max()
+        assert error < 1e-6
+    elastic = beam.elastic_forces(q)
+    tau = beam.section.damping_time_s
+    strain_rate_power = (forces - elastic) @ qd
+    assert strain_rate_power > 0.0
+    # Dissipation tau s'^T H s' equals tau q'^T (dF/dq' / tau) q' (both quadratic in s').
+    assert strain_rate_power == pytest.approx(qd @ d_dqd @ qd, rel=1e-9)
+    assert np.allclose(d_dqd, d_dqd.T, atol=1e-12 * tau * np.abs(d_dqd).max())
+
+
+def test_kelvin_voigt_damping_is_stiffness_proportional_at_rest_and_spares_rigid_motion():
+    beam = damped_beam()
+    tau = beam.section.damping_time_s
+    q = beam.reference_coordinates(0.2, -0.1, 0.8)
+    # Rigid rotation about node 0 at 40 rad/s plus a translation: no strain rate, no damping force.
+    nodes = q.reshape(-1, 4)
+    qd = np.empty_like(nodes)
+    qd[:, 0:2] = 40.0 * np.stack([-(nodes[:, 1] - q[1]), nodes[:, 0] - q[0]], axis=1) + [1.0, 2.0]
+    qd[:, 2:4] = 40.0 * np.stack([-nodes[:, 3], nodes[:, 2]], axis=1)
+    forces, stiffness, damping = beam.internal_forces(q, qd.ravel())
+    scale = beam.section.youngs_modulus_Pa * beam.section.area_m2
+    assert np.abs(forces).max() < 1e-13 * scale
+    assert np.allclose(damping, tau * beam.stiffness_matrix(q), rtol=0.0,
+                       atol=1e-12 * tau * np.abs(stiffness).max())
+    elastic_only = AncfBeam(0.34, 3, section(0.005, 0.018))
+    q_deformed = deformed_state(elastic_only)
+    forces, stiffness, damping = elastic_only.internal_forces(q_deformed, qd.ravel())
+    expected_forces, expected_stiffness = elastic_only.elastic_forces_and_stiffness(q_deformed)
+    assert np.array_equal(forces, expected_forces)
+    assert np.allclose(stiffness, expected_stiffness, rtol=1e-14, atol=0.0)
+    assert not damping.any()
+
+
 def test_mass_matrix_total_mass_and_rigid_kinetic_energy():
     sec = section(0.005, 0.018)
     beam = AncfBeam(0.34, 4, sec)
@@ -249,6 +302,7 @@ def test_cowper_factor_of_a_rectangle():
 @pytest.mark.parametrize("bad", [
     dict(youngs_modulus_Pa=-1.0), dict(poisson_ratio=0.5), dict(density_kg_m3=0.0),
     dict(height_m=float("nan")), dict(width_m=-0.01), dict(shear_correction=0.0),
+    dict(damping_time_s=-1e-6),
 ])
 def test_bad_section_is_rejected(bad):
     values = dict(height_m=0.01, width_m=0.01, **STEEL) | bad
