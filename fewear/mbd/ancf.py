@@ -215,13 +215,13 @@ class AncfBeam:
     # -- constant operators -------------------------------------------------------------------
     def _build_strain_operators(self) -> None:
         """B (points, 6, 12) mapping element coordinates to z = (t, d, k), and weights H."""
-        l = self.element_length_m
+        length = self.element_length_m
         sec = self.section
         E, h, b = sec.youngs_modulus_Pa, sec.height_m, sec.width_m
         kappa_G = sec.kappa * sec.shear_modulus_Pa
         xi = np.concatenate([_GAUSS2_XI, _NODE_XI])
-        weights = l * np.concatenate([_GAUSS2_WEIGHT, _LOBATTO3_WEIGHT])
-        n, dn = _lagrange(xi), _lagrange_dxi(xi) / l
+        weights = length * np.concatenate([_GAUSS2_WEIGHT, _LOBATTO3_WEIGHT])
+        n, dn = _lagrange(xi), _lagrange_dxi(xi) / length
         operators = np.zeros((xi.size, 6, COORDINATES_PER_ELEMENT))
         for node in range(3):
             r_cols = slice(4 * node, 4 * node + 2)

@@ -74,9 +74,9 @@ def parameters_from_defaults() -> SliderCrankParameters:
 
 def slider_closed_form(params: SliderCrankParameters, time_s: np.ndarray):
     """Slider x (m) and x' (m/s) at ``time_s`` for phi = phi0 + omega t (module docstring)."""
-    r, l, omega = params.crank_length_m, params.rod_length_m, params.crank_speed_rad_s
+    r, rod_length, omega = params.crank_length_m, params.rod_length_m, params.crank_speed_rad_s
     phi = params.initial_crank_angle_rad + omega * np.asarray(time_s, dtype=float)
-    root = np.sqrt(l**2 - (r * np.sin(phi)) ** 2)
+    root = np.sqrt(rod_length**2 - (r * np.sin(phi)) ** 2)
     x = r * np.cos(phi) + root
     x_dot = -r * omega * np.sin(phi) - r**2 * omega * np.sin(phi) * np.cos(phi) / root
     return x, x_dot
@@ -112,20 +112,32 @@ def run_exudyn_cable_slider_crank(step_s: float, end_time_s: float,
 def _simulate(step_s, end_time_s, params, rho_inf, newton_tolerance, cable_elements):
     import exudyn as exu
     from exudyn.itemInterface import (
-        CoordinateConstraint, LoadMassProportional, MarkerBodyMass, MarkerBodyRigid,
-        MarkerNodeCoordinate, MarkerNodePosition, NodePoint2DSlope1, NodePointGround,
-        NodeRigidBody2D, ObjectANCFCable2D, ObjectGround, PrismaticJoint2D, RevoluteJoint2D,
-        RigidBody2D, SensorNode, SensorObject,
+        CoordinateConstraint,
+        LoadMassProportional,
+        MarkerBodyMass,
+        MarkerBodyRigid,
+        MarkerNodeCoordinate,
+        MarkerNodePosition,
+        NodePoint2DSlope1,
+        NodePointGround,
+        NodeRigidBody2D,
+        ObjectANCFCable2D,
+        ObjectGround,
+        PrismaticJoint2D,
+        RevoluteJoint2D,
+        RigidBody2D,
+        SensorNode,
+        SensorObject,
     )
 
-    r, l, omega = params.crank_length_m, params.rod_length_m, params.crank_speed_rad_s
+    r, rod_length, omega = params.crank_length_m, params.rod_length_m, params.crank_speed_rad_s
     # Consistent initial positions and velocities of the ideal mechanism at phi0.
     phi = params.initial_crank_angle_rad
     pin = r * np.array([math.cos(phi), math.sin(phi)])
     pin_velocity = r * omega * np.array([-math.sin(phi), math.cos(phi)])
     slider_x, slider_velocity = (float(v) for v in slider_closed_form(params, 0.0))
-    rod_angle = math.asin(-r * math.sin(phi) / l)
-    rod_omega = -r * omega * math.cos(phi) / (l * math.cos(rod_angle))
+    rod_angle = math.asin(-r * math.sin(phi) / rod_length)
+    rod_omega = -r * omega * math.cos(phi) / (rod_length * math.cos(rod_angle))
     axis = np.array([math.cos(rod_angle), math.sin(rod_angle)])
     normal = np.array([-axis[1], axis[0]])
     gravity = [0.0, -params.gravity_m_s2, 0.0]
@@ -157,12 +169,12 @@ def _simulate(step_s, end_time_s, params, rho_inf, newton_tolerance, cable_eleme
     slider_node, slider = rigid_body(params.slider_mass_kg, params.slider_inertia_kg_m2,
                                      (slider_x, 0.0), 0.0, (slider_velocity, 0.0), 0.0)
     if cable_elements == 0:
-        centre_velocity = pin_velocity + l / 2 * rod_omega * normal
-        _, rod = rigid_body(params.rod_mass_kg, params.rod_inertia_kg_m2, pin + l / 2 * axis,
-                            rod_angle, centre_velocity, rod_omega)
-        rod_start, rod_end = marker(rod, -l / 2), marker(rod, l / 2)
+        centre_velocity = pin_velocity + rod_length / 2 * rod_omega * normal
+        _, rod = rigid_body(params.rod_mass_kg, params.rod_inertia_kg_m2,
+                            pin + rod_length / 2 * axis, rod_angle, centre_velocity, rod_omega)
+        rod_start, rod_end = marker(rod, -rod_length / 2), marker(rod, rod_length / 2)
     else:
-        element_length = l / cable_elements
+        element_length = rod_length / cable_elements
         nodes = []
         for k in range(cable_elements + 1):
             position = pin + k * element_length * axis
@@ -174,7 +186,7 @@ def _simulate(step_s, end_time_s, params, rho_inf, newton_tolerance, cable_eleme
         E, h, b = params.rod_youngs_modulus_Pa, params.rod_height_m, params.rod_width_m
         for k in range(cable_elements):
             add_gravity(mbs.AddObject(ObjectANCFCable2D(
-                length=element_length, massPerLength=params.rod_mass_kg / l,
+                length=element_length, massPerLength=params.rod_mass_kg / rod_length,
                 bendingStiffness=E * b * h**3 / 12.0, axialStiffness=E * b * h,
                 nodeNumbers=[nodes[k], nodes[k + 1]],
             )))
@@ -201,7 +213,7 @@ def _simulate(step_s, end_time_s, params, rho_inf, newton_tolerance, cable_eleme
     mbs.Assemble()
 
     settings = exu.SimulationSettings()
-    n_steps = int(round(end_time_s / step_s))
+    n_steps = round(end_time_s / step_s)
     integration = settings.timeIntegration
     integration.numberOfSteps = n_steps
     integration.endTime = n_steps * step_s

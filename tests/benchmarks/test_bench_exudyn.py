@@ -16,10 +16,13 @@ the slider (about 1.5 kHz); the rod-slider joint forces of the two codes must ag
 
 import numpy as np
 import pytest
-
-from exudyn_slider_crank import (SliderCrankParameters, parameters_from_defaults,
-                                 run_exudyn_cable_slider_crank, run_exudyn_slider_crank,
-                                 slider_closed_form)
+from exudyn_slider_crank import (
+    SliderCrankParameters,
+    parameters_from_defaults,
+    run_exudyn_cable_slider_crank,
+    run_exudyn_slider_crank,
+    slider_closed_form,
+)
 
 pytest.importorskip("exudyn")
 

@@ -15,7 +15,7 @@ import scipy.linalg
 from fewear.errors import FewearInputError
 from fewear.mbd.ancf import AncfBeam, BeamSection, cowper_shear_correction
 
-STEEL = dict(youngs_modulus_Pa=2.1e11, poisson_ratio=0.3, density_kg_m3=7800.0)
+STEEL = {"youngs_modulus_Pa": 2.1e11, "poisson_ratio": 0.3, "density_kg_m3": 7800.0}
 
 
 def section(height_m: float, width_m: float = 0.01) -> BeamSection:
@@ -300,12 +300,12 @@ def test_cowper_factor_of_a_rectangle():
 
 
 @pytest.mark.parametrize("bad", [
-    dict(youngs_modulus_Pa=-1.0), dict(poisson_ratio=0.5), dict(density_kg_m3=0.0),
-    dict(height_m=float("nan")), dict(width_m=-0.01), dict(shear_correction=0.0),
-    dict(damping_time_s=-1e-6),
+    {"youngs_modulus_Pa": -1.0}, {"poisson_ratio": 0.5}, {"density_kg_m3": 0.0},
+    {"height_m": float("nan")}, {"width_m": -0.01}, {"shear_correction": 0.0},
+    {"damping_time_s": -1e-6},
 ])
 def test_bad_section_is_rejected(bad):
-    values = dict(height_m=0.01, width_m=0.01, **STEEL) | bad
+    values = {"height_m": 0.01, "width_m": 0.01, **STEEL} | bad
     with pytest.raises(FewearInputError, match=next(iter(bad))):
         BeamSection(**values)
 

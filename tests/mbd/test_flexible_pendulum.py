@@ -55,7 +55,7 @@ def test_energy_error_is_second_order_without_dissipation():
     steps = np.array([4e-3, 2e-3, 1e-3])
     errors = []
     for step in steps:
-        energies, beam, _ = energy_history(step, rho_inf=1.0, end_time_s=0.5)
+        energies, _, _ = energy_history(step, rho_inf=1.0, end_time_s=0.5)
         mass = SECTION.density_kg_m3 * SECTION.area_m2 * LENGTH_M
         errors.append(np.abs(energies - energies[0]).max() / (mass * GRAVITY_M_S2 * LENGTH_M / 2))
     rate = np.polyfit(np.log(steps), np.log(errors), 1)[0]
