@@ -140,6 +140,7 @@ class GeneralizedAlpha:
         beta_p = (1.0 - alpha_m) / ((1.0 - alpha_f) * bh2)
         gamma_p = gamma / (beta * h)
         A, rhs = self._matrix, self._rhs
+        previous = math.inf
         for iteration in range(1, st.max_newton_iterations + 1):
             Q, K, C = sys_.forces(q1, qd1, t1)
             jac = sys_.constraint_jacobian(q1)
@@ -160,10 +161,14 @@ class GeneralizedAlpha:
             qdd1 += beta_p * dq
             lam1 += x[n:] / bh2
             self.stats.newton_iterations += 1
-            if not np.all(np.isfinite(dq)):
+            size = np.max(np.abs(dq))
+            if not math.isfinite(size):
                 return None
-            if np.max(np.abs(dq)) < st.newton_tolerance:
+            if size < st.newton_tolerance:
                 break
+            if iteration >= 3 and size > 0.5 * previous:
+                return None  # not contracting (e.g. cycling in and out of contact): shorter step
+            previous = size
         else:
             return None
         a1 = (alpha_f * s.qdd + (1.0 - alpha_f) * qdd1 - alpha_m * s.a) / (1.0 - alpha_m)
