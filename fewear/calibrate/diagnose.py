@@ -10,12 +10,23 @@ with S_eff = s for the baseline (the seed's Archard law, eq. 10 integrated over 
 effective distance of an extension of :mod:`fewear.wear.extensions` otherwise (two parameters
 theta). ``k_j`` is each test's coefficient (its level); the seed's RBF network k(p, v) (eq. 9,
 :class:`fewear.wear.coefficient.RbfWearCoefficient`) is trained on the tests' k_j, exactly as the
-paper trains it on its pin-on-disc tests. Noise: multiplicative (``lognormal``: residuals in ln V)
-or ``relative`` (residuals V / V_hat - 1); the levels are profiled out in closed form, theta is
+paper trains it on its pin-on-disc tests. The levels are profiled out in closed form; theta is
 found by a start grid and :func:`scipy.optimize.least_squares`.
 
+Noise models (what the fit minimises):
+
+- ``increments`` (default): residuals of ln(Delta V) against ln(Delta S_eff) between consecutive
+  readings of a test (from zero for the first). Wear is a scattered process: the scatter of a
+  cumulative history is carried from each interval into every later reading, so the cumulative
+  residuals are correlated along a test and a fit to them (and its AICc) takes a wandering
+  history for a curved law. The increments of such a history are independent. Readings without
+  growth since the previous one are merged into the next interval (and the report says so).
+- ``lognormal``: residuals of ln V (independent scatter of each cumulative reading, e.g. when
+  weighing errors dominate); ``relative``: V / V_hat - 1, the same for small scatter.
+
 Scoring (the parsimony criterion). Each candidate is fitted on a training part and predicts the
-held-out part:
+held-out part, the cumulative wear V_hat = F k_j S_eff(s) predicted from the start of the test
+(held-out error: RMS of ln(V / V_hat), or of V / V_hat - 1 with ``relative``):
 
 - ``later_readings`` (default when every test has enough readings): the last ``holdout_fraction``
   of each test's readings are held out and predicted from the earlier ones with the test's own
@@ -31,7 +42,9 @@ held-out residuals of test j. A candidate is *accepted* when mean(d) exceeds ``s
 standard errors of that mean (with 1: the one-standard-error rule of Hastie, Tibshirani & Friedman,
 *Elements of Statistical Learning*, sec. 7.10, as a paired comparison) and its held-out RMS error is
 at least ``min_gain`` below the baseline's (an improvement worth a model: a candidate that only fits
-noise extrapolates worse, not 15 % better). The causes of the catalogue all have two parameters;
+noise extrapolates worse, not 15 % better) and its AICc on all readings is at least
+``min_aicc_improvement`` below the baseline's (two more parameters must pay for themselves in the
+fit too). The causes of the catalogue all have two parameters;
 among the accepted ones the cause is the one with the smallest AICc on all readings (Hurvich &
 Tsai 1989; with equal parameter counts simply the best likelihood): the held-out readings of a test
 are its last ones, where every transient has died out, so they rarely separate two transients, while
@@ -57,7 +70,7 @@ from fewear.wear.coefficient import ConstantWearCoefficient, RbfWearCoefficient,
 from fewear.wear.extensions import NoExtension, WearExtension, extension_to_config
 
 HOLDOUTS = ("auto", "later_readings", "tests")
-NOISE_MODELS = ("lognormal", "relative")
+NOISE_MODELS = ("increments", "lognormal", "relative")
 MAX_LEAVE_ONE_OUT_TESTS = 12
 TEST_FOLDS = 6
 
@@ -69,11 +82,12 @@ class DiagnoseSettings:
     holdout: str = "auto"
     holdout_fraction: float = 0.34
     min_readings_per_test: int = 5
-    noise_model: str = "lognormal"
+    noise_model: str = "increments"
     significance_z: float = 1.0
     min_gain: float = 0.15
     confound_z: float = 2.0
     aicc_separation: float = 4.0
+    min_aicc_improvement: float = 2.0
     min_conditions_for_network: int = 4
     candidates: tuple[str, ...] = tuple(CATALOGUE)
     prediction_distance_factor: float = 2.0
@@ -97,7 +111,8 @@ class DiagnoseSettings:
                 f"{where} min_readings_per_test = {self.min_readings_per_test!r}: expected >= 3 "
                 "(two to fit a curve's shape, one to hold out)"
             )
-        for name in ("significance_z", "confound_z", "min_gain", "aicc_separation"):
+        for name in ("significance_z", "confound_z", "min_gain", "aicc_separation",
+                     "min_aicc_improvement"):
             value = getattr(self, name)
             if not (math.isfinite(value) and value >= 0.0):
                 raise FewearInputError(f"{where} {name} = {value!r}: expected a number >= 0")
@@ -178,6 +193,20 @@ class Readings:
             return None
         mu = self.per_test(self.friction)[self.test_index]
         return mu * self.pressure_Pa * self.velocity_m_s
+
+    def subset(self, keep: np.ndarray, note: str | None = None) -> Readings:
+        """The readings in ``keep`` (tests keep their numbers; ``note`` added to the notes)."""
+        def pick(array):
+            return None if array is None else array[keep]
+
+        return Readings(
+            source=self.source, data_kind=self.data_kind, test_labels=self.test_labels,
+            test_index=self.test_index[keep], pressure_Pa=pick(self.pressure_Pa),
+            velocity_m_s=pick(self.velocity_m_s), distance_m=self.distance_m[keep],
+            volume_m3=self.volume_m3[keep], time_s=pick(self.time_s), load_N=pick(self.load_N),
+            friction=pick(self.friction), temperature_C=pick(self.temperature_C),
+            measured=self.measured, notes=self.notes + ((note,) if note else ()),
+        )
 
     def has(self, variable: str) -> bool:
         return {
@@ -279,13 +308,48 @@ class Fit:
     residuals: np.ndarray
 
 
+def _previous_reading(readings: Readings) -> np.ndarray:
+    """Index of the previous reading (by distance) of the same test; -1 for a test's first."""
+    previous = -np.ones(readings.test_index.size, int)
+    for j in range(readings.n_tests):
+        rows = np.flatnonzero(readings.test_index == j)
+        rows = rows[np.argsort(readings.distance_m[rows], kind="stable")]
+        previous[rows[1:]] = rows[:-1]
+    return previous
+
+
+def growing_readings(readings: Readings) -> Readings:
+    """``readings`` without those that show no growth of the wear volume or of the sliding
+    distance since the test's previous reading (the next increment then spans both intervals)."""
+    keep = np.ones(readings.test_index.size, bool)
+    while True:
+        subset = readings.subset(keep)
+        previous = _previous_reading(subset)
+        grows = np.ones(subset.test_index.size, bool)
+        has_previous = previous >= 0
+        grows[has_previous] = ((subset.volume_m3[has_previous]
+                                > subset.volume_m3[previous[has_previous]])
+                               & (subset.distance_m[has_previous]
+                                  > subset.distance_m[previous[has_previous]]))
+        if np.all(grows):
+            break
+        keep[np.flatnonzero(keep)[~grows]] = False
+    dropped = int(np.sum(~keep))
+    if not dropped:
+        return readings
+    return readings.subset(keep, f"{dropped} reading(s) without growth of the wear volume since "
+                                 "the previous reading merged into the next interval "
+                                 "(noise_model = increments)")
+
+
 class Problem:
     """The data of a diagnosis in the form the fits use (module docstring)."""
 
     def __init__(self, readings: Readings, noise_model: str):
         self.readings = readings
         self.noise_model = noise_model
-        self.log_volume = np.log(readings.volume_m3)
+        self.previous = _previous_reading(readings)
+        self.log_volume = np.log(self._increments(readings.volume_m3))
         self.test = readings.test_index
         self.n_tests = readings.n_tests
         self.power = readings.power_W_m2
@@ -298,13 +362,21 @@ class Problem:
 
     def log_effective(self, extension: WearExtension) -> np.ndarray:
         r = self.readings
-        return np.log(extension.effective_distance_m(r.distance_m, r.time_s, self.power))
+        return np.log(self._increments(
+            extension.effective_distance_m(r.distance_m, r.time_s, self.power)))
+
+    def _increments(self, cumulative: np.ndarray) -> np.ndarray:
+        """The cumulative values themselves, or with ``increments`` their growth since the test's
+        previous reading (from zero for the first)."""
+        if self.noise_model != "increments":
+            return cumulative
+        return cumulative - np.where(self.previous >= 0, cumulative[self.previous], 0.0)
 
     def levels(self, z: np.ndarray, mask: np.ndarray) -> np.ndarray:
         """Each test's level from the readings in ``mask`` (NaN for a test with none)."""
         counts = np.bincount(self.test[mask], minlength=self.n_tests).astype(float)
         with np.errstate(divide="ignore", invalid="ignore"):
-            if self.noise_model == "lognormal":
+            if self.noise_model != "relative":
                 return np.bincount(self.test[mask], z[mask], self.n_tests) / counts
             ratio = np.exp(z[mask] - np.max(z))
             u = (np.bincount(self.test[mask], ratio, self.n_tests)
@@ -313,7 +385,16 @@ class Problem:
 
     def residuals(self, z: np.ndarray, levels: np.ndarray) -> np.ndarray:
         deviation = z - levels[self.test]
-        return deviation if self.noise_model == "lognormal" else np.expm1(deviation)
+        return np.expm1(deviation) if self.noise_model == "relative" else deviation
+
+    def prediction_residuals(self, extension: WearExtension, levels: np.ndarray) -> np.ndarray:
+        """Residuals of the cumulative wear predicted from the start of each test,
+        V_hat = exp(level) S_eff(s), in the form of the noise model (ln V for increments)."""
+        r = self.readings
+        effective = extension.effective_distance_m(r.distance_m, r.time_s, self.power)
+        z = np.log(r.volume_m3) - np.log(effective)
+        deviation = z - levels[self.test]
+        return np.expm1(deviation) if self.noise_model == "relative" else deviation
 
     def fit(self, candidate: Candidate | None, mask: np.ndarray) -> Fit:
         """Fit the baseline (``candidate`` None) or a candidate on the readings in ``mask``."""
@@ -489,8 +570,7 @@ def score(problem: Problem, candidate: Candidate | None, holdout: Holdout,
             model, _ = level_model.fit(p[train_tests], v[train_tests],
                                        np.exp(levels[train_tests]) / load[train_tests])
             levels = np.log(model(p, v) * load)
-        z = problem.log_volume - problem.log_effective(fit.extension)
-        held_residuals[held] = problem.residuals(z, levels)[held]
+        held_residuals[held] = problem.prediction_residuals(fit.extension, levels)[held]
     mask = holdout.held_out
     squared = np.where(mask, held_residuals, 0.0) ** 2
     per_test = (np.bincount(readings.test_index, squared, readings.n_tests)
@@ -547,6 +627,8 @@ def diagnose(readings: Readings, settings: DiagnoseSettings | None = None) -> Di
     from fewear.calibrate.structure import residual_structure
 
     settings = settings or DiagnoseSettings()
+    if settings.noise_model == "increments":
+        readings = growing_readings(readings)
     problem = Problem(readings, settings.noise_model)
     everything = np.ones(readings.test_index.size, bool)
     holdout = plan_holdout(readings, settings)
@@ -658,16 +740,23 @@ def _candidate_entry(name, fit: Fit, sc: Score, base: Score, base_fit: Fit,
                      settings: DiagnoseSettings) -> dict[str, Any]:
     z = paired_z(sc.per_test, base.per_test)
     gain = 1.0 - sc.rms / base.rms
-    accepted = bool(z > settings.significance_z and gain >= settings.min_gain)
+    n_levels = fit.levels.size
+    aicc_candidate = aicc(fit.residuals, n_levels + 2)
+    aicc_baseline = aicc(base_fit.residuals, n_levels)
+    fits_better = aicc_candidate < aicc_baseline - settings.min_aicc_improvement
+    accepted = bool(z > settings.significance_z and gain >= settings.min_gain and fits_better)
     if accepted:
         verdict = "accepted: its held-out improvement stands above the noise"
+    elif not fits_better and gain >= settings.min_gain:
+        verdict = (f"rejected: AICc {aicc_candidate - aicc_baseline:+.1f} against the baseline "
+                   f"(needs below -{settings.min_aicc_improvement:g}): two parameters more are "
+                   "not worth their fit")
     elif gain < settings.min_gain:
         verdict = (f"rejected: held-out error reduced by {gain:.0%} (needs at least "
                    f"{settings.min_gain:.0%})")
     else:
         verdict = (f"rejected: held-out improvement only {z:.1f} standard errors (needs "
                    f"{settings.significance_z:g}): it fits noise")
-    n_levels = fit.levels.size
     return {
         "name": name,
         "meaning": CATALOGUE[name].meaning,
@@ -678,8 +767,8 @@ def _candidate_entry(name, fit: Fit, sc: Score, base: Score, base_fit: Fit,
         "accepted": accepted,
         "verdict": verdict,
         "training_error": _rms(fit.residuals),
-        "aicc": aicc(fit.residuals, n_levels + 2),
-        "aicc_baseline": aicc(base_fit.residuals, n_levels),
+        "aicc": aicc_candidate,
+        "aicc_baseline": aicc_baseline,
     }
 
 

@@ -87,7 +87,7 @@ def plot_residuals(diagnosis, path: str | Path) -> Path:
     panels = []
     for entry in structure["within_tests"]:
         x = r.distance_m if entry["variable"] == "sliding distance" else r.time_s
-        panels.append((entry, x, residuals, "residual of ln V (within tests)"))
+        panels.append((entry, x, residuals, f"residual ({diagnosis.settings.noise_model})"))
     offsets = np.array(structure["per_test_offset"])
     for entry in structure["across_tests"]:
         panels.append((entry, _test_variable(r, entry["variable"]), offsets,
