@@ -47,11 +47,14 @@ def _pressure_profile(axes, result, hertz: HertzLineContact) -> None:
     fine = np.linspace(-math.pi, math.pi, 4001)
     axes.plot(np.degrees(fine), hertz.pressure_on_bore_Pa(fine + load_angle, load_angle) / 1e6,
               "k--", label="Hertz (small load)")
-    cosine = cosine_law_pressure_Pa(fine, 0.0, hertz.force_N, hertz.bore_radius_m, hertz.width_m)
-    axes.plot(np.degrees(fine), cosine / 1e6, ":", color="grey", label="cosine law (conformal)")
     loaded = np.abs(relative_deg[result.pressure_Pa[order] > 0.0])
     span = max(3.0 * math.degrees(hertz.contact_half_angle_rad),
                1.5 * (loaded.max() if loaded.size else 0.0), 5.0)
+    if span > 30.0:
+        cosine = cosine_law_pressure_Pa(fine, 0.0, hertz.force_N, hertz.bore_radius_m,
+                                        hertz.width_m)
+        axes.plot(np.degrees(fine), cosine / 1e6, ":", color="grey",
+                  label="cosine law (conformal limit)")
     axes.set_xlim(-min(span, 180.0), min(span, 180.0))
     axes.set_xlabel("angle from the load direction (deg)")
     axes.set_ylabel("contact pressure (MPa)")
