@@ -27,7 +27,7 @@ def config_file(tmp_path, replacements=(), extra=""):
     ([(r"^rod_length_m = 0.34", "rod_length_m = 0.05")], "", "rod_length_m"),
     ([(r"^step_s = 5.0e-5", "step_s = 0.0")], "", "step_s"),
     ([(r"^step_s = 5.0e-5", "step_s = -1e-5")], "", "step_s"),
-    ([(r"^rho_inf = 0.9", "rho_inf = 0.9\nrho_infinity = 0.5")], "", "rho_infinity"),
+    ([(r"^rho_inf = 0.5", "rho_inf = 0.5\nrho_infinity = 0.5")], "", "rho_infinity"),
     ([(r'^contact_law = "lankarani-nikravesh"', 'contact_law = "hertz"')], "", "hertz"),
     ([(r"^restitution_coefficient = 0.9", "restitution_coefficient = 1.5")], "", "restitution"),
 ])
