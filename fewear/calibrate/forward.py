@@ -64,8 +64,9 @@ class Campaign:
     ``first_reading_fraction`` x the final distance (denser early, where transients are: the usual
     practice of a running-in study).
     ``interval_scatter``, ``reading_scatter`` and ``test_scatter``: standard deviations of ln of the
-    wear of an interval between readings, of ln V per reading and of ln k per test. ``friction_coefficient``: nominal mu; each test's mu is it times a lognormal factor of
-    standard deviation ``friction_scatter``.
+    wear of an interval between readings, of ln V per reading and of ln k per test.
+    ``friction_coefficient``: nominal mu; each test's mu is it times a lognormal factor of standard
+    deviation ``friction_scatter``.
     """
 
     pressure_Pa: tuple[float, ...]

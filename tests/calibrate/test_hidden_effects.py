@@ -1,10 +1,11 @@
 """Data with a hidden departure from Archard's law, handed to the diagnosis without the answer.
 
 Each data set comes from a forward model (fewear.calibrate.forward) with one cause switched on, its
-parameters drawn across a physical range, 12 % lognormal reading scatter and 10 % test-to-test
-scatter of k, 9 tests at 3 pressures x 3 speeds with 10 readings each. The diagnosis must name the
-cause and cut the held-out error substantially; plain-Archard data must give ``none``; a single-speed
-campaign must report running_in and time_transient as confounded, with the evidence for each.
+parameters drawn across a physical range, lognormal scatter (25 % per interval between readings,
+about 12 % on the cumulative readings, 2 % per weighing, 10 % test to test), 9 tests at
+3 pressures x 3 speeds with 10 readings each. The diagnosis must name the cause and cut the
+held-out error substantially; plain-Archard data must give ``none``; a single-speed campaign must
+report running_in and time_transient as confounded, with the evidence for each.
 """
 
 import numpy as np
