@@ -752,7 +752,8 @@ def _candidate_entry(name, fit: Fit, sc: Score, base: Score, base_fit: Fit,
                    f"(needs below -{settings.min_aicc_improvement:g}): two parameters more are "
                    "not worth their fit")
     elif gain < settings.min_gain:
-        verdict = (f"rejected: held-out error reduced by {gain:.0%} (needs at least "
+        change = f"reduced by {gain:.0%}" if gain > 0 else f"not reduced ({-gain:+.0%})"
+        verdict = (f"rejected: held-out error {change} (needs a reduction of at least "
                    f"{settings.min_gain:.0%})")
     else:
         verdict = (f"rejected: held-out improvement only {z:.1f} standard errors (needs "

@@ -1,0 +1,48 @@
+"""Make the SYNTHETIC pin-on-disc data set ``pin_on_disc_running_in_synthetic.csv`` (a demo of
+``fewear diagnose``: a campaign with a running-in hidden in it). It is no measurement. Regenerate
+it bit for bit with::
+
+    python -m fewear.data.make_running_in_pin_on_disc
+
+Made by the forward model :func:`fewear.calibrate.forward.simulate_campaign`: CuZn25Al6Fe3Mn3 pin
+(diameter 6 mm) on a 42CrMo disc, 3 pressures x 3 speeds (one test each, shuffled order), 10
+cumulative readings per test from 50 m to 2000 m (geometric spacing), base law
+k_b(p, v) = 2e-13 (p / 2 MPa)^0.2 (v / 0.5 m/s)^-0.1 m^2/N times a running-in
+k(s) = k_b [1 + (R - 1) exp(-s / S0)] with R = K_INITIAL_OVER_STEADY, S0 = DISTANCE_SCALE_m;
+lognormal scatter 0.25 per interval between readings, 0.02 per weighing, 0.10 per test on k;
+friction coefficient 0.3 x lognormal(0.1) per test.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from fewear.calibrate.forward import grid_campaign, simulate_campaign, write_measured_csv
+from fewear.wear.extensions import RunningIn
+
+SEED = 20240611
+K_INITIAL_OVER_STEADY = 5.0
+DISTANCE_SCALE_m = 150.0
+OUTPUT = Path(__file__).with_name("pin_on_disc_running_in_synthetic.csv")
+HEADER = (
+    "SYNTHETIC pin-on-disc data with a HIDDEN departure from Archard's law: not a measurement.\n"
+    "CuZn25Al6Fe3Mn3 pin (6 mm) on 42CrMo disc; 3 pressures x 3 speeds, 10 cumulative readings.\n"
+    f"Made by fewear/data/make_running_in_pin_on_disc.py (numpy default_rng({SEED})) with the\n"
+    "forward model fewear.calibrate.forward: k(s) = k_b(p, v) [1 + (R - 1) exp(-s / S0)],\n"
+    f"R = {K_INITIAL_OVER_STEADY:g}, S0 = {DISTANCE_SCALE_m:g} m (running-in); lognormal scatter "
+    "0.25 per interval,\n0.02 per reading, 0.10 per test. Used by demos/diagnose_tribometer.py; "
+    "SI units in the column\nnames."
+)
+
+
+def make() -> dict[str, np.ndarray]:
+    rng = np.random.default_rng(SEED)
+    campaign = grid_campaign(rng=rng)
+    return simulate_campaign(RunningIn(K_INITIAL_OVER_STEADY, DISTANCE_SCALE_m), campaign, rng)
+
+
+if __name__ == "__main__":
+    write_measured_csv(OUTPUT, make(), HEADER)
+    print(f"wrote {OUTPUT}")
