@@ -57,6 +57,7 @@ class SliderCrank:
     rod_height_m: float = 0.005
     rod_width_m: float = 0.018
     rod_elements: int = 4
+    rod_damping_s: float = 0.0
     slider_mass_kg: float = 0.5
     gravity_m_s2: float = 9.81
     rod: str = "flexible"
@@ -87,6 +88,9 @@ class SliderCrank:
             raise FewearInputError(
                 f"[mechanism] settling_cycles = {self.settling_cycles!r}, recorded_cycles = "
                 f"{self.recorded_cycles!r}: expected >= 0 and >= 1")
+        if not self.rod_damping_s >= 0.0:
+            raise FewearInputError(
+                f"[mechanism] rod_damping_s = {self.rod_damping_s!r}: expected >= 0")
         if self.gravity_m_s2 < 0.0:
             raise FewearInputError(f"[mechanism] gravity_m_s2 = {self.gravity_m_s2!r}: >= 0")
 
@@ -206,7 +210,7 @@ class SliderCrankModel:
             section = BeamSection(crank.rod_youngs_modulus_Pa, crank.rod_poisson_ratio,
                                   crank.rod_density_kg_m3, crank.rod_height_m, crank.rod_width_m)
             self.beam = AncfBeam(l, crank.rod_elements, section)
-            self.i_rod = system.add_beam(self.beam)
+            self.i_rod = system.add_beam(self.beam, crank.rod_damping_s)
             rod_a = NodePoint(self.i_rod + self.beam.node_index(0).start)
             rod_b = NodePoint(self.i_rod + self.beam.node_index(self.beam.n_nodes - 1).start)
         self.i_slider = system.add_rigid_body(crank.slider_mass_kg,

@@ -10,21 +10,35 @@ generalized force and the analytic derivatives dQ/dq and dQ/dq' used by the Newt
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from fewear.errors import FewearInputError
 
 
 class BeamElasticity:
-    """The elastic forces of an ANCF beam as a force element: Q = -F(q), dQ/dq = -dF/dq."""
+    """The elastic forces of an ANCF beam as a force element, with optional stiffness-proportional
+    damping: Q = -F(q) - beta K(q) q', K = dF/dq.
 
-    def __init__(self, beam, first_index: int):
+    beta K q' = beta dF/dt vanishes for rigid-body motion (F is invariant under it) and gives a
+    mode of frequency omega the damping ratio beta omega / 2 (Rayleigh damping without the mass
+    term). Newton uses dQ/dq = -K (the term -beta (dK/dq) q' is left out) and dQ/dq' = -beta K.
+    """
+
+    def __init__(self, beam, first_index: int, damping_s: float = 0.0):
+        if not (damping_s >= 0.0 and math.isfinite(damping_s)):
+            raise FewearInputError(f"beam damping {damping_s!r} s: expected a number >= 0")
         self.beam = beam
+        self.damping_s = damping_s
         self.indices = np.arange(first_index, first_index + beam.n_coordinates)
 
     def evaluate(self, q_b, qd_b, t):
         forces, stiffness = self.beam.elastic_forces_and_stiffness(q_b)
-        return -forces, -stiffness, None
+        if self.damping_s == 0.0:
+            return -forces, -stiffness, None
+        damping = self.damping_s * stiffness
+        return -forces - damping @ qd_b, -stiffness, -damping
 
 
 class MultibodySystem:
@@ -52,12 +66,13 @@ class MultibodySystem:
         self.n_coordinates += 3
         return first
 
-    def add_beam(self, beam) -> int:
-        """Add an ANCF beam (fewear.mbd.ancf.AncfBeam); return the index of its first coordinate."""
+    def add_beam(self, beam, damping_s: float = 0.0) -> int:
+        """Add an ANCF beam (fewear.mbd.ancf.AncfBeam) with stiffness-proportional damping
+        ``damping_s`` (see BeamElasticity); return the index of its first coordinate."""
         first = self.n_coordinates
         self._mass_blocks.append((first, np.asarray(beam.mass_matrix(), dtype=float)))
         self._gravity_blocks.append((first, np.asarray(beam.gravity_forces(self.gravity))))
-        self.force_elements.append(BeamElasticity(beam, first))
+        self.force_elements.append(BeamElasticity(beam, first, damping_s))
         self.n_coordinates += beam.n_coordinates
         return first
 
