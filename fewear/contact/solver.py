@@ -407,11 +407,12 @@ class BushingContactSolver:
         return 0.5 * u.dot(self._rhs[2]) + penalty - float(load @ self.pin_centre_m)
 
     def _line_search(self, du, dc, r_pin, load) -> float:
-        """Armijo backtracking on the penalty potential along the Newton direction.
+        """Step length along the Newton direction (du, dc); updates u and c and returns it.
 
-        The full step is taken when no step 2^-j (j <= 6) lowers Pi enough (this happens at
-        rounding level near convergence, or when friction makes the direction a non-descent one).
-        Returns the step taken; updates u and c.
+        Starts from the slide limit (:meth:`_slide_limit`), halves the step while the trial
+        loses all contact, and, for a descent direction, backtracks (Armijo, at most 2^-6) on the
+        penalty potential :meth:`_energy`. At rounding level near convergence, or with friction
+        (not a potential), the first contact-keeping step is taken.
         """
         u = self.displacement
         c0 = self.pin_centre_m.copy()
@@ -422,35 +423,41 @@ class BushingContactSolver:
         slope = rhs.dot(du) + float(r_pin @ dc)
         energy0 = self._energy(load)
         step, taken = self._slide_limit(dc), 0.0
-        if step < 1.0:
-            slope = 0.0  # a limited step is taken as it is
+        keeps_contact = None
         while True:
             u.vector.axpy(step - taken, du)
             u.x.scatter_forward()
             taken = step
             self.pin_centre_m = c0 + step * dc
             self.pin_centre.value = self.pin_centre_m
-            if slope >= 0.0 or step < 2.0**-6:
+            if step < 2.0**-10:
+                return step
+            if self._active_length() == 0.0:
+                step *= 0.5
+                continue
+            if keeps_contact is None:
+                keeps_contact = step
+            if slope >= 0.0 or step < keeps_contact * 2.0**-6:
                 break
             if self._energy(load) <= energy0 + 1e-4 * step * slope:
                 return step
             step *= 0.5
-        step = self._slide_limit(dc)
-        u.vector.axpy(step - taken, du)
+        u.vector.axpy(keeps_contact - taken, du)
         u.x.scatter_forward()
-        self.pin_centre_m = c0 + step * dc
+        self.pin_centre_m = c0 + keeps_contact * dc
         self.pin_centre.value = self.pin_centre_m
-        return step
+        return keeps_contact
 
     def _slide_limit(self, dc: np.ndarray) -> float:
-        """Step factor that lets the pin slide along the bore by at most one element per Newton
-        step: |dc . t| <= c h / R_b (t normal to the line of centres). Within a fixed active set
-        the tangential stiffness of the pin is only the small geometric one (p/r), so unlimited
-        tangential steps overshoot the position that the active set decides."""
-        geometry = self.problem.geometry
+        """Step factor that limits the pin's slide along the bore to |dc . t| <= sqrt(c delta/2)
+        (t normal to the line of centres, delta the largest penetration): a slide s changes the
+        gap at the edge of a contact arc of half-angle theta_a = sqrt(2 delta/c) by s theta_a,
+        so this keeps the arc. Within a fixed active set the pin's tangential stiffness is only
+        the small geometric one (p/r): unlimited tangential steps overshoot."""
+        clearance = self.problem.geometry.clearance_m
         radial = self.pin_centre_m / max(np.linalg.norm(self.pin_centre_m), 1e-300)
         tangential = abs(radial[0] * dc[1] - radial[1] * dc[0])
-        limit = geometry.clearance_m * self.problem.mesh.bore_element_size_m / geometry.inner_radius_m
+        limit = math.sqrt(0.5 * clearance * self._max_penetration())
         return min(1.0, limit / tangential) if tangential > 0.0 else 1.0
 
     def _assemble_contact(self, load: np.ndarray, jacobian: bool = True) -> np.ndarray:

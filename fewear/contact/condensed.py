@@ -1,0 +1,348 @@
+"""The fast path: the elastic bushing condensed onto its bore nodes, once per mesh.
+
+The contact integral of :mod:`fewear.contact.solver` is a sum over the bore's Q8 nodes (the
+Gauss-Lobatto points of the facets): with nodal weights w_q (m) and nodal tractions
+T_q = p_q (n_q + mu s t_q), the bore carries the nodal forces f_q = w_q T_q (N/m, per unit
+thickness). Since the bushing is linear elastic, the nodal displacements are
+
+    U = G f,      G = N K^-1 N^T      (the bore's nodal compliance, m per N/m),
+
+with K the clamped elastic stiffness and N the evaluation of the S2 field at the bore nodes. G is
+computed once per mesh: one LU factorisation of K (MUMPS) and one solve per bore node and
+direction (``2 n`` right-hand sides). What is left per load step is the small nonlinear problem
+
+    f_q = w_q T(X_q + U_q - c),  U = G f,  sum_q f_q = F / L,
+
+solved by the same semi-smooth Newton as the full path, restricted to the nodes in contact (the
+other nodes carry no force; their displacement follows from U = G f). Written for the state
+g (a nodal force vector, U = G g) and the pin centre c, one Newton step solves for the new forces
+g' on the active set A and the pin update dc:
+
+    g'_A = f_A + W M (G_AA g'_A - U_A - dc),    sum_A g'_A = F / L,
+
+W M the 2x2 blocks w_q dT/dd. These are exactly the full path's Newton iterates (its displacement
+update is the elastic response to the linearised contact forces), so both converge to the same
+solution; the tests check nodal pressures and pin centre to 1e-6. The same slide limit,
+contact-keeping and Armijo rules on the potential Pi = 1/2 g.G g + sum w k/2 <-g>^2 - F/L . c
+are applied. Under MPI, G is built collectively and every rank solves the small problem
+redundantly, so all ranks hold the same result.
+
+Displacements, pin centre and forces are per unit thickness as in the full path; forces are
+multiplied by the width L for the result (N).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from dolfinx import fem
+from mpi4py import MPI
+
+from fewear.contact.params import ContactProblem
+from fewear.contact.result import ContactResult
+from fewear.contact.solver import (
+    WARM_START_MAX_ANGLE_RAD,
+    BushingContactSolver,
+    checked_force,
+    checked_rotation,
+    first_touch_centre,
+    nodal_result,
+)
+from fewear.mesh.bushing import BORE_TAG
+
+
+def bore_node_weights(msh, bore) -> np.ndarray:
+    """Gauss-Lobatto weights of the bore nodes (m), gathered order: per facet with nodes
+    (vertex, vertex, midpoint) and the quadratic map x(s), s in [0, 1], the weights
+    (1/6 |x'(0)|, 1/6 |x'(1)|, 2/3 |x'(1/2)|) -- what FFCx integrates with for the GLL rule."""
+    x = msh.geometry.x[:, :2]
+    v0, v1, mid = (x[bore.facet_nodes[:, k]] for k in range(3))
+    d0 = np.linalg.norm(-3.0 * v0 - v1 + 4.0 * mid, axis=1)
+    d1 = np.linalg.norm(v0 + 3.0 * v1 - 4.0 * mid, axis=1)
+    dm = np.linalg.norm(v1 - v0, axis=1)
+    position = {node: k for k, node in enumerate(bore.local_nodes)}
+    weights = np.zeros(bore.local_nodes.size)
+    for column, values in ((0, d0 / 6.0), (1, d1 / 6.0), (2, 2.0 * dm / 3.0)):
+        for node, value in zip(bore.facet_nodes[:, column], values):
+            weights[position[node]] += value
+    total = np.zeros(bore.global_ids.size)
+    total[bore.local_index] = weights
+    return bore.comm.allreduce(total, op=MPI.SUM)
+
+
+class CondensedBushingContact:
+    """Same ``solve(force_N, rotation_increment_rad=0.0, friction=False) -> ContactResult`` as
+    :class:`BushingContactSolver`, from the bore compliance G (see the module docstring).
+
+    Build it from a full solver (``CondensedBushingContact(solver)``), which provides the mesh,
+    the LU-factorised stiffness and the bore nodes; call :meth:`update_geometry` after the mesh
+    moved (it calls the solver's and rebuilds G).
+
+    Attributes: ``compliance`` (2n, 2n) G in m/(N/m) with rows/columns (node, direction),
+    ``weights_m`` (n,), ``points`` (n, 2), ``angles`` (n,), ``pin_centre_m``.
+    """
+
+    def __init__(self, solver: BushingContactSolver | ContactProblem, comm=MPI.COMM_WORLD):
+        if isinstance(solver, ContactProblem):
+            solver = BushingContactSolver(solver, comm)
+        self.solver = solver
+        self.problem = solver.problem
+        self.comm = solver.comm
+        self._k = self.problem.penalty_stiffness_Pa_per_m()
+        self._friction_value = 0.0
+        self.update_geometry(update_solver=False)
+
+    # -- set-up ------------------------------------------------------------------------------
+    def update_geometry(self, update_solver: bool = True) -> None:
+        """(Re)build the nodal compliance G, the weights and node data from the current mesh."""
+        if update_solver:
+            self.solver.update_geometry()
+        bore = self.solver.bore
+        self.points = bore.points.copy()
+        self.angles = bore.angles.copy()
+        self.weights_m = bore_node_weights(self.solver.mesh, bore)
+        self.compliance = self._nodal_compliance()
+        self._g = np.zeros(2 * self.points.shape[0])
+        self._U = np.zeros_like(self._g)
+        self.pin_centre_m = np.zeros(2)
+        self._last_direction = None
+
+    def _bore_dofs(self):
+        """Local indices (unrolled) of the S2 dofs on the bore, and their global numbers."""
+        solver = self.solver
+        V = solver.V
+        tdim = solver.mesh.topology.dim
+        blocks = fem.locate_dofs_topological(V, tdim - 1, solver.facet_tags.find(BORE_TAG))
+        global_blocks = V.dofmap.index_map.local_to_global(blocks)
+        local = np.concatenate([2 * blocks, 2 * blocks + 1])
+        global_ids = np.concatenate([2 * global_blocks, 2 * global_blocks + 1])
+        all_ids = np.unique(np.concatenate(self.comm.allgather(global_ids)))
+        return local, np.searchsorted(all_ids, global_ids), all_ids.size
+
+    def _nodal_evaluation(self, local_dofs, columns, n_columns) -> np.ndarray:
+        """N_local (n_local_nodes * 2, n_columns): S2 basis functions at the local bore nodes."""
+        solver, bore = self.solver, self.solver.bore
+        probe = fem.Function(solver.V)
+        points = np.zeros((bore.local_nodes.size, 3))
+        points[:, :2] = solver.mesh.geometry.x[bore.local_nodes, :2]
+        table = np.zeros((2 * bore.local_nodes.size, n_columns))
+        for column in range(n_columns):
+            probe.x.array[:] = 0.0
+            probe.x.array[local_dofs[columns == column]] = 1.0
+            if bore.local_nodes.size:
+                table[:, column] = probe.eval(points, bore.local_node_cells).reshape(-1)
+        return table
+
+    def _nodal_compliance(self) -> np.ndarray:
+        """G = N K^-1 N^T with K the elastic stiffness, one LU solve per node and direction."""
+        solver, bore = self.solver, self.solver.bore
+        local_dofs, columns, n_columns = self._bore_dofs()
+        table = self._nodal_evaluation(local_dofs, columns, n_columns)
+        owned = local_dofs < solver.V.dofmap.index_map.size_local * 2
+        ksp = solver._make_lu_solver()
+        ksp.setOperators(solver._K_elastic)
+        rhs, x = solver._rhs[0], solver._sol[0]
+        n_nodes = bore.global_ids.size
+        gathered_rows = 2 * bore.local_index[:, None] + np.arange(2)[None, :]
+        G = np.zeros((2 * n_nodes, 2 * n_nodes))
+        local_row = np.zeros((2 * n_nodes, n_columns))
+        local_row[gathered_rows.reshape(-1)] = table
+        count = np.zeros(2 * n_nodes)
+        count[gathered_rows.reshape(-1)] = 1.0
+        N = self.comm.allreduce(local_row, op=MPI.SUM) / self.comm.allreduce(count, op=MPI.SUM)[
+            :, None]
+        for row in range(2 * n_nodes):
+            with rhs.localForm() as local:
+                local.set(0.0)
+            rhs.array_w[local_dofs[owned]] = N[row, columns[owned]]
+            rhs.assemble()
+            ksp.solve(rhs, x)
+            solution = solver._du
+            x.copy(solution.vector)
+            solution.x.scatter_forward()
+            at_dofs = np.zeros(n_columns)
+            at_dofs[columns] = solution.x.array[local_dofs]
+            at_dofs = self._combine(at_dofs, columns, n_columns)
+            G[:, row] = N @ at_dofs
+        ksp.destroy()
+        return 0.5 * (G + G.T)
+
+    def _combine(self, values, columns, n_columns) -> np.ndarray:
+        """Per-rank values at the bore dofs -> the same full vector on every rank."""
+        present = np.zeros(n_columns)
+        present[columns] = 1.0
+        total = self.comm.allreduce(values, op=MPI.SUM)
+        return total / np.maximum(self.comm.allreduce(present, op=MPI.SUM), 1.0)
+
+    # -- the per-step problem ----------------------------------------------------------------
+    def solve(self, force_N, rotation_increment_rad: float = 0.0,
+              friction: bool = False) -> ContactResult:
+        """Solve for the joint force (N) as :meth:`BushingContactSolver.solve` does."""
+        force = checked_force(force_N)
+        rotation = checked_rotation(rotation_increment_rad)
+        self._friction_value = (self.problem.contact.friction_coefficient * np.sign(rotation)
+                                if friction else 0.0)
+        n = self.points.shape[0]
+        if not np.any(force):
+            self._g = np.zeros(2 * n)
+            self._U = np.zeros(2 * n)
+            self.pin_centre_m = np.zeros(2)
+            self._last_direction = None
+            return nodal_result(self.problem, self.points, self.angles, np.zeros((n, 2)),
+                                self.pin_centre_m, force, np.zeros(2), np.zeros(2), rotation, 0)
+        iterations = self._newton(force / self.problem.geometry.width_m)
+        U = self._U.reshape(n, 2)
+        f, _, p, normal = self._nodal_forces(U, self.pin_centre_m)
+        L = self.problem.geometry.width_m
+        return nodal_result(self.problem, self.points, self.angles, U, self.pin_centre_m, force,
+                            L * f.sum(axis=0), L * (self.weights_m[:, None] * p[:, None]
+                                                    * normal).sum(axis=0), rotation, iterations)
+
+    def _nodal_forces(self, U: np.ndarray, c: np.ndarray, with_jacobian: bool = False):
+        """Nodal forces f = w p (n + mu s t) (n, 2), their Jacobian blocks w dT/dd (n, 2, 2),
+        pressures p (n,), normals n (n, 2) for nodal displacements U and pin centre c."""
+        d = self.points + U - c
+        r = np.hypot(d[:, 0], d[:, 1])
+        normal = d / r[:, None]
+        tangent = np.stack([-normal[:, 1], normal[:, 0]], axis=1)
+        penetration = self.problem.geometry.pin_radius_m - r
+        active = penetration > 0.0
+        p = np.where(active, self._k * penetration, 0.0)
+        μs = self._friction_value
+        f = (self.weights_m * p)[:, None] * (normal + μs * tangent)
+        if not with_jacobian:
+            return f, None, p, normal
+        nn = np.einsum("qi,qj->qij", normal, normal)
+        projector = np.eye(2)[None] - nn
+        rotate = np.array([[0.0, -1.0], [1.0, 0.0]])
+        tn = np.einsum("qi,qj->qij", tangent, normal)
+        dT = (-self._k * nn + (p / r)[:, None, None] * projector
+              + μs * (-self._k * tn + (p / r)[:, None, None] * (rotate[None] @ projector)))
+        dT[~active] = 0.0
+        return f, self.weights_m[:, None, None] * dT, p, normal
+
+    def _start(self, direction: np.ndarray) -> None:
+        last = self._last_direction
+        if last is not None:
+            turn = math.atan2(last[0] * direction[1] - last[1] * direction[0], last @ direction)
+            if abs(turn) <= WARM_START_MAX_ANGLE_RAD:
+                rotation = np.array([[math.cos(turn), -math.sin(turn)],
+                                     [math.sin(turn), math.cos(turn)]])
+                self.pin_centre_m = rotation @ self.pin_centre_m
+                return
+        self._cold_start(direction)
+
+    def _cold_start(self, direction: np.ndarray) -> None:
+        """As the full path: g = 0, pin at first touch plus the +-3-element rigid penetration."""
+        geometry = self.problem.geometry
+        self._g = np.zeros_like(self._g)
+        self._U = np.zeros_like(self._g)
+        touch = first_touch_centre(self.points, np.zeros(2), direction, geometry.pin_radius_m)
+        θ0 = 3.0 * self.problem.mesh.bore_element_size_m / geometry.inner_radius_m
+        self.pin_centre_m = touch + 0.5 * geometry.clearance_m * θ0**2 * direction
+
+    def _newton(self, load: np.ndarray) -> int:
+        settings = self.problem.contact
+        φ = math.atan2(load[1], load[0]) - math.atan(self._friction_value)
+        direction = np.array([math.cos(φ), math.sin(φ)])
+        self._start(direction)
+        n = self.points.shape[0]
+        floor = 64.0 * np.finfo(float).eps * self.problem.geometry.pin_radius_m
+        previous_active = None
+        for iteration in range(1, settings.newton_max_iterations + 1):
+            U = self._U.reshape(n, 2)
+            f, WM, p, _ = self._nodal_forces(U, self.pin_centre_m, with_jacobian=True)
+            active_nodes = np.flatnonzero(p > 0.0)
+            if active_nodes.size == 0:
+                self._cold_start(direction)
+                previous_active = None
+                continue
+            rows, g_rows, dc = self._bordered_step(active_nodes, U, f, WM, load)
+            step = self._line_search(rows, g_rows, dc, f, load)
+            update = np.linalg.norm(dc)
+            active = float(self.weights_m[active_nodes].sum())
+            converged = update <= floor or (
+                step == 1.0 and active == previous_active
+                and update <= settings.newton_tolerance * self._max_penetration(self._U)
+            )
+            previous_active = active
+            if converged:
+                self._last_direction = direction
+                return iteration
+        raise RuntimeError(
+            f"condensed contact Newton did not converge in {settings.newton_max_iterations} "
+            f"iterations for force {load * self.problem.geometry.width_m} N"
+        )
+
+    def _bordered_step(self, A, U, f, WM, load):
+        """One Newton step (module docstring): the rows (node, direction) of the active set,
+        the new nodal forces g'_A on them and the pin update dc."""
+        m = A.size
+        rows = (2 * A[:, None] + np.arange(2)[None, :]).reshape(-1)
+        G_AA = self.compliance[np.ix_(rows, rows)]
+        WM_A = WM[A]
+        system = np.zeros((2 * m + 2, 2 * m + 2))
+        blocks_G = np.einsum("kij,kjl->kil", WM_A, G_AA.reshape(m, 2, 2 * m))
+        system[:2 * m, :2 * m] = np.eye(2 * m) - blocks_G.reshape(2 * m, 2 * m)
+        system[:2 * m, 2 * m:] = WM_A.reshape(2 * m, 2)
+        system[2 * m:, :2 * m] = np.tile(np.eye(2), m)
+        rhs = np.empty(2 * m + 2)
+        rhs[:2 * m] = (f[A] - np.einsum("kij,kj->ki", WM_A, U[A])).reshape(-1)
+        rhs[2 * m:] = load
+        solution = np.linalg.solve(system, rhs)
+        return rows, solution[:2 * m], solution[2 * m:]
+
+    def _energy(self, g: np.ndarray, U: np.ndarray, c: np.ndarray, load: np.ndarray) -> float:
+        """Pi = 1/2 g.U + sum_q w_q k/2 <-gap_q>^2 - F/L . c (J/m), with U = G g."""
+        d = self.points + U.reshape(-1, 2) - c
+        penetration = np.maximum(self.problem.geometry.pin_radius_m - np.hypot(d[:, 0], d[:, 1]),
+                                 0.0)
+        return 0.5 * g @ U + 0.5 * self._k * float(self.weights_m @ penetration**2) - float(
+            load @ c)
+
+    def _line_search(self, rows, g_rows, dc, f, load) -> float:
+        """The full path's step rules (slide limit, keep contact, Armijo on Pi); updates the
+        state g, U = G g, c. Only the columns of G on the old and new support are used."""
+        g0, U0, c0 = self._g, self._U, self.pin_centre_m.copy()
+        g_new = np.zeros_like(g0)
+        g_new[rows] = g_rows
+        dg = g_new - g0
+        support = np.flatnonzero(dg)
+        dU = self.compliance[:, support] @ dg[support]
+        slope = float((g0 - f.reshape(-1)) @ dU) + float((f.sum(axis=0) - load) @ dc)
+        energy0 = self._energy(g0, U0, c0, load)
+        step = self._slide_limit(dc, U0)
+        keeps_contact = None
+        while step >= 2.0**-10:
+            U = U0 + step * dU
+            c = c0 + step * dc
+            if self._max_penetration(U, c) == 0.0:
+                step *= 0.5
+                continue
+            if keeps_contact is None:
+                keeps_contact = step
+            if slope >= 0.0 or step < keeps_contact * 2.0**-6:
+                break
+            if self._energy(g0 + step * dg, U, c, load) <= energy0 + 1e-4 * step * slope:
+                keeps_contact = step
+                break
+            step *= 0.5
+        step = keeps_contact if keeps_contact is not None else step
+        self._g = g0 + step * dg
+        self._U = U0 + step * dU
+        self.pin_centre_m = c0 + step * dc
+        return step
+
+    def _max_penetration(self, U: np.ndarray, c: np.ndarray | None = None) -> float:
+        d = self.points + U.reshape(-1, 2) - (self.pin_centre_m if c is None else c)
+        return float(max(self.problem.geometry.pin_radius_m - np.hypot(d[:, 0], d[:, 1]).min(),
+                         0.0))
+
+    def _slide_limit(self, dc: np.ndarray, U: np.ndarray) -> float:
+        """The full path's limit |dc . t| <= sqrt(c delta / 2) on the pin's slide per step."""
+        clearance = self.problem.geometry.clearance_m
+        radial = self.pin_centre_m / max(np.linalg.norm(self.pin_centre_m), 1e-300)
+        tangential = abs(radial[0] * dc[1] - radial[1] * dc[0])
+        limit = math.sqrt(0.5 * clearance * self._max_penetration(U))
+        return min(1.0, limit / tangential) if tangential > 0.0 else 1.0
