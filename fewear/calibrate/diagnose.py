@@ -66,6 +66,7 @@ from scipy import optimize
 
 from fewear.calibrate.catalogue import CATALOGUE, Candidate, Scales
 from fewear.errors import FewearInputError
+from fewear.io.config import load_config
 from fewear.wear.coefficient import ConstantWearCoefficient, RbfWearCoefficient, wear_section
 from fewear.wear.extensions import NoExtension, WearExtension, extension_to_config
 
@@ -79,18 +80,18 @@ TEST_FOLDS = 6
 class DiagnoseSettings:
     """The ``[diagnose]`` section (see ``fewear/defaults/diagnose.toml`` for why each value)."""
 
-    holdout: str = "auto"
-    holdout_fraction: float = 0.34
-    min_readings_per_test: int = 5
-    noise_model: str = "increments"
-    significance_z: float = 1.0
-    min_gain: float = 0.15
-    confound_z: float = 2.0
-    aicc_separation: float = 4.0
-    min_aicc_improvement: float = 2.0
-    min_conditions_for_network: int = 4
-    candidates: tuple[str, ...] = tuple(CATALOGUE)
-    prediction_distance_factor: float = 2.0
+    holdout: str
+    holdout_fraction: float
+    min_readings_per_test: int
+    noise_model: str
+    significance_z: float
+    min_gain: float
+    min_aicc_improvement: float
+    confound_z: float
+    aicc_separation: float
+    min_conditions_for_network: int
+    candidates: tuple[str, ...]
+    prediction_distance_factor: float
 
     def __post_init__(self):
         where = "[diagnose]"
@@ -135,9 +136,15 @@ class DiagnoseSettings:
 
     @classmethod
     def from_config(cls, section: dict[str, Any]) -> DiagnoseSettings:
+        """From a ``[diagnose]`` section (as :func:`fewear.io.config.load_config` returns it)."""
         values = dict(section)
-        values["candidates"] = tuple(values.get("candidates", tuple(CATALOGUE)))
+        values["candidates"] = tuple(values["candidates"])
         return cls(**values)
+
+    @classmethod
+    def default(cls) -> DiagnoseSettings:
+        """The embedded defaults (``fewear/defaults/diagnose.toml``)."""
+        return cls.from_config(load_config(None, sections=["diagnose"])["diagnose"])
 
 
 # ---------------------------------------------------------------------------------------------
@@ -626,7 +633,7 @@ def diagnose(readings: Readings, settings: DiagnoseSettings | None = None) -> Di
     """The diagnosis of ``readings`` (module docstring for the method)."""
     from fewear.calibrate.structure import residual_structure
 
-    settings = settings or DiagnoseSettings()
+    settings = settings or DiagnoseSettings.default()
     if settings.noise_model == "increments":
         readings = growing_readings(readings)
     problem = Problem(readings, settings.noise_model)

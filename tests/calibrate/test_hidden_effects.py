@@ -8,6 +8,8 @@ held-out error substantially; plain-Archard data must give ``none``; a single-sp
 report running_in and time_transient as confounded, with the evidence for each.
 """
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -27,7 +29,8 @@ def measured(columns, drop=()) -> MeasuredWear:
 
 
 def run(columns, drop=(), **settings):
-    return diagnose(readings_from_measured(measured(columns, drop)), DiagnoseSettings(**settings))
+    chosen = dataclasses.replace(DiagnoseSettings.default(), **settings)
+    return diagnose(readings_from_measured(measured(columns, drop)), chosen)
 
 
 def growth_to_double_distance(extension, readings) -> np.ndarray:
