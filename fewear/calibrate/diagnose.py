@@ -73,6 +73,9 @@ from fewear.wear.extensions import NoExtension, WearExtension, extension_to_conf
 HOLDOUTS = ("auto", "later_readings", "tests")
 NOISE_MODELS = ("increments", "lognormal", "relative")
 MAX_LEAVE_ONE_OUT_TESTS = 12
+MIN_SHAPE_READINGS = 3
+"""A cause changes the shape of a test's wear history: at least one test must have this many
+readings (one for the test's own k, two for the shape)."""
 TEST_FOLDS = 6
 
 
@@ -603,6 +606,8 @@ def aicc(residuals: np.ndarray, n_parameters: int) -> float:
     if n - n_parameters - 1 <= 0:
         return float("nan")
     rss = float(np.sum(residuals**2))
+    if rss <= 0.0:
+        return float("nan")
     return (n * math.log(rss / n) + 2 * n_parameters
             + 2 * n_parameters * (n_parameters + 1) / (n - n_parameters - 1))
 
@@ -647,9 +652,17 @@ def diagnose(readings: Readings, settings: DiagnoseSettings | None = None) -> Di
     candidates, untestable = [], []
     fits: dict[str, Fit] = {}
     scores: dict[str, Score] = {}
+    counts = np.bincount(readings.test_index, minlength=readings.n_tests)
     for name in settings.candidates:
         candidate = CATALOGUE[name]
         missing = [need for need in candidate.needs if not readings.has(need)]
+        if counts.max() < MIN_SHAPE_READINGS:
+            untestable.append({
+                "name": name, "needs": ["readings along each test"],
+                "message": f"could not be tested: needs at least {MIN_SHAPE_READINGS} readings "
+                           f"along a test (the table has at most {int(counts.max())} per test, "
+                           "and each test's own k absorbs them)"})
+            continue
         if missing:
             text = " and ".join(NEEDS_TEXT[need] for need in missing)
             untestable.append({"name": name, "needs": missing,

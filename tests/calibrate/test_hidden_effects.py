@@ -127,6 +127,23 @@ def test_one_reading_per_test_holds_out_whole_tests():
     assert summary["holdout"]["strategy"] == "tests"
     assert summary["baseline"]["coefficient_model"] == "rbf"
     assert summary["cause"] == "none"
+    assert np.isfinite(summary["baseline"]["held_out_error"])
+    assert {entry["name"] for entry in summary["untestable"]} == {
+        "running_in", "time_transient", "thermal"}
+    assert all("readings along a test" in entry["message"] for entry in summary["untestable"])
+
+
+def test_few_readings_per_test_hold_out_whole_tests_and_still_find_running_in():
+    """Three readings per test (fewer than min_readings_per_test): whole tests are held out, with
+    their k from the network of the other tests, and the running-in is still found."""
+    rng = np.random.default_rng(42)
+    campaign = grid_campaign((0.5e6, 1e6, 2e6, 4e6), (0.2, 0.5, 1.2), rng=rng,
+                             readings_per_test=3, first_reading_fraction=0.05)
+    columns, _, _ = hidden_case("running_in", 42, campaign)
+    summary = run(columns).summary
+    assert summary["holdout"]["strategy"] == "tests"
+    assert summary["cause"] in ("running_in", "time_transient")
+    assert summary["gain"] > 0.3
 
 
 def test_few_conditions_fall_back_to_constant_k():
