@@ -751,9 +751,10 @@ def _k_per_test(readings: Readings, fit: Fit) -> list[float]:
 def _criterion_text(settings: DiagnoseSettings) -> str:
     return (f"paired standard-error rule on held-out tests: accepted when the mean per-test "
             f"reduction of the held-out squared error exceeds {settings.significance_z:g} "
-            f"standard errors and the held-out RMS error falls by at least "
-            f"{settings.min_gain:.0%}; among accepted candidates (two parameters each) the cause "
-            "is the one with the smallest AICc on all readings")
+            f"standard error(s), the held-out RMS error falls by at least "
+            f"{settings.min_gain:.0%} and the AICc on all readings by more than "
+            f"{settings.min_aicc_improvement:g}; among accepted candidates (two parameters each) "
+            "the cause is the one with the smallest AICc")
 
 
 def _candidate_entry(name, fit: Fit, sc: Score, base: Score, base_fit: Fit,
