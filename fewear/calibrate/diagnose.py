@@ -546,11 +546,11 @@ def plan_holdout(readings: Readings, settings: DiagnoseSettings) -> Holdout:
     fold_of_test = np.arange(readings.n_tests) % n_folds
     folds = tuple((fold_of_test[readings.test_index] != f, fold_of_test[readings.test_index] == f)
                   for f in range(n_folds))
-    why = ("whole tests are held out (" + ("leave-one-test-out" if n_folds == readings.n_tests
-                                          else f"{n_folds} folds") +
-           ") and predicted with k(p, v) from the other tests: the tests have too few readings "
-           "to hold out later ones" if strategy != settings.holdout else
-           "whole tests held out, as the config asks")
+    folds_text = "leave-one-test-out" if n_folds == readings.n_tests else f"{n_folds} folds"
+    reason = ("as the config asks" if settings.holdout == "tests" else
+              "the tests have too few readings to hold out later ones")
+    why = (f"whole tests are held out ({folds_text}) and predicted with k(p, v) from the other "
+           f"tests: {reason}")
     return Holdout("tests", why, folds, np.ones(readings.test_index.size, bool))
 
 
