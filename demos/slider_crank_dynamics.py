@@ -7,8 +7,8 @@
 #
 # $$ M \ddot q + \Phi_q^T \lambda = Q(q, \dot q, t), \qquad \Phi(q, t) = 0, $$
 #
-# are integrated by generalized-alpha (index 3, Arnold & Brüls 2007). The clearance joint is a force
-# element: with the eccentricity $e = r_{pin} - r_{bushing}$ and penetration
+# are integrated by generalized-alpha (index 3, Arnold & Brüls 2007). The clearance joint is a
+# force element: with the eccentricity $e = r_{pin} - r_{bushing}$ and penetration
 # $\delta = |e| - c$, the Lankarani-Nikravesh law (seed eq. 6)
 #
 # $$ F_n = K \delta^{3/2} \left[1 + \frac{3 (1 - c_e^2)}{4} \frac{\dot\delta}{\dot\delta^{(-)}}

@@ -7,8 +7,8 @@ the bushing frame, theta = atan2(n) - phi_bushing, gives the clearance c(theta)
 delta_dot = e'.n - c'(theta) theta_dot.
 
 Forces: the bushing pushes the pin with f = -F_n n + F_t t at the contact point (pin surface
-point r_pin + R_pin n, bore point r_bushing + R_bushing n); the bushing gets -f. The slip velocity of
-the pin relative to the bushing at the contact point is v_t = e'.t + R_pin omega_pin
+point r_pin + R_pin n, bore point r_bushing + R_bushing n); the bushing gets -f. The slip velocity
+of the pin relative to the bushing at the contact point is v_t = e'.t + R_pin omega_pin
 - R_bushing omega_bushing; friction F_t = -mu c_d F_n sign(v_t). Moments: R_pin F_t on the pin,
 -R_bushing F_t on the bushing.
 
@@ -170,7 +170,8 @@ class ClearanceJoint:
         for q, qdd in ((q_old, qdd_old), (q_new, qdd_new)):
             q_b, qdd_b = q[idx], qdd[idx]
             qp, qb = q_b[:n_p], q_b[n_p:]
-            acc.append(self.pin.jacobian(qp) @ qdd_b[:n_p] - self.bushing.jacobian(qb) @ qdd_b[n_p:])
+            acc.append(self.pin.jacobian(qp) @ qdd_b[:n_p]
+                       - self.bushing.jacobian(qb) @ qdd_b[n_p:])
             z, _ = self._kinematics(q_b, np.zeros_like(q_b))
             gaps.append(self.gap(z)[0])
         error = h * h / 6.0 * float(np.linalg.norm(acc[1] - acc[0]))

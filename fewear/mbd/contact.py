@@ -18,7 +18,8 @@ law                         F_el(delta)        hysteresis factor chi(c_e)
                                                the table's last point; LN damping)
 ==========================  =================  =====================================
 
-K = 4 / (3 pi (h_i + h_j)) sqrt(R_i R_j / (R_j - R_i)),  h_k = (1 - nu_k^2) / (pi E_k)  (seed eq. 6).
+K = 4 / (3 pi (h_i + h_j)) sqrt(R_i R_j / (R_j - R_i)),  h_k = (1 - nu_k^2) / (pi E_k)
+(seed eq. 6).
 
 Friction: Coulomb with the dynamic correction coefficient of Ambrosio (Virtual Nonlinear
 Multibody Systems, NATO ASI 2003) that regularises it near zero slip:

@@ -22,7 +22,8 @@ def test_time_per_crank_cycle():
                                                  settling_cycles=1)
         rows[(rod, joint)] = (summary, history)
     reference = rows[("rigid", "ideal")][0].wall_time_per_cycle_s
-    print("\ncase                   s/cycle  x ideal  steps/cycle  rejected  Newton/step  peak |F| N")
+    print("\ncase                   s/cycle  x ideal  steps/cycle  rejected  Newton/step"
+          "  peak |F| N")
     for (rod, joint), (summary, history) in rows.items():
         print(f"{rod:8s} {joint:10s}  {summary.wall_time_per_cycle_s:8.2f}  "
               f"{summary.wall_time_per_cycle_s / reference:7.1f}  "

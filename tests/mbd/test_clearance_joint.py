@@ -68,3 +68,30 @@ def test_small_clearance_approaches_the_ideal_joint():
     scale = np.sqrt(np.mean(ideal_force**2))
     assert rms[0] > rms[1] > rms[2]
     assert rms[2] < 0.1 * scale
+
+
+def test_tabulated_profile_of_a_round_bore_gives_the_constant_clearance_result():
+    """c(theta) given as a table of equal values runs the profile's interpolation path; the
+    motion must be that of the constant clearance (the wear stage's worn-bore entry point)."""
+    config = load_config(None, SECTIONS)
+    table = ClearanceProfile(np.radians([0.0, 90.0, 180.0, 270.0]), np.full(4, CLEARANCE_M))
+    runs = [simulate_slider_crank(config, rod="rigid", joint="clearance", cycles=1,
+                                  settling_cycles=0, clearance_profile=profile)[0]
+            for profile in (ClearanceProfile.constant(CLEARANCE_M), table)]
+    assert runs[0].n_steps == runs[1].n_steps
+    np.testing.assert_allclose(runs[1].reaction_force_N, runs[0].reaction_force_N, atol=1e-6)
+
+
+def test_a_worn_bore_lets_the_pin_travel_further_where_it_is_worn():
+    """Wear on the right of the bore (theta = 0) enlarges the clearance there: the pin reaches
+    further right than in the round bore, and not further left."""
+    config = load_config(None, SECTIONS)
+    angles = np.radians(np.arange(0.0, 360.0, 10.0))
+    worn = CLEARANCE_M + 1e-4 * np.maximum(np.cos(angles), 0.0) ** 4
+    runs = [simulate_slider_crank(config, rod="rigid", joint="clearance", cycles=1,
+                                  settling_cycles=0, clearance_profile=profile)[0]
+            for profile in (ClearanceProfile.constant(CLEARANCE_M),
+                            ClearanceProfile(angles, worn))]
+    round_bore, worn_bore = (run.eccentricity_m[:, 0] for run in runs)
+    assert worn_bore.max() > round_bore.max() + 5e-5
+    assert worn_bore.min() == pytest.approx(round_bore.min(), abs=2e-5)

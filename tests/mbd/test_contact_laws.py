@@ -9,7 +9,7 @@ from fewear.errors import FewearInputError
 from fewear.mbd.clearance import ClearanceJoint
 from fewear.mbd.contact import (ClearanceProfile, ContactLaw, Friction,
                                 lankarani_nikravesh_stiffness)
-from fewear.mbd.points import GroundPoint, RigidPoint
+from fewear.mbd.points import RigidPoint
 
 K_N_M15 = 4.0e10
 DELTA_M, RATE_M_S, V_IMPACT_M_S = 1.0e-5, 0.3, 0.5
@@ -141,12 +141,14 @@ def test_generalized_force_jacobian_matches_finite_differences():
         plus, minus = q.copy(), q.copy()
         plus[k] += step
         minus[k] -= step
-        numeric = (joint.evaluate(plus, qd, 0.0)[0] - joint.evaluate(minus, qd, 0.0)[0]) / (2 * step)
+        numeric = (joint.evaluate(plus, qd, 0.0)[0]
+                   - joint.evaluate(minus, qd, 0.0)[0]) / (2 * step)
         np.testing.assert_allclose(K[:, k], numeric, rtol=1e-4, atol=1e-6 * np.abs(K).max())
     qd_step = np.zeros(6)
     for k in range(6):
         step = 1e-6
         qd_step[:] = 0.0
         qd_step[k] = step
-        numeric = (joint.evaluate(q, qd_step, 0.0)[0] - joint.evaluate(q, -qd_step, 0.0)[0]) / (2 * step)
+        numeric = (joint.evaluate(q, qd_step, 0.0)[0]
+                   - joint.evaluate(q, -qd_step, 0.0)[0]) / (2 * step)
         np.testing.assert_allclose(C[:, k], numeric, rtol=1e-4, atol=1e-6 * np.abs(C).max())
