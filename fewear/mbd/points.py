@@ -61,11 +61,16 @@ class RigidPoint:
         self.indices = np.arange(first_index, first_index + 3)
         self.u = np.asarray(u_m, dtype=float)
         self._u0, self._u1 = float(self.u[0]), float(self.u[1])
+        self._cache = (math.nan, 0.0, 0.0)
 
     def _rotated(self, phi):
-        """A(phi) u as two floats (scalar maths: these run in every Newton iteration)."""
-        c, s = math.cos(phi), math.sin(phi)
-        return c * self._u0 - s * self._u1, s * self._u0 + c * self._u1
+        """A(phi) u as two floats (scalar maths, cached: these run in every Newton iteration)."""
+        cached_phi, au0, au1 = self._cache
+        if phi != cached_phi:
+            c, s = math.cos(phi), math.sin(phi)
+            au0, au1 = c * self._u0 - s * self._u1, s * self._u0 + c * self._u1
+            self._cache = (phi, au0, au1)
+        return au0, au1
 
     def position(self, q_b):
         au0, au1 = self._rotated(q_b[2])

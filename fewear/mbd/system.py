@@ -101,6 +101,11 @@ class MultibodySystem:
         self._nonlinear = [(c, rows, np.ix_(c.indices, c.indices))
                            for c, rows in zip(self.constraints, rows) if c.nonlinear]
         self._force_blocks = [(e, np.ix_(e.indices, e.indices)) for e in self.force_elements]
+        n, m = self.n_coordinates, self.n_constraints
+        self._jacobian = np.zeros((m, n))
+        self._kkt = np.zeros((n + m, n + m))
+        self._kkt[:n, :n] = self.mass
+        self._kkt_rhs = np.zeros(n + m)
         return self
 
     # --- evaluation -------------------------------------------------------------------------
@@ -112,11 +117,11 @@ class MultibodySystem:
         return phi
 
     def constraint_jacobian(self, q):
-        """Phi_q (m, n)."""
-        jac = np.zeros((self.n_constraints, self.n_coordinates))
+        """Phi_q (m, n) (a new array; the sparsity pattern is fixed, so a buffer is refilled)."""
+        jac = self._jacobian
         for c, rows in zip(self.constraints, self._rows):
             jac[rows, c.indices] = c.jacobian(q[c.indices])
-        return jac
+        return jac.copy()
 
     def constraint_time_derivative(self, t):
         """Phi_t (m,)."""
@@ -175,8 +180,9 @@ class MultibodySystem:
     def project_velocities(self, q, qd, t):
         """The M-orthogonal projection of q' onto Phi_q q' + Phi_t = 0."""
         jac = self.constraint_jacobian(q)
-        violation = jac @ qd + self.constraint_time_derivative(t)
-        m = self.n_constraints
-        A = np.block([[self.mass, jac.T], [jac, np.zeros((m, m))]])
-        rhs = np.concatenate([np.zeros(self.n_coordinates), -violation])
-        return qd + np.linalg.solve(A, rhs)[: self.n_coordinates]
+        n = self.n_coordinates
+        A, rhs = self._kkt, self._kkt_rhs
+        A[:n, n:] = jac.T
+        A[n:, :n] = jac
+        rhs[n:] = -(jac @ qd + self.constraint_time_derivative(t))
+        return qd + np.linalg.solve(A, rhs)[:n]
