@@ -1,6 +1,9 @@
 """Pictures of a bore contact field: pressure against angle with the analytic references, and the
-bushing with the pressure on its bore (matplotlib, Agg). An optional PyVista view of the FE field is
-imported lazily (:func:`render_field_pyvista`).
+bushing with the pressure on its bore (matplotlib, Agg; plain data in, no DOLFINx).
+
+The full FE fields (displacement, pressure) go to ``bushing.xdmf`` for ParaView instead of a
+PyVista view: in one process with DOLFINx, VTK 9.7's scalar bar aborts (std::bad_alloc in
+std::regex, a libstdc++ clash), and the contact zone is too narrow to see on the whole bushing.
 """
 
 from __future__ import annotations
@@ -94,29 +97,3 @@ def _cross_section(figure, axes, result, hertz: HertzLineContact) -> None:
     axes.set_xlabel("x (m)")
     axes.set_ylabel("y (m)")
     axes.set_title("bore pressure (bars scaled to the peak)", fontsize=9)
-
-
-def render_field_pyvista(path: Path, displacement, pressure, scale: float = 0.0) -> None:
-    """Off-screen PyVista picture of the pressure on the bushing mesh (optional; needs pyvista).
-
-    ``displacement`` and ``pressure`` are DOLFINx functions on the bushing mesh; the mesh is drawn
-    deformed by ``scale`` times the displacement (0: undeformed). Serial only.
-    """
-    import pyvista
-    from dolfinx import fem, plot
-
-    mesh = displacement.function_space.mesh
-    nodal = fem.Function(fem.VectorFunctionSpace(mesh, ("Lagrange", 1)))
-    nodal.interpolate(displacement)
-    nodal_pressure = fem.Function(fem.FunctionSpace(mesh, ("Lagrange", 1)))
-    nodal_pressure.interpolate(pressure)
-    topology, cell_types, geometry = plot.create_vtk_mesh(nodal.function_space)
-    grid = pyvista.UnstructuredGrid(topology, cell_types, geometry)
-    values = nodal.x.array.reshape(-1, 2)
-    grid.points[:, :2] += scale * values
-    grid.point_data["pressure_MPa"] = nodal_pressure.x.array / 1e6
-    plotter = pyvista.Plotter(off_screen=True, window_size=(800, 800))
-    plotter.add_mesh(grid, scalars="pressure_MPa", cmap="inferno_r", show_edges=True)
-    plotter.view_xy()
-    plotter.screenshot(str(path))
-    plotter.close()
