@@ -35,7 +35,6 @@ CLEARANCES_M = (8e-6, 2e-6, 0.5e-6, 0.1e-6, 0.02e-6, 0.004e-6)
 @pytest.fixture(scope="module")
 def clearance_study():
     from fewear.contact.solver import BushingContactSolver
-
     from fewear.mesh.bushing import bushing_mesh
 
     problem = contact_problem_from_config(load_config(None, CONFIG_SECTIONS))
