@@ -126,12 +126,14 @@ for name, (rod, mechanism, joint_change) in SENSITIVITY.items():
 # The paper does not give the restitution coefficient, the rod's damping, its integrator's
 # numerical damping, the number of settling cycles or which crank cycle Fig. 6 shows, and its rod
 # density is a typo. We take c_e = 0.9, a steel rod with 1% damping on its first bending mode and
-# rho_inf = 0.5. The impacts of a clearance joint are also sensitive to the state at the start of
-# the recorded cycle (the pin's orbit is nearly chaotic): single-cycle peaks move by tens of percent
-# with any of these choices (the sensitivity above), so a ratio from one recorded cycle is not a
-# robust measure. Our flexible rod does lower the peak, but by less than half in this setting; the
-# reasons above (mainly the unknown density, restitution and rod damping) are why we do not claim
-# the paper's factor. We report what we measure.
+# rho_inf = 0.5. With these choices the ratio is steady: over crank cycles 3 to 7 (2 settling
+# cycles, 5 recorded; `simulate_slider_crank(rod=..., cycles=5, settling_cycles=2)`) the per-cycle
+# peaks give flexible/rigid = 0.73 to 0.76. But the peak moves by tens of percent with the values
+# the paper leaves open (the sensitivity above: the rod density alone more than doubles it), and
+# the impact sequence is sensitive to small changes (the crank inertia, which cannot matter in exact
+# arithmetic, moves it by ~1%). Our flexible rod does lower the peak, by about a quarter, not by
+# more than half; the unknown density, restitution and rod damping are why we do not claim the
+# paper's factor. We report what we measure.
 
 # +
 results = {
