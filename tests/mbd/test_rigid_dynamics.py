@@ -80,3 +80,16 @@ def test_energy_dissipated_with_numerical_damping():
     _, damped = run_pendulum(0.02, 0.5, 20.0)
     _, undamped = run_pendulum(0.02, 1.0, 20.0)
     assert damped[-1] < -1.5 * np.max(np.abs(undamped))
+
+
+def test_stiff_flexible_rod_behaves_like_the_rigid_rod():
+    """With ideal joints, the damped steel ANCF rod (axial stretch ~ F l / EA ~ 2e-5 m) must carry
+    nearly the rigid rod's joint force and move the slider as the closed form does."""
+    rigid, _ = simulate_slider_crank(rod="rigid", joint="ideal", cycles=1, settling_cycles=1)
+    flexible, _ = simulate_slider_crank(rod="flexible", joint="ideal", cycles=1, settling_cycles=1)
+    assert np.allclose(flexible.time_s, rigid.time_s)
+    difference = flexible.reaction_force_N - rigid.reaction_force_N
+    scale = np.sqrt(np.mean(np.sum(rigid.reaction_force_N**2, axis=1)))
+    assert np.sqrt(np.mean(np.sum(difference**2, axis=1))) < 0.03 * scale
+    _, x_m, _ = SliderCrank().closed_form(flexible.time_s)
+    assert np.max(np.abs(flexible.slider_x_m - x_m)) < 1e-4
