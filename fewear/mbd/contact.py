@@ -177,7 +177,7 @@ class ClearanceProfile:
     clearance_m: np.ndarray
 
     @classmethod
-    def constant(cls, clearance_m: float) -> "ClearanceProfile":
+    def constant(cls, clearance_m: float) -> ClearanceProfile:
         return cls(np.array([0.0]), np.array([clearance_m]))
 
     def __post_init__(self):

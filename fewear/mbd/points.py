@@ -21,7 +21,6 @@ import math
 import numpy as np
 
 
-
 def rotation(angle_rad: float) -> np.ndarray:
     """The planar rotation matrix A(angle)."""
     c, s = np.cos(angle_rad), np.sin(angle_rad)

@@ -30,8 +30,7 @@ from fewear.errors import FewearInputError
 from fewear.io.config import Config, load_config
 from fewear.mbd.clearance import ClearanceJoint
 from fewear.mbd.constraints import DrivenAngle, PrismaticX, Revolute
-from fewear.mbd.contact import (ClearanceProfile, ContactLaw, Friction,
-                                lankarani_nikravesh_stiffness)
+from fewear.mbd.contact import ClearanceProfile, ContactLaw, Friction, lankarani_nikravesh_stiffness
 from fewear.mbd.history import JointHistory, classify_modes
 from fewear.mbd.integrator import GeneralizedAlpha, IntegratorSettings
 from fewear.mbd.points import GroundPoint, NodePoint, RigidPoint
@@ -108,13 +107,13 @@ class SliderCrank:
 
     def closed_form(self, time_s):
         """(theta, x_B, x_B') of the ideal rigid mechanism at the given times."""
-        r, l, omega = self.crank_length_m, self.rod_length_m, self.omega_rad_s
+        r, rod, omega = self.crank_length_m, self.rod_length_m, self.omega_rad_s
         theta = math.radians(self.initial_crank_angle_deg) + omega * np.asarray(time_s)
-        sin_beta = -r * np.sin(theta) / l
+        sin_beta = -r * np.sin(theta) / rod
         cos_beta = np.sqrt(1.0 - sin_beta**2)
-        beta_dot = -r * omega * np.cos(theta) / (l * cos_beta)
-        x = r * np.cos(theta) + l * cos_beta
-        v = -r * omega * np.sin(theta) - l * beta_dot * sin_beta
+        beta_dot = -r * omega * np.cos(theta) / (rod * cos_beta)
+        x = r * np.cos(theta) + rod * cos_beta
+        v = -r * omega * np.sin(theta) - rod * beta_dot * sin_beta
         return theta, x, v
 
 
@@ -195,21 +194,21 @@ class SliderCrankModel:
     def __init__(self, crank: SliderCrank, joint: JointModel):
         self.crank, self.joint = crank, joint
         system = MultibodySystem((0.0, -crank.gravity_m_s2))
-        r, l = crank.crank_length_m, crank.rod_length_m
+        r, rod = crank.crank_length_m, crank.rod_length_m
         self.i_crank = system.add_rigid_body(crank.crank_mass_kg, crank.crank_inertia_kg_m2,
                                              "crank")
         if crank.rod == "rigid":
             m_rod = crank.rod_mass_kg
-            self.i_rod = system.add_rigid_body(m_rod, m_rod * l * l / 12.0, "rod")
-            rod_a = RigidPoint(self.i_rod, (-l / 2.0, 0.0))
-            rod_b = RigidPoint(self.i_rod, (l / 2.0, 0.0))
+            self.i_rod = system.add_rigid_body(m_rod, m_rod * rod * rod / 12.0, "rod")
+            rod_a = RigidPoint(self.i_rod, (-rod / 2.0, 0.0))
+            rod_b = RigidPoint(self.i_rod, (rod / 2.0, 0.0))
             self.beam = None
         else:
             from fewear.mbd.ancf import AncfBeam, BeamSection
 
             section = BeamSection(crank.rod_youngs_modulus_Pa, crank.rod_poisson_ratio,
                                   crank.rod_density_kg_m3, crank.rod_height_m, crank.rod_width_m)
-            self.beam = AncfBeam(l, crank.rod_elements, section)
+            self.beam = AncfBeam(rod, crank.rod_elements, section)
             self.i_rod = system.add_beam(self.beam, crank.rod_damping_s)
             rod_a = NodePoint(self.i_rod + self.beam.node_index(0).start)
             rod_b = NodePoint(self.i_rod + self.beam.node_index(self.beam.n_nodes - 1).start)
@@ -237,11 +236,11 @@ class SliderCrankModel:
     def initial_conditions(self):
         """Positions and velocities of the ideal rigid mechanism at t = 0 (pin centred)."""
         c = self.crank
-        r, l, omega = c.crank_length_m, c.rod_length_m, c.omega_rad_s
+        r, rod, omega = c.crank_length_m, c.rod_length_m, c.omega_rad_s
         theta = math.radians(c.initial_crank_angle_deg)
         _, x_b, v_b = c.closed_form(0.0)
-        beta = math.asin(-r * math.sin(theta) / l)
-        beta_dot = -r * omega * math.cos(theta) / (l * math.cos(beta))
+        beta = math.asin(-r * math.sin(theta) / rod)
+        beta_dot = -r * omega * math.cos(theta) / (rod * math.cos(beta))
         a = r * np.array([math.cos(theta), math.sin(theta)])
         v_a = r * omega * np.array([-math.sin(theta), math.cos(theta)])
         axis = np.array([math.cos(beta), math.sin(beta)])
@@ -251,8 +250,8 @@ class SliderCrankModel:
         q[self.i_crank:self.i_crank + 3] = [a[0] / 2, a[1] / 2, theta]
         qd[self.i_crank:self.i_crank + 3] = [v_a[0] / 2, v_a[1] / 2, omega]
         if self.beam is None:
-            q[self.i_rod:self.i_rod + 3] = [*(a + l / 2 * axis), beta]
-            qd[self.i_rod:self.i_rod + 3] = [*(v_a + l / 2 * beta_dot * normal), beta_dot]
+            q[self.i_rod:self.i_rod + 3] = [*(a + rod / 2 * axis), beta]
+            qd[self.i_rod:self.i_rod + 3] = [*(v_a + rod / 2 * beta_dot * normal), beta_dot]
         else:
             k = self.beam.n_coordinates
             q_rod = self.beam.reference_coordinates(a[0], a[1], beta)

@@ -82,7 +82,7 @@ class MultibodySystem:
     def add_force(self, element) -> None:
         self.force_elements.append(element)
 
-    def finalize(self) -> "MultibodySystem":
+    def finalize(self) -> MultibodySystem:
         """Assemble the constant mass matrix and gravity forces; fix the constraint row layout."""
         n = self.n_coordinates
         self.mass = np.zeros((n, n))

@@ -7,8 +7,7 @@ import pytest
 
 from fewear.errors import FewearInputError
 from fewear.mbd.clearance import ClearanceJoint
-from fewear.mbd.contact import (ClearanceProfile, ContactLaw, Friction,
-                                lankarani_nikravesh_stiffness)
+from fewear.mbd.contact import ClearanceProfile, ContactLaw, Friction, lankarani_nikravesh_stiffness
 from fewear.mbd.points import RigidPoint
 
 K_N_M15 = 4.0e10
