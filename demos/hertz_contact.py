@@ -125,6 +125,8 @@ for per_half_width in ELEMENTS_PER_HALF_WIDTH:
         "moment_half_width_rel_error": comparison.moment_half_width_rel_error,
         "fit_half_width_rel_error": comparison.fit_half_width_rel_error,
         "zone_half_width_rel_error": comparison.zone_half_width_rel_error,
+        "pin_centre_x_m": result.pin_centre_m[0],
+        "pin_centre_y_m": result.pin_centre_m[1],
         "force_balance_rel_error": result.force_balance_rel_error,
         "newton_iterations": result.newton_iterations,
     })
