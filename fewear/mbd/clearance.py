@@ -139,8 +139,9 @@ class ClearanceJoint:
         Z_qd[4, :n_p], Z_qd[5, n_p:] = g_p, g_b
         BD = B @ D
         K = BD @ Z_q
-        K[:n_p, :n_p] += self.pin.hessian(qp, f)
-        K[n_p:, n_p:] -= self.bushing.hessian(qb, f)
+        diagonal = np.arange(len(self.indices))
+        K[diagonal, diagonal] += np.concatenate([self.pin.hessian(qp, f),
+                                                 -self.bushing.hessian(qb, f)])
         return Q, K, BD @ Z_qd
 
     def begin_step(self, q, qd):

@@ -1,9 +1,10 @@
 """Holonomic constraints Phi(q, t) = 0 of planar mechanisms, with analytic Jacobians.
 
 Each constraint has ``n_rows``, the system ``indices`` it touches, and for its local coordinates
-``q_b``: ``value(q_b, t)``, ``jacobian(q_b)`` (rows x k), ``time_derivative(t)`` (Phi_t),
-``hessian(q_b, lam)`` = d(Phi_q^T lam)/dq_b and ``convective(q_b, qd_b)`` = (dPhi_q/dt) qd_b,
-so that the acceleration constraint reads Phi_q qdd = -convective - Phi_tt (Phi_tt = 0 here).
+``q_b``: ``value(q_b, t)``, ``jacobian(q_b)`` (rows x k), ``value_and_jacobian(q_b, t)``,
+``time_derivative(t)`` (Phi_t), ``hessian(q_b, lam)`` = the diagonal (k,) of d(Phi_q^T lam)/dq_b
+(diagonal for these planar constraints) and ``convective(q_b, qd_b)`` = (dPhi_q/dt) qd_b, so that
+the acceleration constraint reads Phi_q qdd = -convective - Phi_tt (Phi_tt = 0 here).
 """
 
 from __future__ import annotations
@@ -30,6 +31,13 @@ class Revolute:
         qa, qb = self._split(q_b)
         return self.a.position(qa) - self.b.position(qb)
 
+    def value_and_jacobian(self, q_b, t):
+        qa, qb = self._split(q_b)
+        jac = self._jac
+        jac[:, : self._na] = self.a.jacobian(qa)
+        jac[:, self._na:] = -self.b.jacobian(qb)
+        return self.a.position(qa) - self.b.position(qb), jac
+
     def jacobian(self, q_b):
         qa, qb = self._split(q_b)
         jac = self._jac
@@ -42,11 +50,7 @@ class Revolute:
 
     def hessian(self, q_b, lam):
         qa, qb = self._split(q_b)
-        k = len(self.indices)
-        H = np.zeros((k, k))
-        H[: self._na, : self._na] = self.a.hessian(qa, lam)
-        H[self._na:, self._na:] = -self.b.hessian(qb, lam)
-        return H
+        return np.concatenate([self.a.hessian(qa, lam), -self.b.hessian(qb, lam)])
 
     def convective(self, q_b, qd_b):
         qa, qb = self._split(q_b)
@@ -60,13 +64,16 @@ class _LinearConstraint:
     nonlinear = False
 
     def hessian(self, q_b, lam):
-        return np.zeros((len(self.indices), len(self.indices)))
+        return np.zeros(len(self.indices))
 
     def convective(self, q_b, qd_b):
         return np.zeros(self.n_rows)
 
     def jacobian(self, q_b):
         return self._C
+
+    def value_and_jacobian(self, q_b, t):
+        return self.value(q_b, t), self._C
 
 
 class PrismaticX(_LinearConstraint):

@@ -114,6 +114,7 @@ class GeneralizedAlpha:
         n, m = system.n_coordinates, system.n_constraints
         self._matrix = np.zeros((n + m, n + m))
         self._rhs = np.zeros(n + m)
+        self._diagonal = np.arange(n)
         self._controlled = [e for e in system.force_elements if hasattr(e, "step_error")]
 
     def initial_state(self, q0, qd0, t0: float = 0.0) -> State:
@@ -140,17 +141,19 @@ class GeneralizedAlpha:
         beta_p = (1.0 - alpha_m) / ((1.0 - alpha_f) * bh2)
         gamma_p = gamma / (beta * h)
         A, rhs = self._matrix, self._rhs
+        diagonal = self._diagonal
         previous = math.inf
         for iteration in range(1, st.max_newton_iterations + 1):
             Q, K, C = sys_.forces(q1, qd1, t1)
-            jac = sys_.constraint_jacobian(q1)
+            phi, jac = sys_.constraint_values_and_jacobian(q1, t1)
             residual = sys_.mass @ qdd1 + jac.T @ lam1 - Q
-            S = beta_p * sys_.mass - gamma_p * C - K + sys_.constraint_hessian(q1, lam1)
+            S = beta_p * sys_.mass - gamma_p * C - K
+            S[diagonal, diagonal] += sys_.constraint_hessian(q1, lam1)
             A[:n, :n] = bh2 * S
             A[:n, n:] = jac.T
             A[n:, :n] = jac
             rhs[:n] = -bh2 * residual
-            rhs[n:] = -sys_.constraint_values(q1, t1)
+            rhs[n:] = -phi
             try:
                 x = np.linalg.solve(A, rhs)
             except np.linalg.LinAlgError:

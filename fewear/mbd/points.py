@@ -5,7 +5,8 @@ A point maps the coordinates of its body, ``q_b`` (a slice of the system vector 
 with the derivatives the constraints and the Newton Jacobian need:
 
 - ``G = dr/dq_b`` (2, k) and ``g = dtheta/dq_b`` (k,);
-- ``hessian(q_b, f) = d(G^T f)/dq_b`` (k, k) for a fixed force ``f`` (geometric stiffness);
+- ``hessian(q_b, f)``: the diagonal (k,) of d(G^T f)/dq_b for a fixed force ``f`` (geometric
+  stiffness; diagonal for every planar point here);
 - ``convective(q_b, qd_b) = (dG/dt) qd_b`` (2,): the velocity-product term of the acceleration.
 
 Rigid body coordinates are ``(x, y, phi)`` of the centre of mass; a point sits at the body-fixed
@@ -47,7 +48,7 @@ class GroundPoint:
         return np.zeros(0)
 
     def hessian(self, q_b, f):
-        return np.zeros((0, 0))
+        return np.zeros(0)
 
     def convective(self, q_b, qd_b):
         return np.zeros(2)
@@ -87,9 +88,7 @@ class RigidPoint:
 
     def hessian(self, q_b, f):
         au0, au1 = self._rotated(q_b[2])
-        H = np.zeros((3, 3))
-        H[2, 2] = -(f[0] * au0 + f[1] * au1)
-        return H
+        return np.array([0.0, 0.0, -(f[0] * au0 + f[1] * au1)])
 
     def convective(self, q_b, qd_b):
         au0, au1 = self._rotated(q_b[2])
@@ -121,7 +120,7 @@ class NodePoint:
         return np.array([0.0, 0.0, -r_y[1], r_y[0]]) / (r_y @ r_y)
 
     def hessian(self, q_b, f):
-        return np.zeros((4, 4))
+        return np.zeros(4)
 
     def convective(self, q_b, qd_b):
         return np.zeros(2)

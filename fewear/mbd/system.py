@@ -98,8 +98,7 @@ class MultibodySystem:
             start += constraint.n_rows
         self._rows = rows
         self.n_constraints = start
-        self._nonlinear = [(c, rows, np.ix_(c.indices, c.indices))
-                           for c, rows in zip(self.constraints, rows) if c.nonlinear]
+        self._nonlinear = [(c, rows) for c, rows in zip(self.constraints, rows) if c.nonlinear]
         self._force_blocks = [(e, np.ix_(e.indices, e.indices)) for e in self.force_elements]
         n, m = self.n_coordinates, self.n_constraints
         self._jacobian = np.zeros((m, n))
@@ -123,6 +122,14 @@ class MultibodySystem:
             jac[rows, c.indices] = c.jacobian(q[c.indices])
         return jac.copy()
 
+    def constraint_values_and_jacobian(self, q, t):
+        """(Phi, Phi_q) in one pass over the constraints (the Newton iteration needs both)."""
+        phi = np.empty(self.n_constraints)
+        jac = self._jacobian
+        for c, rows in zip(self.constraints, self._rows):
+            phi[rows], jac[rows, c.indices] = c.value_and_jacobian(q[c.indices], t)
+        return phi, jac.copy()
+
     def constraint_time_derivative(self, t):
         """Phi_t (m,)."""
         out = np.empty(self.n_constraints)
@@ -131,10 +138,10 @@ class MultibodySystem:
         return out
 
     def constraint_hessian(self, q, lam):
-        """d(Phi_q^T lambda)/dq (n, n)."""
-        H = np.zeros((self.n_coordinates, self.n_coordinates))
-        for c, rows, block in self._nonlinear:
-            H[block] += c.hessian(q[c.indices], lam[rows])
+        """d(Phi_q^T lambda)/dq, which is diagonal for these constraints: its diagonal (n,)."""
+        H = np.zeros(self.n_coordinates)
+        for c, rows in self._nonlinear:
+            H[c.indices] += c.hessian(q[c.indices], lam[rows])
         return H
 
     def constraint_convective(self, q, qd):
