@@ -61,60 +61,63 @@ class ClearanceJoint:
 
     def gap(self, z):
         """(delta, delta_dot, theta, d): penetration (m, > 0 in contact), its rate, direction."""
-        e, e_dot, omega_b, phi_b = z[0:2], z[2:4], z[5], z[6]
-        d = math.hypot(e[0], e[1])
-        theta = math.atan2(e[1], e[0]) - phi_b
+        ex, ey, edx, edy, omega_b, phi_b = z[0], z[1], z[2], z[3], z[5], z[6]
+        d = math.hypot(ex, ey)
+        theta = math.atan2(ey, ex) - phi_b
         c, dc = self.profile(theta)
         if d == 0.0:
             return -c, 0.0, theta, d
-        n = e / d
-        t = np.array([-n[1], n[0]])
-        theta_dot = (e_dot @ t) / d - omega_b
-        return d - c, e_dot @ n - dc * theta_dot, theta, d
+        nx, ny = ex / d, ey / d
+        theta_dot = (-edx * ny + edy * nx) / d - omega_b
+        return d - c, edx * nx + edy * ny - dc * theta_dot, theta, d
 
     def local_forces(self, z, impact_velocity_m_s: float):
-        """(f (2), F_n, F_t, D): the force on the pin, and D = d(f1, f2, F_t)/dz (3, 7)."""
-        e, e_dot, omega_p, omega_b, phi_b = z[0:2], z[2:4], z[4], z[5], z[6]
-        D = np.zeros((3, 7))
-        d = math.hypot(e[0], e[1])
+        """(f (2), F_n, F_t, D): the force on the pin, and D = d(f1, f2, F_t)/dz (3, 7).
+
+        Scalar arithmetic on the 2-vectors n, t (this runs in every Newton iteration)."""
+        ex, ey, edx, edy = z[0], z[1], z[2], z[3]
+        omega_p, omega_b, phi_b = z[4], z[5], z[6]
+        d = math.hypot(ex, ey)
         if d == 0.0:
-            return np.zeros(2), 0.0, 0.0, D
-        n = e / d
-        t = np.array([-n[1], n[0]])
-        theta = math.atan2(e[1], e[0]) - phi_b
+            return np.zeros(2), 0.0, 0.0, np.zeros((3, 7))
+        theta = math.atan2(ey, ex) - phi_b
         c, dc = self.profile(theta)
         delta = d - c
         if delta <= 0.0:
-            return np.zeros(2), 0.0, 0.0, D
-        e_n, e_t = e_dot @ n, e_dot @ t
+            return np.zeros(2), 0.0, 0.0, np.zeros((3, 7))
+        nx, ny = ex / d, ey / d
+        tx, ty = -ny, nx
+        e_n, e_t = edx * nx + edy * ny, edx * tx + edy * ty
         theta_dot = e_t / d - omega_b
         rate = e_n - dc * theta_dot
         F_n, dF_ddelta, dF_drate = self.law.normal_force(delta, rate, impact_velocity_m_s)
-        # derivatives of delta and rate with respect to z (c'' = 0: linear profile pieces)
-        ddelta = np.zeros(7)
-        ddelta[0:2] = n - dc * t / d
-        ddelta[6] = dc
-        drate = np.zeros(7)
-        dtheta_dot_de = -(e_n * t + e_t * n) / d**2
-        drate[0:2] = e_t * t / d - dc * dtheta_dot_de
-        drate[2:4] = n - dc * t / d
-        drate[5] = dc
+        # derivatives of delta and rate with respect to z (c'' = 0: linear profile pieces);
+        # dn/de = t t^T / d, dt/de = -n t^T / d, dtheta_dot/de = -(e_n t + e_t n) / d^2
+        rx, ry = nx - dc * tx / d, ny - dc * ty / d
+        dthx, dthy = -(e_n * tx + e_t * nx) / d**2, -(e_n * ty + e_t * ny) / d**2
+        ddelta = np.array([rx, ry, 0.0, 0.0, 0.0, 0.0, dc])
+        drate = np.array([e_t * tx / d - dc * dthx, e_t * ty / d - dc * dthy, rx, ry, 0.0, dc,
+                          0.0])
         dF_n = dF_ddelta * ddelta + dF_drate * drate
         slip = e_t + self.pin_radius * omega_p - self.bushing_radius * omega_b
         psi, dpsi = self.friction.factor(slip)
-        dslip = np.zeros(7)
-        dslip[0:2] = -e_n * t / d
-        dslip[2:4] = t
-        dslip[4] = self.pin_radius
-        dslip[5] = -self.bushing_radius
         mu = self.friction.coefficient
         F_t = -mu * psi * F_n
-        dF_t = -mu * (psi * dF_n + F_n * dpsi * dslip)
-        f = -F_n * n + F_t * t
-        # dn/de = t t^T / d, dt/de = -n t^T / d
-        D[0:2, :] = -np.outer(n, dF_n) + np.outer(t, dF_t)
-        D[0:2, 0:2] += (-F_n * np.outer(t, t) - F_t * np.outer(n, t)) / d
-        D[2, :] = dF_t
+        dF_t = -mu * psi * dF_n
+        if dpsi != 0.0:
+            dslip = np.array([-e_n * tx / d, -e_n * ty / d, tx, ty, self.pin_radius,
+                              -self.bushing_radius, 0.0])
+            dF_t -= mu * F_n * dpsi * dslip
+        f = np.array([-F_n * nx + F_t * tx, -F_n * ny + F_t * ty])
+        D = np.empty((3, 7))
+        D[0] = -nx * dF_n + tx * dF_t
+        D[1] = -ny * dF_n + ty * dF_t
+        D[2] = dF_t
+        a, b = -F_n / d, -F_t / d
+        D[0, 0] += (a * tx + b * nx) * tx
+        D[0, 1] += (a * tx + b * nx) * ty
+        D[1, 0] += (a * ty + b * ny) * tx
+        D[1, 1] += (a * ty + b * ny) * ty
         return f, F_n, F_t, D
 
     # --- force element interface -------------------------------------------------------------
