@@ -42,12 +42,17 @@ from mpi4py import MPI
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.contact.solver import (
+    CYCLE_CAP,
+    COUPLED_ITERATIONS,
     WARM_START_MAX_ANGLE_RAD,
     BushingContactSolver,
+    NewtonControl,
     checked_force,
     checked_rotation,
     first_touch_centre,
     nodal_result,
+    solve_by_contact_angle,
+    unit,
 )
 from fewear.mesh.bushing import BORE_TAG
 
@@ -166,7 +171,7 @@ class CondensedBushingContact:
             at_dofs = self._combine(at_dofs, columns, n_columns)
             G[:, row] = N @ at_dofs
         ksp.destroy()
-        return 0.5 * (G + G.T)
+        return G
 
     def _combine(self, values, columns, n_columns) -> np.ndarray:
         """Per-rank values at the bore dofs -> the same full vector on every rank."""
@@ -243,55 +248,77 @@ class CondensedBushingContact:
         self.pin_centre_m = touch + 0.5 * geometry.clearance_m * θ0**2 * direction
 
     def _newton(self, load: np.ndarray) -> int:
-        settings = self.problem.contact
+        """The full path's iteration (same start, step rules, stopping test and fallback) on
+        the state (g, c); returns the number of Newton iterations."""
         φ = math.atan2(load[1], load[0]) - math.atan(self._friction_value)
-        direction = np.array([math.cos(φ), math.sin(φ)])
+        direction = unit(φ)
         self._start(direction)
+        iterations = self._coupled_newton(load, direction, np.eye(2), COUPLED_ITERATIONS)
+        if iterations is not None:
+            self._last_direction = direction
+            return iterations
+        settings = self.problem.contact
+
+        def inner(a):
+            self.pin_centre_m = max(a @ self.pin_centre_m, 0.0) * a
+            count = self._coupled_newton(load, a, a[:, None], settings.newton_max_iterations)
+            if count is None:
+                raise RuntimeError(f"condensed contact Newton did not converge for force "
+                                   f"{load * self.problem.geometry.width_m} N")
+            return count
+
+        def pin_residual():
+            return self._nodal_forces(self._U.reshape(-1, 2), self.pin_centre_m)[0].sum(
+                axis=0) - load
+
+        total = COUPLED_ITERATIONS + solve_by_contact_angle(
+            inner, pin_residual, direction, load, settings.newton_max_iterations)
+        self._last_direction = direction
+        return total
+
+    def _coupled_newton(self, load, direction, basis, max_iterations) -> int | None:
+        """Semi-smooth Newton on (g, c) with c moving in the span of ``basis`` (2, k); returns
+        the iterations, or None when not converged within ``max_iterations`` or as soon as the
+        active set alternates (:class:`NewtonControl`)."""
         n = self.points.shape[0]
-        floor = 64.0 * np.finfo(float).eps * self.problem.geometry.pin_radius_m
-        previous_active = None
-        for iteration in range(1, settings.newton_max_iterations + 1):
+        settings = self.problem.contact
+        pin_radius = self.problem.geometry.pin_radius_m
+        control = NewtonControl(settings, pin_radius)
+        for iteration in range(1, max_iterations + 1):
             U = self._U.reshape(n, 2)
             f, WM, p, _ = self._nodal_forces(U, self.pin_centre_m, with_jacobian=True)
             active_nodes = np.flatnonzero(p > 0.0)
             if active_nodes.size == 0:
                 self._cold_start(direction)
-                previous_active = None
+                control = NewtonControl(settings, pin_radius)
                 continue
-            rows, g_rows, dc = self._bordered_step(active_nodes, U, f, WM, load)
-            step = self._line_search(rows, g_rows, dc, f, load)
-            update = np.linalg.norm(dc)
-            active = float(self.weights_m[active_nodes].sum())
-            converged = update <= floor or (
-                step == 1.0 and active == previous_active
-                and update <= settings.newton_tolerance * self._max_penetration(self._U)
-            )
-            previous_active = active
-            if converged:
-                self._last_direction = direction
+            cap = control.step_cap(float(self.weights_m[active_nodes].sum()))
+            if cap < CYCLE_CAP and basis.shape[1] == 2:
+                return None
+            rows, g_rows, dc = self._bordered_step(active_nodes, U, f, WM, load, basis)
+            dU = self._line_search(rows, g_rows, dc, f, load, cap)
+            if control.converged(np.linalg.norm(dc), np.abs(dU).max(),
+                                 self._max_penetration(self._U), np.abs(self._U).max()):
                 return iteration
-        raise RuntimeError(
-            f"condensed contact Newton did not converge in {settings.newton_max_iterations} "
-            f"iterations for force {load * self.problem.geometry.width_m} N"
-        )
+        return None
 
-    def _bordered_step(self, A, U, f, WM, load):
-        """One Newton step (module docstring): the rows (node, direction) of the active set,
-        the new nodal forces g'_A on them and the pin update dc."""
-        m = A.size
+    def _bordered_step(self, A, U, f, WM, load, basis):
+        """One Newton step (module docstring) with the pin update dc = basis dz: the rows
+        (node, direction) of the active set, the new nodal forces g'_A on them and dc."""
+        m, k = A.size, basis.shape[1]
         rows = (2 * A[:, None] + np.arange(2)[None, :]).reshape(-1)
         G_AA = self.compliance[np.ix_(rows, rows)]
         WM_A = WM[A]
-        system = np.zeros((2 * m + 2, 2 * m + 2))
+        system = np.zeros((2 * m + k, 2 * m + k))
         blocks_G = np.einsum("kij,kjl->kil", WM_A, G_AA.reshape(m, 2, 2 * m))
         system[:2 * m, :2 * m] = np.eye(2 * m) - blocks_G.reshape(2 * m, 2 * m)
-        system[:2 * m, 2 * m:] = WM_A.reshape(2 * m, 2)
-        system[2 * m:, :2 * m] = np.tile(np.eye(2), m)
-        rhs = np.empty(2 * m + 2)
+        system[:2 * m, 2 * m:] = WM_A.reshape(2 * m, 2) @ basis
+        system[2 * m:, :2 * m] = np.tile(basis.T, m)
+        rhs = np.empty(2 * m + k)
         rhs[:2 * m] = (f[A] - np.einsum("kij,kj->ki", WM_A, U[A])).reshape(-1)
-        rhs[2 * m:] = load
+        rhs[2 * m:] = basis.T @ load
         solution = np.linalg.solve(system, rhs)
-        return rows, solution[:2 * m], solution[2 * m:]
+        return rows, solution[:2 * m], basis @ solution[2 * m:]
 
     def _energy(self, g: np.ndarray, U: np.ndarray, c: np.ndarray, load: np.ndarray) -> float:
         """Pi = 1/2 g.U + sum_q w_q k/2 <-gap_q>^2 - F/L . c (J/m), with U = G g."""
@@ -301,9 +328,10 @@ class CondensedBushingContact:
         return 0.5 * g @ U + 0.5 * self._k * float(self.weights_m @ penetration**2) - float(
             load @ c)
 
-    def _line_search(self, rows, g_rows, dc, f, load) -> float:
-        """The full path's step rules (slide limit, keep contact, Armijo on Pi); updates the
-        state g, U = G g, c. Only the columns of G on the old and new support are used."""
+    def _line_search(self, rows, g_rows, dc, f, load, cap: float = 1.0) -> np.ndarray:
+        """The full path's step rules (cap, slide limit, keep contact, Armijo on Pi); updates
+        the state g, U = G g, c and returns the full Newton update dU of the nodal displacements.
+        Only the columns of G on the old and new support are used."""
         g0, U0, c0 = self._g, self._U, self.pin_centre_m.copy()
         g_new = np.zeros_like(g0)
         g_new[rows] = g_rows
@@ -312,7 +340,7 @@ class CondensedBushingContact:
         dU = self.compliance[:, support] @ dg[support]
         slope = float((g0 - f.reshape(-1)) @ dU) + float((f.sum(axis=0) - load) @ dc)
         energy0 = self._energy(g0, U0, c0, load)
-        step = self._slide_limit(dc, U0)
+        step = min(cap, self._slide_limit(dc, U0))
         keeps_contact = None
         while step >= 2.0**-10:
             U = U0 + step * dU
@@ -332,7 +360,7 @@ class CondensedBushingContact:
         self._g = g0 + step * dg
         self._U = U0 + step * dU
         self.pin_centre_m = c0 + step * dc
-        return step
+        return dU
 
     def _max_penetration(self, U: np.ndarray, c: np.ndarray | None = None) -> float:
         d = self.points + U.reshape(-1, 2) - (self.pin_centre_m if c is None else c)

@@ -41,10 +41,12 @@ Since the nodes are the quadrature points, these are exactly the pressures whose
 
 F = 0 exactly: no contact; the pin is returned centred (c = 0), u = 0, zero pressure.
 
-Newton: semi-smooth (the active set follows the iterates), warm-started from the previous solve;
-a cold start places the pin along F at first touch plus a small penetration. It stops when the
-update of the pin centre falls below ``newton_tolerance`` times the largest penetration (or a few
-rounding units of R_p) with an unchanged active set.
+Newton: semi-smooth (the active set follows the iterates), warm-started from the previous solve
+(its pin centre turned onto the new contact direction); a cold start places the pin along the
+expected contact direction at first touch plus a penetration that brings +-3 elements into contact.
+Globalisation: the pin may slide along the bore by at most sqrt(c delta/2) per step, a step never
+loses all contact, Armijo backtracking on the penalty potential (frictionless), and a step cap that
+halves when the active set alternates (:class:`NewtonControl`, which also holds the stopping test).
 
 Forms are compiled once per mesh; load, pin centre, penalty and friction are ``fem.Constant``s.
 After the bore has been moved (``mesh.geometry.x`` written, ALE), call :meth:`update_geometry`.
@@ -77,6 +79,11 @@ CONTACT_QUADRATURE = {"quadrature_degree": 3, "quadrature_rule": "GLL"}
 
 # Newton starts from the previous solution when the force turned by less than this (rad).
 WARM_START_MAX_ANGLE_RAD = math.radians(20.0)
+
+# Iterations of the coupled Newton on (u, c) before the fallback on the pin angle takes over.
+COUPLED_ITERATIONS = 25
+# ... or as soon as its step cap against active-set alternation has fallen below this.
+CYCLE_CAP = 0.2
 
 
 def checked_force(force_N) -> np.ndarray:
@@ -190,6 +197,97 @@ def first_touch_centre(points: np.ndarray, centre: np.ndarray, direction: np.nda
     return centre + (s.min() if s.size else 0.0) * direction
 
 
+class NewtonControl:
+    """The stopping test and the cap on the step against active-set cycling (both paths).
+
+    Converged when the Newton update of the pin centre is below ``newton_tolerance`` times the
+    largest penetration or 64 rounding units of R_p (the level at which gaps are computed), and
+    the largest displacement update below 1000 ``newton_tolerance`` times the largest
+    displacement (the LU solves of the penalty-stiffened system are not more accurate) or the
+    same rounding level.
+    Semi-smooth Newton can alternate between two active sets around a node that is just entering
+    contact; when the active set (measured by its length) returns to the one of two iterations
+    before, the step cap is halved, which turns the alternation into a converging bisection.
+    """
+
+    def __init__(self, settings, pin_radius_m: float):
+        self.tolerance = settings.newton_tolerance
+        self.floor = 64.0 * np.finfo(float).eps * pin_radius_m
+        self.history: list[float] = []
+        self.cap = 1.0
+
+    def step_cap(self, active: float) -> float:
+        if len(self.history) >= 2 and active == self.history[-2] != self.history[-1]:
+            self.cap *= 0.5
+        self.history.append(active)
+        return self.cap
+
+    def converged(self, pin_update: float, displacement_update: float, penetration: float,
+                  displacement: float) -> bool:
+        return (pin_update <= max(self.tolerance * penetration, self.floor)
+                and displacement_update <= max(1e3 * self.tolerance * displacement, self.floor))
+
+
+def unit(angle: float) -> np.ndarray:
+    return np.array([math.cos(angle), math.sin(angle)])
+
+
+def solve_by_contact_angle(inner, pin_residual, direction: np.ndarray, load: np.ndarray,
+                           max_iterations: int) -> int:
+    """The fallback when the coupled Newton cycles: the pin angle psi as an outer unknown.
+
+    ``inner(a)`` solves the contact with the pin centre on the ray c = e a (force control of
+    the component a . F only: a Newton problem without the pin's nearly free sliding mode) and
+    returns its Newton iterations; ``pin_residual()`` then gives R - F/L (N/m) for the last inner
+    solution. The tangential residual tau(psi) = (R - F/L) . a_perp is continuous and grows with
+    psi overall (slope about |F|/L for a rigid pin), though only piecewise between the angles
+    where nodes enter contact. So: step against tau, doubling the step until tau changes sign
+    (the first step is the rigid estimate -tau L/|F|, at least 1e-4 rad), then the Illinois
+    variant of regula falsi on the bracket until it is 1e-13 rad wide (the pin centre to
+    ~1e-16 m) or |tau| <= 1e-10 |F|/L. The state is left at the last angle evaluated (inside the final
+    bracket). Returns the inner iterations.
+    """
+    total = 0
+    tolerance = 1e-10 * float(np.linalg.norm(load))
+
+    def tangential_residual(ψ: float) -> float:
+        nonlocal total
+        total += inner(unit(ψ))
+        return float(pin_residual() @ unit(ψ + 0.5 * math.pi))
+
+    ψ0 = math.atan2(direction[1], direction[0])
+    τ0 = tangential_residual(ψ0)
+    step = -math.copysign(max(abs(τ0) / float(np.linalg.norm(load)), 1e-4), τ0)
+    iterations = 0
+    while abs(τ0) > tolerance:
+        ψ1 = ψ0 + step
+        τ1 = tangential_residual(ψ1)
+        iterations += 1
+        if (τ1 > 0.0) != (τ0 > 0.0) or abs(τ1) <= tolerance:
+            break
+        ψ0, τ0, step = ψ1, τ1, 2.0 * step
+        if abs(step) > math.pi or iterations > max_iterations:
+            raise RuntimeError(f"contact angle iteration found no equilibrium (load {load} N/m)")
+    else:
+        return total
+    ψ, τ, side = ψ1, τ1, 0
+    while abs(τ) > tolerance and abs(ψ1 - ψ0) > 1e-13:
+        iterations += 1
+        if iterations > max_iterations:
+            raise RuntimeError(f"contact angle iteration did not converge (load {load} N/m)")
+        ψ = (ψ0 * τ1 - ψ1 * τ0) / (τ1 - τ0)
+        τ = tangential_residual(ψ)
+        if (τ > 0.0) == (τ1 > 0.0):
+            ψ1, τ1 = ψ, τ
+            τ0 = 0.5 * τ0 if side == 1 else τ0
+            side = 1
+        else:
+            ψ0, τ0 = ψ, τ
+            τ1 = 0.5 * τ1 if side == -1 else τ1
+            side = -1
+    return total
+
+
 class BushingContactSolver:
     """Full Newton solve of the pin-in-bushing penalty contact (see the module docstring).
 
@@ -256,12 +354,15 @@ class BushingContactSolver:
         self._contact_length = fem.form(ufl.conditional(ufl.gt(pressure, 0.0), 1.0, 0.0)
                                         * ds(BORE_TAG))
 
-        self.uniform = []
+        # E_0, E_1: uniform unit displacements (kept as Functions: their PETSc vectors wrap
+        # the Functions' memory)
+        self._uniform_fields = []
         for i in range(2):
             field = fem.Function(self.V)
             field.interpolate(lambda x, i=i: np.vstack([np.full(x.shape[1], float(i == j))
                                                         for j in range(2)]))
-            self.uniform.append(field.vector)
+            self._uniform_fields.append(field)
+        self.uniform = [field.vector for field in self._uniform_fields]
 
         self._K_elastic = fem_petsc.create_matrix(self._a_elastic)
         self._J = fem_petsc.create_matrix(self._j_contact)
@@ -365,38 +466,59 @@ class BushingContactSolver:
         self.pin_centre_m = rotation @ self.pin_centre_m
 
     def _newton(self, force) -> int:
-        """Semi-smooth Newton on (u, c) with a backtracking line search on the residual norm."""
+        """Coupled semi-smooth Newton on (u, c), globalised by :meth:`_line_search` and
+        :class:`NewtonControl`; if its active set alternates or it needs more than
+        ``COUPLED_ITERATIONS``, :func:`solve_by_contact_angle` takes over from where it stopped.
+        Returns the number of Newton iterations (all inner ones included)."""
         load = force / self.problem.geometry.width_m
         settings = self.problem.contact
         direction = self.contact_direction(force)
         self._start(direction)
-        previous_active = None
-        floor = 64.0 * np.finfo(float).eps * self.problem.geometry.pin_radius_m
-        for iteration in range(1, settings.newton_max_iterations + 1):
+        iterations = self._coupled_newton(load, direction, np.eye(2), COUPLED_ITERATIONS)
+        if iterations is None:
+
+            def inner(a):
+                self.pin_centre_m = max(a @ self.pin_centre_m, 0.0) * a
+                count = self._coupled_newton(load, a, a[:, None], settings.newton_max_iterations)
+                if count is None:
+                    raise RuntimeError(f"contact Newton did not converge for force {force} N")
+                return count
+
+            def pin_residual():
+                self.pin_centre.value = self.pin_centre_m
+                return self._assemble_contact(load, jacobian=False)
+
+            iterations = COUPLED_ITERATIONS + solve_by_contact_angle(
+                inner, pin_residual, direction, load, settings.newton_max_iterations)
+        self._last_direction = direction
+        self.pin_centre.value = self.pin_centre_m
+        self._assemble_contact(load)
+        return iterations
+
+    def _coupled_newton(self, load, direction, basis, max_iterations) -> int | None:
+        """Semi-smooth Newton on (u, c) with c moving in the span of ``basis`` (2, k); returns
+        the iterations, or None when not converged within ``max_iterations`` or, for the free pin
+        (k = 2), as soon as the active set alternates."""
+        settings = self.problem.contact
+        control = NewtonControl(settings, self.problem.geometry.pin_radius_m)
+        for iteration in range(1, max_iterations + 1):
             self.pin_centre.value = self.pin_centre_m
             r_pin = self._assemble_contact(load)
             active = self._active_length()
             if active == 0.0:
                 self._cold_start(direction)
-                previous_active = None
+                control = NewtonControl(settings, self.problem.geometry.pin_radius_m)
                 continue
-            du, dc = self._bordered_step(r_pin)
-            step = self._line_search(du, dc, r_pin, load)
-            update = np.linalg.norm(dc)
-            converged = update <= floor or (
-                step == 1.0 and active == previous_active
-                and update <= settings.newton_tolerance * self._max_penetration()
-            )
-            previous_active = active
-            if converged:
-                self._last_direction = direction
-                self.pin_centre.value = self.pin_centre_m
-                self._assemble_contact(load)
+            cap = control.step_cap(active)
+            if cap < CYCLE_CAP and basis.shape[1] == 2:
+                return None
+            du, dc = self._bordered_step(r_pin, basis)
+            self._line_search(du, dc, r_pin, load, cap)
+            if control.converged(np.linalg.norm(dc), du.norm(PETSc.NormType.NORM_INFINITY),
+                                 self._max_penetration(),
+                                 self.displacement.vector.norm(PETSc.NormType.NORM_INFINITY)):
                 return iteration
-        raise RuntimeError(
-            f"contact Newton did not converge in {settings.newton_max_iterations} iterations "
-            f"for force {force} N (last pin update {np.linalg.norm(dc):.3e} m)"
-        )
+        return None
 
     def _energy(self, load: np.ndarray) -> float:
         """Penalty potential per unit thickness (J/m):
@@ -406,10 +528,10 @@ class BushingContactSolver:
         penalty = self.comm.allreduce(fem.assemble_scalar(self._penalty_energy), op=MPI.SUM)
         return 0.5 * u.dot(self._rhs[2]) + penalty - float(load @ self.pin_centre_m)
 
-    def _line_search(self, du, dc, r_pin, load) -> float:
+    def _line_search(self, du, dc, r_pin, load, cap: float = 1.0) -> float:
         """Step length along the Newton direction (du, dc); updates u and c and returns it.
 
-        Starts from the slide limit (:meth:`_slide_limit`), halves the step while the trial
+        Starts from the smaller of ``cap`` and the slide limit (:meth:`_slide_limit`), halves the step while the trial
         loses all contact, and, for a descent direction, backtracks (Armijo, at most 2^-6) on the
         penalty potential :meth:`_energy`. At rounding level near convergence, or with friction
         (not a potential), the first contact-keeping step is taken.
@@ -422,7 +544,7 @@ class BushingContactSolver:
         rhs.array_w[self._bc_local] = 0.0
         slope = rhs.dot(du) + float(r_pin @ dc)
         energy0 = self._energy(load)
-        step, taken = self._slide_limit(dc), 0.0
+        step, taken = min(cap, self._slide_limit(dc)), 0.0
         keeps_contact = None
         while True:
             u.vector.axpy(step - taken, du)
@@ -492,9 +614,10 @@ class BushingContactSolver:
         gap = np.hypot(deformed[:, 0], deformed[:, 1]) - self.problem.geometry.pin_radius_m
         return float(max(-gap.min(), 0.0))
 
-    def _bordered_step(self, r_pin: np.ndarray):
+    def _bordered_step(self, r_pin: np.ndarray, basis: np.ndarray):
         """Newton direction (du, dc) of the bordered system by the Schur complement on the pin
-        block (see the module docstring); needs ``_assemble_contact`` just before."""
+        block (see the module docstring), with dc = basis dz restricted to the span of ``basis``
+        (2, k) and the pin equations projected on it; needs ``_assemble_contact`` just before."""
         K = self._K
         self._K_elastic.copy(K, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)
         K.axpy(1.0, self._J, structure=PETSc.Mat.Structure.SUBSET_NONZERO_PATTERN)
@@ -514,7 +637,7 @@ class BushingContactSolver:
         D = np.array([[self.uniform[i].dot(self._work[j]) for j in range(2)] for i in range(2)])
         S = D + np.array([[self._work[2 + i].dot(Y[j]) for j in range(2)] for i in range(2)])
         rhs_c = -r_pin + np.array([self._work[2 + i].dot(y0) for i in range(2)])
-        dc = np.linalg.solve(S, rhs_c)
+        dc = basis @ np.linalg.solve(basis.T @ S @ basis, basis.T @ rhs_c)
         du = self._du.vector
         y0.copy(du)
         du.axpy(-dc[0], Y[0])
