@@ -37,6 +37,12 @@ def build_parser() -> argparse.ArgumentParser:
     contact = sub.add_parser("contact", help="pin-in-bushing FE contact for one joint force")
     contact.add_argument("--force", nargs=2, type=float, required=True, metavar=("FX", "FY"),
                          help="joint force on the pin in the bushing frame (N)")
+    contact.add_argument("--rotation", type=float, default=0.0, metavar="RAD",
+                         help="rotation increment of the pin relative to the bushing (rad): the "
+                              "slip R_p |RAD| of the nodes in contact (default 0)")
+    contact.add_argument("--friction", action="store_true",
+                         help="add the Coulomb traction mu p against the slip ([joint] "
+                              "friction_coefficient; needs --rotation)")
     _add_config_and_out(contact, "out/contact")
 
     dynamics = sub.add_parser("dynamics", help="slider-crank dynamics with a clearance joint")

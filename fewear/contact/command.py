@@ -1,8 +1,10 @@
-"""``fewear contact --force FX FY [--config FILE.toml] [--out DIR]``: one FE contact solve.
+"""``fewear contact --force FX FY [--rotation RAD [--friction]] [--config FILE.toml] [--out DIR]``.
 
-Reads the ``[bushing] [pin] [joint] [mesh] [contact]`` sections, solves the pin-in-bushing contact
-for the joint force on the pin (N, bushing frame) with the full DOLFINx solver and writes, all or
-nothing (:func:`fewear.io.output.staged_output`):
+One FE contact solve. Reads the ``[bushing] [pin] [joint] [mesh] [contact]`` sections, solves the
+pin-in-bushing contact for the joint force on the pin (N, bushing frame) and the pin's rotation
+increment relative to the bushing (rad; it sets the slip, and with ``--friction`` the Coulomb
+traction) with the full DOLFINx solver, and writes, all or nothing
+(:func:`fewear.io.output.staged_output`):
 
 - ``contact.csv``  bore nodes sorted by angle: angle_deg, x_m, y_m, pressure_Pa, gap_m, slip_m;
 - ``summary.json`` peak pressure, contact half-angle, pin centre, force-balance error, Newton
@@ -32,6 +34,17 @@ def checked_force_N(force: list[float] | tuple[float, float]) -> tuple[float, fl
     return force_x, force_y
 
 
+def checked_rotation_rad(rotation: float, friction: bool) -> float:
+    """The pin's rotation increment (rad): finite, and non-zero when friction is asked for."""
+    rotation = float(rotation)
+    if not math.isfinite(rotation):
+        raise FewearInputError(f"--rotation = {rotation!r} rad: expected a finite number")
+    if friction and rotation == 0.0:
+        raise FewearInputError(
+            "--friction needs a non-zero --rotation: the Coulomb traction opposes the slip")
+    return rotation
+
+
 def main(args: argparse.Namespace) -> int:
     from mpi4py import MPI
 
@@ -42,28 +55,31 @@ def main(args: argparse.Namespace) -> int:
 
     comm = MPI.COMM_WORLD
     force_N = checked_force_N(args.force)
+    rotation_rad = checked_rotation_rad(args.rotation, args.friction)
     config = load_config(args.config, CONFIG_SECTIONS)
     problem = contact_problem_from_config(config)
     hertz = hertz_reference(problem, math.hypot(*force_N))
     with staged_output(args.out, comm) as stage:
-        solver, result, timings_s = _solve(problem, force_N, comm)
-        _write_outputs(stage, solver, result, hertz, config, timings_s, comm)
+        solver, result, timings_s = _solve(problem, force_N, rotation_rad, args.friction, comm)
+        _write_outputs(stage, solver, result, hertz, config, timings_s, rotation_rad,
+                       args.friction, comm)
     return 0
 
 
-def _solve(problem, force_N, comm):
+def _solve(problem, force_N, rotation_rad, friction, comm):
     from fewear.contact.solver import BushingContactSolver
 
     start = time.perf_counter()
     solver = BushingContactSolver(problem, comm=comm)
     built = time.perf_counter()
-    result = solver.solve(force_N)
+    result = solver.solve(force_N, rotation_increment_rad=rotation_rad, friction=friction)
     solved = time.perf_counter()
     timings_s = {"mesh_and_setup": built - start, "solve": solved - built}
     return solver, result, timings_s
 
 
-def _write_outputs(stage, solver, result, hertz, config, timings_s, comm) -> None:
+def _write_outputs(stage, solver, result, hertz, config, timings_s, rotation_rad, friction,
+                   comm) -> None:
     from fewear.contact.output import (
         contact_summary,
         write_contact_csv,
@@ -75,8 +91,8 @@ def _write_outputs(stage, solver, result, hertz, config, timings_s, comm) -> Non
     write_fields_xdmf(stage / "bushing.xdmf", solver.displacement, solver.pressure_function())
     if comm.rank == 0:
         write_contact_csv(stage / "contact.csv", result)
-        write_summary_json(stage / "summary.json",
-                           contact_summary(result, hertz, config, timings_s, comm.size))
+        write_summary_json(stage / "summary.json", contact_summary(
+            result, hertz, config, timings_s, comm.size, rotation_rad, friction))
         plot_contact_pressure(stage / "pressure.png", result, hertz,
                               title=f"fewear contact, F = ({result.applied_force_N[0]:g}, "
                                     f"{result.applied_force_N[1]:g}) N")

@@ -35,9 +35,13 @@ def write_contact_csv(path: Path, result) -> None:
 
 
 def contact_summary(
-    result, hertz: HertzLineContact, config: dict, timings_s: dict[str, float], ranks: int
+    result, hertz: HertzLineContact, config: dict, timings_s: dict[str, float], ranks: int,
+    rotation_rad: float = 0.0, friction: bool = False,
 ) -> dict[str, Any]:
-    """The figures of one contact solve, with the analytic references beside them (SI units)."""
+    """The figures of one contact solve, with the analytic references beside them (SI units).
+
+    The Hertz and cosine-law references are frictionless; with friction they are only a guide.
+    """
     force = np.asarray(result.applied_force_N, dtype=float)
     load_angle = math.atan2(force[1], force[0])
     geometry_radius = hertz.bore_radius_m
@@ -51,6 +55,9 @@ def contact_summary(
         "applied_force_N": force.tolist(),
         "resultant_force_N": [float(value) for value in result.resultant_force_N],
         "load_angle_deg": math.degrees(load_angle),
+        "rotation_increment_rad": float(rotation_rad),
+        "friction": bool(friction),
+        "max_slip_m": float(np.max(result.slip_m)) if result.slip_m.size else 0.0,
         "newton_iterations": int(result.newton_iterations),
         "bore_nodes": int(len(result.angle_rad)),
         "wall_time_s": timings_s,

@@ -120,6 +120,28 @@ def test_xdmf_parses_and_holds_both_fields(default_run):
     assert np.all(np.isfinite(displacement)) and np.abs(displacement).max() > 0.0
 
 
+def test_rotation_gives_slip_and_friction_turns_the_contact(tmp_path):
+    """--rotation 0.02 --friction: every node in contact slips R_p * 0.02 (the others 0), and the
+    Coulomb traction p (n + mu t) turns the resultant of each loaded node by atan(mu), so the
+    pressure's own resultant, int p n, must point atan(mu) behind F (mu = 0.1 from [joint])."""
+    out = tmp_path / "out"
+    rotation, config = 0.02, default_config()
+    assert main(["contact", "--force", *map(str, FORCE_N), "--rotation", str(rotation),
+                 "--friction", "--out", str(out)]) == 0
+    _, columns = read_csv(out / "contact.csv")
+    summary = json.loads((out / "summary.json").read_text())
+    loaded = columns["pressure_Pa"] > 0.0
+    assert np.allclose(columns["slip_m"][loaded], config["pin"]["radius_m"] * rotation, rtol=1e-12)
+    assert np.all(columns["slip_m"][~loaded] == 0.0)
+    assert summary["force_balance_rel_error"] < 1e-8 and summary["friction"] is True
+    angles = np.radians(columns["angle_deg"])
+    weights = q8_bore_weights_m(angles, config["bushing"]["inner_radius_m"])
+    normal_resultant = (weights * columns["pressure_Pa"]) @ np.column_stack(
+        [np.cos(angles), np.sin(angles)])
+    lag = math.atan2(normal_resultant[1], normal_resultant[0]) - math.atan2(FORCE_N[1], FORCE_N[0])
+    assert abs(lag + math.atan(config["joint"]["friction_coefficient"])) < math.radians(0.02)
+
+
 # --- bad input -------------------------------------------------------------------------------
 
 
@@ -162,6 +184,18 @@ def test_bad_config_exits_2_naming_the_value(tmp_path, capsys, case):
     assert status == 2
     assert error.startswith("fewear: error:") and named in error
     assert "Traceback" not in error
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("arguments, named", [
+    (["--force", "0", "-100", "--rotation", "nan"], "--rotation = nan"),
+    (["--force", "0", "-100", "--friction"], "--friction needs a non-zero --rotation"),
+])
+def test_bad_rotation_exits_2(tmp_path, capsys, arguments, named):
+    out = tmp_path / "out"
+    assert main(["contact", *arguments, "--out", str(out)]) == 2
+    error = capsys.readouterr().err
+    assert error.startswith("fewear: error:") and named in error
     assert not out.exists()
 
 
