@@ -38,7 +38,7 @@ from fewear.mbd.slider_crank import SECTIONS, simulate_slider_crank
 from fewear.plot.dynamics import plot_forces, plot_orbit
 
 OUT = Path(os.environ.get("FEWEAR_DEMO_OUT", "out/demos/slider_crank_dynamics"))
-SETTLING_CYCLES = 1     # crank cycles run before the recorded one (the start is the ideal state)
+SETTLING_CYCLES = 2     # crank cycles run before the recorded one (the start is the ideal state)
 RECORDED_CYCLES = 1
 ALUMINIUM_DENSITY_KG_M3 = 2660.0  # the printed digits "2.66" read as an aluminium density
 PRINTED_CRANK_INERTIA_KG_M2 = 1.0e5  # the paper's printed (typo) crank inertia
@@ -49,7 +49,7 @@ config = load_config(None, SECTIONS)
 
 # ## The three cases of Fig. 6(a)
 #
-# Each run settles for one crank cycle from the ideal mechanism's state (pin centred) and records
+# Each run settles for two crank cycles from the ideal mechanism's state (pin centred) and records
 # the next one. The peak force is the largest |F| of the recorded cycle.
 
 # +
@@ -128,12 +128,12 @@ for name, (rod, mechanism, joint_change) in SENSITIVITY.items():
 # density is a typo. We take c_e = 0.9, a steel rod with 1% damping on its first bending mode and
 # rho_inf = 0.5. With these choices the ratio is steady: over crank cycles 3 to 7 (2 settling
 # cycles, 5 recorded; `simulate_slider_crank(rod=..., cycles=5, settling_cycles=2)`) the per-cycle
-# peaks give flexible/rigid = 0.73 to 0.76. But the peak moves by tens of percent with the values
+# peaks give flexible/rigid = 0.73 to 0.79. But the peak moves by tens of percent with the values
 # the paper leaves open (the sensitivity above: the rod density alone more than doubles it), and
-# the impact sequence is sensitive to small changes (the crank inertia, which cannot matter in exact
-# arithmetic, moves it by ~1%). Our flexible rod does lower the peak, by about a quarter, not by
-# more than half; the unknown density, restitution and rod damping are why we do not claim the
-# paper's factor. We report what we measure.
+# the impact sequence is sensitive to small changes (the crank inertia, which cannot matter in
+# exact arithmetic, moves it by a few percent). Our flexible rod does lower the peak, by about a
+# quarter, not by more than half; the unknown density, restitution and rod damping are why we do
+# not claim the paper's factor. We report what we measure.
 
 # +
 results = {
