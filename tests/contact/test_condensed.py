@@ -1,0 +1,114 @@
+"""The fast path (bore compliance G) against the full DOLFINx Newton solve and against Lame."""
+
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+sys.path.insert(0, str(Path(__file__).parent))
+from test_solver import N_THETA, coarse_problem, rotate  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def paths():
+    from fewear.contact.condensed import CondensedBushingContact
+    from fewear.contact.solver import BushingContactSolver
+
+    full = BushingContactSolver(coarse_problem())
+    return full, CondensedBushingContact(full)
+
+
+def assert_same(full, fast, tolerance=1e-6):
+    scale = full.max_pressure_Pa
+    assert np.abs(fast.pressure_Pa - full.pressure_Pa).max() <= tolerance * scale
+    assert np.linalg.norm(fast.pin_centre_m - full.pin_centre_m) <= tolerance * np.linalg.norm(
+        full.pin_centre_m)
+    np.testing.assert_array_equal(fast.angle_rad, full.angle_rad)
+    np.testing.assert_allclose(fast.resultant_force_N, full.resultant_force_N, rtol=tolerance,
+                               atol=tolerance * np.linalg.norm(full.applied_force_N))
+
+
+LOADS = [  # (force N, rotation increment rad, friction)
+    ((0.0, -20.0), 0.0, False),
+    ((0.0, -12000.0), 0.0, False),
+    ((2500.0, 1700.0), 0.01, True),
+    ((-900.0, -300.0), -0.01, True),
+    ((-900.0, -350.0), -0.01, True),        # warm start from the previous load
+    ((40.0, 160.0), 0.0, False),
+]
+
+
+@pytest.mark.parametrize("force, rotation, friction", LOADS)
+def test_fast_path_reproduces_the_full_solve(paths, force, rotation, friction):
+    full, fast = paths
+    reference = full.solve(force, rotation, friction)
+    result = fast.solve(force, rotation, friction)
+    assert_same(reference, result)
+    assert result.force_balance_rel_error < 1e-8
+
+
+def test_zero_force(paths):
+    _, fast = paths
+    fast.solve((100.0, 0.0))
+    result = fast.solve((0.0, 0.0))
+    assert result.max_pressure_Pa == 0.0
+    np.testing.assert_array_equal(result.pin_centre_m, 0.0)
+
+
+def test_compliance_is_symmetric_and_positive_definite(paths):
+    """Maxwell-Betti reciprocity: G = N K^-1 N^T computed column by column is symmetric."""
+    _, fast = paths
+    G = fast.compliance
+    assert G.shape == (4 * N_THETA, 4 * N_THETA)
+    assert np.abs(G - G.T).max() < 1e-9 * np.abs(G).max()
+    assert np.linalg.eigvalsh(0.5 * (G + G.T)).min() > 0.0
+
+
+def test_uniform_bore_pressure_gives_the_lame_displacement(paths):
+    """A uniform pressure p0 on the bore of the clamped annulus (plane strain): u_r = A r + B/r,
+    u_r(R_o) = 0, sigma_rr(R_b) = -p0, so u_r(R_b) = p0 (R_o^2 - R_b^2) / R_b
+    / (2 (lambda + mu) + 2 mu R_o^2 / R_b^2). The nodal forces are w_q p0 n_q."""
+    full, fast = paths
+    problem = full.problem
+    E, ν = problem.material.youngs_modulus_Pa, problem.material.poisson_ratio
+    λ, μ = E * ν / ((1 + ν) * (1 - 2 * ν)), E / (2 * (1 + ν))
+    R_b, R_o = problem.geometry.inner_radius_m, problem.geometry.outer_radius_m
+    p0 = 1e6
+    expected = p0 * (R_o**2 - R_b**2) / R_b / (2 * (λ + μ) + 2 * μ * R_o**2 / R_b**2)
+    normal = fast.points / np.linalg.norm(fast.points, axis=1)[:, None]
+    forces = (fast.weights_m * p0)[:, None] * normal
+    U = (fast.compliance @ forces.reshape(-1)).reshape(-1, 2)
+    radial = np.einsum("qi,qi->q", U, normal)
+    np.testing.assert_allclose(radial, expected, rtol=2e-4)
+    assert np.abs(np.cross(normal, U)).max() < 1e-6 * expected
+    assert fast.weights_m.sum() == pytest.approx(2 * math.pi * R_b, rel=1e-5)
+
+
+def test_after_moving_the_mesh_both_paths_still_agree():
+    """Turn the mesh by 10 degrees (geometry.x written, as ALE will), update both paths."""
+    from fewear.contact.condensed import CondensedBushingContact
+    from fewear.contact.solver import BushingContactSolver
+
+    full = BushingContactSolver(coarse_problem())
+    fast = CondensedBushingContact(full)
+    force = np.array([-700.0, -1900.0])
+    before = fast.solve(force)
+    turn = math.radians(10.0)
+    x = full.mesh.geometry.x
+    x[:, :2] = np.column_stack([math.cos(turn) * x[:, 0] - math.sin(turn) * x[:, 1],
+                                math.sin(turn) * x[:, 0] + math.cos(turn) * x[:, 1]])
+    fast.update_geometry()
+    turned = rotate(force, turn)
+    result = fast.solve(turned)
+    assert_same(full.solve(turned), result)
+    np.testing.assert_allclose(result.pin_centre_m, rotate(before.pin_centre_m, turn), rtol=1e-7)
+
+
+def test_built_from_a_problem(paths):
+    from fewear.contact.condensed import CondensedBushingContact
+
+    full, _ = paths
+    fast = CondensedBushingContact(coarse_problem())
+    assert_same(full.solve((300.0, -3000.0)), fast.solve((300.0, -3000.0)))
