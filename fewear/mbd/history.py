@@ -14,8 +14,9 @@ pushes the pin back to the centre and ``friction_force_N`` F_t is its component 
 ``rel_omega_rad_s`` is the angular velocity of the pin (rod end) minus that of the bushing.
 
 Modes (``mode``: 0, 1, 2 = ``MODES``):
-- ``free`` (0): penetration <= 0, no contact force;
-- ``impact`` (1): a step of a contact episode (a maximal run of steps with penetration > 0) that
+- ``free`` (0): no contact force (F_n = 0: penetration <= 0, or the surfaces separating faster
+  than the Lankarani-Nikravesh damping allows, where the law's force is clipped at zero);
+- ``impact`` (1): a step of a contact episode (a maximal run of steps with F_n > 0) that
   lasts at most ``impact_max_duration_s``: a collision followed by rebound;
 - ``contact`` (2): a step of a longer episode: the pin stays on the wall (continuous contact).
 For the ideal joint every step is ``contact``, the eccentricity and penetration are zero and F_n
@@ -62,13 +63,13 @@ class JointHistory:
         return float(np.max(np.linalg.norm(self.reaction_force_N, axis=1), initial=0.0))
 
 
-def classify_modes(time_s: np.ndarray, penetration_m: np.ndarray,
+def classify_modes(time_s: np.ndarray, normal_force_N: np.ndarray,
                    impact_max_duration_s: float) -> np.ndarray:
-    """The ``mode`` array of the module docstring from the penetration history.
+    """The ``mode`` array of the module docstring from the normal-force history.
 
     An episode's duration is measured from the step before its first contact step to its last
     contact step (the contact began within that step)."""
-    in_contact = penetration_m > 0.0
+    in_contact = normal_force_N > 0.0
     mode = np.zeros(time_s.size, dtype=int)
     edges = np.diff(np.concatenate([[0], in_contact.astype(int), [0]]))
     starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)

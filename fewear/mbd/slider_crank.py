@@ -362,7 +362,7 @@ def _history(rows, impact_max_duration_s: float, ideal: bool) -> JointHistory:
     if ideal:
         mode = np.full(time_s.size, 2, dtype=int)
     else:
-        mode = classify_modes(time_s, penetration, impact_max_duration_s)
+        mode = classify_modes(time_s, column("normal_force_N"), impact_max_duration_s)
     return JointHistory(
         time_s=time_s,
         crank_angle_rad=np.array([r[1] for r in rows]),
