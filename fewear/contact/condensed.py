@@ -51,6 +51,8 @@ from fewear.contact.solver import (
     checked_rotation,
     first_touch_centre,
     nodal_result,
+    polar_update,
+    slide_limit,
     solve_by_contact_angle,
     unit,
 )
@@ -340,11 +342,11 @@ class CondensedBushingContact:
         dU = self.compliance[:, support] @ dg[support]
         slope = float((g0 - f.reshape(-1)) @ dU) + float((f.sum(axis=0) - load) @ dc)
         energy0 = self._energy(g0, U0, c0, load)
-        step = min(cap, self._slide_limit(dc, U0))
+        step = min(cap, slide_limit(c0, dc, self.problem))
         keeps_contact = None
         while step >= 2.0**-10:
             U = U0 + step * dU
-            c = c0 + step * dc
+            c = polar_update(c0, step * dc)
             if self._max_penetration(U, c) == 0.0:
                 step *= 0.5
                 continue
@@ -359,18 +361,10 @@ class CondensedBushingContact:
         step = keeps_contact if keeps_contact is not None else step
         self._g = g0 + step * dg
         self._U = U0 + step * dU
-        self.pin_centre_m = c0 + step * dc
+        self.pin_centre_m = polar_update(c0, step * dc)
         return dU
 
     def _max_penetration(self, U: np.ndarray, c: np.ndarray | None = None) -> float:
         d = self.points + U.reshape(-1, 2) - (self.pin_centre_m if c is None else c)
         return float(max(self.problem.geometry.pin_radius_m - np.hypot(d[:, 0], d[:, 1]).min(),
                          0.0))
-
-    def _slide_limit(self, dc: np.ndarray, U: np.ndarray) -> float:
-        """The full path's limit |dc . t| <= sqrt(c delta / 2) on the pin's slide per step."""
-        clearance = self.problem.geometry.clearance_m
-        radial = self.pin_centre_m / max(np.linalg.norm(self.pin_centre_m), 1e-300)
-        tangential = abs(radial[0] * dc[1] - radial[1] * dc[0])
-        limit = math.sqrt(0.5 * clearance * self._max_penetration(U))
-        return min(1.0, limit / tangential) if tangential > 0.0 else 1.0

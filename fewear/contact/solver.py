@@ -44,8 +44,8 @@ F = 0 exactly: no contact; the pin is returned centred (c = 0), u = 0, zero pres
 Newton: semi-smooth (the active set follows the iterates), warm-started from the previous solve
 (its pin centre turned onto the new contact direction); a cold start places the pin along the
 expected contact direction at first touch plus a penetration that brings +-3 elements into contact.
-Globalisation: the pin may slide along the bore by at most sqrt(c delta/2) per step, a step never
-loses all contact, Armijo backtracking on the penalty potential (frictionless), and a step cap that
+Globalisation: the pin's tangential update is applied as a turn about the bushing centre (it
+slides around the bore), by at most one bore element per step; a step never loses all contact, Armijo backtracking on the penalty potential (frictionless), and a step cap that
 halves when the active set alternates (:class:`NewtonControl`, which also holds the stopping test).
 
 Forms are compiled once per mesh; load, pin centre, penalty and friction are ``fem.Constant``s.
@@ -81,7 +81,7 @@ CONTACT_QUADRATURE = {"quadrature_degree": 3, "quadrature_rule": "GLL"}
 WARM_START_MAX_ANGLE_RAD = math.radians(20.0)
 
 # Iterations of the coupled Newton on (u, c) before the fallback on the pin angle takes over.
-COUPLED_ITERATIONS = 25
+COUPLED_ITERATIONS = 12
 # ... or as soon as its step cap against active-set alternation has fallen below this.
 CYCLE_CAP = 0.2
 
@@ -207,7 +207,8 @@ class NewtonControl:
     same rounding level.
     Semi-smooth Newton can alternate between two active sets around a node that is just entering
     contact; when the active set (measured by its length) returns to the one of two iterations
-    before, the step cap is halved, which turns the alternation into a converging bisection.
+    before, the step cap is halved, which turns the alternation into a converging bisection; it
+    is lifted again as soon as the active set stays the same (full Newton steps converge then).
     """
 
     def __init__(self, settings, pin_radius_m: float):
@@ -219,6 +220,8 @@ class NewtonControl:
     def step_cap(self, active: float) -> float:
         if len(self.history) >= 2 and active == self.history[-2] != self.history[-1]:
             self.cap *= 0.5
+        elif self.history and active == self.history[-1]:
+            self.cap = 1.0
         self.history.append(active)
         return self.cap
 
@@ -232,6 +235,30 @@ def unit(angle: float) -> np.ndarray:
     return np.array([math.cos(angle), math.sin(angle)])
 
 
+def polar_update(centre: np.ndarray, dc: np.ndarray) -> np.ndarray:
+    """The pin centre after the Newton update dc, its tangential part applied as a turn about
+    the bushing centre: c' = (|c| + dc.e_r) e_r turned by (dc.e_t)/|c|. The pin then slides
+    around the bore instead of along a tangent, which would change its radial position by
+    (dc.e_t)^2 / (2|c|), far more than the penetrations; it equals c + dc to second order."""
+    radius = float(np.linalg.norm(centre))
+    if radius == 0.0:
+        return centre + dc
+    radial = centre / radius
+    tangential = radial[0] * dc[1] - radial[1] * dc[0]
+    return (radius + float(radial @ dc)) * unit(math.atan2(radial[1], radial[0])
+                                               + tangential / radius)
+
+
+def slide_limit(centre: np.ndarray, dc: np.ndarray, problem: ContactProblem) -> float:
+    """Step factor that lets the pin turn by at most one bore element, h / R_b, per step."""
+    radius = float(np.linalg.norm(centre))
+    if radius == 0.0:
+        return 1.0
+    tangential = abs(centre[0] * dc[1] - centre[1] * dc[0]) / radius
+    limit = radius * problem.mesh.bore_element_size_m / problem.geometry.inner_radius_m
+    return min(1.0, limit / tangential) if tangential > 0.0 else 1.0
+
+
 def solve_by_contact_angle(inner, pin_residual, direction: np.ndarray, load: np.ndarray,
                            max_iterations: int) -> int:
     """The fallback when the coupled Newton cycles: the pin angle psi as an outer unknown.
@@ -243,12 +270,12 @@ def solve_by_contact_angle(inner, pin_residual, direction: np.ndarray, load: np.
     psi overall (slope about |F|/L for a rigid pin), though only piecewise between the angles
     where nodes enter contact. So: step against tau, doubling the step until tau changes sign
     (the first step is the rigid estimate -tau L/|F|, at least 1e-4 rad), then the Illinois
-    variant of regula falsi on the bracket until it is 1e-13 rad wide (the pin centre to
-    ~1e-16 m) or |tau| <= 1e-10 |F|/L. The state is left at the last angle evaluated (inside the final
+    variant of regula falsi on the bracket until it is 1e-12 rad wide (the pin centre to
+    ~1e-15 m) or |tau| <= 1e-9 |F|/L (about the rounding level of the penalty forces). The state is left at the last angle evaluated (inside the final
     bracket). Returns the inner iterations.
     """
     total = 0
-    tolerance = 1e-10 * float(np.linalg.norm(load))
+    tolerance = 1e-9 * float(np.linalg.norm(load))
 
     def tangential_residual(ψ: float) -> float:
         nonlocal total
@@ -271,7 +298,7 @@ def solve_by_contact_angle(inner, pin_residual, direction: np.ndarray, load: np.
     else:
         return total
     ψ, τ, side = ψ1, τ1, 0
-    while abs(τ) > tolerance and abs(ψ1 - ψ0) > 1e-13:
+    while abs(τ) > tolerance and abs(ψ1 - ψ0) > 1e-12:
         iterations += 1
         if iterations > max_iterations:
             raise RuntimeError(f"contact angle iteration did not converge (load {load} N/m)")
@@ -531,8 +558,8 @@ class BushingContactSolver:
     def _line_search(self, du, dc, r_pin, load, cap: float = 1.0) -> float:
         """Step length along the Newton direction (du, dc); updates u and c and returns it.
 
-        Starts from the smaller of ``cap`` and the slide limit (:meth:`_slide_limit`), halves the step while the trial
-        loses all contact, and, for a descent direction, backtracks (Armijo, at most 2^-6) on the
+        The pin moves by :func:`polar_update`. Starts from the smaller of ``cap`` and
+        :func:`slide_limit`, halves the step while the trial loses all contact, and, for a descent direction, backtracks (Armijo, at most 2^-6) on the
         penalty potential :meth:`_energy`. At rounding level near convergence, or with friction
         (not a potential), the first contact-keeping step is taken.
         """
@@ -544,13 +571,13 @@ class BushingContactSolver:
         rhs.array_w[self._bc_local] = 0.0
         slope = rhs.dot(du) + float(r_pin @ dc)
         energy0 = self._energy(load)
-        step, taken = min(cap, self._slide_limit(dc)), 0.0
+        step, taken = min(cap, slide_limit(c0, dc, self.problem)), 0.0
         keeps_contact = None
         while True:
             u.vector.axpy(step - taken, du)
             u.x.scatter_forward()
             taken = step
-            self.pin_centre_m = c0 + step * dc
+            self.pin_centre_m = polar_update(c0, step * dc)
             self.pin_centre.value = self.pin_centre_m
             if step < 2.0**-10:
                 return step
@@ -566,21 +593,9 @@ class BushingContactSolver:
             step *= 0.5
         u.vector.axpy(keeps_contact - taken, du)
         u.x.scatter_forward()
-        self.pin_centre_m = c0 + keeps_contact * dc
+        self.pin_centre_m = polar_update(c0, keeps_contact * dc)
         self.pin_centre.value = self.pin_centre_m
         return keeps_contact
-
-    def _slide_limit(self, dc: np.ndarray) -> float:
-        """Step factor that limits the pin's slide along the bore to |dc . t| <= sqrt(c delta/2)
-        (t normal to the line of centres, delta the largest penetration): a slide s changes the
-        gap at the edge of a contact arc of half-angle theta_a = sqrt(2 delta/c) by s theta_a,
-        so this keeps the arc. Within a fixed active set the pin's tangential stiffness is only
-        the small geometric one (p/r): unlimited tangential steps overshoot."""
-        clearance = self.problem.geometry.clearance_m
-        radial = self.pin_centre_m / max(np.linalg.norm(self.pin_centre_m), 1e-300)
-        tangential = abs(radial[0] * dc[1] - radial[1] * dc[0])
-        limit = math.sqrt(0.5 * clearance * self._max_penetration())
-        return min(1.0, limit / tangential) if tangential > 0.0 else 1.0
 
     def _assemble_contact(self, load: np.ndarray, jacobian: bool = True) -> np.ndarray:
         """Assemble r (contact residual) and, if asked, J; return the pin residual
