@@ -1,0 +1,37 @@
+"""Figures of the wear prediction: wear depth around the bore (seed Fig. 7a)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def plot_wear_profiles(profiles: dict, path, cycles: float) -> None:
+    """Wear depth (um) against bore angle, and the bore outline with the wear exaggerated.
+
+    ``profiles``: label -> (angle_rad, depth_m) of nodes sorted by angle.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure = plt.figure(figsize=(11, 4.5))
+    unrolled = figure.add_subplot(1, 2, 1)
+    polar = figure.add_subplot(1, 2, 2, projection="polar")
+    peak = max(float(np.max(depth)) for _, depth in profiles.values()) or 1.0
+    for label, (angle, depth) in profiles.items():
+        unrolled.plot(np.degrees(angle), 1e6 * depth, label=f"{label} rod")
+        closed = np.append(angle, angle[0] + 2 * np.pi)
+        polar.plot(closed, 1.0 + 0.3 * np.append(depth, depth[0]) / peak, label=f"{label} rod")
+    polar.plot(np.linspace(0, 2 * np.pi, 361), np.ones(361), "k:", lw=0.8, label="unworn bore")
+    polar.set_yticklabels([])
+    polar.set_title("bore outline, wear exaggerated", fontsize=10)
+    unrolled.set(xlabel="angle on the bore from the slide axis x (deg)",
+                 ylabel="wear depth (um)", xlim=(0, 360),
+                 title=f"wear depth after {cycles:.0f} crank cycles")
+    unrolled.set_xticks(range(0, 361, 45))
+    unrolled.grid(alpha=0.3)
+    unrolled.legend()
+    figure.tight_layout()
+    figure.savefig(path, dpi=120)
+    plt.close(figure)
