@@ -397,7 +397,9 @@ class BushingContactSolver:
         self._rhs = [self._r.duplicate() for _ in range(3)]
         self._sol = [self._r.duplicate() for _ in range(3)]
         self._work = [self._r.duplicate() for _ in range(4)]
-        self._bc_local = self._bc.dof_indices()[0][: self._bc.dof_indices()[1]]
+        owned_size = self.V.dofmap.index_map.size_local * self.V.dofmap.index_map_bs
+        bc_dofs = self._bc.dof_indices()[0]
+        self._bc_local = bc_dofs[bc_dofs < owned_size]  # owned outer dofs (unrolled)
 
     def _normal(self, deformed):
         d = deformed - self.pin_centre
