@@ -112,3 +112,66 @@ def test_built_from_a_problem(paths):
     full, _ = paths
     fast = CondensedBushingContact(coarse_problem())
     assert_same(full.solve((300.0, -3000.0)), fast.solve((300.0, -3000.0)))
+
+
+MPI_SCRIPT = """
+import sys
+import numpy as np
+from mpi4py import MPI
+sys.path.insert(0, {tests!r})
+from test_solver import coarse_problem
+from fewear.contact.condensed import CondensedBushingContact
+from fewear.contact.solver import BushingContactSolver
+
+full = BushingContactSolver(coarse_problem(), MPI.COMM_WORLD)
+fast = CondensedBushingContact(full)
+out = {{}}
+for k, (force, rotation, friction) in enumerate({loads!r}):
+    for name, path in (("full", full), ("fast", fast)):
+        result = path.solve(force, rotation, friction)
+        for key in ("angle_rad", "pressure_Pa", "gap_m", "pin_centre_m", "resultant_force_N"):
+            value = getattr(result, key)
+            assert all(np.array_equal(value, other) for other in MPI.COMM_WORLD.allgather(value))
+            out[f"{{name}}{{k}}_{{key}}"] = value
+if MPI.COMM_WORLD.rank == 0:
+    np.savez({out!r}, **out)
+"""
+
+
+@pytest.mark.mpi
+def test_two_ranks_give_the_serial_result(tmp_path):
+    """Both paths under mpirun -n 2 (every rank holding the same gathered result) equal the
+    serial run to 1e-8 of the peak pressure and of the pin centre."""
+    import os
+    import shutil
+    import subprocess
+
+    mpirun = shutil.which("mpirun")
+    if mpirun is None:
+        pytest.skip("mpirun not found")
+    loads = [((-450.0, 700.0), 0.0, False), ((0.0, -3000.0), 0.01, True)]
+    env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+           "OMPI_MCA_rmaps_base_oversubscribe": "1"}
+    results = {}
+    for ranks in (1, 2):
+        out = tmp_path / f"ranks{ranks}.npz"
+        script = tmp_path / f"run{ranks}.py"
+        script.write_text(MPI_SCRIPT.format(tests=str(Path(__file__).parent), loads=loads,
+                                            out=str(out)))
+        command = [sys.executable, str(script)]
+        if ranks > 1:
+            command = [mpirun, "-n", str(ranks), *command]
+        process = subprocess.run(command, capture_output=True, text=True, timeout=600, env=env)
+        assert process.returncode == 0, process.stderr[-2000:]
+        results[ranks] = np.load(out)
+    serial, parallel = results[1], results[2]
+    for k in range(len(loads)):
+        for name in ("full", "fast"):
+            key = f"{name}{k}_"
+            np.testing.assert_array_equal(serial[key + "angle_rad"], parallel[key + "angle_rad"])
+            peak = serial[key + "pressure_Pa"].max()
+            assert np.abs(serial[key + "pressure_Pa"] - parallel[key + "pressure_Pa"]).max() < (
+                1e-8 * peak)
+            centre = serial[key + "pin_centre_m"]
+            assert np.linalg.norm(centre - parallel[key + "pin_centre_m"]) < 1e-8 * np.linalg.norm(
+                centre)
