@@ -45,8 +45,14 @@ Newton: semi-smooth (the active set follows the iterates), warm-started from the
 (its pin centre turned onto the new contact direction); a cold start places the pin along the
 expected contact direction at first touch plus a penetration that brings +-3 elements into contact.
 Globalisation: the pin's tangential update is applied as a turn about the bushing centre (it
-slides around the bore), by at most one bore element per step; a step never loses all contact, Armijo backtracking on the penalty potential (frictionless), and a step cap that
-halves when the active set alternates (:class:`NewtonControl`, which also holds the stopping test).
+slides around the bore), by at most one bore element per step; a step never loses all contact;
+Armijo backtracking on the penalty potential (frictionless); a step cap that halves when the
+active set alternates (:class:`NewtonControl`, which also holds the stopping test).
+When only a few nodes carry the load (light loads: the pin rests on one or two nodes) the pin's
+sliding mode is nearly free within a fixed active set and this coupled iteration may not settle;
+after ``COUPLED_ITERATIONS`` (or a persistent alternation) :func:`solve_by_contact_angle` takes
+over: the pin angle becomes an outer unknown found by bracketing, each inner problem (pin on a
+fixed ray) being a well-posed Newton problem. ``newton_iterations`` counts all iterations.
 
 Forms are compiled once per mesh; load, pin centre, penalty and friction are ``fem.Constant``s.
 After the bore has been moved (``mesh.geometry.x`` written, ALE), call :meth:`update_geometry`.
@@ -271,8 +277,9 @@ def solve_by_contact_angle(inner, pin_residual, direction: np.ndarray, load: np.
     where nodes enter contact. So: step against tau, doubling the step until tau changes sign
     (the first step is the rigid estimate -tau L/|F|, at least 1e-4 rad), then the Illinois
     variant of regula falsi on the bracket until it is 1e-12 rad wide (the pin centre to
-    ~1e-15 m) or |tau| <= 1e-9 |F|/L (about the rounding level of the penalty forces). The state is left at the last angle evaluated (inside the final
-    bracket). Returns the inner iterations.
+    ~1e-15 m) or |tau| <= 1e-9 |F|/L (about the rounding level of the penalty forces). The
+    state is left at the last angle evaluated (inside the final bracket). Returns the inner
+    iterations.
     """
     total = 0
     tolerance = 1e-9 * float(np.linalg.norm(load))
@@ -561,8 +568,9 @@ class BushingContactSolver:
         """Step length along the Newton direction (du, dc); updates u and c and returns it.
 
         The pin moves by :func:`polar_update`. Starts from the smaller of ``cap`` and
-        :func:`slide_limit`, halves the step while the trial loses all contact, and, for a descent direction, backtracks (Armijo, at most 2^-6) on the
-        penalty potential :meth:`_energy`. At rounding level near convergence, or with friction
+        :func:`slide_limit`, halves the step while the trial loses all contact, and, for a
+        descent direction, backtracks (Armijo, at most 2^-6) on the penalty potential
+        :meth:`_energy`. At rounding level near convergence, or with friction
         (not a potential), the first contact-keeping step is taken.
         """
         u = self.displacement

@@ -64,7 +64,8 @@ def test_fast_path_speed_up_on_the_reference_mesh():
         worst_p, worst_c = max(worst_p, dp), max(worst_c, dc)
         print(f"{step:4d} {np.linalg.norm(force):8.1f} {times_full[-1]:8.3f} "
               f"{1e3 * times_fast[-1]:8.2f} {times_full[-1] / times_fast[-1]:6.0f} "
-              f"{reference.newton_iterations:3d}/{result.newton_iterations:<3d} {dp:9.1e} {dc:9.1e}")
+              f"{reference.newton_iterations:3d}/{result.newton_iterations:<3d} "
+              f"{dp:9.1e} {dc:9.1e}")
     mean_full, mean_fast = np.mean(times_full), np.mean(times_fast)
     print(f"mean per load step: full {mean_full:.3f} s, fast {1e3 * mean_fast:.2f} ms, "
           f"ratio {mean_full / mean_fast:.0f}x (sum over the cycle: "
