@@ -49,15 +49,14 @@ class ClearanceJoint:
 
     # --- kinematics ---------------------------------------------------------------------------
     def _kinematics(self, q_b, qd_b):
-        qp, qb = q_b[: self._np], q_b[self._np:]
-        qdp, qdb = qd_b[: self._np], qd_b[self._np:]
-        G_p, G_b = self.pin.jacobian(qp), self.bushing.jacobian(qb)
-        g_p, g_b = self.pin.angle_gradient(qp), self.bushing.angle_gradient(qb)
-        e = self.pin.position(qp) - self.bushing.position(qb)
-        e_dot = G_p @ qdp - G_b @ qdb
-        z = np.array([e[0], e[1], e_dot[0], e_dot[1], g_p @ qdp, g_b @ qdb,
-                      self.bushing.angle(qb)])
-        return z, (qp, qb, G_p, G_b, g_p, g_b)
+        """(z, pin coordinates, bushing coordinates): z = (e, e', omega_pin, omega_bushing,
+        phi_bushing) as floats, the coordinates as lists of floats (scalar arithmetic)."""
+        q, qd = q_b.tolist(), qd_b.tolist()
+        n = self._np
+        qp, qb = q[:n], q[n:]
+        xp, yp, vxp, vyp, _, omega_p = self.pin.motion(qp, qd[:n])
+        xb, yb, vxb, vyb, phi_b, omega_b = self.bushing.motion(qb, qd[n:])
+        return (xp - xb, yp - yb, vxp - vxb, vyp - vyb, omega_p, omega_b, phi_b), qp, qb
 
     def gap(self, z):
         """(delta, delta_dot, theta, d): penetration (m, > 0 in contact), its rate, direction."""
@@ -71,44 +70,51 @@ class ClearanceJoint:
         theta_dot = (-edx * ny + edy * nx) / d - omega_b
         return d - c, edx * nx + edy * ny - dc * theta_dot, theta, d
 
-    def local_forces(self, z, impact_velocity_m_s: float):
-        """(f (2), F_n, F_t, D): the force on the pin, and D = d(f1, f2, F_t)/dz (3, 7).
-
-        Scalar arithmetic on the 2-vectors n, t (this runs in every Newton iteration)."""
-        ex, ey, edx, edy = z[0], z[1], z[2], z[3]
-        omega_p, omega_b, phi_b = z[4], z[5], z[6]
+    def local_forces(self, z, impact_velocity_m_s: float, derivatives: bool = True):
+        """((f1, f2), F_n, F_t, D): the force on the pin, and D = d(f1, f2, F_t)/dz (3, 7), None
+        if not ``derivatives``. Scalar arithmetic (this runs in every Newton iteration)."""
+        ex, ey, edx, edy, omega_p, omega_b, phi_b = z
         d = math.hypot(ex, ey)
-        if d == 0.0:
-            return np.zeros(2), 0.0, 0.0, np.zeros((3, 7))
-        theta = math.atan2(ey, ex) - phi_b
-        c, dc = self.profile(theta)
-        delta = d - c
+        delta = -1.0
+        if d > 0.0:
+            c, dc = self.profile(math.atan2(ey, ex) - phi_b)
+            delta = d - c
         if delta <= 0.0:
-            return np.zeros(2), 0.0, 0.0, np.zeros((3, 7))
+            return (0.0, 0.0), 0.0, 0.0, np.zeros((3, 7)) if derivatives else None
         nx, ny = ex / d, ey / d
         tx, ty = -ny, nx
         e_n, e_t = edx * nx + edy * ny, edx * tx + edy * ty
-        theta_dot = e_t / d - omega_b
-        rate = e_n - dc * theta_dot
+        rate = e_n - dc * (e_t / d - omega_b)
         F_n, dF_ddelta, dF_drate = self.law.normal_force(delta, rate, impact_velocity_m_s)
-        # derivatives of delta and rate with respect to z (c'' = 0: linear profile pieces);
-        # dn/de = t t^T / d, dt/de = -n t^T / d, dtheta_dot/de = -(e_n t + e_t n) / d^2
+        psi, dpsi = self.friction.factor(e_t + self.pin_radius * omega_p
+                                         - self.bushing_radius * omega_b)
+        F_t = -self.friction.coefficient * psi * F_n
+        f = (-F_n * nx + F_t * tx, -F_n * ny + F_t * ty)
+        if not derivatives:
+            return f, F_n, F_t, None
+        D = self._force_derivatives((d, nx, ny, e_n, e_t, dc), F_n, F_t, dF_ddelta, dF_drate,
+                                    psi, dpsi)
+        return f, F_n, F_t, D
+
+    def _force_derivatives(self, geometry, F_n, F_t, dF_ddelta, dF_drate, psi, dpsi):
+        """D = d(f1, f2, F_t)/dz (3, 7) at the contact ``geometry`` = (d, n, e'.n, e'.t, c').
+
+        Derivatives of delta and rate with respect to z (c'' = 0: linear profile pieces):
+        dn/de = t t^T / d, dt/de = -n t^T / d, dtheta_dot/de = -(e_n t + e_t n) / d^2."""
+        d, nx, ny, e_n, e_t, dc = geometry
+        tx, ty = -ny, nx
         rx, ry = nx - dc * tx / d, ny - dc * ty / d
         dthx, dthy = -(e_n * tx + e_t * nx) / d**2, -(e_n * ty + e_t * ny) / d**2
         ddelta = np.array([rx, ry, 0.0, 0.0, 0.0, 0.0, dc])
         drate = np.array([e_t * tx / d - dc * dthx, e_t * ty / d - dc * dthy, rx, ry, 0.0, dc,
                           0.0])
         dF_n = dF_ddelta * ddelta + dF_drate * drate
-        slip = e_t + self.pin_radius * omega_p - self.bushing_radius * omega_b
-        psi, dpsi = self.friction.factor(slip)
         mu = self.friction.coefficient
-        F_t = -mu * psi * F_n
         dF_t = -mu * psi * dF_n
         if dpsi != 0.0:
             dslip = np.array([-e_n * tx / d, -e_n * ty / d, tx, ty, self.pin_radius,
                               -self.bushing_radius, 0.0])
             dF_t -= mu * F_n * dpsi * dslip
-        f = np.array([-F_n * nx + F_t * tx, -F_n * ny + F_t * ty])
         D = np.empty((3, 7))
         D[0] = -nx * dF_n + tx * dF_t
         D[1] = -ny * dF_n + ty * dF_t
@@ -118,20 +124,30 @@ class ClearanceJoint:
         D[0, 1] += (a * tx + b * nx) * ty
         D[1, 0] += (a * ty + b * ny) * tx
         D[1, 1] += (a * ty + b * ny) * ty
-        return f, F_n, F_t, D
+        return D
 
     # --- force element interface -------------------------------------------------------------
-    def evaluate(self, q_b, qd_b, t):
-        z, (qp, qb, G_p, G_b, g_p, g_b) = self._kinematics(q_b, qd_b)
+    def evaluate(self, q_b, qd_b, t, jacobian: bool = True):
+        """(Q, dQ/dq, dQ/dq'); the derivatives are None without contact force or ``jacobian``."""
+        z, qp, qb = self._kinematics(q_b, qd_b)
         v_imp = self.impact_velocity_m_s if self.in_contact else self._candidate_velocity
-        f, F_n, F_t, D = self.local_forces(z, v_imp)
+        f, F_n, F_t, D = self.local_forces(z, v_imp, jacobian)
+        if F_n == 0.0:
+            return np.zeros(len(self.indices)), None, None
+        fx, fy = f
+        Q = np.array(self.pin.generalized_force(qp, fx, fy, self.pin_radius * F_t)
+                     + self.bushing.generalized_force(qb, -fx, -fy, -self.bushing_radius * F_t))
+        if not jacobian:
+            return Q, None, None
+        K, C = self._force_jacobians(qp, qb, f, D)
+        return Q, K, C
+
+    def _force_jacobians(self, qp, qb, f, D):
+        """(dQ/dq, dQ/dq') = (B D dz/dq + geometric stiffness, B D dz/dq') with B = dQ/d(f, F_t)."""
+        G_p, G_b = self.pin.jacobian(qp), self.bushing.jacobian(qb)
+        g_p, g_b = self.pin.angle_gradient(qp), self.bushing.angle_gradient(qb)
         n_p = self._np
         k = len(self.indices)
-        Q = np.empty(k)
-        Q[:n_p] = G_p.T @ f + self.pin_radius * F_t * g_p
-        Q[n_p:] = -G_b.T @ f - self.bushing_radius * F_t * g_b
-        if F_n == 0.0:
-            return Q, None, None
         B = np.zeros((k, 3))
         B[:n_p, :2], B[:n_p, 2] = G_p.T, self.pin_radius * g_p
         B[n_p:, :2], B[n_p:, 2] = -G_b.T, -self.bushing_radius * g_b
@@ -142,22 +158,22 @@ class ClearanceJoint:
         Z_qd[4, :n_p], Z_qd[5, n_p:] = g_p, g_b
         BD = B @ D
         K = BD @ Z_q
-        diagonal = np.arange(len(self.indices))
+        diagonal = np.arange(k)
         K[diagonal, diagonal] += np.concatenate([self.pin.hessian(qp, f),
                                                  -self.bushing.hessian(qb, f)])
-        return Q, K, BD @ Z_qd
+        return K, BD @ Z_qd
 
     def begin_step(self, q, qd):
         """Remember the approach velocity at the start of a step (the impact velocity if the
         contact begins in this step)."""
-        z, _ = self._kinematics(q[self.indices], qd[self.indices])
+        z, _, _ = self._kinematics(q[self.indices], qd[self.indices])
         delta, rate, _, _ = self.gap(z)
         self.in_contact = delta > 0.0
         if not self.in_contact:
             self._candidate_velocity = rate
 
     def end_step(self, q, qd):
-        z, _ = self._kinematics(q[self.indices], qd[self.indices])
+        z, _, _ = self._kinematics(q[self.indices], qd[self.indices])
         delta = self.gap(z)[0]
         if delta > 0.0 and not self.in_contact:
             self.impact_velocity_m_s = self._candidate_velocity
@@ -166,34 +182,27 @@ class ClearanceJoint:
         """(local error estimate of e (m), delta at step start, delta at step end).
 
         The estimate is h^2/6 |e''_{n+1} - e''_n|, i.e. h^3 |e'''| / 6, the size of the leading
-        local error term of a second-order scheme on the pin-centre eccentricity."""
+        local error term of a second-order scheme on the pin-centre eccentricity; e'' is taken as
+        G_pin q''_pin - G_bushing q''_bushing (the kinematics with q'' in place of q')."""
         idx = self.indices
-        n_p = self._np
-        acc = []
-        gaps = []
-        for q, qdd in ((q_old, qdd_old), (q_new, qdd_new)):
-            q_b, qdd_b = q[idx], qdd[idx]
-            qp, qb = q_b[:n_p], q_b[n_p:]
-            acc.append(self.pin.jacobian(qp) @ qdd_b[:n_p]
-                       - self.bushing.jacobian(qb) @ qdd_b[n_p:])
-            z, _ = self._kinematics(q_b, np.zeros_like(q_b))
-            gaps.append(self.gap(z)[0])
-        error = h * h / 6.0 * float(np.linalg.norm(acc[1] - acc[0]))
-        return error, gaps[0], gaps[1]
+        z_old, _, _ = self._kinematics(q_old[idx], qdd_old[idx])
+        z_new, _, _ = self._kinematics(q_new[idx], qdd_new[idx])
+        error = h * h / 6.0 * math.hypot(z_new[2] - z_old[2], z_new[3] - z_old[3])
+        return error, self.gap(z_old)[0], self.gap(z_new)[0]
 
     # --- output ---------------------------------------------------------------------------------
     def measure(self, q, qd):
         """Joint quantities in the bushing frame at (q, q'): see :class:`JointHistory`."""
-        z, _ = self._kinematics(q[self.indices], qd[self.indices])
+        z, _, _ = self._kinematics(q[self.indices], qd[self.indices])
         v_imp = self.impact_velocity_m_s if self.in_contact else self._candidate_velocity
-        f, F_n, F_t, _ = self.local_forces(z, v_imp)
+        f, F_n, F_t, _ = self.local_forces(z, v_imp, derivatives=False)
         delta = self.gap(z)[0]
         to_bushing = rotation(z[6]).T
         return {
-            "eccentricity_m": to_bushing @ z[0:2],
+            "eccentricity_m": to_bushing @ np.array(z[0:2]),
             "penetration_m": max(delta, 0.0),
             "normal_force_N": F_n,
             "friction_force_N": F_t,
-            "reaction_force_N": to_bushing @ f,
+            "reaction_force_N": to_bushing @ np.array(f),
             "rel_omega_rad_s": z[4] - z[5],
         }

@@ -1,10 +1,21 @@
-"""Holonomic constraints Phi(q, t) = 0 of planar mechanisms, with analytic Jacobians.
+"""Holonomic constraints Phi(q, t) = 0 of planar mechanisms, evaluated all at once.
 
-Each constraint has ``n_rows``, the system ``indices`` it touches, and for its local coordinates
-``q_b``: ``value(q_b, t)``, ``jacobian(q_b)`` (rows x k), ``value_and_jacobian(q_b, t)``,
-``time_derivative(t)`` (Phi_t), ``hessian(q_b, lam)`` = the diagonal (k,) of d(Phi_q^T lam)/dq_b
-(diagonal for these planar constraints) and ``convective(q_b, qd_b)`` = (dPhi_q/dt) qd_b, so that
-the acceleration constraint reads Phi_q qdd = -convective - Phi_tt (Phi_tt = 0 here).
+The constraint classes describe rows; :class:`ConstraintSet` evaluates every row of a system in a
+few vectorised NumPy operations (the Newton iteration calls it once per iteration, so the cost is
+the number of NumPy calls, not the arithmetic). Every constraint here has the form
+
+    Phi(q, t) = D q + c0 + c1 t + R w(q),   w = the rotated offsets A(phi_p) u_p of rigid points,
+
+with constant D, c0, c1 and a constant 0/1 matrix R that adds each rotated offset to the two rows of
+its joint: a revolute joint's rows are r_a - r_b with r = r0 + G0 q_b + A(phi) u (see
+:mod:`fewear.mbd.points`), a linear constraint's rows are C q_b - (d0 + d1 t). With the offset
+written as the complex number w_p = (u_p0 + i u_p1) exp(i phi_p):
+
+- Jacobian Phi_q = D plus, in the column of phi_p, dw_p/dphi_p = i w_p (rows of its joint);
+- d(Phi_q^T lambda)/dq is diagonal, -lambda_j . w_p in the column of phi_p (lambda_j: the joint's
+  two multipliers);
+- Phi_t = c1 (constant) and (dPhi_q/dt) q' = -phi_p'^2 w_p in the joint's rows (convective term of
+  the acceleration constraint Phi_q q'' = -(dPhi_q/dt) q' - Phi_tt, Phi_tt = 0).
 """
 
 from __future__ import annotations
@@ -16,64 +27,19 @@ class Revolute:
     """Ideal revolute joint: the points ``a`` and ``b`` coincide, Phi = r_a - r_b (2 rows)."""
 
     n_rows = 2
-    nonlinear = True
 
     def __init__(self, a, b):
         self.a, self.b = a, b
-        self._na = len(a.indices)
         self.indices = np.concatenate([a.indices, b.indices])
-        self._jac = np.zeros((2, len(self.indices)))
-
-    def _split(self, q_b):
-        return q_b[: self._na], q_b[self._na:]
-
-    def value(self, q_b, t):
-        qa, qb = self._split(q_b)
-        return self.a.position(qa) - self.b.position(qb)
-
-    def value_and_jacobian(self, q_b, t):
-        qa, qb = self._split(q_b)
-        jac = self._jac
-        jac[:, : self._na] = self.a.jacobian(qa)
-        jac[:, self._na:] = -self.b.jacobian(qb)
-        return self.a.position(qa) - self.b.position(qb), jac
-
-    def jacobian(self, q_b):
-        qa, qb = self._split(q_b)
-        jac = self._jac
-        jac[:, : self._na] = self.a.jacobian(qa)
-        jac[:, self._na:] = -self.b.jacobian(qb)
-        return jac
-
-    def time_derivative(self, t):
-        return np.zeros(2)
-
-    def hessian(self, q_b, lam):
-        qa, qb = self._split(q_b)
-        return np.concatenate([self.a.hessian(qa, lam), -self.b.hessian(qb, lam)])
-
-    def convective(self, q_b, qd_b):
-        qa, qb = self._split(q_b)
-        qda, qdb = self._split(qd_b)
-        return self.a.convective(qa, qda) - self.b.convective(qb, qdb)
 
 
 class _LinearConstraint:
-    """Constraints linear in q: Phi = C q_b - d(t)."""
+    """Constraints linear in q: Phi = C q_b - (d0 + d1 t) with constant C (rows, k), d0, d1."""
 
-    nonlinear = False
-
-    def hessian(self, q_b, lam):
-        return np.zeros(len(self.indices))
-
-    def convective(self, q_b, qd_b):
-        return np.zeros(self.n_rows)
-
-    def jacobian(self, q_b):
-        return self._C
-
-    def value_and_jacobian(self, q_b, t):
-        return self.value(q_b, t), self._C
+    def _set(self, C, d0, d1):
+        self._C = np.asarray(C, dtype=float)
+        self.d0 = np.asarray(d0, dtype=float)
+        self.d1 = np.asarray(d1, dtype=float)
 
 
 class PrismaticX(_LinearConstraint):
@@ -83,14 +49,7 @@ class PrismaticX(_LinearConstraint):
 
     def __init__(self, first_index: int, y_m: float = 0.0, angle_rad: float = 0.0):
         self.indices = np.arange(first_index + 1, first_index + 3)
-        self._target = np.array([y_m, angle_rad])
-        self._C = np.eye(2)
-
-    def value(self, q_b, t):
-        return q_b - self._target
-
-    def time_derivative(self, t):
-        return np.zeros(2)
+        self._set(np.eye(2), [y_m, angle_rad], [0.0, 0.0])
 
 
 class DrivenAngle(_LinearConstraint):
@@ -101,10 +60,80 @@ class DrivenAngle(_LinearConstraint):
     def __init__(self, first_index: int, initial_angle_rad: float, speed_rad_s: float):
         self.indices = np.array([first_index + 2])
         self.phi0, self.omega = initial_angle_rad, speed_rad_s
-        self._C = np.ones((1, 1))
+        self._set(np.ones((1, 1)), [initial_angle_rad], [speed_rad_s])
 
-    def value(self, q_b, t):
-        return q_b - (self.phi0 + self.omega * t)
 
-    def time_derivative(self, t):
-        return np.array([-self.omega])
+class ConstraintSet:
+    """All constraints of a system (n coordinates) in the form of the module docstring."""
+
+    def __init__(self, constraints, n_coordinates: int):
+        self.rows = []
+        start = 0
+        for constraint in constraints:
+            self.rows.append(slice(start, start + constraint.n_rows))
+            start += constraint.n_rows
+        self.n_rows = m = start
+        self._D, self._c0, self.c1 = np.zeros((m, n_coordinates)), np.zeros(m), np.zeros(m)
+        offsets = []  # (first row, column of phi, u) of each rigid point's rotated offset
+        for constraint, rows in zip(constraints, self.rows):
+            if isinstance(constraint, Revolute):
+                offsets += self._add_revolute(constraint, rows)
+            elif isinstance(constraint, _LinearConstraint):
+                self._D[rows, constraint.indices] = constraint._C
+                self._c0[rows] = -constraint.d0
+                self.c1[rows] = -constraint.d1
+            else:
+                raise TypeError(f"unsupported constraint {constraint!r}")
+        self._build_offsets(offsets, n_coordinates)
+        self._jacobian = self._D.copy()
+
+    def _add_revolute(self, revolute, rows):
+        offsets = []
+        for point, sign in ((revolute.a, 1.0), (revolute.b, -1.0)):
+            G0, r0 = point.affine
+            self._D[rows, point.indices] += sign * G0
+            self._c0[rows] += sign * r0
+            if point.rotating_offset is not None:
+                local, u = point.rotating_offset
+                offsets.append((rows.start, point.indices[local], sign * u))
+        if len(offsets) == 2 and offsets[0][1] == offsets[1][1]:
+            raise ValueError("a revolute joint between two points of the same body")
+        return offsets
+
+    def _build_offsets(self, offsets, n):
+        """Index arrays: the offsets' angle columns, and for w viewed as (re, im) pairs their
+        rows, columns, the scatter R (rows, 2P) and the Hessian gather (n, 2P)."""
+        count = len(offsets)
+        self._angle_columns = np.array([col for _, col, _ in offsets], dtype=int)
+        self._u = np.array([complex(u[0], u[1]) for _, _, u in offsets], dtype=complex)
+        pair_rows = np.array([[row, row + 1] for row, _, _ in offsets], dtype=int).reshape(-1)
+        pair_columns = np.repeat(self._angle_columns, 2)
+        self._pair_rows, self._pair_columns = pair_rows, pair_columns
+        self._scatter = np.zeros((self.n_rows, 2 * count))
+        self._scatter[pair_rows, np.arange(2 * count)] = 1.0
+        self._gather = np.zeros((n, 2 * count))
+        self._gather[pair_columns, np.arange(2 * count)] = -1.0
+
+    def _offsets(self, q):
+        """w_p = u_p exp(i phi_p) (complex, P)."""
+        return self._u * np.exp(1j * q[self._angle_columns])
+
+    def values_and_jacobian(self, q, t):
+        """(Phi (m,), Phi_q (m, n)); Phi_q is a buffer overwritten by the next call."""
+        w = self._offsets(q)
+        phi = self._D @ q + self._c0 + self.c1 * t + self._scatter @ w.view(float)
+        self._jacobian[self._pair_rows, self._pair_columns] = (1j * w).view(float)
+        return phi, self._jacobian
+
+    def jacobian(self, q):
+        """Phi_q (m, n) (a new array)."""
+        return self.values_and_jacobian(q, 0.0)[1].copy()
+
+    def hessian(self, q, lam):
+        """The diagonal (n,) of d(Phi_q^T lambda)/dq."""
+        return self._gather @ (lam[self._pair_rows] * self._offsets(q).view(float))
+
+    def convective(self, q, qd):
+        """(dPhi_q/dt) q' (m,)."""
+        rates = qd[self._angle_columns]
+        return self._scatter @ (-(rates * rates) * self._offsets(q)).view(float)

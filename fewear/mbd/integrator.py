@@ -19,6 +19,20 @@ onto Phi_q q' + Phi_t = 0. Index-3 generalized-alpha leaves an O(h^2) drift in t
 constraint; the projection removes it (a driven mechanism then has exact velocities) and keeps the
 scheme second order.
 
+Newton variants (``modified_newton``). Full Newton builds and factorises the iteration matrix in
+every iteration. Modified Newton (the default, as in Exudyn) keeps the LU factors of the last
+matrix, across iterations and across steps, and only re-evaluates the residual: what is reused
+is the whole matrix, i.e. M, the force elements' dQ/dq and dQ/dq', Phi_q and the constraint
+Hessian (at the q, q', lambda where it was built), and h through beta h^2 (so a change of step size
+forces a rebuild). It is rebuilt at the first iteration of a step when there is none or h changed,
+and for the rest of a step (which then runs as full Newton) when a correction shrinks by less than
+the factor ``REUSE_CONTRACTION`` against the previous one. The residual and the constraints are
+always evaluated exactly at the current iterate, so the converged state solves the same
+equations; the test max |dq| < newton_tolerance is as strict as in full Newton because the
+iteration contracts by at least REUSE_CONTRACTION = 1/4 per step, so the error left after the last
+correction is below |dq| / 3. Full Newton (and a rebuilt matrix) rejects the step when its
+corrections stop contracting (the step is retried shorter).
+
 Step-size control (adaptive mode): force elements may offer ``step_error`` returning an estimate of
 the local error of a contact gap (m) and whether the step entered contact too deep; the step is
 rejected and retried shorter when the estimate exceeds the tolerance. See
@@ -32,8 +46,17 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.linalg import lapack
 
 from fewear.errors import FewearInputError
+
+REUSE_CONTRACTION = 0.25  # modified Newton: rebuild when |dq| shrinks by less than this
+
+
+def lu_solve(factors, rhs):
+    """Solve with the LU factors (lu, pivots) of LAPACK's dgetrf."""
+    x, _ = lapack.dgetrs(*factors, rhs)
+    return x
 
 
 @dataclass(frozen=True)
@@ -43,7 +66,8 @@ class IntegratorSettings:
     step_s: the (largest) time step; min_step_s: the smallest the controller may take;
     adaptive: step-size control around impacts (else fixed steps of step_s);
     gap_tolerance_m: allowed local error of a contact gap and the deepest allowed first penetration;
-    newton_tolerance: convergence when max |dq| < it (m or rad or dimensionless slopes).
+    newton_tolerance: convergence when max |dq| < it (m or rad or dimensionless slopes);
+    modified_newton: reuse the factorised iteration matrix (module docstring).
     """
 
     rho_inf: float = 0.9
@@ -54,6 +78,7 @@ class IntegratorSettings:
     newton_tolerance: float = 1.0e-10
     max_newton_iterations: int = 12
     project_velocities: bool = True
+    modified_newton: bool = True
 
     def __post_init__(self):
         if not (0.0 <= self.rho_inf <= 1.0):
@@ -99,6 +124,7 @@ class RunStats:
     steps: int = 0
     rejected: int = 0
     newton_iterations: int = 0
+    factorizations: int = 0
     wall_time_s: float = 0.0
     smallest_step_s: float = math.inf
     extra: dict = field(default_factory=dict)
@@ -113,9 +139,10 @@ class GeneralizedAlpha:
         self.stats = RunStats()
         n, m = system.n_coordinates, system.n_constraints
         self._matrix = np.zeros((n + m, n + m))
-        self._rhs = np.zeros(n + m)
         self._diagonal = np.arange(n)
         self._controlled = [e for e in system.force_elements if hasattr(e, "step_error")]
+        self._factors = None  # (lu, pivots) of the last iteration matrix
+        self._factors_step_s = math.nan  # the h it was built for
 
     def initial_state(self, q0, qd0, t0: float = 0.0) -> State:
         """A state with consistent accelerations and multipliers (q0, qd0 must be consistent)."""
@@ -126,58 +153,83 @@ class GeneralizedAlpha:
         qdd0, lam0 = self.system.consistent_accelerations(q0, qd0, t0)
         return State(t0, q0, qd0, qdd0, qdd0.copy(), lam0)
 
+    def _predictor_and_update(self, h: float):
+        """(P, w): the rows (q, q', q'', a)_{n+1} of the predictor are P @ (q, q', q'', a)_n
+        (q''_{n+1} = q''_n, a_{n+1} from it); a Newton correction dq adds w dq to them."""
+        alpha_m, alpha_f, gamma, beta = self.settings.coefficients
+        a_qdd, a_a = 1.0 / (1.0 - alpha_m), -alpha_m / (1.0 - alpha_m)  # a_{n+1} predicted
+        predictor = np.array([
+            [1.0, h, h * h * beta * a_qdd, h * h * (0.5 - beta + beta * a_a)],
+            [0.0, 1.0, h * gamma * a_qdd, h * (1.0 - gamma + gamma * a_a)],
+            [0.0, 0.0, 1.0, 0.0],
+            [0.0, 0.0, a_qdd, a_a],
+        ])
+        beta_p = (1.0 - alpha_m) / ((1.0 - alpha_f) * beta * h * h)
+        update = np.array([1.0, gamma / (beta * h), beta_p, beta_p * (1.0 - alpha_f) * a_qdd])
+        return predictor, update[:, None]
+
     def step(self, s: State, h: float) -> State | None:
         """One generalized-alpha step of size h; None if Newton does not converge."""
         sys_, st = self.system, self.settings
-        alpha_m, alpha_f, gamma, beta = st.coefficients
         n = sys_.n_coordinates
         t1 = s.t + h
-        qdd1 = s.qdd.copy()
-        a1 = (s.qdd - alpha_m * s.a) / (1.0 - alpha_m)
-        q1 = s.q + h * s.qd + h * h * ((0.5 - beta) * s.a + beta * a1)
-        qd1 = s.qd + h * ((1.0 - gamma) * s.a + gamma * a1)
+        predictor, update = self._predictor_and_update(h)
+        Y = predictor @ np.array([s.q, s.qd, s.qdd, s.a])
+        q1, qd1, qdd1, a1 = Y
         lam1 = s.lam.copy()
-        bh2 = beta * h * h
-        beta_p = (1.0 - alpha_m) / ((1.0 - alpha_f) * bh2)
-        gamma_p = gamma / (beta * h)
-        A, rhs = self._matrix, self._rhs
-        diagonal = self._diagonal
-        previous = math.inf
+        bh2 = self.settings.coefficients[3] * h * h
+        full = not st.modified_newton
+        rebuild = full or self._factors is None or h != self._factors_step_s
+        previous, first_full = math.inf, 1
         for iteration in range(1, st.max_newton_iterations + 1):
-            Q, K, C = sys_.forces(q1, qd1, t1)
+            Q, K, C = sys_.forces(q1, qd1, t1, jacobian=rebuild)
             phi, jac = sys_.constraint_values_and_jacobian(q1, t1)
             residual = sys_.mass @ qdd1 + jac.T @ lam1 - Q
-            S = beta_p * sys_.mass - gamma_p * C - K
-            S[diagonal, diagonal] += sys_.constraint_hessian(q1, lam1)
-            A[:n, :n] = bh2 * S
-            A[:n, n:] = jac.T
-            A[n:, :n] = jac
-            rhs[:n] = -bh2 * residual
-            rhs[n:] = -phi
-            try:
-                x = np.linalg.solve(A, rhs)
-            except np.linalg.LinAlgError:
+            if rebuild and not self._factorize(q1, lam1, jac, K, C, h):
                 return None
+            x = lu_solve(self._factors, np.concatenate((bh2 * residual, phi)))
             dq = x[:n]
-            q1 += dq
-            qd1 += gamma_p * dq
-            qdd1 += beta_p * dq
-            lam1 += x[n:] / bh2
+            Y -= update * dq
+            lam1 -= x[n:] / bh2
             self.stats.newton_iterations += 1
-            size = np.max(np.abs(dq))
+            size = np.abs(dq).max()
             if not math.isfinite(size):
                 return None
             if size < st.newton_tolerance:
                 break
-            if iteration >= 3 and size > 0.5 * previous:
+            if not full and size > REUSE_CONTRACTION * previous:
+                full, first_full = True, iteration + 1  # the reused matrix is too far off
+            elif full and iteration >= first_full + 2 and size > 0.5 * previous:
                 return None  # not contracting (e.g. cycling in and out of contact): shorter step
             previous = size
+            rebuild = full
         else:
             return None
-        a1 = (alpha_f * s.qdd + (1.0 - alpha_f) * qdd1 - alpha_m * s.a) / (1.0 - alpha_m)
         if st.project_velocities and sys_.n_constraints:
-            qd1 = sys_.project_velocities(q1, qd1, t1)
+            qd1 = sys_.project_velocities(q1, qd1, t1, jac)
         return State(t1, q1, qd1, qdd1, a1, lam1)
+
+    def _factorize(self, q, lam, jac, K, C, h) -> bool:
+        """LU of [[beta h^2 S_t, Phi_q^T], [Phi_q, 0]] (module docstring); False if singular."""
+        sys_ = self.system
+        alpha_m, alpha_f, gamma, beta = self.settings.coefficients
+        n = sys_.n_coordinates
+        bh2 = beta * h * h
+        A = self._matrix
+        A[:n, :n] = ((1.0 - alpha_m) / (1.0 - alpha_f)) * sys_.mass
+        if C is not None:
+            A[:n, :n] -= (gamma * h) * C
+        if K is not None:
+            A[:n, :n] -= bh2 * K
+        A[self._diagonal, self._diagonal] += bh2 * sys_.constraint_hessian(q, lam)
+        A[:n, n:] = jac.T
+        A[n:, :n] = jac
+        lu, pivots, info = lapack.dgetrf(A)
+        if info != 0:
+            return False
+        self._factors, self._factors_step_s = (lu, pivots), h
+        self.stats.factorizations += 1
+        return True
 
     def run(self, state: State, t_end: float, observer=None) -> State:
         """Integrate from ``state`` to ``t_end``; call ``observer(state, h)`` after every step."""

@@ -13,8 +13,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.linalg import cho_factor, cho_solve
 
 from fewear.errors import FewearInputError
+from fewear.mbd.constraints import ConstraintSet
 
 
 class BeamElasticity:
@@ -33,12 +35,16 @@ class BeamElasticity:
         self.damping_s = damping_s
         self.indices = np.arange(first_index, first_index + beam.n_coordinates)
 
-    def evaluate(self, q_b, qd_b, t):
+    def evaluate(self, q_b, qd_b, t, jacobian: bool = True):
+        """(Q, dQ/dq, dQ/dq') of the beam; the derivatives are None if not ``jacobian``."""
+        if self.damping_s == 0.0 and not jacobian:
+            return -self.beam.elastic_forces(q_b), None, None
         forces, stiffness = self.beam.elastic_forces_and_stiffness(q_b)
         if self.damping_s == 0.0:
             return -forces, -stiffness, None
         damping = self.damping_s * stiffness
-        return -forces - damping @ qd_b, -stiffness, -damping
+        Q = -forces - damping @ qd_b
+        return (Q, -stiffness, -damping) if jacobian else (Q, None, None)
 
 
 class MultibodySystem:
@@ -83,7 +89,8 @@ class MultibodySystem:
         self.force_elements.append(element)
 
     def finalize(self) -> MultibodySystem:
-        """Assemble the constant mass matrix and gravity forces; fix the constraint row layout."""
+        """Assemble the constant mass matrix (and its inverse) and gravity forces; fix the
+        constraint rows."""
         n = self.n_coordinates
         self.mass = np.zeros((n, n))
         self.gravity_forces = np.zeros(n)
@@ -92,80 +99,53 @@ class MultibodySystem:
             self.mass[first:first + k, first:first + k] = block
         for first, block in self._gravity_blocks:
             self.gravity_forces[first:first + len(block)] += block
-        rows, start = [], 0
-        for constraint in self.constraints:
-            rows.append(slice(start, start + constraint.n_rows))
-            start += constraint.n_rows
-        self._rows = rows
-        self.n_constraints = start
-        self._nonlinear = [(c, rows) for c, rows in zip(self.constraints, rows) if c.nonlinear]
-        self._force_blocks = [(e, np.ix_(e.indices, e.indices)) for e in self.force_elements]
-        n, m = self.n_coordinates, self.n_constraints
-        self._jacobian = np.zeros((m, n))
-        self._kkt = np.zeros((n + m, n + m))
-        self._kkt[:n, :n] = self.mass
-        self._kkt_rhs = np.zeros(n + m)
+        self.inverse_mass = np.linalg.inv(self.mass)
+        self.constraint_set = ConstraintSet(self.constraints, n)
+        self._rows = self.constraint_set.rows
+        self.n_constraints = self.constraint_set.n_rows
+        self._force_blocks = [(e, e.indices, np.ix_(e.indices, e.indices))
+                              for e in self.force_elements]
         return self
 
     # --- evaluation -------------------------------------------------------------------------
-    def constraint_values(self, q, t):
-        """Phi(q, t) (m rows)."""
-        phi = np.empty(self.n_constraints)
-        for c, rows in zip(self.constraints, self._rows):
-            phi[rows] = c.value(q[c.indices], t)
-        return phi
+    def constraint_values_and_jacobian(self, q, t):
+        """(Phi, Phi_q): Phi_q is a buffer, valid until the next constraint evaluation."""
+        return self.constraint_set.values_and_jacobian(q, t)
 
     def constraint_jacobian(self, q):
-        """Phi_q (m, n) (a new array; the sparsity pattern is fixed, so a buffer is refilled)."""
-        jac = self._jacobian
-        for c, rows in zip(self.constraints, self._rows):
-            jac[rows, c.indices] = c.jacobian(q[c.indices])
-        return jac.copy()
-
-    def constraint_values_and_jacobian(self, q, t):
-        """(Phi, Phi_q) in one pass over the constraints (the Newton iteration needs both)."""
-        phi = np.empty(self.n_constraints)
-        jac = self._jacobian
-        for c, rows in zip(self.constraints, self._rows):
-            phi[rows], jac[rows, c.indices] = c.value_and_jacobian(q[c.indices], t)
-        return phi, jac.copy()
+        """Phi_q (m, n) (a new array)."""
+        return self.constraint_set.jacobian(q)
 
     def constraint_time_derivative(self, t):
-        """Phi_t (m,)."""
-        out = np.empty(self.n_constraints)
-        for c, rows in zip(self.constraints, self._rows):
-            out[rows] = c.time_derivative(t)
-        return out
+        """Phi_t (m,) (constant for these constraints)."""
+        return self.constraint_set.c1
 
     def constraint_hessian(self, q, lam):
         """d(Phi_q^T lambda)/dq, which is diagonal for these constraints: its diagonal (n,)."""
-        H = np.zeros(self.n_coordinates)
-        for c, rows in self._nonlinear:
-            H[c.indices] += c.hessian(q[c.indices], lam[rows])
-        return H
+        return self.constraint_set.hessian(q, lam)
 
     def constraint_convective(self, q, qd):
         """(dPhi_q/dt) q' (m,)."""
-        out = np.empty(self.n_constraints)
-        for c, rows in zip(self.constraints, self._rows):
-            out[rows] = c.convective(q[c.indices], qd[c.indices])
-        return out
+        return self.constraint_set.convective(q, qd)
 
-    def forces(self, q, qd, t):
-        """Q(q, q', t), dQ/dq and dQ/dq' (dense)."""
-        n = self.n_coordinates
+    def forces(self, q, qd, t, jacobian: bool = True):
+        """Q(q, q', t), dQ/dq and dQ/dq' (dense, or None where no element contributes; both None
+        if not ``jacobian``)."""
         Q = self.gravity_forces.copy()
-        K = np.zeros((n, n))
-        C = np.zeros((n, n))
-        for element, block in self._force_blocks:
-            idx = element.indices
-            Q_b, K_b, C_b = element.evaluate(q[idx], qd[idx], t)
+        K = C = None
+        for element, idx, block in self._force_blocks:
+            Q_b, K_b, C_b = element.evaluate(q[idx], qd[idx], t, jacobian)
             Q[idx] += Q_b
             if K_b is not None:
+                K = self._zeros() if K is None else K
                 K[block] += K_b
             if C_b is not None:
+                C = self._zeros() if C is None else C
                 C[block] += C_b
         return Q, K, C
+
+    def _zeros(self):
+        return np.zeros((self.n_coordinates, self.n_coordinates))
 
     def kinetic_energy(self, qd):
         return 0.5 * qd @ self.mass @ qd
@@ -184,12 +164,15 @@ class MultibodySystem:
         sol = np.linalg.solve(A, rhs)
         return sol[: self.n_coordinates], sol[self.n_coordinates:]
 
-    def project_velocities(self, q, qd, t):
-        """The M-orthogonal projection of q' onto Phi_q q' + Phi_t = 0."""
-        jac = self.constraint_jacobian(q)
-        n = self.n_coordinates
-        A, rhs = self._kkt, self._kkt_rhs
-        A[:n, n:] = jac.T
-        A[n:, :n] = jac
-        rhs[n:] = -(jac @ qd + self.constraint_time_derivative(t))
-        return qd + np.linalg.solve(A, rhs)[:n]
+    def project_velocities(self, q, qd, t, jacobian=None):
+        """The M-orthogonal projection of q' onto Phi_q q' + Phi_t = 0.
+
+        Through the Schur complement of the KKT system [[M, Phi_q^T], [Phi_q, 0]]:
+        (Phi_q M^-1 Phi_q^T) mu = Phi_q q' + Phi_t, q' <- q' - M^-1 Phi_q^T mu. ``jacobian``: Phi_q
+        if the caller has it at q (the integrator passes its last Newton Jacobian)."""
+        jac = self.constraint_jacobian(q) if jacobian is None else jacobian
+        weighted = jac @ self.inverse_mass
+        schur = weighted @ jac.T
+        mu = cho_solve(cho_factor(schur, check_finite=False),
+                       jac @ qd + self.constraint_time_derivative(t), check_finite=False)
+        return qd - mu @ weighted
