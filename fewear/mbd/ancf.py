@@ -385,6 +385,34 @@ class AncfBeam:
         damping = self._project(tau * material)
         return forces, stiffness, damping
 
+    def stiffness_proportional_forces(self, q: np.ndarray, qd: np.ndarray, beta_s: float,
+                                      jacobian: bool = True):
+        """F(q) + beta K(q) q' (elastic plus stiffness-proportional damping forces, beta in s) and,
+        if ``jacobian``, its exact derivatives d/dq = K + beta d(K q')/dq and d/dq' = beta K.
+
+        K q' = dF/dt is formed without assembling K: with a_i = S_i z, b_i = S_i z', z' = B q' and
+        s'_i = a_i . z', K q' = B^T sum_i [(H s)_i b_i + (H s')_i a_i], and
+        d(K q')/dq = B^T [sum_i (H s')_i S_i + sum_ij H_ij (b_i a_j^T + a_i b_j^T)] B.
+        Returns (forces (N,), d/dq (N, N) or None, d/dq' (N, N) or None).
+        """
+        s_z, _, stress = self._strain_state(q)
+        qd_elements = np.asarray(qd, dtype=float)[self._element_dofs]
+        z_dot = (qd_elements @ self._B_stacked_T).reshape(self.n_elements, -1, 6)
+        s_dot_z = z_dot[..., _SZ_INDEX] * _SZ_FACTOR
+        stress_rate = (self._H @ (s_z @ z_dot[..., None]))[..., 0]
+        point_forces = ((stress + beta_s * stress_rate)[..., None, :] @ s_z
+                        + beta_s * (stress[..., None, :] @ s_dot_z))
+        forces = self._assemble_vector(point_forces.reshape(self.n_elements, -1)
+                                       @ self._B_stacked)
+        if not jacobian:
+            return forces, None, None
+        h_s_z = self._H @ s_z
+        elastic = (stress @ _S_FLAT).reshape(s_z.shape) + np.swapaxes(s_z, -1, -2) @ h_s_z
+        cross = np.swapaxes(h_s_z, -1, -2) @ s_dot_z
+        rate = (stress_rate @ _S_FLAT).reshape(s_z.shape) + cross + np.swapaxes(cross, -1, -2)
+        stiffness = self._project(elastic)
+        return forces, stiffness + beta_s * self._project(rate), beta_s * stiffness
+
     def _project(self, tangent_z: np.ndarray) -> np.ndarray:
         """Assemble B^T T B over the points and elements for T (elements, points, 6, 6)."""
         tangent_B = (tangent_z @ self._B).reshape(self.n_elements, -1, 12)

@@ -143,6 +143,8 @@ class GeneralizedAlpha:
         self._controlled = [e for e in system.force_elements if hasattr(e, "step_error")]
         self._factors = None  # (lu, pivots) of the last iteration matrix
         self._factors_step_s = math.nan  # the h it was built for
+        self._aged = True  # rebuild at the next step's first iteration
+        self._scheme = (math.nan, None, None)  # (h, predictor, update) of the last step size
 
     def initial_state(self, q0, qd0, t0: float = 0.0) -> State:
         """A state with consistent accelerations and multipliers (q0, qd0 must be consistent)."""
@@ -173,13 +175,15 @@ class GeneralizedAlpha:
         sys_, st = self.system, self.settings
         n = sys_.n_coordinates
         t1 = s.t + h
-        predictor, update = self._predictor_and_update(h)
+        if h != self._scheme[0]:
+            self._scheme = (h, *self._predictor_and_update(h))
+        _, predictor, update = self._scheme
         Y = predictor @ np.array([s.q, s.qd, s.qdd, s.a])
         q1, qd1, qdd1, a1 = Y
         lam1 = s.lam.copy()
         bh2 = self.settings.coefficients[3] * h * h
         full = not st.modified_newton
-        rebuild = full or self._factors is None or h != self._factors_step_s
+        rebuild = full or self._aged or h != self._factors_step_s
         previous, first_full = math.inf, 1
         for iteration in range(1, st.max_newton_iterations + 1):
             Q, K, C = sys_.forces(q1, qd1, t1, jacobian=rebuild)
@@ -205,6 +209,7 @@ class GeneralizedAlpha:
             rebuild = full
         else:
             return None
+        self._aged = iteration > 2
         if st.project_velocities and sys_.n_constraints:
             qd1 = sys_.project_velocities(q1, qd1, t1, jac)
         return State(t1, q1, qd1, qdd1, a1, lam1)

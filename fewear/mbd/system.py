@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.linalg import cho_factor, cho_solve
+from scipy.linalg import lapack
 
 from fewear.errors import FewearInputError
 from fewear.mbd.constraints import ConstraintSet
@@ -25,7 +25,8 @@ class BeamElasticity:
 
     beta K q' = beta dF/dt vanishes for rigid-body motion (F is invariant under it) and gives a
     mode of frequency omega the damping ratio beta omega / 2 (Rayleigh damping without the mass
-    term). Newton uses dQ/dq = -K (the term -beta (dK/dq) q' is left out) and dQ/dq' = -beta K.
+    term). Newton gets the exact dQ/dq = -K - beta d(K q')/dq and dQ/dq' = -beta K
+    (:meth:`fewear.mbd.ancf.AncfBeam.stiffness_proportional_forces`).
     """
 
     def __init__(self, beam, first_index: int, damping_s: float = 0.0):
@@ -36,15 +37,18 @@ class BeamElasticity:
         self.indices = np.arange(first_index, first_index + beam.n_coordinates)
 
     def evaluate(self, q_b, qd_b, t, jacobian: bool = True):
-        """(Q, dQ/dq, dQ/dq') of the beam; the derivatives are None if not ``jacobian``."""
-        if self.damping_s == 0.0 and not jacobian:
-            return -self.beam.elastic_forces(q_b), None, None
-        forces, stiffness = self.beam.elastic_forces_and_stiffness(q_b)
+        """(Q, dQ/dq, dQ/dq'); the derivatives are None if not ``jacobian`` (dQ/dq' also
+        without damping)."""
         if self.damping_s == 0.0:
+            if not jacobian:
+                return -self.beam.elastic_forces(q_b), None, None
+            forces, stiffness = self.beam.elastic_forces_and_stiffness(q_b)
             return -forces, -stiffness, None
-        damping = self.damping_s * stiffness
-        Q = -forces - damping @ qd_b
-        return (Q, -stiffness, -damping) if jacobian else (Q, None, None)
+        forces, tangent, damping = self.beam.stiffness_proportional_forces(
+            q_b, qd_b, self.damping_s, jacobian)
+        if not jacobian:
+            return -forces, None, None
+        return -forces, -tangent, -damping
 
 
 class MultibodySystem:
@@ -173,6 +177,7 @@ class MultibodySystem:
         jac = self.constraint_jacobian(q) if jacobian is None else jacobian
         weighted = jac @ self.inverse_mass
         schur = weighted @ jac.T
-        mu = cho_solve(cho_factor(schur, check_finite=False),
-                       jac @ qd + self.constraint_time_derivative(t), check_finite=False)
+        _, mu, info = lapack.dposv(schur, jac @ qd + self.constraint_time_derivative(t))
+        if info != 0:
+            raise np.linalg.LinAlgError("velocity projection: Phi_q has dependent rows")
         return qd - mu @ weighted

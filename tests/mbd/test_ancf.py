@@ -205,6 +205,28 @@ def test_kelvin_voigt_jacobians_are_the_derivatives_of_the_forces():
     assert np.allclose(d_dqd, d_dqd.T, atol=1e-12 * tau * np.abs(d_dqd).max())
 
 
+def test_stiffness_proportional_forces_and_their_exact_jacobians():
+    """F + beta K q' equals the assembled form, and d/dq, d/dq' match finite differences (the
+    d(K q')/dq term included: the Newton iteration of the damped rod converges quadratically)."""
+    beam = AncfBeam(0.34, 3, section(0.005, 0.018))
+    q = deformed_state(beam)
+    rng = np.random.default_rng(7)
+    qd = 50.0 * beam.element_length_m * rng.standard_normal(q.size)
+    beta = 3e-5
+    forces, d_dq, d_dqd = beam.stiffness_proportional_forces(q, qd, beta)
+    elastic, stiffness = beam.elastic_forces_and_stiffness(q)
+    assert np.allclose(forces, elastic + beta * stiffness @ qd, rtol=0.0,
+                       atol=1e-12 * np.abs(forces).max())
+    assert np.allclose(d_dqd, beta * stiffness, rtol=1e-14, atol=0.0)
+    step = 1e-7
+    columns = [(beam.stiffness_proportional_forces(q + step * e, qd, beta, False)[0]
+                - beam.stiffness_proportional_forces(q - step * e, qd, beta, False)[0]) / (2 * step)
+               for e in np.eye(q.size)]
+    error = np.abs(np.column_stack(columns) - d_dq).max() / np.abs(d_dq).max()
+    assert error < 1e-6
+    assert np.abs(d_dq - stiffness).max() > 1e3 * error * np.abs(d_dq).max()  # the rate term
+
+
 def test_kelvin_voigt_damping_is_stiffness_proportional_at_rest_and_spares_rigid_motion():
     beam = damped_beam()
     tau = beam.section.damping_time_s
