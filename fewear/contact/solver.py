@@ -86,6 +86,9 @@ CONTACT_QUADRATURE = {"quadrature_degree": 3, "quadrature_rule": "GLL"}
 # Newton starts from the previous solution when the force turned by less than this (rad).
 WARM_START_MAX_ANGLE_RAD = math.radians(20.0)
 
+# Relative force residual of the pin at which Newton may stop (see NewtonControl).
+FORCE_TOLERANCE = 1e-10
+
 # Iterations of the coupled Newton on (u, c) before the fallback on the pin angle takes over.
 COUPLED_ITERATIONS = 12
 # ... or as soon as its step cap against active-set alternation has fallen below this.
@@ -207,10 +210,12 @@ class NewtonControl:
     """The stopping test and the cap on the step against active-set cycling (both paths).
 
     Converged when the Newton update of the pin centre is below ``newton_tolerance`` times the
-    largest penetration or 64 rounding units of R_p (the level at which gaps are computed), and
-    the largest displacement update below 1000 ``newton_tolerance`` times the largest
-    displacement (the LU solves of the penalty-stiffened system are not more accurate) or the
-    same rounding level.
+    largest penetration or 64 rounding units of R_p (the level at which gaps are computed), the
+    largest displacement update below 1000 ``newton_tolerance`` times the largest displacement
+    (the LU solves of the penalty-stiffened system are not more accurate) or the same rounding
+    level, and either the pin's force residual before the update was below
+    ``FORCE_TOLERANCE`` |F| (the pin is in balance) or the pin update is at 8 rounding units
+    (the residual is rounding noise: light loads on fine meshes).
     Semi-smooth Newton can alternate between two active sets around a node that is just entering
     contact; when the active set (measured by its length) returns to the one of two iterations
     before, the step cap is halved, which turns the alternation into a converging bisection; it
@@ -232,9 +237,11 @@ class NewtonControl:
         return self.cap
 
     def converged(self, pin_update: float, displacement_update: float, penetration: float,
-                  displacement: float) -> bool:
-        return (pin_update <= max(self.tolerance * penetration, self.floor)
-                and displacement_update <= max(1e3 * self.tolerance * displacement, self.floor))
+                  displacement: float, force_residual: float) -> bool:
+        """``force_residual``: |pin residual| / |F/L| before the update (-)."""
+        small = (pin_update <= max(self.tolerance * penetration, self.floor)
+                 and displacement_update <= max(1e3 * self.tolerance * displacement, self.floor))
+        return small and (force_residual <= FORCE_TOLERANCE or pin_update <= self.floor / 8.0)
 
 
 def unit(angle: float) -> np.ndarray:
@@ -552,7 +559,8 @@ class BushingContactSolver:
             self._line_search(du, dc, r_pin, load, cap)
             if control.converged(np.linalg.norm(dc), du.norm(PETSc.NormType.NORM_INFINITY),
                                  self._max_penetration(),
-                                 self.displacement.vector.norm(PETSc.NormType.NORM_INFINITY)):
+                                 self.displacement.vector.norm(PETSc.NormType.NORM_INFINITY),
+                                 np.linalg.norm(basis.T @ r_pin) / np.linalg.norm(load)):
                 return iteration
         return None
 
