@@ -272,11 +272,11 @@ class SliderCrankModel:
             return self.clearance.measure(state.q, state.qd)
         force = -state.lam[self._joint_rows]  # the constraint force on the pin
         pin_idx = self.rod_b.indices
-        omega_pin = self.rod_b.angle_gradient(state.q[pin_idx]) @ state.qd[pin_idx]
+        omega_pin = self.rod_b.motion(state.q[pin_idx].tolist(), state.qd[pin_idx].tolist())[5]
         return {
             "eccentricity_m": np.zeros(2),
             "penetration_m": 0.0,
-            "normal_force_N": float(np.hypot(*force)),
+            "normal_force_N": math.hypot(force[0], force[1]),
             "friction_force_N": 0.0,
             "reaction_force_N": force,
             "rel_omega_rad_s": omega_pin,
