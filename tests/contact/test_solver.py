@@ -195,12 +195,17 @@ def test_bad_force_is_an_input_error(solver, bad_force):
         solver.solve(bad_force)
 
 
-def test_pressure_function_matches_the_nodal_pressures(solver):
+def test_output_functions_match_the_nodal_result(solver):
+    """The Q2 (XDMF-ready) pressure and displacement equal the result at the bore nodes."""
     result = solver.solve((800.0, -800.0))
-    pressure = solver.pressure_function()
     bore = solver.bore
     points = np.zeros((bore.local_nodes.size, 3))
     points[:, :2] = solver.mesh.geometry.x[bore.local_nodes, :2]
-    values = bore.gather(pressure.eval(points, bore.local_node_cells).reshape(-1, 1))[:, 0]
-    np.testing.assert_allclose(values, result.pressure_Pa, rtol=0,
+    cells = bore.local_node_cells
+    pressure = bore.gather(solver.pressure_function().eval(points, cells).reshape(-1, 1))[:, 0]
+    np.testing.assert_allclose(pressure, result.pressure_Pa, rtol=0,
                                atol=1e-9 * result.max_pressure_Pa)
+    displacement = bore.gather(solver.displacement_function().eval(points, cells).reshape(-1, 2))
+    deformed = np.column_stack([result.x_m, result.y_m]) + displacement - result.pin_centre_m
+    np.testing.assert_allclose(np.hypot(deformed[:, 0], deformed[:, 1]) - 0.0095, result.gap_m,
+                               rtol=0, atol=1e-15)
