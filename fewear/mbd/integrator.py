@@ -24,14 +24,15 @@ every iteration. Modified Newton (the default, as in Exudyn) keeps the LU factor
 matrix, across iterations and across steps, and only re-evaluates the residual: what is reused
 is the whole matrix, i.e. M, the force elements' dQ/dq and dQ/dq', Phi_q and the constraint
 Hessian (at the q, q', lambda where it was built), and h through beta h^2 (so a change of step size
-forces a rebuild). It is rebuilt at the first iteration of a step when there is none or h changed,
-and for the rest of a step (which then runs as full Newton) when a correction shrinks by less than
-the factor ``REUSE_CONTRACTION`` against the previous one. The residual and the constraints are
-always evaluated exactly at the current iterate, so the converged state solves the same
-equations; the test max |dq| < newton_tolerance is as strict as in full Newton because the
-iteration contracts by at least REUSE_CONTRACTION = 1/4 per step, so the error left after the last
-correction is below |dq| / 3. Full Newton (and a rebuilt matrix) rejects the step when its
-corrections stop contracting (the step is retried shorter).
+forces a rebuild). It is rebuilt at the first iteration of a step when there is none, h changed
+or the previous step needed more than two iterations (the matrix has aged: one correction after
+the predictor's no longer meets the tolerance); and when a correction shrinks by less than the
+factor ``REUSE_CONTRACTION`` against the previous one, the rest of the step runs as full Newton.
+The residual and the constraints are always evaluated exactly at the current iterate, so the
+converged state solves the same equations; the test max |dq| < newton_tolerance stays meaningful
+because a reused matrix is only kept while the iteration contracts by at least 1/4 per
+iteration, so the error left after the last correction is below |dq| / 3. Full Newton rejects the
+step when its corrections stop contracting (the step is retried shorter).
 
 Step-size control (adaptive mode): force elements may offer ``step_error`` returning an estimate of
 the local error of a contact gap (m) and whether the step entered contact too deep; the step is
