@@ -99,9 +99,4 @@ def test_hertz_demo_two_ranks_equal_serial(tmp_path):
                                                / np.linalg.norm(pins[0], axis=1)))
     print(f"\nHertz demo, serial vs mpirun -n 2 (largest relative difference over the meshes): "
           f"{differences}; serial output:\n{serial.stdout}")
-    assert differences["pin_centre_m"] < 1e-8
-    assert differences["peak_pressure_Pa"] < 1e-8
-    # the edge nodes' penetrations are ~1e-13 m, a few hundred rounding units of |x + u - c|
-    # (ulp(9.5 mm) = 1.7e-18 m): their pressures, which weigh most in the second moment, carry
-    # relative rounding noise up to ~1e-5 whatever the partition
-    assert differences["moment_half_width_m"] < 1e-7
+    assert all(difference < 1e-8 for difference in differences.values())
