@@ -682,8 +682,10 @@ class BushingContactSolver:
         """u at the gathered bore nodes (n, 2), by evaluating the S2 field (m)."""
         points = np.zeros((self.bore.local_nodes.size, 3))
         points[:, :2] = self.mesh.geometry.x[self.bore.local_nodes, :2]
-        values = self.displacement.eval(points, self.bore.local_node_cells)
-        return self.bore.gather(np.asarray(values).reshape(-1, 2))
+        values = np.zeros((points.shape[0], 2))
+        if points.shape[0]:  # a rank may own no part of the bore
+            values = self.displacement.eval(points, self.bore.local_node_cells).reshape(-1, 2)
+        return self.bore.gather(values)
 
     def _result(self, force, rotation, iterations) -> ContactResult:
         L = self.problem.geometry.width_m
