@@ -12,7 +12,10 @@
 # linear elastic bushing (Young's modulus $E_b$, Poisson ratio $\nu_b$, width $L$) whose outer
 # surface is clamped. The FE model (:mod:`fewear.contact.solver`) is plane strain with thickness
 # $L$, serendipity degree-2 displacements on a structured O-grid, penalty contact of the bore
-# against the rigid circle and force control of the pin centre.
+# against the rigid circle and force control of the pin centre. Its nodal pressures are the
+# penalty law $p = k\langle -g \rangle_+$ at the bore nodes (vertices and edge midpoints), which
+# are the Gauss-Lobatto points of its contact integral: they are the pressures whose weighted sum
+# balances $F$.
 #
 # At a small load the contact strip is narrow ($a \ll R_b$) and Hertz's line contact applies
 # (Johnson, *Contact Mechanics*, 1985, ch. 4), with the rigid pin and the concave bore:
