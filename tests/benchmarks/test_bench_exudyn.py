@@ -16,7 +16,8 @@ the slider (about 1.5 kHz); the rod-slider joint forces of the two codes must ag
 
 import numpy as np
 import pytest
-from exudyn_slider_crank import (
+
+from .exudyn_slider_crank import (
     SliderCrankParameters,
     parameters_from_defaults,
     run_exudyn_cable_slider_crank,
@@ -87,7 +88,8 @@ def test_flexible_rod_agrees_with_exudyn_ancf_cable():
     config = load_config(None, SECTIONS)
     config["integrator"]["rho_inf"] = 0.9
     history, summary = simulate_slider_crank(
-        config, rod="flexible", joint="ideal", cycles=1, settling_cycles=0, step_s=step_s, adaptive=False,
+        config, rod="flexible", joint="ideal", cycles=1, settling_cycles=0, step_s=step_s,
+        adaptive=False,
         mechanism={"rod_elements": elements, "rod_damping_s": 0.0})
     time_e, x_e, force_e, wall_e = run_exudyn_cable_slider_crank(step_s, period_s, params,
                                                                  cable_elements=elements,

@@ -7,8 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).parent))
-from test_solver import N_THETA, coarse_problem, rotate  # noqa: E402
+from .test_solver import N_THETA, coarse_problem, rotate
 
 
 @pytest.fixture(scope="module")
