@@ -2,7 +2,7 @@
 
 Stages (one subpackage each, data passed between them as frozen dataclasses in SI units):
 
-- :mod:`fewear.mbd`        planar multibody dynamics (NumPy), rigid and ANCF bodies, clearance joints
+- :mod:`fewear.mbd`        planar multibody dynamics (NumPy): rigid and ANCF bodies, clearance joint
 - :mod:`fewear.contact`    bushing contact model (DOLFINx + PETSc), pressures and slips on the bore
 - :mod:`fewear.wear`       Archard wear law and the wear coefficient k(p, v)
 - :mod:`fewear.mesh`       bushing meshes (gmsh), ALE motion and re-meshing

@@ -51,7 +51,8 @@ def build_parser() -> argparse.ArgumentParser:
     dynamics.add_argument("--joint", choices=["clearance", "ideal"], default=None,
                           help="rod-slider joint model (default: the config's)")
     dynamics.add_argument("--cycles", type=int, default=None, metavar="N",
-                          help="crank cycles recorded after the settling cycles (default: config)")
+                          help="crank cycles recorded after the settling cycles "
+                               "(default: the config's)")
     _add_config_and_out(dynamics, "out/dynamics")
 
     diagnose = sub.add_parser("diagnose", help="what a wear model gets wrong on measured data")
@@ -65,7 +66,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _add_config_and_out(parser: argparse.ArgumentParser, default_out: str) -> None:
     parser.add_argument("--config", metavar="FILE.toml", default=None,
-                        help="configuration (default: the embedded paper case; see `fewear config`)")
+                        help="configuration (default: the embedded paper case; `fewear config`)")
     parser.add_argument("--out", metavar="DIR", default=default_out,
                         help=f"output folder (default: {default_out})")
 

@@ -45,8 +45,8 @@ from mpi4py import MPI
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.contact.solver import (
-    CYCLE_CAP,
     COUPLED_ITERATIONS,
+    CYCLE_CAP,
     WARM_START_MAX_ANGLE_RAD,
     BushingContactSolver,
     NewtonControl,

@@ -20,8 +20,9 @@ from __future__ import annotations
 
 import math
 import tomllib
+from collections.abc import Iterable
 from pathlib import Path
-from typing import Any, Iterable
+from typing import Any
 
 from fewear.errors import FewearInputError
 
@@ -86,7 +87,7 @@ def read_toml(path: str | Path) -> dict[str, Any]:
 
 
 def check_config(user: dict[str, Any], defaults: Config, source: str) -> Config:
-    """Check a parsed user config against the defaults; return it with floats where floats belong."""
+    """Check a parsed user config against the defaults; return it with floats where expected."""
     checked: Config = {}
     for section, table in user.items():
         if section not in defaults:

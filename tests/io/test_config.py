@@ -69,7 +69,11 @@ def test_a_needed_section_must_be_present(tmp_path):
 
 @pytest.mark.parametrize(
     ("value", "message"),
-    [("'ten'", "expected a number"), ("nan", "expected a finite number"), ("true", "expected a number")],
+    [
+        ("'ten'", "expected a number"),
+        ("nan", "expected a finite number"),
+        ("true", "expected a number"),
+    ],
 )
 def test_wrong_type_and_nan_are_rejected(tmp_path, value, message):
     text = full_sections_text().replace("radius_m = 0.0095", f"radius_m = {value}")
