@@ -22,7 +22,6 @@ first-order estimate, not the paper's Fig. 7.
 
 from __future__ import annotations
 
-import json
 import sys
 import time
 from dataclasses import dataclass
@@ -116,7 +115,7 @@ def cycle_wear(contact_model, steps: LoadSteps, wear_coefficient, friction: bool
     """Stages 3 and 4: contact at every load step, then Archard's law summed over the cycle."""
     results = []
     for i, (force, rotation) in enumerate(zip(steps.force_N, steps.rotation_rad)):
-        results.append(contact_model.solve(force, rotation, friction=friction and rotation != 0.0))
+        results.append(contact_model.solve(force, rotation, friction=friction))
         if progress is not None and (i + 1) % 50 == 0:
             progress(f"contact: load step {i + 1}/{len(steps.force_N)}")
     pressure = np.array([r.pressure_Pa for r in results])
@@ -160,16 +159,12 @@ def predict_case(rod: str, config: dict, contact_model, wear_coefficient,
         "max_wear_depth_per_cycle_m": float(wear.depth_per_cycle_m[peak]),
         "max_wear_angle_deg": float(np.degrees(wear.angle_rad[peak])),
         "max_wear_depth_first_block_m": float(first_block[peak]),
-        "wear_volume_per_cycle_m3": settings_width(config)
+        "wear_volume_per_cycle_m3": config["bushing"]["width_m"]
         * wear_volume_per_width_m2(wear, wear.depth_per_cycle_m),
         "max_wear_depth_constant_geometry_m": float(
             settings.total_cycles * wear.depth_per_cycle_m[peak]),
     }
     return {"summary": summary, "history": history, "wear": wear, "first_block_m": first_block}
-
-
-def settings_width(config: dict) -> float:
-    return float(config["bushing"]["width_m"])
 
 
 def main(args) -> int:
@@ -216,6 +211,7 @@ def main(args) -> int:
 
 
 def write_outputs(stage, cases: dict, settings: WearLoopSettings, config: dict) -> None:
+    from fewear.io.output import write_json
     from fewear.mbd.command import write_history_csv
     from fewear.plot.wear import plot_wear_profiles
 
@@ -227,7 +223,7 @@ def write_outputs(stage, cases: dict, settings: WearLoopSettings, config: dict) 
         "cases": {rod: case["summary"] for rod, case in cases.items()},
         "config": config,
     }
-    (stage / "summary.json").write_text(json.dumps(summary, indent=2, default=_jsonable) + "\n")
+    write_json(stage / "summary.json", summary)
     first = next(iter(cases.values()))["wear"]
     columns = {"angle_deg": np.degrees(first.angle_rad), "x_m": first.x_m, "y_m": first.y_m}
     for rod, case in cases.items():
@@ -240,10 +236,3 @@ def write_outputs(stage, cases: dict, settings: WearLoopSettings, config: dict) 
                         for rod, case in cases.items()},
                        stage / "wear_profile.png", settings.extrapolation_factor)
 
-
-def _jsonable(value):
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, np.generic):
-        return value.item()
-    raise TypeError(f"not JSON serialisable: {type(value).__name__}")

@@ -5,34 +5,14 @@
 
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
+from fewear.io.output import write_json
 from fewear.wear.coefficient import wear_section_toml
 
 FIGURES = {"fits": "fits.png", "residuals": "residuals.png", "candidates": "candidates.png"}
-
-
-def jsonable(value: Any) -> Any:
-    """``value`` with NumPy scalars and arrays as Python numbers and lists, and non-finite floats
-    as None (strict JSON has no NaN or infinity)."""
-    if isinstance(value, dict):
-        return {str(key): jsonable(item) for key, item in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [jsonable(item) for item in value]
-    if isinstance(value, np.ndarray):
-        return jsonable(value.tolist())
-    if isinstance(value, (bool, np.bool_)):
-        return bool(value)
-    if isinstance(value, (int, np.integer)):
-        return int(value)
-    if isinstance(value, (float, np.floating)):
-        return float(value) if math.isfinite(value) else None
-    return value
 
 
 def write_outputs(diagnosis, folder: Path) -> dict[str, Path]:
@@ -46,8 +26,7 @@ def write_outputs(diagnosis, folder: Path) -> dict[str, Path]:
         "candidates": plot_candidates(diagnosis, folder / FIGURES["candidates"]),
     }
     paths["json"] = folder / "diagnosis.json"
-    paths["json"].write_text(json.dumps(jsonable(diagnosis.summary), indent=2,
-                                        allow_nan=False) + "\n")
+    write_json(paths["json"], diagnosis.summary)
     paths["toml"] = folder / "extended_wear.toml"
     paths["toml"].write_text(extended_toml(diagnosis))
     paths["report"] = folder / "report.md"

@@ -84,14 +84,14 @@ def _write_outputs(stage, solver, result, hertz, config, timings_s, rotation_rad
         contact_summary,
         write_contact_csv,
         write_fields_xdmf,
-        write_summary_json,
     )
+    from fewear.io.output import write_json
     from fewear.plot.contact import plot_contact_pressure
 
     write_fields_xdmf(stage / "bushing.xdmf", solver.displacement, solver.pressure_function())
     if comm.rank == 0:
         write_contact_csv(stage / "contact.csv", result)
-        write_summary_json(stage / "summary.json", contact_summary(
+        write_json(stage / "summary.json", contact_summary(
             result, hertz, config, timings_s, comm.size, rotation_rad, friction))
         plot_contact_pressure(stage / "pressure.png", result, hertz,
                               title=f"fewear contact, F = ({result.applied_force_N[0]:g}, "

@@ -8,7 +8,6 @@ CSV and JSON are written by rank 0 from the plain :class:`fewear.contact.result.
 from __future__ import annotations
 
 import csv
-import json
 import math
 from pathlib import Path
 from typing import Any
@@ -80,23 +79,6 @@ def contact_summary(
         },
         "config": config,
     }
-
-
-def write_summary_json(path: Path, summary: dict[str, Any]) -> None:
-    """JSON with non-finite numbers written as null (JSON has no NaN)."""
-    with open(path, "w") as handle:
-        json.dump(_finite_or_none(summary), handle, indent=2, allow_nan=False)
-        handle.write("\n")
-
-
-def _finite_or_none(value: Any) -> Any:
-    if isinstance(value, dict):
-        return {key: _finite_or_none(item) for key, item in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_finite_or_none(item) for item in value]
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
 
 
 def write_fields_xdmf(path: Path, displacement, pressure) -> None:

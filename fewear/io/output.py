@@ -7,11 +7,16 @@ folders are removed again), so a user never finds a half-written result.
 
 from __future__ import annotations
 
+import json
+import math
 import shutil
 import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
+from typing import Any
+
+import numpy as np
 
 from fewear.errors import FewearInputError
 
@@ -67,3 +72,26 @@ def _make_staging(out: Path) -> tuple[str | None, str | None, bool]:
     except OSError as exc:
         return None, f"cannot write to output folder {out}: {exc.strerror or exc}", False
     return staging, None, created
+
+
+def jsonable(value: Any) -> Any:
+    """``value`` with NumPy scalars and arrays as Python numbers and lists, and non-finite floats
+    as None (strict JSON has no NaN or infinity)."""
+    if isinstance(value, dict):
+        return {str(key): jsonable(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [jsonable(item) for item in value]
+    if isinstance(value, np.ndarray):
+        return jsonable(value.tolist())
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        return float(value) if math.isfinite(value) else None
+    return value
+
+
+def write_json(path: str | Path, data: Any) -> None:
+    """Strict JSON (indented, NumPy values converted, non-finite numbers as null)."""
+    Path(path).write_text(json.dumps(jsonable(data), indent=2, allow_nan=False) + "\n")
