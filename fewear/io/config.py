@@ -136,3 +136,15 @@ def _check_value(section: str, key: str, value: Any, default: Any, source: str) 
     if not isinstance(value, type(default)):
         raise FewearInputError(f"{where}: expected a {type(default).__name__}")
     return value
+
+
+def check_exact_keys(table: dict, expected: Iterable[str], where: str) -> None:
+    """A free-form table of a config value (e.g. ``[wear] rbf``) must hold exactly ``expected``."""
+    expected = list(expected)
+    unknown = sorted(set(table) - set(expected))
+    missing = [key for key in expected if key not in table]
+    if unknown or missing:
+        raise FewearInputError(
+            f"{where}: unknown key(s) {unknown}, missing key(s) {missing}; expected keys: "
+            f"{', '.join(expected) or 'none (an empty table {})'}"
+        )

@@ -43,6 +43,7 @@ from typing import Any
 import numpy as np
 
 from fewear.errors import FewearInputError
+from fewear.io.config import check_exact_keys
 
 WIDTH_SCALE_GRID = (1.0, 1.5, 2.0)
 """Factors on the mean distance to the two nearest centres (a Gaussian's width) tried by CV."""
@@ -205,13 +206,7 @@ class RbfWearCoefficient:
             raise FewearInputError("[wear] rbf: expected a table (see `fewear config`)")
         keys = ("centres", "widths", "weights", "tail", "log_input_mean", "log_input_scale",
                 "pressure_range_Pa", "velocity_range_m_s")
-        unknown = sorted(set(table) - set(keys))
-        missing = [key for key in keys if key not in table]
-        if unknown or missing:
-            raise FewearInputError(
-                f"[wear] rbf: unknown key(s) {unknown}, missing key(s) {missing}; "
-                f"expected keys: {', '.join(keys)}"
-            )
+        check_exact_keys(table, keys, "[wear] rbf")
         return cls(*(table[key] for key in keys))
 
     @classmethod

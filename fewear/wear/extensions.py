@@ -47,6 +47,7 @@ from typing import Any
 import numpy as np
 
 from fewear.errors import FewearInputError
+from fewear.io.config import check_exact_keys
 
 
 @dataclass(frozen=True)
@@ -253,13 +254,7 @@ def make_extension(name: str, params: dict[str, Any]) -> WearExtension:
     allowed = [f.name for f in fields(cls)]
     if not isinstance(params, dict):
         raise FewearInputError(f"[wear] extension_params = {params!r}: expected a table")
-    unknown = sorted(set(params) - set(allowed))
-    missing = [key for key in allowed if key not in params]
-    if unknown or missing:
-        raise FewearInputError(
-            f"[wear] extension_params for extension {name!r}: unknown key(s) {unknown}, missing "
-            f"key(s) {missing}; expected keys: {', '.join(allowed) or 'none (an empty table {})'}"
-        )
+    check_exact_keys(params, allowed, f"[wear] extension_params for extension {name!r}")
     return cls(**params)
 
 
