@@ -86,6 +86,21 @@ def bore_row(mesh, facet_tags) -> tuple[np.ndarray, np.ndarray]:
     return cells, edges
 
 
+def bore_row_nodes(mesh, facet_tags) -> tuple[np.ndarray, np.ndarray]:
+    """Geometry nodes (two vertices and the midpoint, shape (n, 3)) of this rank's owned bore
+    facets, and the radial height (m) of each facet's cell: the distance from the bore edge's
+    midpoint to the opposite edge's midpoint."""
+    cells, bore_edges = bore_row(mesh, facet_tags)
+    dofmap = mesh.geometry.dofmap.array.reshape(-1, 9)[cells]
+    rows = np.arange(cells.size)
+    ends = np.take(QUAD_EDGE_VERTICES, bore_edges, axis=0).reshape(-1, 2)
+    midpoint = dofmap[rows, EDGE_MIDPOINT_NODE_OFFSET + bore_edges]
+    opposite = dofmap[rows, EDGE_MIDPOINT_NODE_OFFSET + np.take(OPPOSITE_EDGE, bore_edges)]
+    nodes = np.column_stack([dofmap[rows, ends[:, 0]], dofmap[rows, ends[:, 1]], midpoint])
+    x = mesh.geometry.x[:, :2]
+    return nodes, np.linalg.norm(x[opposite] - x[midpoint], axis=1)
+
+
 class QualityMeter:
     """Measures :class:`MeshQuality` of ``mesh`` as its geometry moves; build once per mesh.
 
@@ -103,17 +118,8 @@ class QualityMeter:
                                dtype=np.int32)
         self._jacobian = fem.Expression(ufl.Jacobian(mesh), REFERENCE_LATTICE)
         self.orientation = np.sign(np.linalg.det(self._jacobians()).mean(axis=1))
-        row_cells, bore_edges = bore_row(mesh, facet_tags)
-        dofmap = mesh.geometry.dofmap.array.reshape(-1, 9)[row_cells]
-        rows = np.arange(row_cells.size)
-        ends = np.take(QUAD_EDGE_VERTICES, bore_edges, axis=0)
-        midpoint = dofmap[rows, EDGE_MIDPOINT_NODE_OFFSET + bore_edges]
-        opposite = dofmap[rows, EDGE_MIDPOINT_NODE_OFFSET + np.take(OPPOSITE_EDGE, bore_edges)]
-        self.bore_nodes = np.column_stack([dofmap[rows, ends[:, 0]], dofmap[rows, ends[:, 1]],
-                                           midpoint])
-        x = mesh.geometry.x[:, :2]
-        self.row_height_m = np.linalg.norm(x[opposite] - x[midpoint], axis=1)
-        self.reference_xy = x[self.bore_nodes].copy()
+        self.bore_nodes, self.row_height_m = bore_row_nodes(mesh, facet_tags)
+        self.reference_xy = mesh.geometry.x[self.bore_nodes, :2].copy()
 
     def _jacobians(self) -> np.ndarray:
         """J at the reference lattice of every owned cell, shape (cells, points, 2, 2)."""
