@@ -1,4 +1,4 @@
-"""The config rules of fewear.io.config: typos and wrong types are errors, gaps take the defaults."""
+"""fewear.io.config rules: typos and wrong types are errors, gaps take the defaults."""
 
 import tomllib
 
