@@ -61,6 +61,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     run = sub.add_parser("run", help="the paper's slider-crank wear prediction (main job)")
     _add_config_and_out(run, "out/run")
+    run.add_argument("--resume", action="store_true",
+                     help="continue the run whose checkpoint is in --out (same config)")
     return parser
 
 

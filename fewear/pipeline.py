@@ -1,38 +1,51 @@
-"""The wear prediction of the seed paper (Zhao, Zhang & Dai 2013, Fig. 3), stage by stage.
+"""The wear prediction of the seed paper (Zhao, Zhang & Dai 2013, Fig. 3), block by block.
 
-``fewear run`` follows the flowchart for each connecting-rod model (rigid, flexible):
+``fewear run`` follows the flowchart for each connecting-rod model (rigid, flexible). Every wear
+block j:
 
-1. **Dynamics** (:mod:`fewear.mbd`): the slider-crank with the revolute clearance joint, settled,
-   then one recorded crank cycle: the joint reaction and the pin's rotation relative to the bushing.
-2. **Load steps**: the cycle cut into n steps (seed: 200); each step carries the joint force at its
-   middle and the relative rotation accumulated over it.
-3. **Contact** (:mod:`fewear.contact`): the FE bushing (Q8, outer surface clamped, rigid pin on a
-   pilot point) under each step's force: nodal pressures p and slips s on the bore. The condensed
-   fast path is used; it equals the full DOLFINx solve to 1e-6 (tests/contact).
-4. **Wear** (:mod:`fewear.wear`): Archard's law with k(p, v) from the RBF network (seed eq. 9,
-   10), the sliding speed v = s / dt of each step, giving the wear depth of one simulated cycle and
-   of the first block of A_j cycles.
+1. **Dynamics** (:mod:`fewear.mbd`): the slider-crank with the revolute clearance joint on the worn
+   clearance c(theta) = c0 + h(theta) of the wear state; the first block settles from the ideal
+   mechanism, later ones start from the previous block's final state (a warm start: the orbit
+   only adapts to the slightly larger clearance). Then ``recorded_cycles_per_block`` crank cycles
+   are recorded: the joint reaction and the pin's rotation relative to the bushing.
+2. **Load steps**: each recorded cycle cut into n steps (seed: 200); each step carries the joint
+   force at its middle and the relative rotation accumulated over it.
+3. **Contact** (:mod:`fewear.contact`): the FE bushing on the worn bore (Q8, outer surface clamped,
+   rigid pin on a pilot point) under each step's force: nodal pressures p and slips s.
+4. **Wear** (:mod:`fewear.wear`): Archard's law with k(p, v) (seed eq. 9-10) and the wear law's
+   history multiplier, per node, averaged over the recorded cycles; the block extrapolates it over
+   A_j real cycles (fixed, or adaptive: bounded depth increment per block).
+5. **Geometry update**: the bore nodes move by the block's depth increment, the mesh follows (ALE)
+   or is re-meshed from the worn bore, and the contact operator is rebuilt: the next block runs
+   on the worn joint.
 
-What is *not* done yet: moving the worn bore (ALE, re-meshing) and feeding the worn clearance
-c(theta) back into the dynamics for the next block (seed section 4). Until that loop exists the
-depth after ``total_cycles`` is reported as the constant-geometry projection
-``total_cycles * depth_per_cycle``, labelled as such: without the geometry feedback it is the
-first-order estimate, not the paper's Fig. 7.
+The worn bore has one source, :class:`fewear.wear.state.WearState`; the dynamics' clearance and the
+mesh's bore are both derived from it. A checkpoint is written after every block
+(:mod:`fewear.io.checkpoint`): ``--resume`` continues an interrupted run to the same result.
 """
 
 from __future__ import annotations
 
+import math
 import sys
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from fewear.errors import FewearInputError
 from fewear.mbd.history import JointHistory
-from fewear.wear.archard import advance_wear_depth_m, cycle_wear_depth_m
+from fewear.wear.archard import (
+    CycleSliding,
+    block_wear,
+    cycle_wear_depth_m,
+    smoothed_periodic,
+)
+from fewear.wear.extrapolation import ExtrapolationSettings, extrapolate_block
+from fewear.wear.state import WearState
 
 RUN_SECTIONS = ["wear_loop", "wear"]
+STAGES = ("dynamics", "contact", "wear", "mesh")
 
 
 @dataclass(frozen=True)
@@ -41,29 +54,79 @@ class WearLoopSettings:
 
     rod_models: tuple[str, ...]
     load_steps_per_cycle: int
-    extrapolation_factor: float
     total_cycles: int
     friction_in_contact: bool
+    extrapolation: ExtrapolationSettings
+    recorded_cycles_per_block: int
+    warm_settling_cycles: int
+    max_wall_fraction: float
+    implicit_wear_step: bool
+    wear_smoothing_width_deg: float
 
     def __post_init__(self):
         unknown = [rod for rod in self.rod_models if rod not in ("rigid", "flexible")]
-        if unknown or not self.rod_models:
+        if unknown or not self.rod_models or len(set(self.rod_models)) != len(self.rod_models):
             raise FewearInputError(
                 f"[wear_loop] rod_models = {list(self.rod_models)!r}: expected a non-empty list of "
-                "'rigid' and/or 'flexible'")
+                "'rigid' and/or 'flexible', each once")
         if self.load_steps_per_cycle < 2:
             raise FewearInputError(
                 f"[wear_loop] load_steps_per_cycle = {self.load_steps_per_cycle}: expected >= 2")
-        if not self.extrapolation_factor >= 1.0:
-            raise FewearInputError(
-                f"[wear_loop] extrapolation_factor = {self.extrapolation_factor}: expected >= 1")
         if self.total_cycles < 1:
             raise FewearInputError(f"[wear_loop] total_cycles = {self.total_cycles}: expected >= 1")
+        if self.recorded_cycles_per_block < 1 or self.warm_settling_cycles < 0:
+            raise FewearInputError(
+                f"[wear_loop] recorded_cycles_per_block = {self.recorded_cycles_per_block}, "
+                f"warm_settling_cycles = {self.warm_settling_cycles}: expected >= 1 and >= 0")
+        if not 0.0 < self.max_wall_fraction < 1.0:
+            raise FewearInputError(
+                f"[wear_loop] max_wall_fraction = {self.max_wall_fraction}: expected a fraction "
+                "of the bushing wall in (0, 1)")
+
+    @classmethod
+    def from_config(cls, section: dict) -> WearLoopSettings:
+        values = dict(section)
+        extrapolation = ExtrapolationSettings(
+            mode=values.pop("extrapolation"), factor=values.pop("extrapolation_factor"),
+            max_factor=values.pop("max_extrapolation_factor"),
+            max_depth_increment_fraction=values.pop("max_depth_increment_fraction"))
+        return cls(**{**values, "rod_models": tuple(values["rod_models"]),
+                      "extrapolation": extrapolation})
+
+
+@dataclass(frozen=True)
+class RunInputs:
+    """Everything ``fewear run`` needs, parsed once from the config at the command's edge."""
+
+    dynamics: object  # fewear.mbd.slider_crank.DynamicsInputs
+    contact: object  # fewear.contact.params.ContactProblem
+    wear_coefficient: object  # k(p, v), fewear.wear.coefficient
+    extension: object  # the wear law's history multiplier, fewear.wear.extensions
+    loop: WearLoopSettings
+
+
+def run_sections() -> list[str]:
+    from fewear.contact.params import CONFIG_SECTIONS
+    from fewear.mbd.slider_crank import SECTIONS as DYNAMICS_SECTIONS
+
+    return list(dict.fromkeys([*RUN_SECTIONS, *CONFIG_SECTIONS, *DYNAMICS_SECTIONS]))
+
+
+def run_inputs_from_config(config: dict) -> RunInputs:
+    from fewear.contact.params import contact_problem_from_config
+    from fewear.mbd.slider_crank import dynamics_inputs_from_config
+    from fewear.wear.coefficient import wear_coefficient_from_config
+    from fewear.wear.extensions import wear_extension_from_config
+
+    return RunInputs(dynamics_inputs_from_config(config), contact_problem_from_config(config),
+                     wear_coefficient_from_config(config["wear"]),
+                     wear_extension_from_config(config["wear"]),
+                     WearLoopSettings.from_config(config["wear_loop"]))
 
 
 @dataclass(frozen=True)
 class LoadSteps:
-    """The n load steps of one crank cycle (bushing frame).
+    """The load steps of the recorded cycles (bushing frame).
 
     ``force_N`` (n, 2): joint force ON the pin pushing it into the bore (minus the bushing's
     reaction on the pin) at the middle of each step; ``rotation_rad`` (n,): rotation of the pin
@@ -78,9 +141,11 @@ class LoadSteps:
 
 @dataclass(frozen=True)
 class CycleWear:
-    """Contact and wear of one simulated cycle on the bore nodes (sorted by angle).
+    """Contact and wear of the recorded cycles on the bore nodes (sorted by angle).
 
-    ``pressure_Pa``, ``slip_m``, ``k_m2_N``: (n_steps, n_nodes); ``depth_per_cycle_m`` (n_nodes,).
+    ``pressure_Pa``, ``slip_m``, ``k_m2_N``: (n_steps, n_nodes); ``depth_per_cycle_m`` (n_nodes,):
+    plain Archard depth summed over all the steps; ``depth_sensitivity`` (n_nodes, n_nodes) its
+    derivative with respect to the bore's wear depth, or None.
     """
 
     angle_rad: np.ndarray
@@ -90,10 +155,11 @@ class CycleWear:
     slip_m: np.ndarray
     k_m2_N: np.ndarray
     depth_per_cycle_m: np.ndarray
+    depth_sensitivity: np.ndarray | None = None
 
 
 def load_steps(history: JointHistory, n_steps: int) -> LoadSteps:
-    """Cut the recorded cycle into ``n_steps`` equal steps (stage 2).
+    """Cut the recorded history into ``n_steps`` equal steps (stage 2).
 
     The force is sampled at each step's middle (linear interpolation of the variable-step history);
     the relative rotation is the trapezoidal integral of ``rel_omega_rad_s`` over the step.
@@ -111,128 +177,270 @@ def load_steps(history: JointHistory, n_steps: int) -> LoadSteps:
 
 
 def cycle_wear(contact_model, steps: LoadSteps, wear_coefficient, friction: bool,
-               progress=None) -> CycleWear:
-    """Stages 3 and 4: contact at every load step, then Archard's law summed over the cycle."""
-    results = []
-    for i, (force, rotation) in enumerate(zip(steps.force_N, steps.rotation_rad)):
-        results.append(contact_model.solve(force, rotation, friction=friction))
-        if progress is not None and (i + 1) % 50 == 0:
-            progress(f"contact: load step {i + 1}/{len(steps.force_N)}")
+               implicit: bool = False) -> CycleWear:
+    """Stages 3 and 4: contact at every load step, then Archard's law summed over the steps.
+
+    ``implicit``: also sum the steps' sensitivities k s dp/dh (``contact_model`` must offer
+    ``pressure_sensitivity(result)``, as :class:`fewear.contact.worn_bushing.WornBushing` does)
+    for the linearly implicit block step of :func:`fewear.wear.archard.block_wear`.
+    """
+    results = [contact_model.solve(force, rotation, friction=friction)
+               for force, rotation in zip(steps.force_N, steps.rotation_rad)]
     pressure = np.array([r.pressure_Pa for r in results])
     slip = np.array([r.slip_m for r in results])
     speed = slip / steps.duration_s
     k = np.where(slip > 0.0, wear_coefficient(pressure, np.maximum(speed, 1e-300)), 0.0)
+    sensitivity = None
+    if implicit:
+        sensitivity = np.zeros((pressure.shape[1], pressure.shape[1]))
+        for result, k_step, slip_step in zip(results, k, slip):
+            if np.any(slip_step > 0.0) and np.any(result.pressure_Pa > 0.0):
+                active, J = contact_model.pressure_sensitivity(result)
+                sensitivity[np.ix_(active, active)] += (k_step * slip_step)[active, None] * J
     first = results[0]
     return CycleWear(first.angle_rad, first.x_m, first.y_m, pressure, slip, k,
-                     cycle_wear_depth_m(k, pressure, slip))
+                     cycle_wear_depth_m(k, pressure, slip), sensitivity)
 
 
-def wear_volume_per_width_m2(wear: CycleWear, depth_m: np.ndarray) -> float:
-    """Worn area of the bore cross-section (m^2, = volume per unit width): trapezoid in arc length
-    over the closed bore."""
-    x = np.append(wear.x_m, wear.x_m[0])
-    y = np.append(wear.y_m, wear.y_m[0])
-    h = np.append(depth_m, depth_m[0])
-    ds = np.hypot(np.diff(x), np.diff(y))
-    return float(np.sum(0.5 * (h[1:] + h[:-1]) * ds))
+def cycle_sliding(wear: CycleWear, steps: LoadSteps, cycles: int,
+                  friction_coefficient: float) -> CycleSliding:
+    """What one crank cycle does at each node, averaged over the ``cycles`` recorded cycles:
+    Archard depth, sliding distance, time in sliding contact, mean frictional power mu p v, and
+    the depth's sensitivity to the wear."""
+    sliding = wear.slip_m > 0.0
+    distance = wear.slip_m.sum(axis=0) / cycles
+    time_s = steps.duration_s * sliding.sum(axis=0) / cycles
+    energy = friction_coefficient * (wear.pressure_Pa * wear.slip_m).sum(axis=0) / cycles
+    power = np.divide(energy, time_s, out=np.zeros_like(energy), where=time_s > 0.0)
+    sensitivity = None if wear.depth_sensitivity is None else wear.depth_sensitivity / cycles
+    return CycleSliding(wear.depth_per_cycle_m / cycles, distance, time_s, power, sensitivity)
 
 
-def predict_case(rod: str, config: dict, contact_model, wear_coefficient,
-                 settings: WearLoopSettings, progress) -> dict:
-    """Stages 1-4 for one rod model; returns the summary and the arrays for the outputs."""
-    from fewear.mbd.slider_crank import simulate_slider_crank
+@dataclass(frozen=True)
+class BlockRecord:
+    """One wear block: cycles at its end, its A_j, the depth profile after it (at the state's
+    node angles), and what its simulated cycles saw."""
 
-    progress(f"{rod} rod: dynamics (settling + recorded cycle)")
-    history, run = simulate_slider_crank(config, rod=rod, joint="clearance", cycles=1)
-    steps = load_steps(history, settings.load_steps_per_cycle)
-    progress(f"{rod} rod: {history.impacts} impacts, peak {history.peak_contact_force_N:.0f} N; "
-             f"contact at {settings.load_steps_per_cycle} load steps")
-    wear = cycle_wear(contact_model, steps, wear_coefficient, settings.friction_in_contact,
-                      progress)
-    first_block = advance_wear_depth_m(0.0, wear.depth_per_cycle_m, settings.extrapolation_factor)
-    peak = int(np.argmax(wear.depth_per_cycle_m))
-    summary = {
-        "peak_contact_force_N": history.peak_contact_force_N,
-        "impacts": history.impacts,
-        "dynamics_wall_time_s": run.wall_time_s,
-        "max_contact_pressure_Pa": float(wear.pressure_Pa.max()),
-        "max_wear_depth_per_cycle_m": float(wear.depth_per_cycle_m[peak]),
-        "max_wear_angle_deg": float(np.degrees(wear.angle_rad[peak])),
-        "max_wear_depth_first_block_m": float(first_block[peak]),
-        "wear_volume_per_cycle_m3": config["bushing"]["width_m"]
-        * wear_volume_per_width_m2(wear, wear.depth_per_cycle_m),
-        "max_wear_depth_constant_geometry_m": float(
-            settings.total_cycles * wear.depth_per_cycle_m[peak]),
+    cycles: int
+    block_cycles: int
+    depth_m: np.ndarray
+    peak_contact_force_N: float
+    impacts: int
+    max_contact_pressure_Pa: float
+    max_depth_per_cycle_m: float
+
+
+@dataclass
+class CaseProgress:
+    """A rod model's run so far: what a checkpoint stores and the outputs are written from."""
+
+    state: WearState
+    mechanism: object = None  # fewear.mbd.slider_crank.MechanismState of the last block
+    records: list[BlockRecord] = field(default_factory=list)
+    snapshots: list[np.ndarray] = field(default_factory=list)  # mesh node coordinates per block
+    node_ids: np.ndarray | None = None
+    cells: np.ndarray | None = None
+    meshed_xy_m: np.ndarray | None = None  # the current mesh's nodes as made (motion reference)
+    ale_moves: int = 0
+    remeshes: int = 0
+    stage_wall_time_s: dict = field(default_factory=lambda: dict.fromkeys(STAGES, 0.0))
+    done: bool = False
+
+    @property
+    def wall_time_s(self) -> float:
+        return float(sum(self.stage_wall_time_s.values()))
+
+
+class StageClock:
+    """Adds the wall time of ``with clock("stage"):`` blocks to a case's stage times."""
+
+    def __init__(self, times: dict):
+        self.times = times
+
+    def __call__(self, stage: str):
+        clock = self
+
+        class _Timed:
+            def __enter__(self):
+                self.start = time.perf_counter()
+
+            def __exit__(self, *exc):
+                clock.times[stage] += time.perf_counter() - self.start
+
+        return _Timed()
+
+
+def smoothed_block_wear(per_cycle: CycleSliding, state: WearState, extension, cycles: int,
+                        width_rad: float):
+    """:func:`block_wear` with the depth increment smoothed around the bore by a Gaussian of
+    standard deviation ``width_rad`` (volume kept; :func:`smoothed_periodic`): the dwell points of
+    the few recorded cycles stand for an orbit that varies from cycle to cycle over the A_j cycles
+    of the block, and the bore's contact does not resolve ripples shorter than a few elements."""
+    increment, sliding = block_wear(per_cycle, state.sliding, extension, cycles)
+    step = 2.0 * math.pi / state.angle_rad.size
+    # the FFT convolution leaves rounding noise (~1e-21 m) where nothing wears: clip it
+    return np.maximum(smoothed_periodic(increment, step, width_rad), 0.0), sliding
+
+
+def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress) -> None:
+    """One wear block of ``case`` (stages 1-5), updating it in place."""
+    from fewear.mbd.slider_crank import simulate
+
+    loop, clock = inputs.loop, StageClock(case.stage_wall_time_s)
+    state = case.state
+    crank = replace(inputs.dynamics.crank, rod=rod, joint="clearance",
+                    recorded_cycles=loop.recorded_cycles_per_block,
+                    settling_cycles=(inputs.dynamics.crank.settling_cycles
+                                     if case.mechanism is None else loop.warm_settling_cycles))
+    joint = replace(inputs.dynamics.joint,
+                    profile=state.clearance_profile(inputs.contact.geometry.inner_radius_m,
+                                                    inputs.contact.geometry.pin_radius_m))
+    with clock("dynamics"):
+        history, _, case.mechanism = simulate(replace(inputs.dynamics, crank=crank, joint=joint),
+                                              start=case.mechanism)
+    with clock("contact"):
+        steps = load_steps(history, loop.load_steps_per_cycle * loop.recorded_cycles_per_block)
+        try:
+            wear = cycle_wear(bushing, steps, inputs.wear_coefficient, loop.friction_in_contact,
+                              implicit=loop.implicit_wear_step)
+        except RuntimeError as exc:  # the contact Newton found no equilibrium
+            raise FewearInputError(
+                f"{rod} rod, block {state.blocks + 1} at {state.cycles:,} cycles: the FE contact "
+                f"on the worn bore failed ({exc}); peak joint force "
+                f"{history.peak_contact_force_N:.0f} N. The checkpoint holds the blocks done: "
+                "a smaller [wear_loop] max_depth_increment_fraction (adaptive extrapolation) or "
+                "a wider wear_smoothing_width_deg keeps the worn bore smoother") from None
+    with clock("wear"):
+        per_cycle = cycle_sliding(wear, steps, loop.recorded_cycles_per_block,
+                                  inputs.contact.contact.friction_coefficient)
+        cycles, increment, sliding = extrapolate_block(
+            loop.extrapolation,
+            lambda cycles: smoothed_block_wear(per_cycle, state, inputs.extension, cycles,
+                                               math.radians(loop.wear_smoothing_width_deg)),
+            bushing.element_height_m, loop.total_cycles - state.cycles)
+        worn = WearState(state.angle_rad, state.depth_m + increment, sliding,
+                         state.cycles + cycles, state.blocks + 1)
+        geometry = inputs.contact.geometry
+        worn.checked_against_wall(geometry.inner_radius_m, geometry.outer_radius_m,
+                                  loop.max_wall_fraction)
+    with clock("mesh"):
+        bushing.apply_wear(worn, increment)
+        snapshot = bushing.snapshot()
+    case.state = worn
+    case.node_ids, case.cells, case.meshed_xy_m = (snapshot.node_ids, snapshot.cells,
+                                                   bushing.meshed_xy_m)
+    case.snapshots.append(snapshot.xy_m)
+    case.ale_moves, case.remeshes = bushing.ale_moves, bushing.remeshes
+    case.records.append(BlockRecord(
+        worn.cycles, cycles, worn.depth_m.copy(), history.peak_contact_force_N, history.impacts,
+        float(wear.pressure_Pa.max()), float(per_cycle.depth_m.max())))
+    case.done = worn.cycles >= loop.total_cycles
+
+
+def new_case(bushing) -> CaseProgress:
+    """An unworn case on the bushing's bore nodes, its first snapshot the unworn mesh."""
+    snapshot = bushing.snapshot()
+    return CaseProgress(WearState.unworn(bushing.angles), snapshots=[snapshot.xy_m],
+                        node_ids=snapshot.node_ids, cells=snapshot.cells,
+                        meshed_xy_m=bushing.meshed_xy_m)
+
+
+def predict_case(rod: str, inputs: RunInputs, bushing, case: CaseProgress, after_block) -> None:
+    """Wear blocks until ``total_cycles``; ``after_block(case)`` runs after each (checkpoint,
+    progress)."""
+    while not case.done:
+        run_block(rod, inputs, bushing, case)
+        after_block(case)
+
+
+def case_summary(case: CaseProgress, inputs: RunInputs) -> dict:
+    """The numbers of one rod model for ``summary.json``."""
+    state, geometry = case.state, inputs.contact.geometry
+    peak = int(np.argmax(state.depth_m))
+    first = case.records[0]
+    return {
+        "max_wear_depth_m": float(state.depth_m[peak]),
+        "max_wear_angle_deg": float(np.degrees(state.angle_rad[peak])),
+        "worn_volume_m3": geometry.width_m * state.worn_area_m2(geometry.inner_radius_m),
+        "cycles": int(state.cycles),
+        "blocks": int(state.blocks),
+        "ale_moves": int(case.ale_moves),
+        "remeshes": int(case.remeshes),
+        "first_block": {"cycles": first.block_cycles,
+                        "max_wear_depth_per_cycle_m": first.max_depth_per_cycle_m,
+                        "peak_contact_force_N": first.peak_contact_force_N,
+                        "impacts": first.impacts,
+                        "max_contact_pressure_Pa": first.max_contact_pressure_Pa},
+        "last_block": {"cycles": case.records[-1].block_cycles,
+                       "max_wear_depth_per_cycle_m": case.records[-1].max_depth_per_cycle_m,
+                       "max_contact_pressure_Pa": case.records[-1].max_contact_pressure_Pa},
+        "wall_time_s": case.wall_time_s,
+        "stage_wall_time_s": dict(case.stage_wall_time_s),
     }
-    return {"summary": summary, "history": history, "wear": wear, "first_block_m": first_block}
+
+
+class Progress:
+    """One line per block on stderr (rank 0): a bar of the cycles done, depth, ETA."""
+
+    def __init__(self, comm, total_cycles: int, n_cases: int):
+        self.comm, self.total, self.n_cases = comm, total_cycles, n_cases
+        self.start = time.perf_counter()
+
+    def message(self, text: str) -> None:
+        if self.comm.rank == 0:
+            print(f"fewear run [{time.perf_counter() - self.start:6.1f} s] {text}",
+                  file=sys.stderr, flush=True)
+
+    def block(self, rod: str, index: int, case: CaseProgress, done_before: float) -> None:
+        fraction = case.state.cycles / self.total
+        overall = (done_before + fraction) / self.n_cases
+        elapsed = time.perf_counter() - self.start
+        eta = elapsed * (1.0 - overall) / overall if overall > 0 else math.inf
+        bar = "#" * int(20 * fraction) + "." * (20 - int(20 * fraction))
+        self.message(f"{rod} [{bar}] block {case.state.blocks}, {case.state.cycles:,}/"
+                     f"{self.total:,} cycles, max depth {case.state.depth_m.max():.3e} m, "
+                     f"ETA {eta:.0f} s")
 
 
 def main(args) -> int:
     """``fewear run``: the prediction for every rod model of ``[wear_loop]``, written all or
-    nothing into ``args.out`` (summary.json, wear_profile.csv, wear_profile.png, joint histories).
-    """
+    nothing into ``args.out``; a checkpoint after every block (``--resume`` continues it)."""
     from mpi4py import MPI
 
-    from fewear.contact.condensed import CondensedBushingContact
-    from fewear.contact.params import CONFIG_SECTIONS, contact_problem_from_config
+    from fewear.contact.worn_bushing import MeshSnapshot, WornBushing
+    from fewear.io import checkpoint
     from fewear.io.config import load_config
     from fewear.io.output import staged_output
-    from fewear.mbd.slider_crank import SECTIONS as DYNAMICS_SECTIONS
-    from fewear.wear.coefficient import wear_coefficient_from_config
 
     comm = MPI.COMM_WORLD
-    sections = list(dict.fromkeys([*RUN_SECTIONS, *CONFIG_SECTIONS, *DYNAMICS_SECTIONS]))
-    config = load_config(args.config, sections)
-    settings = WearLoopSettings(**{**config["wear_loop"],
-                                   "rod_models": tuple(config["wear_loop"]["rod_models"])})
-    if config["wear"]["extension"] != "none":
-        raise FewearInputError(
-            f"[wear] extension = {config['wear']['extension']!r}: `fewear run` applies plain "
-            "Archard until the wear loop tracks each node's sliding history; use 'none'")
-    wear_coefficient = wear_coefficient_from_config(config["wear"])
-    problem = contact_problem_from_config(config)
-
-    start = time.perf_counter()
-
-    def progress(message: str) -> None:
-        if comm.rank == 0:
-            print(f"fewear run [{time.perf_counter() - start:6.1f} s] {message}", file=sys.stderr,
-                  flush=True)
-
+    config = load_config(args.config, run_sections())
+    inputs = run_inputs_from_config(config)
+    progress = Progress(comm, inputs.loop.total_cycles, len(inputs.loop.rod_models))
+    store = checkpoint.Checkpoint(args.out, config, comm)
+    cases = store.load() if getattr(args, "resume", False) else {}
+    if cases:
+        progress.message(f"resuming from {store.path}: " + ", ".join(
+            f"{rod} at {case.state.cycles:,} cycles" for rod, case in cases.items()))
     with staged_output(args.out, comm) as stage:
-        progress("contact: meshing the bushing and condensing it onto the bore")
-        contact_model = CondensedBushingContact(problem, comm)
-        cases = {rod: predict_case(rod, config, contact_model, wear_coefficient, settings,
-                                   progress) for rod in settings.rod_models}
+        for index, rod in enumerate(inputs.loop.rod_models):
+            progress.message(f"{rod} rod: meshing the bushing and condensing it onto the bore")
+            bushing = WornBushing(inputs.contact, comm)
+            case = cases.get(rod)
+            if case is None:
+                case = cases[rod] = new_case(bushing)
+            elif case.records:
+                bushing.restore(case.meshed_xy_m,
+                                MeshSnapshot(case.node_ids, case.snapshots[-1], case.cells),
+                                case.ale_moves, case.remeshes)
+
+            def after_block(case, rod=rod, index=index):
+                store.save(cases)
+                progress.block(rod, index, case, index)
+
+            predict_case(rod, inputs, bushing, case, after_block)
         if comm.rank == 0:
-            write_outputs(stage, cases, settings, config)
-    progress(f"done: {args.out}")
+            from fewear.io.run_output import write_run_outputs
+
+            write_run_outputs(stage, cases, inputs, config)
+    progress.message(f"done: {args.out}")
     return 0
-
-
-def write_outputs(stage, cases: dict, settings: WearLoopSettings, config: dict) -> None:
-    from fewear.io.output import write_json
-    from fewear.mbd.command import write_history_csv
-    from fewear.plot.wear import plot_wear_profiles
-
-    summary = {
-        "what": "seed section 5: first wear block per rod model (no geometry feedback yet)",
-        "load_steps_per_cycle": settings.load_steps_per_cycle,
-        "extrapolation_factor": settings.extrapolation_factor,
-        "total_cycles": settings.total_cycles,
-        "cases": {rod: case["summary"] for rod, case in cases.items()},
-        "config": config,
-    }
-    write_json(stage / "summary.json", summary)
-    first = next(iter(cases.values()))["wear"]
-    columns = {"angle_deg": np.degrees(first.angle_rad), "x_m": first.x_m, "y_m": first.y_m}
-    for rod, case in cases.items():
-        columns[f"depth_per_cycle_{rod}_m"] = case["wear"].depth_per_cycle_m
-        columns[f"depth_first_block_{rod}_m"] = case["first_block_m"]
-        write_history_csv(case["history"], stage / f"joint_history_{rod}.csv")
-    np.savetxt(stage / "wear_profile.csv", np.column_stack(list(columns.values())),
-               delimiter=",", header=",".join(columns), comments="", fmt="%.9e")
-    plot_wear_profiles({rod: (case["wear"].angle_rad, case["first_block_m"])
-                        for rod, case in cases.items()},
-                       stage / "wear_profile.png", settings.extrapolation_factor)
-

@@ -133,14 +133,31 @@ class JointModel:
         return self.bushing_radius_m - self.pin_radius_m
 
 
-def parameters_from_config(config: Config):
-    """(SliderCrank, JointModel, IntegratorSettings) from the config sections of ``SECTIONS``."""
-    mech = config["mechanism"]
-    crank = SliderCrank(**mech)
-    joint = joint_model_from_config(config)
-    integ = config["integrator"]
-    settings = IntegratorSettings(**integ)
-    return crank, joint, settings
+@dataclass(frozen=True)
+class DynamicsInputs:
+    """Everything the dynamics stage needs, parsed once from the config: the mechanism
+    ([mechanism]), the clearance joint ([bushing], [pin], [joint], [clearance_joint]) and the
+    integrator settings ([integrator])."""
+
+    crank: SliderCrank
+    joint: JointModel
+    integrator: IntegratorSettings
+
+
+@dataclass(frozen=True)
+class MechanismState:
+    """Positions ``q`` and velocities ``qd`` (generalized coordinates) at time ``time_s``: where a
+    later simulation of the same mechanism can start (a warm start)."""
+
+    time_s: float
+    q: np.ndarray
+    qd: np.ndarray
+
+
+def dynamics_inputs_from_config(config: Config) -> DynamicsInputs:
+    """The :class:`DynamicsInputs` of the config sections of ``SECTIONS``."""
+    return DynamicsInputs(SliderCrank(**config["mechanism"]), joint_model_from_config(config),
+                          IntegratorSettings(**config["integrator"]))
 
 
 def joint_model_from_config(config: Config) -> JointModel:
@@ -305,26 +322,45 @@ def simulate_slider_crank(config: Config | None = None, rod: str | None = None,
 
     ``config``: the sections of ``SECTIONS`` (default: the embedded defaults); the keyword
     arguments override single values (``mechanism``: any [mechanism] keys; ``clearance_profile``: a
-    :class:`ClearanceProfile`, e.g. the worn bore from the wear stage)."""
+    :class:`ClearanceProfile`). A convenience over :func:`simulate` for commands and studies."""
     if config is None:
         config = load_config(None, SECTIONS)
-    crank, joint_model, settings = parameters_from_config(config)
+    inputs = dynamics_inputs_from_config(config)
     overrides = dict(mechanism or {})
     for key, value in (("rod", rod), ("joint", joint), ("recorded_cycles", cycles),
                        ("settling_cycles", settling_cycles)):
         if value is not None:
             overrides[key] = value
-    crank = replace(crank, **overrides)
+    settings = inputs.integrator
     if step_s is not None:
         settings = replace(settings, step_s=step_s, min_step_s=min(settings.min_step_s, step_s))
     if adaptive is not None:
         settings = replace(settings, adaptive=adaptive)
+    joint_model = inputs.joint
     if clearance_profile is not None:
         joint_model = replace(joint_model, profile=clearance_profile)
+    inputs = DynamicsInputs(replace(inputs.crank, **overrides), joint_model, settings)
+    history, summary, _ = simulate(inputs, progress=progress)
+    return history, summary
+
+
+def simulate(inputs: DynamicsInputs, start: MechanismState | None = None,
+             progress: bool = False) -> tuple[JointHistory, RunSummary, MechanismState]:
+    """Simulate ``inputs.crank.settling_cycles`` + ``recorded_cycles`` crank cycles.
+
+    ``start``: begin from this state (e.g. the end of the previous wear block, on the same
+    mechanism with another clearance profile) instead of the ideal mechanism at t = 0; the time
+    continues from ``start.time_s`` so the driven crank angle stays consistent. Returns the
+    history of the recorded cycles, the run's counts and timings, and the final state.
+    """
+    crank, joint_model, settings = inputs.crank, inputs.joint, inputs.integrator
     model = SliderCrankModel(crank, joint_model)
     integrator = GeneralizedAlpha(model.system, settings)
-    state = integrator.initial_state(*model.initial_conditions())
-    period = crank.period_s
+    if start is None:
+        state = integrator.initial_state(*model.initial_conditions())
+    else:
+        state = integrator.initial_state(start.q, start.qd, start.time_s)
+    t0, period = state.t, crank.period_s
     rows: list = []
 
     def record(s, h):
@@ -332,23 +368,23 @@ def simulate_slider_crank(config: Config | None = None, rod: str | None = None,
                      model.measure(s)))
 
     total = crank.settling_cycles + crank.recorded_cycles
-    start = time.perf_counter()
+    clock = time.perf_counter()
     for cycle in range(total):
         recording = cycle >= crank.settling_cycles
         if recording and not rows:
             record(state, 0.0)
-        state = integrator.run(state, (cycle + 1) * period, record if recording else None)
+        state = integrator.run(state, t0 + (cycle + 1) * period, record if recording else None)
         if progress:
             print(f"fewear dynamics: cycle {cycle + 1}/{total} "
                   f"({'recorded' if recording else 'settling'}), t = {state.t:.4f} s, "
-                  f"{integrator.stats.steps} steps, {time.perf_counter() - start:.1f} s",
+                  f"{integrator.stats.steps} steps, {time.perf_counter() - clock:.1f} s",
                   file=sys.stderr, flush=True)
-    wall = time.perf_counter() - start
+    wall = time.perf_counter() - clock
     history = _history(rows, joint_model.impact_max_duration_s, crank.joint == "ideal")
     stats = integrator.stats
     summary = RunSummary(stats.steps, stats.rejected, stats.newton_iterations, wall, wall / total,
                          stats.smallest_step_s, total)
-    return history, summary
+    return history, summary, MechanismState(state.t, state.q.copy(), state.qd.copy())
 
 
 def _history(rows, impact_max_duration_s: float, ideal: bool) -> JointHistory:

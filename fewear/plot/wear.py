@@ -1,4 +1,5 @@
-"""Figures of the wear prediction: wear depth around the bore (seed Fig. 7a)."""
+"""Figures of the wear prediction: wear depth around the bore (seed Fig. 7a) and the maximum depth
+against cycles (seed Fig. 7b)."""
 
 from __future__ import annotations
 
@@ -32,6 +33,29 @@ def plot_wear_profiles(profiles: dict, path, cycles: float) -> None:
     unrolled.set_xticks(range(0, 361, 45))
     unrolled.grid(alpha=0.3)
     unrolled.legend()
+    figure.tight_layout()
+    figure.savefig(path, dpi=120)
+    plt.close(figure)
+
+
+def plot_max_wear(series: dict, path) -> None:
+    """Maximum wear depth (um) against crank cycles, one line per rod model (seed Fig. 7b).
+
+    ``series``: label -> (cycles, max_depth_m) after each block.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, axes = plt.subplots(figsize=(6, 4.5))
+    for label, (cycles, depth) in series.items():
+        axes.plot(np.append(0, cycles), 1e6 * np.append(0.0, depth), "o-", ms=3,
+                  label=f"{label} rod")
+    axes.set(xlabel="crank cycles", ylabel="maximum wear depth (um)",
+             title="maximum wear depth at the rod-slider joint")
+    axes.grid(alpha=0.3)
+    axes.legend()
     figure.tight_layout()
     figure.savefig(path, dpi=120)
     plt.close(figure)

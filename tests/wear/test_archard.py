@@ -1,10 +1,13 @@
-"""Archard's law (seed eq. 10) against hand-computed cases."""
+"""Archard's law (seed eq. 10) per node and its extrapolation over a block, against exact cases."""
+
+import math
 
 import numpy as np
 import pytest
 
 from fewear.errors import FewearInputError
-from fewear.wear.archard import advance_wear_depth_m, cycle_wear_depth_m
+from fewear.wear.archard import CycleSliding, block_wear, cycle_wear_depth_m, smoothed_periodic
+from fewear.wear.extensions import NoExtension, RunningIn, SlidingState
 
 
 def test_uniform_sliding_gives_k_p_s_times_steps():
@@ -19,20 +22,70 @@ def test_no_pressure_or_no_slip_means_no_wear():
     np.testing.assert_array_equal(cycle_wear_depth_m(1e-13, pressure, slip), [0.0, 0.0])
 
 
-def test_extrapolation_over_blocks_is_linear_in_cycles():
-    one_cycle = np.array([1e-12, 3e-12])
-    depth = np.zeros(2)
-    for _ in range(80):
-        depth = advance_wear_depth_m(depth, one_cycle, 5000)
-    np.testing.assert_allclose(depth, 400_000 * one_cycle, rtol=1e-12)
-
-
-@pytest.mark.parametrize("factor", [0.5, float("nan")])
-def test_bad_extrapolation_factor(factor):
-    with pytest.raises(FewearInputError, match="extrapolation factor"):
-        advance_wear_depth_m(0.0, 1e-12, factor)
-
-
 def test_negative_pressure_is_rejected():
     with pytest.raises(FewearInputError, match="pressure"):
         cycle_wear_depth_m(1e-13, [[-1.0]], [[1e-3]])
+
+
+def cycle(depth, distance=1e-3, sensitivity=None):
+    depth = np.asarray(depth, dtype=float)
+    ones = np.ones_like(depth)
+    return CycleSliding(depth, distance * ones, 0.01 * ones, 0.0 * ones, sensitivity)
+
+
+def unworn(n):
+    zeros = np.zeros(n)
+    return SlidingState(zeros, zeros, zeros)
+
+
+def test_plain_archard_block_is_seed_eq_10_and_blocks_add_up():
+    """m = 1: each block adds A_j h_cycle exactly; 80 blocks of 5000 = 400,000 cycles."""
+    one_cycle = np.array([1e-12, 3e-12])
+    depth, sliding = np.zeros(2), unworn(2)
+    for _ in range(80):
+        increment, sliding = block_wear(cycle(one_cycle), sliding, NoExtension(), 5000)
+        depth = depth + increment
+    np.testing.assert_allclose(depth, 400_000 * one_cycle, rtol=1e-12)
+    np.testing.assert_allclose(sliding.distance_m, 400_000 * 1e-3, rtol=1e-12)
+
+
+def test_running_in_block_matches_the_closed_form_effective_distance():
+    """Constant p and s: the depth is k p times the effective distance S_eff(s1) - S_eff(s0) of
+    the running-in law (closed form in fewear.wear.extensions); the midpoint rule over 32
+    sub-blocks is within (A ds / s0)^2 / (24 * 32^2) of it."""
+    law = RunningIn(k_initial_over_steady=5.0, distance_scale_m=4.0)
+    per_cycle, ds = 2e-12, 1e-3  # depth of plain Archard per cycle (m), slid distance per cycle
+    increment, after = block_wear(cycle([per_cycle], ds), unworn(1), law, 5000)
+    exact = per_cycle / ds * (law.effective_distance_m(5.0) - law.effective_distance_m(0.0))
+    assert increment[0] == pytest.approx(exact, rel=(5000 * ds / 4.0) ** 2 / (24 * 32**2) * 5)
+    assert after.distance_m[0] == pytest.approx(5.0)
+
+
+def test_implicit_step_is_backward_euler_and_damps_a_ripple():
+    """With dh/dN = h_c - lambda h (a node that sheds its load as it recedes) the linearly
+    implicit step gives A h_c / (1 + A lambda), backward Euler; explicit extrapolation
+    overshoots as soon as A lambda > 2 (a ripple grows)."""
+    h_c, decay, cycles = 1e-9, 0.01, 5000
+    implicit, _ = block_wear(cycle([h_c], sensitivity=np.array([[-decay]])), unworn(1),
+                             NoExtension(), cycles)
+    assert implicit[0] == pytest.approx(cycles * h_c / (1 + cycles * decay), rel=1e-12)
+    assert implicit[0] < h_c / decay < cycles * h_c  # below the equilibrium, unlike explicit
+
+
+def test_smoothing_keeps_the_volume_and_removes_node_scale_ripple():
+    n = 288
+    angle = 2 * math.pi * np.arange(n) / n
+    lobe = 5e-5 * np.exp(-0.5 * ((angle - math.pi) / 0.3) ** 2)
+    ripple = 5e-6 * (-1.0) ** np.arange(n)
+    smoothed = smoothed_periodic(lobe + ripple, 2 * math.pi / n, math.radians(5.0))
+    assert smoothed.sum() == pytest.approx((lobe + ripple).sum(), rel=1e-12)
+    # the lobe (sigma 17 deg) widens to sqrt(17^2 + 5^2) deg; the ripple is gone
+    widened = 5e-5 * 0.3 / math.hypot(0.3, math.radians(5.0)) * np.exp(
+        -0.5 * ((angle - math.pi) / math.hypot(0.3, math.radians(5.0))) ** 2)
+    np.testing.assert_allclose(smoothed, widened, atol=1e-3 * 5e-5)
+    np.testing.assert_array_equal(smoothed_periodic(lobe, 0.1, 0.0), lobe)
+
+
+def test_bad_block_size():
+    with pytest.raises(FewearInputError, match="extrapolation factor"):
+        block_wear(cycle([1e-12]), unworn(1), NoExtension(), 0)

@@ -1,0 +1,137 @@
+"""The FE bushing as it wears: the contact operator on a mesh whose bore follows the wear state.
+
+After every wear block the bore nodes move radially outward by the block's depth increment (the
+worn bore r(theta) = R_b + h(theta) of :class:`fewear.wear.state.WearState`), the interior follows
+(ALE mesh motion, the outer surface fixed), and the condensed contact operator is rebuilt on the
+moved mesh. When the motion since the last mesh passes a set fraction of the bore element height,
+the bushing is re-meshed from r(theta). Moves and re-meshes are counted.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from fewear.contact.condensed import CondensedBushingContact
+from fewear.contact.params import ContactProblem
+from fewear.contact.result import ContactResult
+from fewear.contact.sensitivity import pressure_sensitivity
+from fewear.contact.solver import BushingContactSolver
+from fewear.mesh.ale import BoreMotion
+from fewear.mesh.bushing import bushing_mesh, radial_progression
+from fewear.mesh.profile import periodic_linear
+from fewear.mesh.quality import RemeshLimits
+from fewear.mesh.snapshot import gather_cells, gather_nodes, scatter_nodes
+from fewear.wear.state import WearState
+
+
+def bore_element_height_m(problem: ContactProblem) -> float:
+    """Radial height of the bore's element row in the unworn O-grid: the first term of the
+    geometric progression of ``radial_element_count`` sizes filling the wall,
+    h_1 = t (q - 1) / (q^n - 1), t = R_o - R_b (t / n when q = 1)."""
+    wall = problem.geometry.outer_radius_m - problem.geometry.inner_radius_m
+    n = problem.mesh.radial_element_count
+    q = radial_progression(problem.mesh)
+    return wall / n if q == 1.0 else wall * (q - 1.0) / (q**n - 1.0)
+
+
+@dataclass(frozen=True)
+class MeshSnapshot:
+    """The moved mesh: gmsh node numbers (n,), coordinates (n, 2) in m, and its cells as node
+    numbers in VTK order (:func:`fewear.mesh.snapshot.gather_cells`)."""
+
+    node_ids: np.ndarray
+    xy_m: np.ndarray
+    cells: np.ndarray
+
+
+class WornBushing:
+    """The condensed contact model of the bushing, kept on the worn bore.
+
+    ``contact``: the :class:`CondensedBushingContact` of the current mesh; ``angles``: the bore
+    nodes' angles (rad, increasing), the same in every mesh (the O-grid puts them at k pi / n and
+    the wear moves them radially); :meth:`solve` returns the nodal results in this order whatever
+    the order of the moved nodes (a node at angle 0 may come out at 2 pi - 1e-16 after a move).
+    ``meshed_xy_m``: the node coordinates when the current mesh was made (the reference of its
+    motion); ``ale_moves``, ``remeshes``: counts; ``last_quality``: after the last move.
+    """
+
+    def __init__(self, problem: ContactProblem, comm, limits: RemeshLimits | None = None):
+        self.problem, self.comm = problem, comm
+        self.limits = RemeshLimits() if limits is None else limits
+        self.element_height_m = bore_element_height_m(problem)
+        self.ale_moves = 0
+        self.remeshes = 0
+        self.last_quality = None
+        self._mesh(bore_profile=None)
+        self.angles = self.contact.angles.copy()
+        self._node_ids = self.contact.solver.bore.global_ids.copy()
+        self._order = np.arange(self.angles.size)
+
+    def _mesh(self, bore_profile, meshed_xy_m: np.ndarray | None = None) -> None:
+        """Mesh the bushing on ``bore_profile`` (None: the circle), or put the nodes at
+        ``meshed_xy_m`` (a checkpoint's), and build the contact operator and mesh motion on it."""
+        geometry, settings = self.problem.geometry, self.problem.mesh
+        mesh_data = bushing_mesh(geometry, settings, self.comm, bore_profile=bore_profile)
+        if meshed_xy_m is not None:
+            scatter_nodes(mesh_data[0], gather_nodes(mesh_data[0], self.comm)[0], meshed_xy_m)
+        self.contact = CondensedBushingContact(
+            BushingContactSolver(self.problem, self.comm, mesh_data=mesh_data))
+        self.motion = BoreMotion(mesh_data[0], mesh_data[2], self.problem.material.poisson_ratio)
+        self.meshed_xy_m = gather_nodes(mesh_data[0], self.comm)[1]
+
+    @property
+    def mesh(self):
+        return self.contact.solver.mesh
+
+    def solve(self, force_N, rotation_increment_rad: float = 0.0,
+              friction: bool = False) -> ContactResult:
+        """:meth:`CondensedBushingContact.solve`, nodal arrays in the order of ``angles``."""
+        result = self.contact.solve(force_N, rotation_increment_rad, friction)
+        order = self._order
+        return replace(result, angle_rad=self.angles.copy(), x_m=result.x_m[order],
+                       y_m=result.y_m[order], pressure_Pa=result.pressure_Pa[order],
+                       gap_m=result.gap_m[order], slip_m=result.slip_m[order])
+
+    def pressure_sensitivity(self, result: ContactResult) -> tuple[np.ndarray, np.ndarray]:
+        """(active nodes, J = dp/dh on them in Pa/m) of a result of :meth:`solve`, node indices in
+        the order of ``angles`` (:func:`fewear.contact.sensitivity.pressure_sensitivity`)."""
+        active = np.flatnonzero(result.pressure_Pa > 0.0)
+        contact = self.contact
+        J = pressure_sensitivity(contact.compliance, contact.weights_m, contact.points,
+                                 result.pin_centre_m, self._order[active],
+                                 self.problem.penalty_stiffness_Pa_per_m())
+        return active, J
+
+    def apply_wear(self, state: WearState, increment_m: np.ndarray) -> None:
+        """Move the bore by the block's depth increment (m, at ``angles``) to the worn bore of
+        ``state`` (ALE, :class:`fewear.mesh.ale.BoreMotion`); re-mesh from r(theta) when the
+        moved mesh passes the limits; rebuild the contact operator."""
+        move = self.motion.move(periodic_linear(self.angles, increment_m))
+        self.ale_moves += 1
+        self.last_quality = move.quality
+        if self.limits.needs_remesh(move.quality):
+            radius = state.bore_radius_m(self.problem.geometry.inner_radius_m, state.angle_rad)
+            self._mesh(bore_profile=(state.angle_rad, radius))
+            self.remeshes += 1
+        self._rebuild_contact()
+
+    def _rebuild_contact(self) -> None:
+        self.contact.update_geometry()
+        current = self.contact.solver.bore.global_ids
+        sorter = np.argsort(current)
+        self._order = sorter[np.searchsorted(current, self._node_ids, sorter=sorter)]
+
+    def snapshot(self) -> MeshSnapshot:
+        return MeshSnapshot(*gather_nodes(self.mesh, self.comm),
+                            gather_cells(self.mesh, self.comm))
+
+    def restore(self, meshed_xy_m: np.ndarray, snapshot: MeshSnapshot, ale_moves: int,
+                remeshes: int) -> None:
+        """Put the bushing back as a checkpoint saw it: the mesh as made (``meshed_xy_m``, the
+        reference of its motion and quality), then moved to ``snapshot``."""
+        self._mesh(bore_profile=None, meshed_xy_m=meshed_xy_m)
+        scatter_nodes(self.mesh, snapshot.node_ids, snapshot.xy_m)
+        self.ale_moves, self.remeshes = ale_moves, remeshes
+        self._rebuild_contact()

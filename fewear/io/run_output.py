@@ -1,0 +1,87 @@
+"""The files ``fewear run`` writes (rank 0), read from the cases' results only.
+
+- ``summary.json``: per rod model (``cases.<rod>``) the maximum wear depth and its angle, the worn
+  volume, cycles, blocks, ALE moves, re-meshes, wall time by stage; the complete config used.
+- ``wear_profile.csv``: long form ``case, cycles, angle_deg, wear_depth_m`` after every block.
+- ``max_wear.csv``: ``case, cycles, max_wear_depth_m`` after every block (seed Fig. 7b).
+- ``<case>.xdmf`` (+ ``.h5``): the bushing mesh with, per block (time = cycles), the mesh
+  displacement from the unworn bushing and its radial part (at the bore: the wear depth), for
+  ParaView (Warp By Vector with ``mesh_displacement_m`` shows the worn bushing).
+- ``wear_profiles.png`` (seed Fig. 7a) and ``max_wear.png`` (seed Fig. 7b).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+from pathlib import Path
+
+import numpy as np
+
+from fewear.io.output import write_json
+
+
+def write_run_outputs(folder: Path, cases: dict, inputs, config: dict) -> None:
+    from fewear.pipeline import case_summary
+    from fewear.plot.wear import plot_max_wear, plot_wear_profiles
+
+    loop = inputs.loop
+    write_json(folder / "summary.json", {
+        "what": "seed section 5: wear at the rod-slider clearance joint, block by block with "
+                "the worn geometry fed back (ALE / re-meshing, worn clearance in the dynamics)",
+        "load_steps_per_cycle": loop.load_steps_per_cycle,
+        "recorded_cycles_per_block": loop.recorded_cycles_per_block,
+        "extrapolation": loop.extrapolation.mode,
+        "total_cycles": loop.total_cycles,
+        "cases": {rod: case_summary(case, inputs) for rod, case in cases.items()},
+        "config": config,
+    })
+    write_profiles_csv(folder / "wear_profile.csv", cases)
+    write_max_wear_csv(folder / "max_wear.csv", cases)
+    for rod, case in cases.items():
+        write_xdmf(folder / f"{rod}.xdmf", case)
+    plot_wear_profiles({rod: (case.state.angle_rad, case.state.depth_m)
+                        for rod, case in cases.items()}, folder / "wear_profiles.png",
+                       loop.total_cycles)
+    plot_max_wear({rod: (np.array([r.cycles for r in case.records]),
+                         np.array([r.depth_m.max() for r in case.records]))
+                   for rod, case in cases.items()}, folder / "max_wear.png")
+
+
+def write_profiles_csv(path: Path, cases: dict) -> None:
+    with open(path, "w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(["case", "cycles", "angle_deg", "wear_depth_m"])
+        for rod, case in cases.items():
+            angle = np.degrees(case.state.angle_rad)
+            for record in case.records:
+                writer.writerows((rod, record.cycles, f"{a:.6f}", f"{h:.9e}")
+                                 for a, h in zip(angle, record.depth_m))
+
+
+def write_max_wear_csv(path: Path, cases: dict) -> None:
+    with open(path, "w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(["case", "cycles", "max_wear_depth_m"])
+        for rod, case in cases.items():
+            writer.writerow((rod, 0, f"{0.0:.9e}"))
+            writer.writerows((rod, r.cycles, f"{r.depth_m.max():.9e}") for r in case.records)
+
+
+def write_xdmf(path: Path, case) -> None:
+    """The bushing through the run: the unworn mesh and, per block, the node displacement."""
+    import meshio
+
+    reference = case.snapshots[0]
+    points = np.column_stack([reference, np.zeros(len(reference))])
+    cells = np.searchsorted(case.node_ids, case.cells)
+    radial = reference / np.linalg.norm(reference, axis=1)[:, None]
+    # meshio puts the .h5 beside the working directory, not beside the .xdmf: write from there
+    with contextlib.chdir(path.parent), meshio.xdmf.TimeSeriesWriter(path.name) as writer:
+        writer.write_points_cells(points, [("quad9", cells)])
+        cycles = [0] + [record.cycles for record in case.records]
+        for cycle, xy in zip(cycles, case.snapshots):
+            displacement = xy - reference
+            writer.write_data(float(cycle), point_data={
+                "mesh_displacement_m": np.column_stack([displacement, np.zeros(len(xy))]),
+                "radial_displacement_m": np.einsum("ij,ij->i", displacement, radial)})

@@ -1,0 +1,142 @@
+"""The wear loop of `fewear run` on a small case: Archard's volume, the ALE bore, the outputs,
+resume = uninterrupted, and bad checkpoints (fewear.pipeline, fewear.io.checkpoint)."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from fewear.cli import main
+
+R_B = 0.010
+SMALL = """
+[mesh]
+bore_element_size_m = {size}
+radial_element_count = 4
+[wear]
+coefficient_model = "constant"
+[wear_loop]
+rod_models = ["rigid"]
+load_steps_per_cycle = 40
+total_cycles = 4000
+extrapolation_factor = 2000.0
+implicit_wear_step = {implicit}
+wear_smoothing_width_deg = {smoothing}
+""".format(size=2 * math.pi * R_B / 48 * (1 + 1e-9), implicit="{implicit}",
+           smoothing="{smoothing}")
+
+
+def write_config(tmp_path, implicit=True, smoothing=5.0, name="case.toml"):
+    path = tmp_path / name
+    path.write_text(SMALL.format(implicit=str(implicit).lower(), smoothing=smoothing))
+    return path
+
+
+def run(config, out, *extra):
+    return main(["run", "--config", str(config), "--out", str(out), *extra])
+
+
+@pytest.fixture(scope="module")
+def explicit_run(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("explicit")
+    assert run(write_config(folder, implicit=False, smoothing=0.0), folder / "out") == 0
+    return folder / "out"
+
+
+def test_worn_volume_is_the_integral_of_depth_and_outputs_exist(explicit_run):
+    summary = json.loads((explicit_run / "summary.json").read_text())
+    case = summary["cases"]["rigid"]
+    assert case["cycles"] == 4000 and case["blocks"] == 2 and case["ale_moves"] == 2
+    profile = np.genfromtxt(explicit_run / "wear_profile.csv", delimiter=",", names=True,
+                            dtype=None, encoding=None)
+    last = profile[profile["cycles"] == 4000]
+    theta = np.radians(last["angle_deg"])
+    # worn area = integral of (R_b h + h^2 / 2) dtheta, by the trapezoid rule here
+    area = np.sum(R_B * last["wear_depth_m"] + 0.5 * last["wear_depth_m"] ** 2) * (
+        2 * math.pi / theta.size)
+    assert case["worn_volume_m3"] == pytest.approx(0.018 * area, rel=1e-9)
+    assert case["max_wear_depth_m"] == pytest.approx(last["wear_depth_m"].max())
+    maxima = np.genfromtxt(explicit_run / "max_wear.csv", delimiter=",", names=True,
+                           dtype=None, encoding=None)
+    assert list(maxima["cycles"]) == [0, 2000, 4000]
+    assert np.all(np.diff(maxima["max_wear_depth_m"]) >= 0)
+    for name in ("rigid.xdmf", "rigid.h5", "wear_profiles.png", "max_wear.png"):
+        assert (explicit_run / name).stat().st_size > 0
+    assert set(case["stage_wall_time_s"]) == {"dynamics", "contact", "wear", "mesh"}
+
+
+def test_wear_sits_left_and_right_of_the_bore(explicit_run):
+    """The paper's claim (section 5.2): in the slider-crank the contact, hence the wear, sits on
+    the left and right of the bushing (the slide axis, 0 and 180 deg), where the rod pushes and
+    pulls the slider at the dead positions."""
+    profile = np.genfromtxt(explicit_run / "wear_profile.csv", delimiter=",", names=True,
+                            dtype=None, encoding=None)
+    for cycles, half_width in ((2000, 30), (4000, 45)):  # the worn pockets widen
+        block = profile[profile["cycles"] == cycles]
+        depth, angle = block["wear_depth_m"], block["angle_deg"]
+        near_axis = np.abs((angle + 90) % 180 - 90)  # degrees from the slide axis
+        assert np.sum(depth[near_axis < half_width]) > 0.9 * np.sum(depth)
+        right = depth[(angle < half_width) | (angle > 360 - half_width)].sum()
+        left = depth[np.abs(angle - 180) < half_width].sum()
+        assert min(left, right) > 0.25 * (left + right)
+
+
+def test_ale_moved_the_bore_nodes_exactly_to_the_worn_radius(explicit_run):
+    """The checkpoint's last mesh: every node that was on the bore now sits at R_b + h(theta)."""
+    data = np.load(explicit_run / "fewear-checkpoint.npz")
+    unworn, moved = data["rigid/snapshots"][0], data["rigid/snapshots"][-1]
+    on_bore = np.isclose(np.hypot(*unworn.T), R_B, rtol=1e-9)
+    angle = np.mod(np.arctan2(unworn[on_bore, 1], unworn[on_bore, 0]), 2 * math.pi)
+    depth = np.interp(angle, data["rigid/angle_rad"], data["rigid/depth_m"], period=2 * math.pi)
+    np.testing.assert_allclose(np.hypot(*moved[on_bore].T), R_B + depth, atol=1e-15)
+    radial = np.hypot(*moved[on_bore].T) / np.hypot(*unworn[on_bore].T)
+    np.testing.assert_allclose(moved[on_bore], unworn[on_bore] * radial[:, None], atol=1e-15)
+
+
+def test_resumed_run_equals_the_uninterrupted_one(tmp_path, monkeypatch, explicit_run):
+    import fewear.pipeline
+
+    config = write_config(tmp_path, implicit=False, smoothing=0.0)
+    original = fewear.pipeline.Progress.block
+
+    def interrupt(self, *args):
+        original(self, *args)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(fewear.pipeline.Progress, "block", interrupt)
+    with pytest.raises(KeyboardInterrupt):
+        run(config, tmp_path / "out")
+    assert not (tmp_path / "out" / "summary.json").exists()  # all or nothing
+    monkeypatch.setattr(fewear.pipeline.Progress, "block", original)
+    assert run(config, tmp_path / "out", "--resume") == 0
+    resumed = np.genfromtxt(tmp_path / "out" / "wear_profile.csv", delimiter=",", names=True,
+                            dtype=None, encoding=None)
+    whole = np.genfromtxt(explicit_run / "wear_profile.csv", delimiter=",", names=True,
+                          dtype=None, encoding=None)
+    np.testing.assert_array_equal(resumed["wear_depth_m"], whole["wear_depth_m"])
+
+
+def test_resume_with_another_config_or_a_corrupt_checkpoint_is_an_input_error(
+        tmp_path, capsys, explicit_run):
+    other = write_config(tmp_path, implicit=True, smoothing=0.0)
+    assert run(other, explicit_run, "--resume") == 2
+    assert "another config ([wear_loop] implicit_wear_step" in capsys.readouterr().err
+    broken = tmp_path / "broken"
+    broken.mkdir()
+    (broken / "fewear-checkpoint.npz").write_bytes(b"not a checkpoint")
+    assert run(other, broken, "--resume") == 2
+    assert "unreadable" in capsys.readouterr().err
+    assert run(other, tmp_path / "empty", "--resume") == 2
+    assert "no checkpoint" in capsys.readouterr().err
+
+
+def test_wear_through_the_wall_is_an_input_error(tmp_path, capsys):
+    config = write_config(tmp_path)
+    config.write_text(config.read_text().replace(
+        'coefficient_model = "constant"', 'coefficient_model = "constant"\n'
+        'constant_k_m2_N = 1e-9'))
+    assert run(config, tmp_path / "out") == 2
+    error = capsys.readouterr().err
+    assert "fewear: error:" in error and "worn through" in error and "Traceback" not in error
+    assert not (tmp_path / "out" / "summary.json").exists()

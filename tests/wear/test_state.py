@@ -1,0 +1,74 @@
+"""The wear state: the one source of the worn bore, the dynamics' clearance and extrapolation."""
+
+import math
+
+import numpy as np
+import pytest
+
+from fewear.errors import FewearInputError
+from fewear.wear.extrapolation import ExtrapolationSettings, extrapolate_block
+from fewear.wear.state import WearState
+
+R_B, R_P, N = 0.010, 0.0095, 288
+ANGLES = 2 * math.pi * np.arange(N) / N
+
+
+def worn(depth):
+    return WearState(ANGLES, depth, WearState.unworn(ANGLES).sliding)
+
+
+def test_unworn_clearance_is_c0_to_the_chord_sag():
+    """Bore nodes on the circle: c = R_b - R_p at the node directions, the pin touching a node
+    exactly (the sag between nodes is R_b R_p dtheta^2 / (8 c0) ~ 0.03 um, not sampled here)."""
+    c = WearState.unworn(ANGLES).pin_clearance_m(R_B, R_P)
+    np.testing.assert_allclose(c, R_B - R_P, rtol=1e-12)
+
+
+def test_clearance_fed_back_is_c0_plus_h_where_the_bore_conforms():
+    """A wide worn lobe (30 deg, the pin's contact arc is narrower): c(theta) = c0 + h(theta)
+    to well within a micron at the lobe's bottom, and never more than c0 + h anywhere."""
+    depth = 1e-4 * np.exp(-0.5 * ((ANGLES - math.pi) / math.radians(30)) ** 2)
+    c = worn(depth).pin_clearance_m(R_B, R_P)
+    bottom = np.argmax(depth)
+    assert c[bottom] == pytest.approx(R_B - R_P + depth[bottom], abs=2e-7)
+    assert np.all(c <= R_B - R_P + depth + 1e-12)
+
+
+def test_a_single_node_dent_is_bridged_by_the_pin():
+    depth = np.zeros(N)
+    depth[100] = 5e-5
+    c = worn(depth).pin_clearance_m(R_B, R_P)
+    assert c[100] - (R_B - R_P) < 1e-6  # the pin cannot sink into a 0.2 mm wide dent
+
+
+def test_worn_area_of_a_uniform_depth_is_the_annulus():
+    state = worn(np.full(N, 1e-4))
+    assert state.worn_area_m2(R_B) == pytest.approx(math.pi * ((R_B + 1e-4) ** 2 - R_B**2))
+
+
+def test_carry_over_to_other_angles_is_exact_at_shared_angles():
+    depth = 1e-4 * (1 + np.cos(ANGLES))
+    moved = worn(depth).at_angles(ANGLES[::2])
+    np.testing.assert_array_equal(moved.depth_m, depth[::2])
+
+
+def test_wall_break_through_is_an_input_error():
+    with pytest.raises(FewearInputError, match="worn through"):
+        worn(np.full(N, 3e-3)).checked_against_wall(R_B, 0.015, 0.5)
+
+
+@pytest.mark.parametrize("bad", [np.full(N, -1e-6), np.full(N, np.nan)])
+def test_bad_depths_are_rejected(bad):
+    with pytest.raises(ValueError):
+        worn(bad)
+
+
+def test_adaptive_block_bounds_the_largest_increment():
+    settings = ExtrapolationSettings(mode="adaptive", max_factor=50000,
+                                     max_depth_increment_fraction=0.2)
+    rate = np.array([1e-9, 4e-9])  # depth per cycle (m)
+    cycles, increment = extrapolate_block(settings, lambda a: (a * rate,), 1e-4, 400000)
+    assert increment.max() <= 0.2 * 1e-4
+    assert increment.max() > 0.9 * 0.2 * 1e-4  # not needlessly short
+    fixed = ExtrapolationSettings(mode="fixed", factor=5000)
+    assert extrapolate_block(fixed, lambda a: (a * rate,), 1e-4, 3000)[0] == 3000
