@@ -425,8 +425,9 @@ def paired_improvement_p(before: np.ndarray, after: np.ndarray) -> float:
 
 @dataclass(frozen=True)
 class StageResult:
-    """What a stage found: its baseline and final fits and held-out errors, the chosen causes
-    (in the order they joined), every step's candidate entries, and the untestable causes."""
+    """What a stage found: its baseline and final fits with their held-out errors per test, the
+    chosen causes (in the order they joined), every step's candidate entries and each chosen
+    cause's held-out gain when it joined."""
 
     stage: Stage
     baseline: StageFit
@@ -437,8 +438,13 @@ class StageResult:
     steps: tuple[tuple[dict[str, Any], ...], ...]
     gains: dict[str, float]
 
-    def rms(self, errors: np.ndarray) -> float:
-        return float(np.sqrt(np.nanmean(errors)))
+    @property
+    def baseline_rms(self) -> float:
+        return held_out_rms(self.baseline_errors)
+
+    @property
+    def final_rms(self) -> float:
+        return held_out_rms(self.final_errors)
 
 
 def select_causes(stage: Stage, causes: tuple[str, ...], settings: DiagnoseSettings
@@ -465,14 +471,15 @@ def select_causes(stage: Stage, causes: tuple[str, ...], settings: DiagnoseSetti
             break
         best = min(accepted, key=lambda e: e["aicc_change"] if e["test"] == "F"
                    else e["held_out_error"])
-        gains[best["name"]] = 1.0 - best["held_out_error"] / _rms(current_errors)
+        gains[best["name"]] = best["gain"]
         chosen.append(best["name"])
         current, current_errors = best["_fit"], best["_errors"]
     return StageResult(stage, baseline, baseline_errors, current, current_errors, tuple(chosen),
                        tuple(steps), gains)
 
 
-def _rms(errors: np.ndarray) -> float:
+def held_out_rms(errors: np.ndarray) -> float:
+    """RMS held-out error over the tests that could be predicted (errors: mean squares per test)."""
     return float(np.sqrt(np.nanmean(errors)))
 
 
@@ -496,14 +503,15 @@ def _try_cause(stage: Stage, current: StageFit, current_errors: np.ndarray,
     return {
         "name": cause, "form": fit.forms[-1].name, "stage": stage.name,
         "params": fit.laws[-1].params(),
-        "held_out_error": _rms(errors), "held_out_error_before": _rms(current_errors),
-        "gain": 1.0 - _rms(errors) / _rms(current_errors),
+        "held_out_error": held_out_rms(errors),
+        "held_out_error_before": held_out_rms(current_errors),
+        "gain": 1.0 - held_out_rms(errors) / held_out_rms(current_errors),
         "test": test, "p_value": p_value, "forms_tried": forms_tried,
         "tests_improved": f"{int(np.sum(errors < current_errors))} of "
                           f"{int(np.sum(np.isfinite(errors)))}",
         "aicc_change": aicc(fit.residuals, n_base + fit.x[-1].size) - aicc(current.residuals,
                                                                            n_base),
-        "training_error": _rms(fit.residuals**2),
+        "training_error": float(np.sqrt(np.mean(fit.residuals**2))),
         "_fit": fit, "_errors": errors,
     }
 
@@ -615,22 +623,24 @@ def _testable(kind: str | None, have: set[str], causes) -> tuple[Form, ...]:
     return tuple(forms)
 
 
-def build_stages(readings: Readings, settings: DiagnoseSettings) -> list[Stage]:
-    """The stages of the module docstring for the data's form."""
+def reading_stage(readings: Readings, settings: DiagnoseSettings) -> Stage:
+    """The stage whose rows are the readings: "along tests" (histories, each test its own level,
+    the shape causes) or "all readings" (tables, one level per material group, every cause)."""
     have = available_needs(readings)
     causes = settings.candidates
     test_group, _ = readings.test_groups()
     y = np.log(readings.volume_m3) - np.log(readings.distance_m)
     if data_form(readings, settings) == "table":
-        return [Stage("all readings", y - _log_force(readings), test_group[readings.test_index],
-                      readings.test_index, reading_context(readings),
-                      _testable(None, have, causes))]
-    along = Stage("along tests", y, readings.test_index, readings.test_index,
-                  reading_context(readings), _testable("shape", have, causes))
-    return [along]
+        return Stage("all readings", y - _log_force(readings), test_group[readings.test_index],
+                     readings.test_index, reading_context(readings),
+                     _testable(None, have, causes))
+    return Stage("along tests", y, readings.test_index, readings.test_index,
+                 reading_context(readings), _testable("shape", have, causes))
 
 
 def _across_stage(readings: Readings, along: StageResult, settings: DiagnoseSettings) -> Stage:
+    """Histories: one row per test, its level under the along-test model minus ln F, one level
+    per material group, the level causes."""
     test_group, _ = readings.test_groups()
     levels = along.final.intercepts - readings.per_test(_log_force(readings))
     return Stage("across tests", levels, test_group, np.arange(readings.n_tests),
@@ -689,9 +699,8 @@ def diagnose(readings: Readings, settings: DiagnoseSettings | None = None) -> Di
         raise FewearInputError(f"{readings.source}: {readings.n_tests} test(s) with wear; the "
                                "diagnosis holds whole tests out and needs at least 3")
     form = data_form(readings, settings)
-    stages = [select_causes(stage, settings.candidates, settings)
-              for stage in build_stages(readings, settings)]
-    if form == "histories" and readings.n_tests >= 3:
+    stages = [select_causes(reading_stage(readings, settings), settings.candidates, settings)]
+    if form == "histories":
         stages.append(select_causes(_across_stage(readings, stages[0], settings),
                                     settings.candidates, settings))
     gains = {name: gain for stage in stages for name, gain in stage.gains.items()}

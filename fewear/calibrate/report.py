@@ -32,8 +32,8 @@ def summarise(readings, settings, form: str, stages, causes, extended) -> dict[s
     after = residual_structure(readings, reading_stage.final.residuals,
                                None if across is None else across.final.residuals)
     scored = next((st for st in stages if causes and causes[0] in st.chosen), reading_stage)
-    baseline_error = scored.rms(scored.baseline_errors)
-    extended_error = scored.rms(scored.final_errors)
+    baseline_error = scored.baseline_rms
+    extended_error = scored.final_rms
     test_group, group_names = readings.test_groups()
     from fewear.calibrate.diagnose import test_log_k, untestable_causes
 
@@ -87,8 +87,8 @@ def _clean(entry: dict[str, Any]) -> dict[str, Any]:
 def _stage_summary(result) -> dict[str, Any]:
     return {"name": result.stage.name, "rows": int(result.stage.y.size),
             "held_out_tests": int(np.sum(np.isfinite(result.baseline_errors))),
-            "baseline_held_out_error": result.rms(result.baseline_errors),
-            "final_held_out_error": result.rms(result.final_errors),
+            "baseline_held_out_error": result.baseline_rms,
+            "final_held_out_error": result.final_rms,
             "chosen": list(result.chosen),
             "final_params": {form.cause: law.params()
                              for form, law in zip(result.final.forms, result.final.laws)},
