@@ -73,6 +73,7 @@ def summarise(readings, settings, form: str, stages, causes, extended) -> dict[s
         "residual_structure": before,
         "unexplained": after["unexplained"],
         "extended_config": extended,
+        "extended_config_notes": _config_notes(readings, extended),
     }
 
 
@@ -108,6 +109,22 @@ def _form_notes(readings, form: str) -> list[str]:
                          "of distance cannot be told from an effect of speed")
     if readings.pressure_Pa is None and readings.load_N is not None:
         notes.append("no contact pressure: the load laws use the normal load F in its place")
+    return notes
+
+
+def _config_notes(readings, extended) -> list[str]:
+    """What the extended [wear] section stands for when the table cannot give the seed's k(p, v)
+    for every material."""
+    test_group, names = readings.test_groups()
+    notes = []
+    if len(names) > 1:
+        main = names[int(np.bincount(test_group).argmax())]
+        notes.append(f"k of the extended config: the tests of the largest material group ({main})")
+    if extended["coefficient_model"] == "constant":
+        why = ("no contact pressure or speed, so no network k(p, v) for the simulation"
+               if readings.pressure_Pa is None or readings.velocity_m_s is None
+               else "too few distinct (p, v) conditions for the network")
+        notes.append(f"k of the extended config is one constant (geometric mean): {why}")
     return notes
 
 
@@ -297,6 +314,7 @@ def report_markdown(s: dict[str, Any]) -> str:
               "`extended_wear.toml` holds the `[wear]` section (extension = \""
               f"{s['extended_config']['extension']}\", k(p, v) refitted under it); paste it into a "
               "config to simulate with it.", ""]
+    lines += [f"- {note}" for note in s["extended_config_notes"]]
     return "\n".join(lines) + "\n"
 
 
