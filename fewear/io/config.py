@@ -4,11 +4,12 @@ The defaults are the seed paper's case; they live in ``fewear/defaults/*.toml`` 
 each owning its sections) and together form the *embedded default config*. ``fewear config`` prints
 it: a user copies it and edits values.
 
-Rules for a user's file, so that a config is always the complete record of a run:
+Rules for a user's file:
 
-- every section and key must exist in the defaults (a typo is an error, not silently ignored);
-- a section that the file names is given whole, and every section the command uses is present
-  (a missing key is an error naming it);
+- it holds only what differs from the defaults: a section or key it leaves out takes the default
+  value, so the config a command uses is always complete (the outputs record it whole);
+- every section and key it names must exist in the defaults (a typo is an error, not silently
+  ignored);
 - values have the type of their default (an integer is accepted where a float is expected);
   a default that is an inline table (dict) accepts any table, checked by the stage that reads it.
 
@@ -52,25 +53,16 @@ def default_config() -> Config:
 
 
 def load_config(path: str | Path | None, sections: Iterable[str]) -> Config:
-    """The sections a command uses, from the user's file at ``path`` or from the defaults.
+    """The sections a command uses: the defaults, overridden by the user's file at ``path``.
 
     Raises :class:`FewearInputError` naming the file, section and key of any violation of the
-    rules in the module docstring.
+    rules in the module docstring. Sections of the file that this command does not use are
+    checked too (a typo anywhere is an error) but not returned.
     """
     sections = list(sections)
     defaults = default_config()
-    if path is None:
-        return {name: dict(defaults[name]) for name in sections}
-    user = read_toml(path)
-    checked = check_config(user, defaults, source=str(path))
-    missing_sections = [name for name in sections if name not in checked]
-    if missing_sections:
-        names = ", ".join(f"[{name}]" for name in missing_sections)
-        raise FewearInputError(
-            f"config {path}: missing section(s) {names}; this command needs "
-            f"{', '.join(f'[{s}]' for s in sections)} (`fewear config` prints a complete file)"
-        )
-    return {name: checked[name] for name in sections}
+    checked = {} if path is None else check_config(read_toml(path), defaults, source=str(path))
+    return {name: {**defaults[name], **checked.get(name, {})} for name in sections}
 
 
 def read_toml(path: str | Path) -> dict[str, Any]:
@@ -87,7 +79,8 @@ def read_toml(path: str | Path) -> dict[str, Any]:
 
 
 def check_config(user: dict[str, Any], defaults: Config, source: str) -> Config:
-    """Check a parsed user config against the defaults; return it with floats where expected."""
+    """Check a parsed user config against the defaults; return the keys it gives, with floats
+    where floats are expected."""
     checked: Config = {}
     for section, table in user.items():
         if section not in defaults:
@@ -108,13 +101,8 @@ def _check_section(section: str, table: dict, default: dict, source: str) -> dic
             f"config {source}: unknown key(s) {', '.join(unknown)} in [{section}]; allowed keys: "
             + ", ".join(default)
         )
-    missing = [key for key in default if key not in table]
-    if missing:
-        raise FewearInputError(
-            f"config {source}: [{section}] lacks key(s) {', '.join(missing)}; a section is given "
-            "whole (`fewear config` prints a complete file to start from)"
-        )
-    return {key: _check_value(section, key, table[key], default[key], source) for key in default}
+    return {key: _check_value(section, key, value, default[key], source)
+            for key, value in table.items()}
 
 
 def _check_value(section: str, key: str, value: Any, default: Any, source: str) -> Any:

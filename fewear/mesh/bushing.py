@@ -9,16 +9,31 @@ midpoint, lies on the circle to rounding. The displacement field on top is seren
 
 gmsh runs on rank 0 only; ``dolfinx.io.gmshio.model_to_mesh`` distributes the mesh. Facet tags:
 ``BORE_TAG`` on the bore, ``OUTER_TAG`` on the outer surface; the cells carry ``BUSHING_TAG``.
+
+The bore nodes (2 n_theta of them, vertices and edge midpoints) sit at the uniform angles
+k pi / n_theta, k = 0 .. 2 n_theta - 1, exactly (gmsh's arc nodes are snapped to them), in every
+mesh, circular or worn. A worn bore (``bore_profile``, a periodic table of radius against angle,
+see :mod:`fewear.mesh.profile`) is meshed as the circular O-grid with every node moved along its
+ray (angle kept): a node at radius r goes to
+
+    r' = r_b(theta) + (r - R_b) (R_o - r_b(theta)) / (R_o - R_b),
+
+so bore nodes land on r_b(theta) exactly, the outer circle stays, and the radial grading is kept
+from the worn bore to the outer circle (every radial size scaled by (R_o - r_b) / (R_o - R_b)).
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import gmsh
+import numpy as np
 from mpi4py import MPI
 
 from fewear.contact.params import BushingGeometry, MeshSettings
+from fewear.errors import FewearInputError
+from fewear.mesh.profile import checked_periodic_table, periodic_linear, polar_angle
 
 BORE_TAG = 1
 OUTER_TAG = 2
@@ -31,14 +46,19 @@ def radial_progression(mesh_settings: MeshSettings) -> float:
     return mesh_settings.radial_grading_ratio ** (1.0 / (n_r - 1))
 
 
-def bushing_mesh(geometry: BushingGeometry, mesh_settings: MeshSettings, comm=MPI.COMM_WORLD):
+def bushing_mesh(geometry: BushingGeometry, mesh_settings: MeshSettings, comm=MPI.COMM_WORLD,
+                 bore_profile: tuple | None = None):
     """Mesh the bushing annulus; returns ``(mesh, cell_tags, facet_tags)`` on ``comm``.
 
     The element size along the bore is ``2 pi R_b / n_theta`` with n_theta from
-    :meth:`MeshSettings.circumferential_element_count` (at most ``bore_element_size_m``).
+    :meth:`MeshSettings.circumferential_element_count` (at most ``bore_element_size_m``), R_b =
+    ``geometry.inner_radius_m`` also for a worn bore. ``bore_profile``: ``(angle_rad, radius_m)``,
+    the worn bore r_b(theta) as a periodic table (linear between its angles, every radius in
+    (0, R_o)); ``None``, the circle R_b.
     """
     from dolfinx.io import gmshio
 
+    bore_radius_m = _bore_radius_function(geometry, bore_profile)
     model_rank = 0
     if comm.rank == model_rank:
         gmsh.initialize()
@@ -46,6 +66,7 @@ def bushing_mesh(geometry: BushingGeometry, mesh_settings: MeshSettings, comm=MP
         gmsh.model.add("fewear_bushing")
         try:
             _build_o_grid(geometry, mesh_settings)
+            _fit_nodes_to_bore(geometry, mesh_settings, bore_radius_m)
             mesh, cell_tags, facet_tags = gmshio.model_to_mesh(gmsh.model, comm, model_rank, gdim=2)
         finally:
             gmsh.finalize()
@@ -90,3 +111,39 @@ def _build_o_grid(geometry: BushingGeometry, mesh_settings: MeshSettings) -> Non
     gmsh.option.setNumber("Mesh.SecondOrderIncomplete", 0)
     mesh.generate(2)
     mesh.setOrder(2)
+
+
+def _bore_radius_function(geometry: BushingGeometry,
+                          bore_profile: tuple | None) -> Callable[[np.ndarray], np.ndarray]:
+    """r_b(theta) (m) of the bore: the circle R_b, or the periodic table ``bore_profile``."""
+    if bore_profile is None:
+        return lambda angle_rad: np.full_like(angle_rad, geometry.inner_radius_m)
+    angles, radii = checked_periodic_table(*bore_profile, name="bore_profile")
+    if not np.all((radii > 0.0) & (radii < geometry.outer_radius_m)):
+        raise FewearInputError(
+            f"bore_profile: radii from {radii.min():.6g} to {radii.max():.6g} m; every radius must "
+            f"lie in (0, {geometry.outer_radius_m:.6g}) m, the outer radius (the wall is worn "
+            "through)")
+    return periodic_linear(angles, radii)
+
+
+def _fit_nodes_to_bore(geometry: BushingGeometry, mesh_settings: MeshSettings,
+                       bore_radius_m: Callable[[np.ndarray], np.ndarray]) -> None:
+    """Snap the bore nodes of the generated O-grid to the angles k pi / n_theta and move every
+    node of the bushing's elements along its ray to the bore ``bore_radius_m`` (the map in the
+    module docstring)."""
+    r_in, r_out = geometry.inner_radius_m, geometry.outer_radius_m
+    bore_node_count = 2 * mesh_settings.circumferential_element_count(r_in)
+    node_spacing_rad = 2.0 * math.pi / bore_node_count
+    tags, coords = gmsh.model.mesh.getNodesForPhysicalGroup(2, BUSHING_TAG)
+    xy = coords.reshape(-1, 3)[:, :2]
+    angle = polar_angle(xy)
+    radius = np.hypot(xy[:, 0], xy[:, 1])
+    on_bore = np.isin(tags, gmsh.model.mesh.getNodesForPhysicalGroup(1, BORE_TAG)[0])
+    index = np.mod(np.round(angle[on_bore] / node_spacing_rad), bore_node_count)
+    angle[on_bore] = node_spacing_rad * index
+    radius[on_bore] = r_in
+    bore = bore_radius_m(angle)
+    radius = bore + (radius - r_in) * (r_out - bore) / (r_out - r_in)
+    for tag, r, a in zip(tags, radius, angle):
+        gmsh.model.mesh.setNode(int(tag), [r * math.cos(a), r * math.sin(a), 0.0], [])

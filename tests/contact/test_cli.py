@@ -170,7 +170,6 @@ BAD_CONFIGS = {
     "zero modulus": ({"changes": {"bushing.youngs_modulus_Pa": 0.0}}, "youngs_modulus_Pa"),
     "poisson ratio 0.5": ({"changes": {"bushing.poisson_ratio": 0.5}}, "0.5"),
     "unknown key": ({"extra": {"mesh": "bore_colour = 3.0"}}, "bore_colour"),
-    "missing key": ({"drop": ("contact.penalty_factor",)}, "penalty_factor"),
 }
 
 

@@ -1,4 +1,4 @@
-"""The strict config rules of fewear.io.config: typos, gaps and wrong types are errors."""
+"""fewear.io.config rules: typos and wrong types are errors, gaps take the defaults."""
 
 import tomllib
 
@@ -50,7 +50,6 @@ def test_complete_file_overrides_defaults_and_ints_become_floats(tmp_path):
     [
         ("[bushing]\ninner_radius = 0.01\n", ["inner_radius", "inner_radius_m"]),
         ("[bushingg]\n", ["[bushingg]", "[bushing]"]),
-        ("[bushing]\ninner_radius_m = 0.01\n", ["lacks", "outer_radius_m"]),
         ("[bushing\n", ["not valid TOML"]),
     ],
 )
@@ -61,10 +60,21 @@ def test_bad_files_name_what_is_wrong(tmp_path, text, names):
         assert name in str(caught.value)
 
 
-def test_a_needed_section_must_be_present(tmp_path):
-    path = write(tmp_path, full_sections_text().split("[pin]")[0])
-    with pytest.raises(FewearInputError, match=r"missing section\(s\) \[pin\]"):
-        load_config(path, SECTIONS)
+def test_a_file_holds_only_what_differs_and_the_rest_is_the_default(tmp_path):
+    """One key in one section: that value is the user's, every other key and section (even of the
+    same section) is the default's, so the config a command uses is complete."""
+    config = load_config(write(tmp_path, "[bushing]\ninner_radius_m = 0.0102\n"), SECTIONS)
+    defaults = load_config(None, SECTIONS)
+    assert config["bushing"]["inner_radius_m"] == 0.0102
+    assert config["bushing"]["outer_radius_m"] == defaults["bushing"]["outer_radius_m"]
+    assert {name: config[name] for name in SECTIONS if name != "bushing"} == {
+        name: defaults[name] for name in SECTIONS if name != "bushing"}
+    assert set(config["bushing"]) == set(defaults["bushing"])
+
+
+def test_a_typo_in_a_section_this_command_does_not_use_is_still_an_error(tmp_path):
+    with pytest.raises(FewearInputError, match="wear_loop.*rod_model"):
+        load_config(write(tmp_path, "[wear_loop]\nrod_model = ['rigid']\n"), SECTIONS)
 
 
 @pytest.mark.parametrize(
