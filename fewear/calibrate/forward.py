@@ -11,7 +11,7 @@ distances). The wear volume of a reading is
 
 with k = K_BASE_m2_N (plain Archard: one k), S_eff the effective distance of a hidden shape
 extension (:mod:`fewear.wear.extensions`; S_eff = s for plain Archard), m_level a hidden level law
-(:class:`LoadPower`, :class:`SevereAbove`, :class:`SteadyHeating`) and scatter of three kinds: a
+(:class:`LoadPower`, :class:`SevereAbove`) and scatter of three kinds: a
 lognormal per-test factor on k (test-to-test scatter), optional lognormal scatter of the wear of
 each interval between readings (wear scattered interval by interval), and independent relative
 noise of each cumulative reading (weighing, profilometry; readings that dip below the previous one
@@ -70,17 +70,7 @@ class SevereAbove:
         return np.where(pressure_Pa > self.threshold_Pa, self.jump, 1.0)
 
 
-@dataclass(frozen=True)
-class SteadyHeating:
-    """m = 1 + beta q: heating by the steady frictional power q = mu p v [W/m^2]."""
-
-    beta_m2_W: float
-
-    def multiplier(self, pressure_Pa, power_W_m2):
-        return 1.0 + self.beta_m2_W * power_W_m2
-
-
-LevelLaw = LoadPower | SevereAbove | SteadyHeating
+LevelLaw = LoadPower | SevereAbove
 
 
 @dataclass(frozen=True)
@@ -186,7 +176,7 @@ def simulate_campaign(
                                                     * rng.standard_normal())
         k_test = K_BASE_m2_N * np.exp(campaign.test_scatter * rng.standard_normal())
         t = s / v
-        if isinstance(effect, (LoadPower, SevereAbove, SteadyHeating)):
+        if isinstance(effect, (LoadPower, SevereAbove)):
             k_test = k_test * float(effect.multiplier(p, mu * p * v))
             effective = s
         else:
