@@ -46,14 +46,12 @@ from pathlib import Path
 
 import numpy as np
 
-import fewear
 from fewear.calibrate.diagnose import diagnose, readings_from_measured
 from fewear.calibrate.measured import read_measured_wear
 from fewear.calibrate.report import write_outputs
+from fewear.data import RUNNING_IN_SYNTHETIC_CSV as SYNTHETIC
+from fewear.data import SINGH2016_AL_SIC_CSV as REAL
 
-DATA = Path(fewear.__file__).parent / "data"
-SYNTHETIC = DATA / "pin_on_disc_running_in_synthetic.csv"
-REAL = DATA / "pin_on_disc_singh2016_al_sic.csv"
 OUT = Path(os.environ.get("FEWEAR_DEMO_OUT", "out/demos/diagnose_tribometer"))
 
 

@@ -10,12 +10,13 @@ import numpy as np
 import pytest
 
 from fewear.calibrate.measured import read_measured_wear
+from fewear.data import SINGH2016_AL_SIC_CSV
 from fewear.data import make_running_in_pin_on_disc as made
 from fewear.io.config import load_config
 from fewear.wear.extensions import RunningIn, wear_extension_from_config
 
 DEMO = Path(__file__).resolve().parents[2] / "demos" / "diagnose_tribometer.py"
-REAL = DEMO.parents[1] / "fewear" / "data" / "pin_on_disc_singh2016_al_sic.csv"
+REAL = SINGH2016_AL_SIC_CSV
 # Singh et al. (2016), Tables 5 and 6: wear rates [mm^3/(N m)] printed next to the weight losses,
 # in the order of the data file's rows.
 PRINTED_WEAR_RATES_mm3_N_m = np.array([
