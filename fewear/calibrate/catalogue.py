@@ -158,7 +158,8 @@ class Form:
     """One form of a cause.
 
     ``kind``: "shape" (along sliding) or "level" (across tests); ``needs``: what the data must
-    hold (``time``, ``friction``, ``pressure``, ``load``, ``speed``); ``law(x, context)``: the
+    hold (``time``, ``friction``, ``pressure``, ``load``: a load or pressure that varies between
+    tests, ``power``: a load or pressure and a speed whose product varies); ``law(x, context)``: the
     law for the search vector x; ``bounds``: (lower, upper) per entry of x; ``starts(context)``:
     start points of x.
     """
@@ -252,14 +253,14 @@ FORMS: tuple[Form, ...] = (
          _shape_starts),
     Form("thermal", "lagged_power", "shape", ("time", "friction", "pressure"), _thermal,
          _SHAPE_BOUNDS, _shape_starts),
-    Form("thermal", "steady_power", "level", ("load", "speed"), _steady_heating,
+    Form("thermal", "steady_power", "level", ("power",), _steady_heating,
          ((np.log(1e-3), np.log(50.0)), (np.log(1e-3), np.log(1e3))),
          lambda c: [(a, b) for a in np.log([0.5, 2.0]) for b in np.log([0.1, 1.0, 10.0])]),
     Form("load_exponent", "power_law", "level", ("load",), _load_exponent, ((-0.95, 2.0),),
          lambda c: [(0.0,)]),
     Form("mild_to_severe", "load_threshold", "level", ("load",), _threshold_law(_by_load),
          _THRESHOLD_BOUNDS, _threshold_starts(_by_load)),
-    Form("mild_to_severe", "load_speed_threshold", "level", ("load", "speed"),
+    Form("mild_to_severe", "load_speed_threshold", "level", ("power",),
          _threshold_law(_by_load_speed), _THRESHOLD_BOUNDS, _threshold_starts(_by_load_speed)),
 )
 

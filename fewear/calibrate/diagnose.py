@@ -536,7 +536,8 @@ def _verdict(entry: dict[str, Any], threshold: float, settings: DiagnoseSettings
 NEEDS_TEXT = {"time": "time_s (or velocity_m_s, from which t = s / v)",
               "friction": "friction_coefficient", "pressure": "pressure_Pa",
               "load": "normal_load_N or pressure_Pa that varies between tests",
-              "speed": "velocity_m_s",
+              "power": "normal_load_N or pressure_Pa, and velocity_m_s, whose product varies "
+                       "between tests",
               "distance": "tests or readings at different sliding distances under one material"}
 
 
@@ -560,8 +561,10 @@ def available_needs(readings: Readings) -> set[str]:
     load, _ = readings.load_variable
     if load is not None and np.ptp(np.log(readings.per_test(load))) > 0:
         have.add("load")
-    if readings.velocity_m_s is not None:
-        have.add("speed")
+    if load is not None and readings.velocity_m_s is not None:
+        power = readings.per_test(load * readings.velocity_m_s)
+        if np.ptp(np.log(power)) > 0:
+            have.add("power")
     groups = readings.group_labels
     if any(np.ptp(np.log(readings.distance_m[groups == g])) > 0 for g in np.unique(groups)):
         have.add("distance")

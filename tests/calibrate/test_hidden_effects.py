@@ -145,3 +145,15 @@ def test_scatter_correlated_along_tests_makes_no_cause(cause):
         columns, _, _ = hidden_case(cause, seed, campaign)
         causes = diagnose(readings_from_columns(columns)).summary["causes"]
         assert causes == ([] if cause == "none" else ["running_in"]), (seed, causes)
+
+
+def test_one_load_leaves_load_laws_untestable_but_not_heating():
+    """All tests at one pressure, four speeds: the load laws cannot be tested (and say so), the
+    heating can (its frictional power still varies between tests)."""
+    campaign = grid_campaign(pressures_Pa=(2e6,), velocities_m_s=(0.2, 0.5, 1.2, 2.0))
+    columns, _, _ = hidden_case("none", 9, campaign)
+    summary = diagnose(readings_from_columns(columns)).summary
+    untested = {entry["name"]: entry["message"] for entry in summary["untestable"]}
+    assert set(untested) == {"load_exponent"}
+    assert "varies between tests" in untested["load_exponent"]
+    assert "thermal" in {c["name"] for c in summary["candidates"]}
