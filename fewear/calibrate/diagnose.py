@@ -459,7 +459,10 @@ def select_causes(stage: Stage, causes: tuple[str, ...], settings: DiagnoseSetti
                    and any(form in stage.forms for form in forms_of(c))]
         if not untried:
             break
-        entries = [_try_cause(stage, current, current_errors, cause) for cause in untried]
+        entries = [entry for cause in untried
+                   if (entry := _try_cause(stage, current, current_errors, cause)) is not None]
+        if not entries:
+            break
         threshold = settings.significance / sum(entry["forms_tried"] for entry in entries)
         for entry in entries:
             entry["accepted"] = bool(entry["p_value"] < threshold and entry["gain"] > 0.0 and
@@ -484,13 +487,17 @@ def held_out_rms(errors: np.ndarray) -> float:
 
 
 def _try_cause(stage: Stage, current: StageFit, current_errors: np.ndarray,
-               cause: str) -> dict[str, Any]:
+               cause: str) -> dict[str, Any] | None:
+    """The cause's best form fitted jointly with ``current``, its held-out errors and evidence
+    (None when no form has a start, e.g. a threshold without two distinct values)."""
     fits = []
     for form in (f for f in forms_of(cause) if f in stage.forms):
         fixed = np.concatenate(current.x) if current.forms else np.zeros(0)
         starts = [np.concatenate([fixed, np.array(s, float)]) for s in form.starts(stage.context)]
         if starts:
             fits.append(fit_stage(stage, current.forms + (form,), starts))
+    if not fits:
+        return None
     fit = min(fits, key=lambda f: float(np.sum(f.residuals**2)))
     forms_tried = len(fits)
     errors = held_out_errors(stage, fit)
