@@ -720,7 +720,7 @@ def diagnose(readings: Readings, settings: DiagnoseSettings | None = None) -> Di
     return Diagnosis(readings, settings, form, tuple(stages), causes, summary, extended)
 
 
-def test_log_k(readings: Readings, stage: Stage, fit: StageFit) -> np.ndarray:
+def log_k_per_test(readings: Readings, stage: Stage, fit: StageFit) -> np.ndarray:
     """Each test's ln k [m^2/N] under a reading-stage fit's shape law (ln V - ln F - ln S_eff
     averaged over the test's readings)."""
     shape = [law for law in fit.laws if isinstance(law, ShapeLaw)]
@@ -736,7 +736,7 @@ def extended_wear_section(readings: Readings, result: StageResult,
     k(p, v) trained on the tests' k under it (the RBF network of seed eq. 9 over the tests of the
     largest material group when they cover ``min_conditions_for_network`` distinct (p, v), else
     their geometric mean): the network carries what the level causes found."""
-    log_k = test_log_k(readings, result.stage, result.final)
+    log_k = log_k_per_test(readings, result.stage, result.final)
     test_group, _ = readings.test_groups()
     main = test_group == np.bincount(test_group).argmax()
     shape = [law for law in result.final.laws if isinstance(law, ShapeLaw)]

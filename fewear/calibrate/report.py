@@ -35,9 +35,9 @@ def summarise(readings, settings, form: str, stages, causes, extended) -> dict[s
     baseline_error = scored.baseline_rms
     extended_error = scored.final_rms
     test_group, group_names = readings.test_groups()
-    from fewear.calibrate.diagnose import test_log_k, untestable_causes
+    from fewear.calibrate.diagnose import log_k_per_test, untestable_causes
 
-    log_k = test_log_k(readings, reading_stage.stage, reading_stage.baseline)
+    log_k = log_k_per_test(readings, reading_stage.stage, reading_stage.baseline)
     return {
         "source": readings.source,
         "data_kind": readings.data_kind,
