@@ -1,10 +1,33 @@
-"""The catalogue of candidate causes: physical extensions of Archard's law with two parameters each.
+"""The catalogue of candidate causes: departures from Archard's law V = k F s, each a law with one
+or two parameters, in one or more forms.
 
-Each entry says which measured variables it needs, how its two parameters are mapped to an
-unconstrained search vector x (logarithms, scaled by the campaign's own distances, times and
-frictional powers so that one start grid serves every data set) and where the search starts.
-The physics (formulas and citations) is in :mod:`fewear.wear.extensions`; ``none`` (plain Archard)
-is the baseline itself and has no entry here.
+Two kinds of law act on the logarithm of the wear volume:
+
+- *shape* laws change the wear curve along sliding: ln(S_eff / s), with S_eff the effective distance
+  of an extension of :mod:`fewear.wear.extensions` (running-in over distance, a transient over
+  time, frictional heating);
+- *level* laws change k from test to test with the load or the frictional power: ln m(x), x the
+  contact pressure p [Pa] (the normal load F [N] when no pressure is given) or p v [W/m^2] (F v
+  [W] without a pressure):
+
+  * ``thermal`` (steady form): an Arrhenius rate at the test's steady temperature, which rises
+    with q = mu p v (p v or F v without a friction coefficient), see :class:`SteadyHeating` (its
+    lagged form, a shape law, needs the time and the friction);
+
+  * ``load_exponent``: V ~ x^a, i.e. m = (x / x_ref)^(a - 1) (Rhee, Wear 16 (1970) 431-445: wear of
+    friction materials grows as F^a with a different from 1; a < 1 when the real contact area grows
+    less than the load, a > 1 when heating or fatigue add to it);
+  * ``mild_to_severe``: m rises from 1 to J > 1 across a threshold x_c, as a step or over a
+    width in ln x (the mild-to-severe transitions of the wear-mechanism maps, Lim & Ashby, Acta
+    Metall. 35 (1987) 1-24; Welsh, Phil. Trans. R. Soc. A 257 (1965) 31-50), with x the pressure
+    (load) or p v. The steady ``thermal`` law is, in ln m, a logistic of ln q of width 1: a broad
+    rise with the frictional power; a threshold of p v with a width near 1 is the same curve,
+    and then the simpler law (fewer parameters) is preferred.
+
+A cause with several forms (exponential and power-law running-in; a load or a p v threshold) is
+one cause: the form that fits best names its parameters. Each form maps its parameters to an
+unconstrained search vector (logarithms scaled by the campaign's own distances, times, powers
+and loads, so that one start grid serves every data set).
 """
 
 from __future__ import annotations
@@ -13,70 +36,250 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import special
 
-from fewear.wear.extensions import RunningIn, Thermal, TimeTransient, WearExtension
-
-
-@dataclass(frozen=True)
-class Scales:
-    """Characteristic sizes of a data set: median final distance [m] and time [s] of the tests,
-    and the largest frictional power mu p v [W/m^2] (None when not measured)."""
-
-    distance_m: float
-    time_s: float | None
-    power_W_m2: float | None
+from fewear.wear.extensions import (
+    RunningIn,
+    RunningInPowerLaw,
+    Thermal,
+    TimeTransient,
+    WearExtension,
+)
 
 
 @dataclass(frozen=True)
-class Candidate:
-    """A cause of the catalogue.
+class Context:
+    """Per row (a reading, or a test in the across-test stage) what the laws read, SI units.
 
-    ``needs``: measured variables (names of the CSV schema) without which it cannot be tested;
-    ``build(x, scales)``: the extension for the search vector x (2 numbers);
-    ``bounds``: lower and upper bounds of x; ``starts``: start points of x;
-    ``meaning``: what the cause is, in a sentence for the report.
+    ``distance_m``, ``time_s``: sliding distance and time (None for test-level rows);
+    ``power_W_m2``: frictional power mu p v; ``load``: pressure [Pa] or normal load [N] (which one
+    says ``load_name``); ``load_speed``: load times speed; each None when not measured.
+    ``scales``: the campaign's median final distance [m] and time [s], largest mu p v.
     """
 
+    distance_m: np.ndarray | None
+    time_s: np.ndarray | None
+    power_W_m2: np.ndarray | None
+    load: np.ndarray | None
+    load_name: str
+    load_speed: np.ndarray | None
+    scale_distance_m: float
+    scale_time_s: float | None
+    scale_power_W_m2: float | None
+
+
+@dataclass(frozen=True)
+class ShapeLaw:
+    """A shape law: the extension whose effective distance bends the wear curve."""
+
+    extension: WearExtension
+
+    def log_multiplier(self, context: Context) -> np.ndarray:
+        s = context.distance_m
+        return np.log(self.extension.effective_distance_m(s, context.time_s,
+                                                          context.power_W_m2) / s)
+
+    def params(self) -> dict[str, float]:
+        return self.extension.params()
+
+
+@dataclass(frozen=True)
+class LoadExponent:
+    """m = (x / reference)^(exponent - 1): wear grows as x^exponent (x: ``variable``)."""
+
+    exponent: float
+    reference: float
+    variable: str
+
+    def log_multiplier(self, context: Context) -> np.ndarray:
+        return (self.exponent - 1.0) * np.log(context.load / self.reference)
+
+    def params(self) -> dict[str, float]:
+        return {"exponent": float(self.exponent)}
+
+
+@dataclass(frozen=True)
+class MildToSevere:
+    """m = 1 + (jump - 1) / (1 + exp(-(ln x - ln threshold) / width)): k rises by ``jump`` across
+    ``threshold`` of x (``variable``, the load or load x speed), over a ``width`` in ln x (a step
+    as the width goes to 0, a smooth transition otherwise)."""
+
+    jump: float
+    threshold: float
+    width: float
+    variable: str
+
+    def log_multiplier(self, context: Context) -> np.ndarray:
+        x = context.load if self.variable in ("pressure", "normal load") else context.load_speed
+        rise = special.expit((np.log(x) - np.log(self.threshold)) / self.width)
+        return np.log1p((self.jump - 1.0) * rise)
+
+    def params(self) -> dict[str, float]:
+        unit = {"pressure": "Pa", "normal load": "N", "p v": "W_m2", "F v": "W"}[self.variable]
+        return {"k_severe_over_mild": float(self.jump),
+                f"threshold_{self.variable.replace(' ', '_')}_{unit}": float(self.threshold),
+                "width_in_ln_x": float(self.width)}
+
+
+@dataclass(frozen=True)
+class SteadyHeating:
+    """ln m = activation x q / (q + power_scale): an Arrhenius wear rate k ~ exp(-Q / (R T)) at
+    the steady temperature T = T0 (1 + q / power_scale) of a test, the rise proportional to its
+    frictional power q (mu p v, or p v / F v without a friction coefficient: ``variable``;
+    Archard 1959 for the rise, Quinn 1983 for the Arrhenius rate); activation = Q / (R T0),
+    power_scale the power that doubles the absolute temperature. k rises with q and levels off
+    (a broad transition in ln q)."""
+
+    activation: float
+    power_scale: float
+    variable: str
+
+    def log_multiplier(self, context: Context) -> np.ndarray:
+        q = _power(context)[0]
+        return self.activation * q / (q + self.power_scale)
+
+    def params(self) -> dict[str, float]:
+        return {"activation_Q_over_RT0": float(self.activation),
+                f"power_scale_{self.variable.replace(' ', '_')}": float(self.power_scale)}
+
+
+def _power(context: Context) -> tuple[np.ndarray, str]:
+    """The frictional power mu p v when the friction is known, else p v (or F v)."""
+    if context.power_W_m2 is not None:
+        return context.power_W_m2, "mu p v"
+    return context.load_speed, "p v" if context.load_name == "pressure" else "F v"
+
+
+Law = ShapeLaw | LoadExponent | MildToSevere | SteadyHeating
+
+
+@dataclass(frozen=True)
+class Form:
+    """One form of a cause.
+
+    ``kind``: "shape" (along sliding) or "level" (across tests); ``needs``: what the data must
+    hold (``time``, ``friction``, ``pressure``, ``load``: a load or pressure that varies between
+    tests, ``power``: a load or pressure and a speed whose product varies); ``law(x, context)``: the
+    law for the search vector x; ``bounds``: (lower, upper) per entry of x; ``starts(context)``:
+    start points of x.
+    """
+
+    cause: str
     name: str
+    kind: str
     needs: tuple[str, ...]
-    build: Callable[[np.ndarray, Scales], WearExtension]
-    bounds: tuple[tuple[float, float], tuple[float, float]]
-    starts: tuple[tuple[float, float], ...]
-    meaning: str
+    law: Callable[[np.ndarray, Context], Law]
+    bounds: tuple[tuple[float, float], ...]
+    starts: Callable[[Context], list[tuple[float, ...]]]
 
 
 # amplitude: ln(r - 1) or ln(beta q_max) in [ln 1e-3, ln 1e3]; scale: ln(s0/S) or ln(tau/T) in
-# [ln 1e-3, ln 10] (a transient much longer than the tests is a curvature, much shorter an offset).
-_BOUNDS = ((np.log(1e-3), np.log(1e3)), (np.log(1e-3), np.log(10.0)))
-_STARTS = tuple((a, b) for a in np.log([0.3, 1.0, 3.0])
-                for b in np.log([0.01, 0.03, 0.1, 0.3, 1.0]))
+# [ln 1e-4, ln 10] (a transient much longer than the tests is a curvature, much shorter an offset).
+_SHAPE_BOUNDS = ((np.log(1e-3), np.log(1e3)), (np.log(1e-4), np.log(10.0)))
+_SHAPE_STARTS = [(a, b) for a in np.log([0.3, 1.0, 3.0])
+                 for b in np.log([0.003, 0.01, 0.03, 0.1, 0.3, 1.0])]
 
 
-def _running_in(x, scales: Scales) -> WearExtension:
-    return RunningIn(1.0 + float(np.exp(x[0])), float(np.exp(x[1])) * scales.distance_m)
+def _shape_starts(context: Context) -> list[tuple[float, ...]]:
+    return _SHAPE_STARTS
 
 
-def _time_transient(x, scales: Scales) -> WearExtension:
-    return TimeTransient(1.0 + float(np.exp(x[0])), float(np.exp(x[1])) * scales.time_s)
+def _running_in(x, c: Context) -> Law:
+    return ShapeLaw(RunningIn(1.0 + float(np.exp(x[0])), float(np.exp(x[1])) * c.scale_distance_m))
 
 
-def _thermal(x, scales: Scales) -> WearExtension:
-    return Thermal(float(np.exp(x[0])) / scales.power_W_m2, float(np.exp(x[1])) * scales.time_s)
+def _running_in_power(x, c: Context) -> Law:
+    return ShapeLaw(RunningInPowerLaw(1.0 + float(np.exp(x[0])),
+                                      float(np.exp(x[1])) * c.scale_distance_m))
 
 
-CATALOGUE: dict[str, Candidate] = {
-    "running_in": Candidate(
-        "running_in", ("sliding_distance_m",), _running_in, _BOUNDS, _STARTS,
-        "k falls from an initial to a steady value over sliding distance (running-in, Blau 2005)",
-    ),
-    "time_transient": Candidate(
-        "time_transient", ("time_s",), _time_transient, _BOUNDS, _STARTS,
-        "k falls from an initial to a steady value over time (oxide or tribofilm growth, Quinn)",
-    ),
-    "thermal": Candidate(
-        "thermal", ("time_s", "friction_coefficient", "pressure_Pa"), _thermal, _BOUNDS, _STARTS,
-        "k rises with the lagged frictional power mu p v of the test (frictional heating, "
-        "Archard 1959; Lim & Ashby 1987)",
-    ),
+def _time_transient(x, c: Context) -> Law:
+    return ShapeLaw(TimeTransient(1.0 + float(np.exp(x[0])), float(np.exp(x[1])) * c.scale_time_s))
+
+
+def _thermal(x, c: Context) -> Law:
+    return ShapeLaw(Thermal(float(np.exp(x[0])) / c.scale_power_W_m2,
+                            float(np.exp(x[1])) * c.scale_time_s))
+
+
+def _reference(values: np.ndarray) -> float:
+    return float(np.exp(np.mean(np.log(values))))
+
+
+def _load_exponent(x, c: Context) -> Law:
+    return LoadExponent(1.0 + float(x[0]), _reference(c.load), c.load_name)
+
+
+def _threshold_law(variable_of: Callable[[Context], tuple[np.ndarray, str]]):
+    def law(x, c: Context) -> Law:
+        values, name = variable_of(c)
+        return MildToSevere(float(np.exp(x[0])), _reference(values) * float(np.exp(x[1])),
+                            float(np.exp(x[2])), name)
+    return law
+
+
+def _threshold_starts(variable_of: Callable[[Context], tuple[np.ndarray, str]]):
+    """Thresholds midway (in log) between neighbouring distinct values, as a step (width 0.01)
+    and as smooth transitions (widths 0.3 and 1 in ln x)."""
+    def starts(c: Context) -> list[tuple[float, ...]]:
+        values, _ = variable_of(c)
+        levels = np.unique(np.round(np.log(values / _reference(values)), 9))
+        middles = 0.5 * (levels[1:] + levels[:-1])
+        return [(np.log(2.0), float(m), np.log(w)) for m in middles for w in (0.01, 0.3, 1.0)]
+    return starts
+
+
+def _by_load(c: Context) -> tuple[np.ndarray, str]:
+    return c.load, c.load_name
+
+
+def _by_load_speed(c: Context) -> tuple[np.ndarray, str]:
+    return c.load_speed, "p v" if c.load_name == "pressure" else "F v"
+
+
+def _steady_heating(x, c: Context) -> Law:
+    power, name = _power(c)
+    return SteadyHeating(float(np.exp(x[0])), float(np.exp(x[1])) * float(np.max(power)), name)
+
+
+_THRESHOLD_BOUNDS = ((0.0, np.log(1e3)), (np.log(1e-6), np.log(1e6)),
+                     (np.log(0.01), np.log(3.0)))
+
+FORMS: tuple[Form, ...] = (
+    Form("running_in", "exponential", "shape", (), _running_in, _SHAPE_BOUNDS, _shape_starts),
+    Form("running_in", "power_law", "shape", (), _running_in_power, _SHAPE_BOUNDS,
+         _shape_starts),
+    Form("time_transient", "exponential", "shape", ("time",), _time_transient, _SHAPE_BOUNDS,
+         _shape_starts),
+    Form("thermal", "lagged_power", "shape", ("time", "friction", "pressure"), _thermal,
+         _SHAPE_BOUNDS, _shape_starts),
+    Form("thermal", "steady_power", "level", ("power",), _steady_heating,
+         ((np.log(1e-3), np.log(50.0)), (np.log(1e-3), np.log(1e3))),
+         lambda c: [(a, b) for a in np.log([0.5, 2.0]) for b in np.log([0.1, 1.0, 10.0])]),
+    Form("load_exponent", "power_law", "level", ("load",), _load_exponent, ((-0.95, 2.0),),
+         lambda c: [(0.0,)]),
+    Form("mild_to_severe", "load_threshold", "level", ("load",), _threshold_law(_by_load),
+         _THRESHOLD_BOUNDS, _threshold_starts(_by_load)),
+    Form("mild_to_severe", "load_speed_threshold", "level", ("power",),
+         _threshold_law(_by_load_speed), _THRESHOLD_BOUNDS, _threshold_starts(_by_load_speed)),
+)
+
+MEANINGS = {
+    "running_in": "k falls from an initial to a steady value over sliding distance (running-in, "
+                  "Blau 2005; exponential or power-law approach)",
+    "time_transient": "k falls from an initial to a steady value over time (oxide or tribofilm "
+                      "growth, Quinn 1983)",
+    "thermal": "k rises with the frictional power mu p v of the test, at once or through the "
+               "pin's heating lag (frictional heating, Archard 1959; Quinn 1983; Lim & Ashby "
+               "1987)",
+    "load_exponent": "wear grows as a power of the load (or pressure) other than 1 "
+                     "(Rhee 1970)",
+    "mild_to_severe": "k jumps to a higher (severe) value above a load, pressure or p v threshold "
+                      "(Welsh 1965; Lim & Ashby 1987)",
 }
-CAUSE_NAMES = ("none", *CATALOGUE)
+CAUSES = tuple(MEANINGS)
+"""The causes of the catalogue, in the order they are listed."""
+
+
+def forms_of(cause: str) -> tuple[Form, ...]:
+    return tuple(form for form in FORMS if form.cause == cause)

@@ -23,10 +23,12 @@ def main(args: argparse.Namespace) -> int:
     with staged_output(args.out) as stage:
         write_outputs(diagnosis, stage)
     summary = diagnosis.summary
-    print(f"fewear diagnose: cause {summary['cause']}, held-out error "
+    print(f"fewear diagnose: causes {', '.join(summary['causes']) or 'none'}, held-out error "
           f"{summary['held_out_error']['baseline']:.3g} -> "
           f"{summary['held_out_error']['extended']:.3g} (gain {summary['gain']:.0%}); "
           f"outputs in {args.out}")
     for group in summary["confounded"]:
         print(f"fewear diagnose: confounded {' / '.join(group['causes'])}: {group['reason']}")
+    for sentence in summary["unexplained"]:
+        print(f"fewear diagnose: unexplained: {sentence}")
     return 0

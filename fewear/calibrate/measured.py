@@ -4,15 +4,23 @@ The schema: one row per reading, cumulative within a test, SI units in the colum
 ``#`` comment lines allowed anywhere::
 
     test_id, pressure_Pa, velocity_m_s, sliding_distance_m, wear_volume_m3
-    [, time_s, normal_load_N, friction_coefficient, temperature_C]
+    [, time_s, normal_load_N, friction_coefficient, temperature_C, material, factor_*]
 
-Two other forms that tribometer reports give are converted on reading, and each conversion is
-recorded as a sentence in :attr:`MeasuredWear.notes`:
+Other common names of the same quantities in the same SI units are read as the schema's names
+(:data:`ALIASES`, e.g. ``sliding_speed_m_s``, ``contact_pressure_Pa``), and the notes say so.
+``material`` and any column named ``factor_<name>`` (e.g. ``factor_lubrication``) are categorical
+factors: text, one value per reading, constant within a test; tests that differ in one of them get
+their own wear coefficient level in the diagnosis.
+
+Three other forms that tribometer reports and papers give are converted on reading, and each
+conversion is recorded as a sentence in :attr:`MeasuredWear.notes`:
 
 - ``mass_loss_kg`` instead of ``wear_volume_m3``, with a density (column ``density_kg_m3`` or the
   argument ``density_kg_m3``): V = m / rho.
 - ``specific_wear_rate_m3_N_m`` (k) instead of ``wear_volume_m3``, one row per test, with
   ``normal_load_N`` and ``sliding_distance_m``: V = k F s (Archard).
+- ``wear_rate_m3_m`` (wear volume per metre of sliding, V / s) instead of ``wear_volume_m3``, one
+  row per test, with ``sliding_distance_m``: V = (V / s) s.
 
 Required: ``test_id``, exactly one wear column (``wear_volume_m3``, ``mass_loss_kg`` or
 ``specific_wear_rate_m3_N_m``) and ``sliding_distance_m`` (or ``time_s`` with ``velocity_m_s``, from
@@ -22,7 +30,10 @@ missing variable is ``None`` and :attr:`MeasuredWear.available` lists what is th
 Bad data raise :class:`~fewear.errors.FewearInputError` naming the file line and the column: a
 missing required column, an unknown column (including known quantities in other units, e.g.
 ``wear_volume_mm3``), an empty cell, text or NaN where a number belongs, a negative value, a
-cumulative quantity (wear volume, mass loss, sliding distance, time) that decreases within a test.
+sliding distance or time that decreases within a test, a categorical factor that changes within a
+test. A wear volume or mass loss that dips below the test's previous reading (or below zero) is
+data (the scatter of a weighing or a profile), not an error: it is kept and the dips are counted
+in the notes.
 """
 
 from __future__ import annotations
@@ -30,23 +41,33 @@ from __future__ import annotations
 import csv
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from fewear.errors import FewearInputError
 
-DATA_KINDS = ("cumulative_volume", "mass_loss", "specific_wear_rate")
+DATA_KINDS = ("cumulative_volume", "mass_loss", "specific_wear_rate", "wear_rate")
 VARIABLES = ("pressure_Pa", "velocity_m_s", "sliding_distance_m", "wear_volume_m3", "time_s",
              "normal_load_N", "friction_coefficient", "temperature_C")
 """The measured variables of :class:`MeasuredWear`, in the order :attr:`available` lists them."""
 WEAR_COLUMNS = {"wear_volume_m3": "cumulative_volume", "mass_loss_kg": "mass_loss",
-                "specific_wear_rate_m3_N_m": "specific_wear_rate"}
-COLUMNS = ("test_id",) + VARIABLES + ("mass_loss_kg", "density_kg_m3", "specific_wear_rate_m3_N_m")
+                "specific_wear_rate_m3_N_m": "specific_wear_rate", "wear_rate_m3_m": "wear_rate"}
+COLUMNS = ("test_id",) + VARIABLES + ("mass_loss_kg", "density_kg_m3", "specific_wear_rate_m3_N_m",
+                                      "wear_rate_m3_m", "material")
+FACTOR_PREFIX = "factor_"
+"""Columns named factor_<name> hold a categorical factor (text), like ``material``."""
+ONE_ROW_PER_TEST = ("specific_wear_rate", "wear_rate")
 POSITIVE = {"pressure_Pa", "velocity_m_s", "normal_load_N", "density_kg_m3"}
-CUMULATIVE = ("sliding_distance_m", "time_s", "wear_volume_m3", "mass_loss_kg")
+CUMULATIVE = ("sliding_distance_m", "time_s")
+WEAR_AMOUNTS = ("wear_volume_m3", "mass_loss_kg")
 ABSOLUTE_ZERO_C = -273.15
+
+ALIASES = {"sliding_speed_m_s": "velocity_m_s", "speed_m_s": "velocity_m_s",
+           "contact_pressure_Pa": "pressure_Pa", "load_N": "normal_load_N",
+           "mu": "friction_coefficient", "distance_m": "sliding_distance_m"}
+"""Other names of schema columns (same quantity, same SI unit), read as the schema's name."""
 
 UNIT_HINTS = {
     "wear_volume_": "wear_volume_m3 (1 mm^3 = 1e-9 m^3)",
@@ -63,7 +84,7 @@ UNIT_HINTS = {
     "temperature_": "temperature_C",
     "density_": "density_kg_m3 (1 g/cm^3 = 1e3 kg/m^3)",
     "specific_wear_rate_": "specific_wear_rate_m3_N_m (1 mm^3/(N m) = 1e-9 m^3/(N m))",
-    "wear_rate_": "specific_wear_rate_m3_N_m (1 mm^3/(N m) = 1e-9 m^3/(N m))",
+    "wear_rate_": "wear_rate_m3_m (1 mm^3/m = 1e-9 m^3/m) or specific_wear_rate_m3_N_m",
 }
 
 
@@ -74,6 +95,7 @@ class MeasuredWear:
     ``test_id`` (str array) names each reading's test; a variable that the data lack is ``None``.
     ``wear_volume_m3`` and ``sliding_distance_m`` are cumulative from the start of the test.
     ``line_number`` (int array), when read from a file, is each reading's line in it.
+    ``factors``: categorical columns (``material``, ``factor_*``), name -> text per reading.
     """
 
     source: str
@@ -89,6 +111,7 @@ class MeasuredWear:
     temperature_C: np.ndarray | None = None
     notes: tuple[str, ...] = ()
     line_number: np.ndarray | None = None
+    factors: dict[str, np.ndarray] = field(default_factory=dict)
 
     def __post_init__(self):
         if self.data_kind not in DATA_KINDS:
@@ -120,7 +143,14 @@ class MeasuredWear:
             raise FewearInputError(
                 f"{self.source}: sliding_distance_m and wear_volume_m3 are required"
             )
-        if self.data_kind != "specific_wear_rate":
+        factors = {name: np.asarray(values).astype(str) for name, values in self.factors.items()}
+        for name, values in factors.items():
+            if values.shape != test_id.shape:
+                raise FewearInputError(
+                    f"{self.source}: {name} has {values.size} values for {test_id.size} readings")
+            _check_constant_factor(name, values, self.tests(), test_id, where)
+        object.__setattr__(self, "factors", factors)
+        if self.data_kind not in ONE_ROW_PER_TEST:
             for name in CUMULATIVE:
                 if getattr(self, name, None) is not None:
                     _check_cumulative(name, getattr(self, name), self.tests(), test_id, where)
@@ -154,6 +184,7 @@ def read_measured_wear(path: str | Path, *, density_kg_m3: float | None = None) 
     path = Path(path)
     source = str(path)
     header_line, header, rows = _read_rows(path)
+    header, alias_notes = _resolve_aliases(header)
     _check_header(source, header_line, header)
     wear_columns = [name for name in header if name in WEAR_COLUMNS]
     if len(wear_columns) != 1:
@@ -173,23 +204,29 @@ def read_measured_wear(path: str | Path, *, density_kg_m3: float | None = None) 
     for index, name in enumerate(test_id):
         if not name:
             raise FewearInputError(f"{where(index)}, column test_id: empty test name")
-    columns = {}
+    columns, factors = {}, {}
     for name in header:
-        if name != "test_id":
-            cells = [row[header.index(name)] for _, row in rows]
+        cells = [row[header.index(name)] for _, row in rows]
+        if is_factor(name):
+            factors[name] = _text_column(name, cells, where)
+        elif name != "test_id":
             columns[name] = _numeric_column(name, cells, where)
             _check_values(name, columns[name], where)
-    notes = []
+    notes = list(alias_notes)
     if "sliding_distance_m" not in columns:
         _derive_distance(columns, notes)
     tests = _tests(test_id)
-    if data_kind == "specific_wear_rate":
+    if data_kind in ONE_ROW_PER_TEST:
         _check_one_row_per_test(tests, test_id, where)
-        _specific_wear_rate_to_volume(source, header_line, columns, notes)
+        if data_kind == "wear_rate":
+            _wear_rate_to_volume(columns, notes)
+        else:
+            _specific_wear_rate_to_volume(source, header_line, columns, notes)
     else:
         for name in CUMULATIVE:
             if name in columns:
                 _check_cumulative(name, columns[name], tests, test_id, where)
+        notes += _dips(columns[wear_column], tests, wear_column)
     if data_kind == "mass_loss":
         _mass_loss_to_volume(source, header_line, columns, density_kg_m3, notes)
     elif density_kg_m3 is not None:
@@ -199,18 +236,24 @@ def read_measured_wear(path: str | Path, *, density_kg_m3: float | None = None) 
     return MeasuredWear(
         source=source, data_kind=data_kind, test_id=test_id,
         **{name: columns.get(name) for name in VARIABLES},
-        notes=tuple(notes), line_number=line_number,
+        notes=tuple(notes), line_number=line_number, factors=factors,
     )
+
+
+def is_factor(name: str) -> bool:
+    """Whether a column holds a categorical factor (``material`` or ``factor_<name>``)."""
+    return name == "material" or (name.startswith(FACTOR_PREFIX) and len(name) > len(FACTOR_PREFIX))
 
 
 def write_measured_wear(path: str | Path, data: MeasuredWear, *, comment: str = "") -> None:
     """Write ``data`` in the cumulative-volume schema (with ``comment`` as ``#`` header lines)."""
     names = ["test_id"] + list(data.available)
     lines = [f"# {line}".rstrip() for line in comment.splitlines()] if comment else []
-    lines.append(",".join(names))
+    lines.append(",".join(names + list(data.factors)))
     for index in range(data.test_id.size):
         values = [str(data.test_id[index])]
         values += [repr(float(getattr(data, name)[index])) for name in names[1:]]
+        values += [str(column[index]) for column in data.factors.values()]
         lines.append(",".join(values))
     Path(path).write_text("\n".join(lines) + "\n")
 
@@ -305,9 +348,15 @@ def _read_rows(path: Path) -> tuple[int, list[str], list[tuple[int, list[str]]]]
     return header_line, header, rows
 
 
+def _resolve_aliases(header: list[str]) -> tuple[list[str], list[str]]:
+    renamed = [ALIASES.get(name, name) for name in header]
+    notes = [f"column {old} read as {new}" for old, new in zip(header, renamed) if old != new]
+    return renamed, notes
+
+
 def _check_header(source: str, line: int, header: list[str]) -> None:
     for name in header:
-        if name not in COLUMNS:
+        if name not in COLUMNS and not is_factor(name):
             raise FewearInputError(
                 f"{source} line {line}, column {name!r}: {_unknown_column(name)}"
             )
@@ -346,9 +395,12 @@ def _numeric_column(name: str, cells: list[str], where: Callable[[int], str]) ->
 
 
 def _check_values(name: str, values: np.ndarray, where: Callable[[int], str]) -> None:
-    """Finite; positive (POSITIVE), above absolute zero (temperature) or non-negative (others)."""
+    """Finite; positive (POSITIVE), above absolute zero (temperature), any sign (a wear volume or
+    mass loss: a reading near zero can come out below it, and is data) or non-negative (others)."""
     if name == "temperature_C":
         bad, allowed = ~(values > ABSOLUTE_ZERO_C), "a finite temperature above -273.15 C"
+    elif name in WEAR_AMOUNTS:
+        bad, allowed = np.zeros(values.shape, bool), "a finite number"
     elif name in POSITIVE:
         bad, allowed = ~(values > 0.0), "a positive number"
     else:
@@ -379,12 +431,46 @@ def _check_cumulative(name, values, tests, test_id, where) -> None:
             )
 
 
+def _dips(values, tests, name) -> list[str]:
+    """A note counting the readings that dip below their test's previous one (none: no note)."""
+    dips = sum(int(np.sum(np.diff(values[index]) < 0.0)) for index in tests)
+    if not dips:
+        return []
+    return [f"{dips} reading(s) of {name} dip below the previous reading of their test: kept as "
+            "data (the scatter of each reading is modelled, not removed)"]
+
+
+def _check_constant_factor(name, values, tests, test_id, where) -> None:
+    for index in tests:
+        changed = np.flatnonzero(values[index] != values[index[0]])
+        if changed.size:
+            row = index[changed[0]]
+            raise FewearInputError(
+                f"{where(row)}, column {name}: {values[row]!r} differs from {values[index[0]]!r} "
+                f"earlier in test {test_id[row]}; a categorical factor is constant within a test")
+
+
+def _text_column(name: str, cells: list[str], where: Callable[[int], str]) -> np.ndarray:
+    values = np.array([cell.strip() for cell in cells])
+    for index, value in enumerate(values):
+        if not value:
+            raise FewearInputError(f"{where(index)}, column {name}: empty value")
+    return values
+
+
+def _wear_rate_to_volume(columns, notes) -> None:
+    rate = columns.pop("wear_rate_m3_m")
+    columns["wear_volume_m3"] = rate * columns["sliding_distance_m"]
+    notes.append("Wear rates per metre (wear_rate_m3_m, one row per test) were converted to wear "
+                 "volumes V = (V / s) s with sliding_distance_m.")
+
+
 def _check_one_row_per_test(tests, test_id, where) -> None:
     for index in tests:
         if index.size > 1:
             raise FewearInputError(
                 f"{where(index[1])}, column test_id: test {test_id[index[0]]} appears again; "
-                "a specific wear rate table has one row per test"
+                "a table of wear rates has one row per test"
             )
 
 

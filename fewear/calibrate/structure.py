@@ -1,17 +1,18 @@
-"""The structure of the baseline's residuals, in numbers and in plain words.
+"""The structure of a model's residuals, in numbers and in plain words.
 
-Three views, each tested with Spearman's rank correlation (a monotone trend, robust to outliers;
+Each view is tested with Spearman's rank correlation (a monotone trend, robust to outliers;
 scipy.stats.spearmanr gives the two-sided p-value) and shown as binned means (quartiles of the
 variable, mean residual and its standard error):
 
-- *within tests*: the residual of each reading (its test's level removed) against sliding distance
-  and time. A falling trend means the apparent wear coefficient V / (F s) falls along a test
-  (running-in or a time transient); a rising one that it rises (heating);
-- *the trend's size between tests*: each test's slope of residual against ln s, against the
-  test's frictional power mu p v and speed v (a slope growing with mu p v points at heating);
-- *across tests*: each test's ln k minus the network's ln k(p, v) against pressure, speed,
-  frictional power, temperature and test order (a trend with test order is a drift of the
-  campaign: disc wear, humidity, a changing counterface, none of which the catalogue models).
+- *the readings*: the residual of each reading (within tests: its test's level removed) against
+  sliding distance and time. A falling trend means the apparent wear coefficient V / (F s) falls
+  with sliding (running-in or a time transient); a rising one that it rises (heating). In a table
+  of one reading per test also against load, speed and frictional power;
+- *across tests* (histories): each test's level against load or pressure, speed, frictional power,
+  temperature and test order (a trend with test order is a drift of the campaign: disc wear,
+  humidity, a changing counterface, none of which the catalogue models).
+
+A trend at p < UNEXPLAINED_P after the diagnosis's final model is reported as unexplained.
 """
 
 from __future__ import annotations
@@ -23,6 +24,8 @@ from scipy import stats
 
 SIGNIFICANT_P = 0.01
 """p-value below which a trend is called out in the summary (several variables are tested)."""
+UNEXPLAINED_P = 1e-3
+"""p-value below which a trend left by the final model is reported as unexplained."""
 
 
 def _bins(x: np.ndarray, y: np.ndarray, n_bins: int = 4) -> list[dict[str, float]]:
@@ -60,61 +63,51 @@ def _trend(name: str, unit: str, x: np.ndarray, y: np.ndarray, subject: str) -> 
     return entry
 
 
-def residual_structure(readings, residuals: np.ndarray, levels: np.ndarray,
-                       network) -> dict[str, Any]:
-    """The three views of the module docstring for the baseline fit (JSON-ready)."""
-    within = [_trend("sliding distance", "m", readings.distance_m, residuals,
-                     "Within tests, the residuals")]
+def residual_structure(readings, reading_residuals: np.ndarray,
+                       test_residuals: np.ndarray | None) -> dict[str, Any]:
+    """The views of the module docstring for a model's residuals: per reading, and (histories)
+    per test. JSON-ready, with the sentences and the unexplained trends."""
+    per_test = readings.n_tests == readings.test_index.size
+    subject = "The residuals" if per_test else "Within tests, the residuals"
+    load, load_name = readings.load_variable
+    readings_view = [_trend("sliding distance", "m", readings.distance_m, reading_residuals,
+                            subject)]
     if readings.time_s is not None:
-        within.append(_trend("time", "s", readings.time_s, residuals,
-                             "Within tests, the residuals"))
-    slopes = _per_test_slopes(readings, residuals)
-    between = []
-    power = readings.power_W_m2
-    if slopes is not None:
-        if power is not None:
-            between.append(_trend("frictional power mu p v", "W/m^2",
-                                  readings.per_test(power), slopes,
-                                  "The per-test trends of the residual along ln s"))
-        if readings.velocity_m_s is not None:
-            between.append(_trend("sliding speed", "m/s", readings.per_test(readings.velocity_m_s),
-                                  slopes, "The per-test trends of the residual along ln s"))
-    ones = np.ones(readings.n_tests)
-    p = None if readings.pressure_Pa is None else readings.per_test(readings.pressure_Pa)
-    v = None if readings.velocity_m_s is None else readings.per_test(readings.velocity_m_s)
-    load = ones if readings.load_N is None else readings.per_test(readings.load_N)
-    network_level = np.log(network(ones if p is None else p, ones if v is None else v) * load)
-    offsets = levels - network_level
-    subject = "Across tests, ln k minus the network's ln k(p, v)"
-    across = [] if p is None else [_trend("pressure", "Pa", p, offsets, subject)]
-    if v is not None:
-        across.append(_trend("sliding speed", "m/s", v, offsets, subject))
-    if power is not None:
-        across.append(_trend("frictional power mu p v", "W/m^2", readings.per_test(power), offsets,
-                             subject))
-    if readings.temperature_C is not None:
-        across.append(_trend("temperature", "C", readings.per_test(readings.temperature_C),
-                             offsets, subject))
-    across.append(_trend("test order", "-", np.arange(readings.n_tests, dtype=float), offsets,
-                         subject))
+        readings_view.append(_trend("time", "s", readings.time_s, reading_residuals, subject))
+    across = []
+    if test_residuals is None:
+        readings_view += _test_variables(readings, lambda x: x, reading_residuals, subject,
+                                         load, load_name)
+    else:
+        across = _test_variables(readings, readings.per_test, test_residuals,
+                                 "Across tests, the levels ln k", load, load_name)
     not_measured = [name for name in ("pressure_Pa", "time_s", "velocity_m_s", "normal_load_N",
                                       "friction_coefficient", "temperature_C")
                     if name not in readings.measured]
-    sentences = [entry["sentence"] for entry in within + between + across]
+    entries = readings_view + across
+    sentences = [entry["sentence"] for entry in entries]
     if not_measured:
         sentences.append("Not measured, so not examined: " + ", ".join(not_measured) + ".")
-    return {"within_tests": within, "trend_between_tests": between, "across_tests": across,
-            "not_measured": not_measured, "sentences": sentences,
-            "per_test_offset": [float(x) for x in offsets],
-            "per_test_slope": None if slopes is None else [float(x) for x in slopes]}
+    unexplained = [entry["sentence"] for entry in entries
+                   if entry["p_value"] is not None and entry["p_value"] < UNEXPLAINED_P]
+    return {"readings": readings_view, "across_tests": across, "not_measured": not_measured,
+            "sentences": sentences, "unexplained": unexplained}
 
 
-def _per_test_slopes(readings, residuals: np.ndarray) -> np.ndarray | None:
-    """Least-squares slope of residual against ln s in each test (None if a test has < 3)."""
-    slopes = []
-    for j in range(readings.n_tests):
-        rows = readings.test_index == j
-        if rows.sum() < 3:
-            return None
-        slopes.append(np.polyfit(np.log(readings.distance_m[rows]), residuals[rows], 1)[0])
-    return np.array(slopes)
+def _test_variables(readings, per, y, subject, load, load_name) -> list[dict[str, Any]]:
+    """Trends of ``y`` against the variables that describe a test (``per`` maps a per-reading
+    array onto ``y``'s rows)."""
+    out = []
+    if load is not None:
+        out.append(_trend(load_name, "Pa" if load_name == "pressure" else "N", per(load), y,
+                          subject))
+    if readings.velocity_m_s is not None:
+        out.append(_trend("sliding speed", "m/s", per(readings.velocity_m_s), y, subject))
+    if readings.power_W_m2 is not None:
+        out.append(_trend("frictional power mu p v", "W/m^2", per(readings.power_W_m2), y,
+                          subject))
+    if readings.temperature_C is not None:
+        out.append(_trend("temperature", "C", per(readings.temperature_C), y, subject))
+    order = readings.test_index.astype(float)
+    out.append(_trend("test order", "-", per(order), y, subject))
+    return out

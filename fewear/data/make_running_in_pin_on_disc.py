@@ -6,11 +6,10 @@ it bit for bit with::
 
 Made by the forward model :func:`fewear.calibrate.forward.simulate_campaign`: CuZn25Al6Fe3Mn3 pin
 (diameter 6 mm) on a 42CrMo disc, 3 pressures x 3 speeds (one test each, shuffled order), 10
-cumulative readings per test from 50 m to 2000 m (geometric spacing), base law
-k_b(p, v) = 2e-13 (p / 2 MPa)^0.2 (v / 0.5 m/s)^-0.1 m^2/N times a running-in
-k(s) = k_b [1 + (R - 1) exp(-s / S0)] with R = K_INITIAL_OVER_STEADY, S0 = DISTANCE_SCALE_m;
-lognormal scatter 0.25 per interval between readings, 0.02 per weighing, 0.10 per test on k;
-friction coefficient 0.3 x lognormal(0.1) per test.
+cumulative readings per test every 200 m to 2000 m, k = 2e-13 m^2/N times a running-in
+k(s) = k [1 + (R - 1) exp(-s / S0)] with R = K_INITIAL_OVER_STEADY, S0 = DISTANCE_SCALE_m;
+3 % relative noise per reading (readings that dip are kept), lognormal scatter 0.10 per test on
+k; friction coefficient 0.3 x lognormal(0.1) per test.
 """
 
 from __future__ import annotations
@@ -28,12 +27,13 @@ DISTANCE_SCALE_m = 150.0
 OUTPUT = Path(__file__).with_name("pin_on_disc_running_in_synthetic.csv")
 HEADER = (
     "SYNTHETIC pin-on-disc data with a HIDDEN departure from Archard's law: not a measurement.\n"
-    "CuZn25Al6Fe3Mn3 pin (6 mm) on 42CrMo disc; 3 pressures x 3 speeds, 10 cumulative readings.\n"
+    "CuZn25Al6Fe3Mn3 pin (6 mm) on 42CrMo disc; 3 pressures x 3 speeds, 10 cumulative readings\n"
+    "every 200 m.\n"
     f"Made by fewear/data/make_running_in_pin_on_disc.py (numpy default_rng({SEED})) with the\n"
-    "forward model fewear.calibrate.forward: k(s) = k_b(p, v) [1 + (R - 1) exp(-s / S0)],\n"
-    f"R = {K_INITIAL_OVER_STEADY:g}, S0 = {DISTANCE_SCALE_m:g} m (running-in); lognormal scatter "
-    "0.25 per interval,\n0.02 per reading, 0.10 per test. Used by demos/diagnose_tribometer.py; "
-    "SI units in the column\nnames."
+    "forward model fewear.calibrate.forward: k(s) = k [1 + (R - 1) exp(-s / S0)],\n"
+    f"R = {K_INITIAL_OVER_STEADY:g}, S0 = {DISTANCE_SCALE_m:g} m (running-in); 3 % noise per "
+    "reading (dips kept),\nlognormal scatter 0.10 per test. Used by demos/diagnose_tribometer.py; "
+    "SI units in the\ncolumn names."
 )
 
 

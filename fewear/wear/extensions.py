@@ -15,6 +15,10 @@ frictional power ``theta`` [W/m^2]. The catalogue:
   steady value k_ss over a sliding distance s0 while asperities conform (P. J. Blau, "On the nature
   of running-in", Tribology International 38 (2005) 1007-1012; the exponential decay of the wear
   rate is the simplest of the break-in curve shapes classified there).
+- ``running_in_power_law``: m(s) = 1 + (r - 1) / (1 + s / s0). The same fall with a power-law
+  (hyperbolic) tail, the other break-in curve shape of Blau (2005): the wear rate approaches its
+  steady value as 1/s instead of exponentially, so the extra wear (r - 1) s0 ln(1 + s / s0) keeps
+  growing slowly.
 - ``time_transient``: m(t) = 1 + (r - 1) exp(-t / tau). The same fall driven by time, as when a
   protective oxide or tribofilm grows at a rate set by time at temperature rather than by distance
   (T. F. J. Quinn, "Review of oxidational wear", Tribology International 16 (1983) 257-271 and
@@ -139,6 +143,40 @@ class RunningIn:
 
 
 @dataclass(frozen=True)
+class RunningInPowerLaw:
+    """m(s) = 1 + (r - 1) / (1 + s / s0) (Blau 2005, hyperbolic break-in);
+    S_eff = s + (r - 1) s0 ln(1 + s / s0).
+
+    ``k_initial_over_steady`` r >= 1; ``distance_scale_m`` s0 > 0.
+    """
+
+    k_initial_over_steady: float
+    distance_scale_m: float
+    name = "running_in_power_law"
+    required_variables = ("sliding_distance_m",)
+
+    def __post_init__(self):
+        _check_ratio(self.k_initial_over_steady)
+        _check_positive("distance_scale_m", self.distance_scale_m, "a positive distance in m")
+
+    def multiplier(self, state: SlidingState) -> np.ndarray:
+        s = np.asarray(state.distance_m, dtype=float)
+        return 1.0 + (self.k_initial_over_steady - 1.0) / (1.0 + s / self.distance_scale_m)
+
+    def advance(self, state: SlidingState, ds_m, dt_s, power_W_m2) -> SlidingState:
+        return _advance_common(state, ds_m, dt_s)
+
+    def effective_distance_m(self, distance_m, time_s=None, power_W_m2=None) -> np.ndarray:
+        s = np.asarray(distance_m, dtype=float)
+        s0 = self.distance_scale_m
+        return s + (self.k_initial_over_steady - 1.0) * s0 * np.log1p(s / s0)
+
+    def params(self) -> dict[str, float]:
+        return {"k_initial_over_steady": float(self.k_initial_over_steady),
+                "distance_scale_m": float(self.distance_scale_m)}
+
+
+@dataclass(frozen=True)
 class TimeTransient:
     """m(t) = 1 + (r - 1) exp(-t / tau) (oxide/tribofilm growth, Quinn 1983).
 
@@ -221,11 +259,12 @@ class Thermal:
         return {"beta_m2_W": float(self.beta_m2_W), "time_scale_s": float(self.time_scale_s)}
 
 
-WearExtension = NoExtension | RunningIn | TimeTransient | Thermal
+WearExtension = NoExtension | RunningIn | RunningInPowerLaw | TimeTransient | Thermal
 
 EXTENSIONS: dict[str, type] = {
     "none": NoExtension,
     "running_in": RunningIn,
+    "running_in_power_law": RunningInPowerLaw,
     "time_transient": TimeTransient,
     "thermal": Thermal,
 }

@@ -1,84 +1,91 @@
-"""How often `fewear diagnose` names a hidden cause, and how often it invents one (issue 4, item 5).
+"""How often `fewear diagnose` names a hidden cause, and how often it invents one (issue 8).
 
-Many synthetic campaigns per cause (fewear.calibrate.forward.hidden_case: 9 tests at 3 pressures x
-3 speeds, 10 readings each, parameters drawn across the physical ranges of
-:func:`fewear.calibrate.forward.random_extension`, lognormal scatter 0.25 per interval between
-readings, 0.02 per reading, 0.10 per test), each handed to the diagnosis without the answer with
-the default ``[diagnose]`` settings. Prints, per cause: identification accuracy, how often the
-cause was reported as confounded, the median and 10th percentile of the gain (relative reduction of
-the held-out error); for plain-Archard data: the false-positive rate. A second block repeats the
-null and running-in cases with a heavier scatter (0.35 per interval), and a third runs single-speed
-campaigns (running_in vs time_transient confounded by design). Run with ``make bench``.
+Two independently written generators (tests/calibrate/generators.py: ours and
+tests/calibrate/independent_generator.py), swept over a grid: the effect's length as a fraction of
+the test (``scale`` 0.01, 0.1, 0.5; for the level causes the independent generator maps it to the
+effect's strength), the relative noise of every cumulative reading (0.01, 0.03, 0.1; dips kept)
+and the sampling (histories: many readings per test; table: one reading per test). Per cell,
+SEEDS data sets of each of the five causes and NULL_SEEDS plain-Archard data sets go to the
+diagnosis with the default settings, through the CSV reader. Printed per cell:
 
-Asserts only loose floors (accuracy >= 0.8, false positives <= 0.1) so that a regression fails.
+- ``first``: the hidden cause is the first cause named (the strict figure);
+- ``named``: the hidden cause is among the causes named, or confounded with the first by the
+  report (the report then says the data cannot tell the two apart);
+- ``family``: ``named``, or heating hidden and a p v threshold named or the reverse (one law
+  family, see tests/calibrate/generators.named_as_power_law);
+- ``fp``: plain-Archard data sets for which any cause was named.
+
+Goals of the issue: >= 90 % of hidden causes named, fp <= 5 % in every cell. Run with
+``pytest tests/benchmarks/test_bench_diagnose.py -m benchmark -s`` (about 1000 diagnoses). The
+asserts are loose floors over the whole grid so that a regression fails; the printed table is
+the result.
 """
 
+import os
 import time
+from collections import Counter
+from itertools import product
 
 import numpy as np
 import pytest
 
-from fewear.calibrate.diagnose import diagnose, readings_from_columns
-from fewear.calibrate.forward import grid_campaign, hidden_case
+from fewear.calibrate.diagnose import diagnose
+from tests.calibrate.generators import (
+    CAUSES,
+    GENERATORS,
+    SAMPLINGS,
+    dataset,
+    named,
+    named_as_power_law,
+)
 
-SEEDS_PER_CAUSE = 20
-NULL_SEEDS = 40
-CAUSES = ("running_in", "time_transient", "thermal")
-
-
-def run_many(cause: str, seeds, campaign_options=None):
-    causes, gains, confounded = [], [], []
-    for seed in seeds:
-        campaign = None
-        if campaign_options is not None:
-            campaign = grid_campaign(rng=np.random.default_rng(seed), **campaign_options)
-        columns, _, _ = hidden_case(cause, seed, campaign)
-        summary = diagnose(readings_from_columns(columns)).summary
-        causes.append(summary["cause"])
-        gains.append(summary["gain"])
-        confounded.append(bool(summary["confounded"]))
-    return np.array(causes), np.array(gains), np.array(confounded)
+SCALES = (0.01, 0.1, 0.5)
+NOISES = (0.01, 0.03, 0.1)
+SEEDS = int(os.environ.get("FEWEAR_BENCH_SEEDS", "4"))
+NULL_SEEDS = 2 * SEEDS
 
 
-def report(label: str, cause: str, causes, gains, confounded) -> float:
-    hit = causes == cause
-    if cause == "none":
-        rate = float(np.mean(~hit))
-        print(f"{label:34s} false-positive rate {rate:5.1%} ({int(np.sum(~hit))}/{hit.size}); "
-              f"named instead: {sorted(set(causes[~hit]))}")
-        return rate
-    accuracy = float(np.mean(hit))
-    print(f"{label:34s} accuracy {accuracy:5.1%} ({int(hit.sum())}/{hit.size}), confounded "
-          f"{np.mean(confounded):4.0%}, gain median {np.median(gains[hit]):.2f}, 10th percentile "
-          f"{np.percentile(gains[hit], 10):.2f}; misnamed as {sorted(set(causes[~hit]))}")
-    return accuracy
+def run_cell(generator, sampling, scale, noise, folder):
+    """Rates of ``first``, ``named``, ``family`` and ``fp`` in one cell, the misses (hidden ->
+    first named) and the causes of the false positives."""
+    counts, misses, false_positives = Counter(), Counter(), []
+    for cause, seed in product(CAUSES, range(SEEDS)):
+        summary = diagnose(dataset(generator, cause, 100 + seed, folder, scale=scale,
+                                   noise=noise, sampling=sampling)).summary
+        counts["first"] += summary["cause"] == cause
+        counts["named"] += named(summary, cause)
+        counts["family"] += named_as_power_law(summary, cause)
+        if not named(summary, cause):
+            misses[f"{cause}->{summary['cause']}"] += 1
+    for seed in range(NULL_SEEDS):
+        summary = diagnose(dataset(generator, "none", 500 + seed, folder, scale=scale,
+                                   noise=noise, sampling=sampling)).summary
+        if summary["causes"]:
+            false_positives.append(summary["cause"])
+    n = len(CAUSES) * SEEDS
+    rates = [counts[key] / n for key in ("first", "named", "family")]
+    return rates + [len(false_positives) / NULL_SEEDS], misses, false_positives
 
 
 @pytest.mark.benchmark
-def test_identification_accuracy_and_false_positive_rate():
+def test_accuracy_and_false_positives_over_the_grid(tmp_path):
     start = time.perf_counter()
-    print()
-    accuracies = {}
-    for cause in CAUSES:
-        result = run_many(cause, range(1000, 1000 + SEEDS_PER_CAUSE))
-        accuracies[cause] = report(f"{cause} (default scatter)", cause, *result)
-    false_positive = report("none (default scatter)", "none",
-                            *run_many("none", range(2000, 2000 + NULL_SEEDS)))
-    heavy = {"interval_scatter": 0.35, "pressures_Pa": (1e6, 2e6, 4e6),
-             "velocities_m_s": (0.2, 0.5, 1.2)}
-    report("running_in (interval scatter 0.35)", "running_in",
-           *run_many("running_in", range(3000, 3000 + SEEDS_PER_CAUSE), heavy))
-    report("thermal (interval scatter 0.35)", "thermal",
-           *run_many("thermal", range(3500, 3500 + SEEDS_PER_CAUSE), heavy))
-    heavy_fp = report("none (interval scatter 0.35)", "none",
-                      *run_many("none", range(4000, 4000 + NULL_SEEDS), heavy))
-    single_speed = {"pressures_Pa": (0.5e6, 1e6, 2e6, 3e6, 4e6, 6e6), "velocities_m_s": (0.5,)}
-    causes, _, confounded = run_many("running_in", range(5000, 5010), single_speed)
-    both = np.isin(causes, ("running_in", "time_transient"))
-    print(f"{'single speed, running_in hidden':34s} named running_in or time_transient "
-          f"{np.mean(both):.0%}, reported confounded {np.mean(confounded):.0%}")
-    n_runs = 3 * SEEDS_PER_CAUSE + NULL_SEEDS + 2 * SEEDS_PER_CAUSE + NULL_SEEDS + 10
-    print(f"{n_runs} diagnoses in {time.perf_counter() - start:.0f} s")
-    assert min(accuracies.values()) >= 0.8
-    assert false_positive <= 0.1 and heavy_fp <= 0.1
-    assert np.mean(confounded) >= 0.8
+    totals = {}
+    for generator in GENERATORS:
+        print(f"\n{generator} generator: {SEEDS} data sets per cause and cell, {NULL_SEEDS} null")
+        print(f"{'sampling':10s} {'scale':>5s} {'noise':>5s} {'first':>6s} {'named':>6s} "
+              f"{'family':>6s} {'fp':>5s}  misses (hidden->first named) / false positives")
+        rows = []
+        for sampling, scale, noise in product(SAMPLINGS, SCALES, NOISES):
+            rates, misses, fps = run_cell(generator, sampling, scale, noise, tmp_path)
+            rows.append(rates)
+            print(f"{sampling:10s} {scale:5.2f} {noise:5.2f} "
+                  + " ".join(f"{rate:6.0%}" for rate in rates[:3])
+                  + f" {rates[3]:5.0%}  {dict(misses)} {fps}")
+        first, hit, family, fp = np.mean(rows, axis=0)
+        totals[generator] = (hit, fp)
+        print(f"{generator} over the grid: first {first:.0%}, named {hit:.0%}, family "
+              f"{family:.0%}, false positives {fp:.0%}")
+    print(f"{time.perf_counter() - start:.0f} s")
+    for generator, (hit, fp) in totals.items():
+        assert hit >= 0.75 and fp <= 0.10, generator

@@ -1,5 +1,5 @@
-"""`fewear diagnose`: outputs that exist and parse, bad data and bad config refused with a message
-naming the place (exit 2) and nothing written."""
+"""`fewear diagnose`: outputs that exist and parse, readings that dip kept and counted, bad data
+and bad config refused with a message naming the place (exit 2) and nothing written."""
 
 import json
 import re
@@ -32,13 +32,14 @@ def outputs(running_in_csv, tmp_path_factory) -> Path:
 
 def test_outputs_exist_and_parse(outputs):
     summary = json.loads((outputs / "diagnosis.json").read_text())
-    for key in ("data_kind", "baseline", "candidates", "cause", "gain", "extended_config"):
+    for key in ("data_kind", "baseline", "candidates", "causes", "cause", "gain",
+                "extended_config", "unexplained"):
         assert key in summary
     assert summary["data_kind"] == "cumulative_volume"
-    assert summary["cause"] == "running_in"
+    assert summary["cause"] == "running_in" == summary["causes"][0]
     assert summary["baseline"]["held_out_error"] > summary["held_out_error"]["extended"]
     for candidate in summary["candidates"]:
-        assert {"name", "params", "held_out_error", "score"} <= set(candidate)
+        assert {"name", "form", "params", "held_out_error", "p_value", "verdict"} <= set(candidate)
     gain = summary["gain"]
     assert gain == pytest.approx(1 - summary["held_out_error"]["extended"]
                                  / summary["baseline"]["held_out_error"])
@@ -61,19 +62,41 @@ def test_extended_config_is_what_the_simulation_loads(outputs):
     assert 1e-14 < float(k(2e6, 0.5)) < 1e-12
 
 
-def test_bad_data_exit_2_names_line_and_column(tmp_path, running_in_csv, capsys):
-    lines = running_in_csv.read_text().splitlines()
+def _with_cell(path: Path, reading: int, column: str, value: str) -> tuple[str, int]:
+    """The CSV text with ``column`` of the ``reading``-th data row set to ``value``, and the
+    file line of that row."""
+    lines = path.read_text().splitlines()
     header_index = next(i for i, line in enumerate(lines) if line.startswith("test_id"))
-    row = lines[header_index + 3].split(",")
-    row[4] = "1e-12"  # the 3rd reading of the first test less than the 2nd: volume decreases
-    lines[header_index + 3] = ",".join(row)
+    header = lines[header_index].split(",")
+    row = lines[header_index + reading].split(",")
+    row[header.index(column)] = value
+    lines[header_index + reading] = ",".join(row)
+    return "\n".join(lines) + "\n", header_index + reading + 1
+
+
+def test_a_reading_that_dips_is_kept_and_counted(tmp_path, running_in_csv):
+    """The 3rd reading of the first test below the 2nd: data (scatter), not an error."""
+    text, _ = _with_cell(running_in_csv, 3, "wear_volume_m3", "1e-12")
+    dipped = tmp_path / "dipped.csv"
+    dipped.write_text(text)
+    out = tmp_path / "out"
+    assert main(["diagnose", str(dipped), "--out", str(out)]) == 0
+    summary = json.loads((out / "diagnosis.json").read_text())
+    assert any(note.startswith("1 reading(s) of wear_volume_m3 dip") for note in summary["notes"])
+    rows = [line for line in text.splitlines() if line and not line.startswith(("#", "test_id"))]
+    assert summary["n_readings"] == len(rows)
+
+
+def test_bad_data_exit_2_names_line_and_column(tmp_path, running_in_csv, capsys):
+    """The sliding distance of the 3rd reading of the first test less than the 2nd's."""
+    text, line = _with_cell(running_in_csv, 3, "sliding_distance_m", "1")
     bad = tmp_path / "decreasing.csv"
-    bad.write_text("\n".join(lines) + "\n")
+    bad.write_text(text)
     out = tmp_path / "out"
     assert main(["diagnose", str(bad), "--out", str(out)]) == 2
     message = capsys.readouterr().err
     assert message.startswith("fewear: error:")
-    assert f"line {header_index + 4}" in message and "wear_volume_m3" in message
+    assert f"line {line}" in message and "sliding_distance_m" in message
     assert not out.exists()
 
 
@@ -91,11 +114,11 @@ def test_missing_required_column_exit_2(tmp_path, running_in_csv, capsys):
 def test_bad_config_exit_2(tmp_path, running_in_csv, capsys):
     text = (DEFAULTS_DIR / "diagnose.toml").read_text()
     config = tmp_path / "config.toml"
-    config.write_text(text.replace('holdout = "auto"', 'holdout = "first_readings"'))
+    config.write_text(text.replace("significance = 0.05", "significance = 0.7"))
     out = tmp_path / "out"
     assert main(["diagnose", str(running_in_csv), "--config", str(config), "--out",
                  str(out)]) == 2
-    assert "holdout = 'first_readings'" in capsys.readouterr().err
+    assert "significance = 0.7" in capsys.readouterr().err
     assert not out.exists()
 
 
@@ -108,7 +131,8 @@ def test_missing_variables_are_reported_not_invented(tmp_path):
     out = tmp_path / "out"
     assert main(["diagnose", str(path), "--out", str(out)]) == 0
     summary = json.loads((out / "diagnosis.json").read_text())
-    assert [c["name"] for c in summary["candidates"]] == ["running_in"]
+    assert {c["name"] for c in summary["candidates"]} == {"running_in", "load_exponent",
+                                                          "mild_to_severe"}
     assert {e["name"] for e in summary["untestable"]} == {"time_transient", "thermal"}
     report = (out / "report.md").read_text()
     assert "could not be tested: needs time_s" in report

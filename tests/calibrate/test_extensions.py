@@ -9,6 +9,7 @@ from fewear.io.config import load_config
 from fewear.wear.extensions import (
     NoExtension,
     RunningIn,
+    RunningInPowerLaw,
     SlidingState,
     Thermal,
     TimeTransient,
@@ -19,7 +20,8 @@ from fewear.wear.extensions import (
 
 SPEED_m_s = 0.7
 POWER_W_m2 = 4.0e5
-EXTENSIONS = [NoExtension(), RunningIn(4.0, 150.0), TimeTransient(3.0, 400.0),
+EXTENSIONS = [NoExtension(), RunningIn(4.0, 150.0), RunningInPowerLaw(4.0, 80.0),
+              TimeTransient(3.0, 400.0),
               Thermal(2.5e-6, 300.0)]
 
 

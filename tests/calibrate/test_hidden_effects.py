@@ -1,11 +1,10 @@
 """Data with a hidden departure from Archard's law, handed to the diagnosis without the answer.
 
-Each data set comes from a forward model (fewear.calibrate.forward) with one cause switched on, its
-parameters drawn across a physical range, lognormal scatter (25 % per interval between readings,
-about 12 % on the cumulative readings, 2 % per weighing, 10 % test to test), 9 tests at
-3 pressures x 3 speeds with 10 readings each. The diagnosis must name the cause and cut the
-held-out error substantially; plain-Archard data must give ``none``; a single-speed campaign must
-report running_in and time_transient as confounded, with the evidence for each.
+At the centre of the benchmark's grid (effect length 10 % of the test, 3 % noise on every
+cumulative reading, dips kept), from both generators (tests/calibrate/generators.py: ours and
+the independently written one), as histories and as one-reading-per-test tables: the hidden cause
+must be named and plain-Archard data must give no cause. Then the behaviours that the grid does
+not show: confounding at one speed, untestable causes, material groups, what is left unexplained.
 """
 
 import dataclasses
@@ -13,144 +12,148 @@ import dataclasses
 import numpy as np
 import pytest
 
-from fewear.calibrate.diagnose import DiagnoseSettings, diagnose, readings_from_measured
-from fewear.calibrate.forward import grid_campaign, hidden_case
-from fewear.calibrate.measured import MeasuredWear
+from fewear.calibrate.diagnose import DiagnoseSettings, diagnose, readings_from_columns
+from fewear.calibrate.forward import grid_campaign, hidden_case, simulate_campaign
+from fewear.wear.extensions import RunningIn
+from tests.calibrate.generators import (
+    CAUSES,
+    GENERATORS,
+    SAMPLINGS,
+    dataset,
+    named_as_power_law,
+)
 
-CAUSES = ("running_in", "time_transient", "thermal")
-SEEDS = (11, 12, 13)
-MIN_GAIN = 0.30
-
-
-def measured(columns, drop=()) -> MeasuredWear:
-    """The columns as W1's MeasuredWear (the reader's data class), without the ``drop`` columns."""
-    kept = {name: values for name, values in columns.items() if name not in drop}
-    return MeasuredWear(source="synthetic", data_kind="cumulative_volume", **kept)
-
-
-def run(columns, drop=(), **settings):
-    chosen = dataclasses.replace(DiagnoseSettings.default(), **settings)
-    return diagnose(readings_from_measured(measured(columns, drop)), chosen)
+CENTRE_SEEDS = (1, 2)
+NULL_SEEDS = (11, 12, 13)
 
 
-def growth_to_double_distance(extension, readings) -> np.ndarray:
-    """Per test: wear after twice the test's final distance over wear after it, S_eff(2 s) /
-    S_eff(s) at the test's own speed and frictional power (plain Archard: 2)."""
-    s = readings.final_per_test(readings.distance_m)
-    v = readings.per_test(readings.velocity_m_s)
-    q = readings.per_test(readings.power_W_m2)
-    return (extension.effective_distance_m(2 * s, 2 * s / v, q)
-            / extension.effective_distance_m(s, s / v, q))
-
-
-@pytest.mark.parametrize("seed", SEEDS)
+@pytest.mark.parametrize("sampling", SAMPLINGS)
 @pytest.mark.parametrize("cause", CAUSES)
-def test_hidden_cause_is_named_with_a_substantial_gain(cause, seed):
-    columns, hidden, _ = hidden_case(cause, seed)
-    result = run(columns)
-    summary = result.summary
-    assert summary["cause"] == cause, summary["candidates"]
-    assert summary["gain"] > MIN_GAIN
-    assert summary["extended_config"]["extension"] == cause
-    if cause == "thermal":
-        return  # heating is over by the end of a test: wear then doubles with s (truth ~ 2)
-    # how the wear grows from the test's own distance to twice it: the extended model is closer
-    # to the hidden truth than plain Archard's doubling
-    truth = growth_to_double_distance(hidden, result.readings)
-    extended = growth_to_double_distance(result.extended_fit.extension, result.readings)
-    assert np.mean(np.abs(np.log(extended / truth))) < 0.5 * np.mean(np.abs(np.log(2.0 / truth)))
+@pytest.mark.parametrize("generator", GENERATORS)
+def test_hidden_cause_is_named_at_the_grid_centre(generator, cause, sampling, tmp_path):
+    """Named (or confounded with the first cause named); heating and a p v threshold count as one
+    law family (generators.named_as_power_law: the benchmark prints the strict figure too)."""
+    for seed in CENTRE_SEEDS:
+        summary = diagnose(dataset(generator, cause, seed, tmp_path, sampling=sampling)).summary
+        assert named_as_power_law(summary, cause), (seed, summary["causes"],
+                                                    summary["candidates"])
+        assert summary["gain"] > 0.2
 
 
-@pytest.mark.parametrize("seed", range(21, 27))
-def test_plain_archard_gives_none(seed):
-    columns, _, _ = hidden_case("none", seed)
-    summary = run(columns).summary
-    assert summary["cause"] == "none", summary["candidates"]
-    assert summary["gain"] == 0.0
-    assert summary["extended_config"]["extension"] == "none"
+@pytest.mark.parametrize("generator", GENERATORS)
+def test_plain_archard_gives_no_cause_at_the_grid_centre(generator, tmp_path):
+    """Six plain-Archard data sets per generator (histories and tables): at most one names a
+    cause (the selection's family-wise false-positive rate is 5 %; the benchmark measures it)."""
+    false_positives = []
+    for sampling in SAMPLINGS:
+        for seed in NULL_SEEDS:
+            summary = diagnose(dataset(generator, "none", seed, tmp_path,
+                                       sampling=sampling)).summary
+            if summary["causes"]:
+                false_positives.append((sampling, seed, summary["causes"]))
+                continue
+            assert summary["cause"] == "none" and summary["gain"] == 0.0
+            assert summary["extended_config"]["extension"] == "none"
+    assert len(false_positives) <= 1, false_positives
+
+
+def test_running_in_curve_is_recovered():
+    """How the wear grows from the test's own distance to twice it: the extended model is closer
+    to the hidden truth than plain Archard's doubling."""
+    columns, hidden, _ = hidden_case("running_in", 4)
+    result = diagnose(readings_from_columns(columns))
+    assert result.causes[0] == "running_in"
+    extension = result.shape_law.extension
+    s = 2000.0
+    truth = hidden.effective_distance_m(2 * s) / hidden.effective_distance_m(s)
+    extended = extension.effective_distance_m(2 * s) / extension.effective_distance_m(s)
+    assert abs(np.log(extended / truth)) < 0.3 * abs(np.log(2.0 / truth))
 
 
 def test_single_speed_confounds_running_in_and_time_transient():
     rng = np.random.default_rng(5)
     campaign = grid_campaign(pressures_Pa=(0.5e6, 1e6, 2e6, 3e6, 4e6, 6e6), velocities_m_s=(0.5,),
                              rng=rng)
-    columns, _, _ = hidden_case("running_in", 5, campaign)
-    summary = run(columns).summary
+    columns = simulate_campaign(RunningIn(5.0, 150.0), campaign, rng)
+    summary = diagnose(readings_from_columns(columns)).summary
     assert summary["cause"] in ("running_in", "time_transient")
     assert len(summary["confounded"]) == 1
     group = summary["confounded"][0]
     assert set(group["causes"]) == {"running_in", "time_transient"}
     assert "one speed" in group["reason"]
     evidence = group["evidence"]
-    assert set(evidence) == {"running_in", "time_transient"}
-    for entry in evidence.values():
-        assert entry["gain"] > MIN_GAIN and entry["params"]
-    # the two fits are the same curve: s0 = v tau
     assert evidence["running_in"]["params"]["distance_scale_m"] == pytest.approx(
         0.5 * evidence["time_transient"]["params"]["time_scale_s"], rel=0.05)
 
 
 def test_missing_time_and_speed_leave_time_driven_causes_untested():
     columns, _, _ = hidden_case("running_in", 31)
-    summary = run(columns, drop=("time_s", "velocity_m_s")).summary
-    assert summary["cause"] == "running_in"
+    kept = {k: v for k, v in columns.items() if k not in ("time_s", "velocity_m_s")}
+    summary = diagnose(readings_from_columns(kept)).summary
+    assert summary["causes"] == ["running_in"]
     untested = {entry["name"]: entry["message"] for entry in summary["untestable"]}
     assert set(untested) == {"time_transient", "thermal"}
     assert "needs time_s" in untested["time_transient"]
-    assert {c["name"] for c in summary["candidates"]} == {"running_in"}
     assert "velocity_m_s" in summary["residual_structure"]["not_measured"]
 
 
-def test_missing_friction_leaves_thermal_untested():
-    columns, _, _ = hidden_case("thermal", 32)
-    summary = run(columns, drop=("friction_coefficient",)).summary
+def test_material_groups_get_their_own_k():
+    """Two materials, k four times apart, plain Archard in each: no cause, and each test's k
+    carries its material's level."""
+    columns, _, _ = hidden_case("none", 6)
+    brass = np.isin(columns["test_id"], ["T01", "T02", "T03", "T04"])
+    columns["wear_volume_m3"] = np.where(brass, 1.0, 4.0) * columns["wear_volume_m3"]
+    material = {"material": np.where(brass, "brass", "bronze")}
+    summary = diagnose(readings_from_columns(columns, factors=material)).summary
+    assert summary["causes"] == []
+    assert summary["material_groups"] == {"material brass": 4, "material bronze": 5}
+    k = np.array(list(summary["baseline"]["k_per_test_m2_N"].values()))
+    assert 3.0 < k.max() / k.min() < 6.0
+
+
+def test_what_no_cause_explains_is_said_not_called_noise():
+    """k rising along every test (not in the catalogue without a friction coefficient, which the
+    lagged heating needs): no cause, and the report names the rising trend instead of 'within
+    their noise'."""
+    columns, _, _ = hidden_case("none", 7)
+    s = columns["sliding_distance_m"]
+    columns["wear_volume_m3"] = columns["wear_volume_m3"] * (1.0 + s / 500.0)
+    del columns["friction_coefficient"]
+    summary = diagnose(readings_from_columns(columns)).summary
+    assert "running_in" not in summary["causes"]
+    assert "within their noise" not in summary["cause_meaning"]
+    assert any("rise with sliding distance" in text for text in summary["unexplained"])
+
+
+def test_fewer_candidates_are_respected():
+    columns, _, _ = hidden_case("load_exponent", 8)
+    settings = dataclasses.replace(DiagnoseSettings.default(), candidates=("running_in",))
+    summary = diagnose(readings_from_columns(columns), settings).summary
+    assert summary["causes"] == []
+    assert {c["name"] for c in summary["candidates"]} == {"running_in"}
+
+
+@pytest.mark.parametrize("cause", ["none", "running_in"])
+def test_scatter_correlated_along_tests_makes_no_cause(cause):
+    """Wear scattered interval by interval (25 % per interval: the cumulative readings wander
+    along a test) with the readings denser early: no cause invented on plain Archard, and a
+    running-in still named (the held-out evidence counts tests, not readings)."""
+    for seed in (61, 62, 63):
+        rng = np.random.default_rng(seed)
+        campaign = grid_campaign(rng=rng, interval_scatter=0.25, reading_scatter=0.02,
+                                 spacing="geometric")
+        columns, _, _ = hidden_case(cause, seed, campaign)
+        causes = diagnose(readings_from_columns(columns)).summary["causes"]
+        assert causes == ([] if cause == "none" else ["running_in"]), (seed, causes)
+
+
+def test_one_load_leaves_load_laws_untestable_but_not_heating():
+    """All tests at one pressure, four speeds: the load laws cannot be tested (and say so), the
+    heating can (its frictional power still varies between tests)."""
+    campaign = grid_campaign(pressures_Pa=(2e6,), velocities_m_s=(0.2, 0.5, 1.2, 2.0))
+    columns, _, _ = hidden_case("none", 9, campaign)
+    summary = diagnose(readings_from_columns(columns)).summary
     untested = {entry["name"]: entry["message"] for entry in summary["untestable"]}
-    assert untested == {"thermal": "could not be tested: needs friction_coefficient"}
-    assert summary["cause"] != "thermal"
-
-
-def test_time_derived_from_speed_when_not_measured():
-    columns, _, _ = hidden_case("time_transient", 33)
-    result = run(columns, drop=("time_s",))
-    assert result.summary["cause"] == "time_transient"
-    assert any("t = s / v" in note for note in result.summary["notes"])
-
-
-def test_one_reading_per_test_holds_out_whole_tests():
-    """A table of final readings only (one per test, 16 tests at one distance): the later-reading
-    hold-out is impossible, whole tests are held out and plain Archard data give none."""
-    rng = np.random.default_rng(40)
-    campaign = grid_campaign((0.5e6, 1e6, 2e6, 4e6), (0.1, 0.3, 0.9, 2.0), rng=rng,
-                             readings_per_test=1, first_reading_fraction=1.0)
-    columns, _, _ = hidden_case("none", 40, campaign)
-    summary = run(columns).summary
-    assert summary["holdout"]["strategy"] == "tests"
-    assert summary["baseline"]["coefficient_model"] == "rbf"
-    assert summary["cause"] == "none"
-    assert np.isfinite(summary["baseline"]["held_out_error"])
-    assert {entry["name"] for entry in summary["untestable"]} == {
-        "running_in", "time_transient", "thermal"}
-    assert all("readings along a test" in entry["message"] for entry in summary["untestable"])
-
-
-def test_few_readings_per_test_hold_out_whole_tests_and_still_find_running_in():
-    """Three readings per test (fewer than min_readings_per_test): whole tests are held out, with
-    their k from the network of the other tests, and the running-in is still found."""
-    rng = np.random.default_rng(42)
-    campaign = grid_campaign((0.5e6, 1e6, 2e6, 4e6), (0.2, 0.5, 1.2), rng=rng,
-                             readings_per_test=3, first_reading_fraction=0.05)
-    columns, _, _ = hidden_case("running_in", 42, campaign)
-    summary = run(columns).summary
-    assert summary["holdout"]["strategy"] == "tests"
-    assert summary["cause"] in ("running_in", "time_transient")
-    assert summary["gain"] > 0.3
-
-
-def test_few_conditions_fall_back_to_constant_k():
-    rng = np.random.default_rng(41)
-    campaign = grid_campaign((1e6, 2e6), (0.5,), rng=rng)
-    columns, _, _ = hidden_case("running_in", 41, campaign)
-    summary = run(columns).summary
-    assert summary["baseline"]["coefficient_model"] == "constant"
-    assert "2 distinct" in summary["baseline"]["coefficient_reason"]
-    assert summary["extended_config"]["coefficient_model"] == "constant"
+    assert set(untested) == {"load_exponent"}
+    assert "varies between tests" in untested["load_exponent"]
+    assert "thermal" in {c["name"] for c in summary["candidates"]}

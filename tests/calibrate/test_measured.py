@@ -220,8 +220,7 @@ def test_pressure_varying_within_a_test_gives_no_sample(tmp_path):
 
 # Line numbers: line 1 is the comment, line 2 the header, readings on lines 3 to 8.
 BAD_CELLS = [
-    (1, "wear_volume_m3", -1e-9, "line 4, column wear_volume_m3: -1e-09"),
-    (2, "wear_volume_m3", 1e-12, "line 5, column wear_volume_m3: 1e-12 is less than"),
+    (1, "wear_volume_m3", "inf", "line 4, column wear_volume_m3: inf; expected a finite number"),
     (4, "sliding_distance_m", 50.0, "line 7, column sliding_distance_m: 50.0 is less than"),
     (3, "pressure_Pa", float("nan"), "line 6, column pressure_Pa: nan"),
     (0, "velocity_m_s", "fast", "line 3, column velocity_m_s: 'fast' is not a number"),
@@ -229,12 +228,14 @@ BAD_CELLS = [
     (2, "pressure_Pa", 0.0, "line 5, column pressure_Pa: 0.0; expected a positive number"),
     (1, "temperature_C", -300.0, "line 4, column temperature_C: -300.0"),
     (3, "test_id", " ", "line 6, column test_id: empty test name"),
+    (4, "material", "bronze", "line 7, column material: 'bronze' differs from 'steel'"),
+    (1, "factor_lubrication", " ", "line 4, column factor_lubrication: empty value"),
 ]
 
 
 @pytest.mark.parametrize("row, name, value, message", BAD_CELLS)
 def test_bad_cells_name_line_and_column(tmp_path, row, name, value, message):
-    rows = cumulative_table()
+    rows = with_factors(cumulative_table())
     rows[row][name] = value
     with pytest.raises(FewearInputError, match=message):
         read_measured_wear(write_csv(tmp_path / "bad.csv", rows))
@@ -288,10 +289,60 @@ def test_ragged_row_and_empty_file(tmp_path):
 
 
 def test_direct_construction_checks_values():
-    with pytest.raises(FewearInputError, match="reading 1, column wear_volume_m3.*less than"):
+    with pytest.raises(FewearInputError, match="reading 1, column sliding_distance_m.*less than"):
         MeasuredWear(source="memory", data_kind="cumulative_volume", test_id=["a", "a"],
-                     sliding_distance_m=[1.0, 2.0], wear_volume_m3=[2e-9, 1e-9])
+                     sliding_distance_m=[2.0, 1.0], wear_volume_m3=[1e-9, 2e-9])
     with pytest.raises(FewearInputError, match="pressure_Pa has 1 values for 2 readings"):
         MeasuredWear(source="memory", data_kind="cumulative_volume", test_id=["a", "a"],
                      sliding_distance_m=[1.0, 2.0], wear_volume_m3=[1e-9, 2e-9],
                      pressure_Pa=[1e6])
+
+
+def with_factors(rows):
+    """The rows with a material (brass, then steel) and a lubrication factor per test."""
+    for row in rows:
+        row["material"] = "brass" if row["test_id"] == rows[0]["test_id"] else "steel"
+        row["factor_lubrication"] = "dry"
+    return rows
+
+
+def test_readings_that_dip_are_kept_and_counted(tmp_path):
+    rows = cumulative_table()
+    rows[2]["wear_volume_m3"] = 0.5 * rows[1]["wear_volume_m3"]
+    rows[4]["wear_volume_m3"] = 0.5 * rows[3]["wear_volume_m3"]
+    data = read_measured_wear(write_csv(tmp_path / "dips.csv", rows))
+    np.testing.assert_array_equal(data.wear_volume_m3, column(rows, "wear_volume_m3"))
+    assert data.notes == ("2 reading(s) of wear_volume_m3 dip below the previous reading of "
+                          "their test: kept as data (the scatter of each reading is modelled, "
+                          "not removed)",)
+
+
+def test_categorical_factors_are_read_as_text_and_written_back(tmp_path):
+    rows = with_factors(cumulative_table())
+    data = read_measured_wear(write_csv(tmp_path / "factors.csv", rows))
+    assert set(data.factors) == {"material", "factor_lubrication"}
+    assert list(data.factors["material"]) == [row["material"] for row in rows]
+    write_measured_wear(tmp_path / "again.csv", data)
+    again = read_measured_wear(tmp_path / "again.csv")
+    assert list(again.factors["material"]) == list(data.factors["material"])
+
+
+def test_wear_rate_per_metre_converts_to_volume(tmp_path):
+    rows = [{"test_id": f"S{i}", "normal_load_N": 10.0 * (i + 1),
+             "sliding_distance_m": 500.0 * (i + 1), "wear_rate_m3_m": 2e-12 * (i + 1)}
+            for i in range(3)]
+    data = read_measured_wear(write_csv(tmp_path / "rate.csv", rows))
+    assert data.data_kind == "wear_rate"
+    np.testing.assert_allclose(data.wear_volume_m3, [1e-9, 4e-9, 9e-9], rtol=1e-15)
+    assert "V = (V / s) s" in data.notes[0]
+
+
+def test_other_names_of_schema_columns_are_read_and_noted(tmp_path):
+    rows = cumulative_table()
+    for row in rows:
+        row["sliding_speed_m_s"] = row.pop("velocity_m_s")
+        row["contact_pressure_Pa"] = row.pop("pressure_Pa")
+    data = read_measured_wear(write_csv(tmp_path / "aliases.csv", rows))
+    np.testing.assert_array_equal(data.velocity_m_s, column(rows, "sliding_speed_m_s"))
+    np.testing.assert_array_equal(data.pressure_Pa, column(rows, "contact_pressure_Pa"))
+    assert "column sliding_speed_m_s read as velocity_m_s" in data.notes

@@ -1,4 +1,4 @@
-"""The [diagnose] settings: bad values named, forced hold-outs checked, every noise model works."""
+"""The [diagnose] settings: bad values named; too few tests refused."""
 
 import dataclasses
 
@@ -10,12 +10,11 @@ from fewear.errors import FewearInputError
 
 
 @pytest.mark.parametrize("key, value, word", [
-    ("holdout", "first", "holdout"),
-    ("holdout_fraction", 1.5, "holdout_fraction"),
-    ("noise_model", "gaussian", "noise_model"),
+    ("significance", 0.9, "significance"),
+    ("min_aicc_improvement", -1.0, "min_aicc_improvement"),
     ("candidates", ("friction",), "friction"),
-    ("min_readings_per_test", 2, "min_readings_per_test"),
-    ("min_gain", -0.1, "min_gain"),
+    ("min_readings_along_test", 2, "min_readings_along_test"),
+    ("min_conditions_for_network", 3, "min_conditions_for_network"),
     ("prediction_distance_factor", 0.5, "prediction_distance_factor"),
 ])
 def test_bad_setting_is_named(key, value, word):
@@ -23,18 +22,8 @@ def test_bad_setting_is_named(key, value, word):
         dataclasses.replace(DiagnoseSettings.default(), **{key: value})
 
 
-def test_forced_later_readings_needs_enough_readings():
-    campaign = grid_campaign(readings_per_test=3)
+def test_two_tests_are_too_few():
+    campaign = grid_campaign(pressures_Pa=(1e6, 2e6), velocities_m_s=(0.5,))
     columns, _, _ = hidden_case("none", 1, campaign)
-    settings = dataclasses.replace(DiagnoseSettings.default(), holdout="later_readings")
-    with pytest.raises(FewearInputError, match="min_readings_per_test"):
-        diagnose(readings_from_columns(columns), settings)
-
-
-@pytest.mark.parametrize("noise_model", ["increments", "lognormal", "relative"])
-def test_every_noise_model_names_a_strong_running_in(noise_model):
-    columns, _, _ = hidden_case("running_in", 3)
-    settings = dataclasses.replace(DiagnoseSettings.default(), noise_model=noise_model)
-    summary = diagnose(readings_from_columns(columns), settings).summary
-    assert summary["cause"] == "running_in"
-    assert summary["gain"] > 0.3
+    with pytest.raises(FewearInputError, match="2 test.*at least 3"):
+        diagnose(readings_from_columns(columns))
