@@ -140,3 +140,31 @@ def test_wear_through_the_wall_is_an_input_error(tmp_path, capsys):
     error = capsys.readouterr().err
     assert "fewear: error:" in error and "worn through" in error and "Traceback" not in error
     assert not (tmp_path / "out" / "summary.json").exists()
+
+
+@pytest.mark.mpi
+def test_two_ranks_give_the_serial_wear(tmp_path, explicit_run):
+    """`mpirun -n 2 fewear run` on the small case: the same profile as serial to 1e-8 of the
+    maximum depth (the dynamics run identically on every rank, the condensed contact is solved
+    redundantly from the same compliance; only rank 0 writes)."""
+    import os
+    import shutil
+    import subprocess
+    import sys
+
+    mpirun = shutil.which("mpirun")
+    if mpirun is None:
+        pytest.skip("mpirun not found on PATH")
+    config = write_config(tmp_path, implicit=False, smoothing=0.0)
+    env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+           "OMPI_MCA_rmaps_base_oversubscribe": "1", "MPLBACKEND": "Agg"}
+    process = subprocess.run(
+        [mpirun, "-n", "2", sys.executable, "-m", "fewear.cli", "run", "--config", str(config),
+         "--out", str(tmp_path / "mpi")], capture_output=True, text=True, timeout=600, env=env)
+    assert process.returncode == 0, process.stderr
+    serial, parallel = (np.genfromtxt(folder / "wear_profile.csv", delimiter=",", names=True,
+                                      dtype=None, encoding=None)
+                        for folder in (explicit_run, tmp_path / "mpi"))
+    scale = serial["wear_depth_m"].max()
+    np.testing.assert_allclose(parallel["wear_depth_m"], serial["wear_depth_m"],
+                               atol=1e-8 * scale)
