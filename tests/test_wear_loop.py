@@ -20,6 +20,7 @@ coefficient_model = "constant"
 rod_models = ["rigid"]
 load_steps_per_cycle = 40
 total_cycles = 4000
+extrapolation = "fixed"
 extrapolation_factor = 2000.0
 implicit_wear_step = {implicit}
 wear_smoothing_width_deg = {smoothing}
@@ -144,9 +145,10 @@ def test_wear_through_the_wall_is_an_input_error(tmp_path, capsys):
 
 @pytest.mark.mpi
 def test_two_ranks_give_the_serial_wear(tmp_path, explicit_run):
-    """`mpirun -n 2 fewear run` on the small case: the same profile as serial to 1e-8 of the
+    """`mpirun -n 2 fewear run` on the small case: the same profile as serial to 1e-6 of the
     maximum depth (the dynamics run identically on every rank, the condensed contact is solved
-    redundantly from the same compliance; only rank 0 writes)."""
+    redundantly from the same compliance; only rank 0 writes). Measured: 0 to 2.5e-7, at a node
+    on the edge of contact (the distributed LU's rounding decides at 1e-9 whether it touches)."""
     import os
     import shutil
     import subprocess
@@ -167,4 +169,4 @@ def test_two_ranks_give_the_serial_wear(tmp_path, explicit_run):
                         for folder in (explicit_run, tmp_path / "mpi"))
     scale = serial["wear_depth_m"].max()
     np.testing.assert_allclose(parallel["wear_depth_m"], serial["wear_depth_m"],
-                               atol=1e-8 * scale)
+                               atol=1e-6 * scale)
