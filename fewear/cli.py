@@ -21,6 +21,7 @@ HANDLERS = {
     "dynamics": "fewear.mbd.command:main",
     "diagnose": "fewear.calibrate.command:main",
     "run": "fewear.pipeline:main",
+    "plot": "fewear.plot.worn_bushing:main",
 }
 
 
@@ -63,6 +64,9 @@ def build_parser() -> argparse.ArgumentParser:
     _add_config_and_out(run, "out/run")
     run.add_argument("--resume", action="store_true",
                      help="continue the run whose checkpoint is in --out (same config)")
+
+    plot = sub.add_parser("plot", help="PyVista view of a run's worn bushing, coloured by depth")
+    plot.add_argument("folder", metavar="DIR", help="the output folder of `fewear run`")
     return parser
 
 

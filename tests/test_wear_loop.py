@@ -170,3 +170,17 @@ def test_two_ranks_give_the_serial_wear(tmp_path, explicit_run):
     scale = serial["wear_depth_m"].max()
     np.testing.assert_allclose(parallel["wear_depth_m"], serial["wear_depth_m"],
                                atol=1e-6 * scale)
+
+
+def test_fewear_plot_renders_the_worn_bushing_off_screen(explicit_run):
+    """`fewear plot DIR` in its own process (PyVista, no DOLFINx): a PNG of the worn bushing."""
+    import os
+    import subprocess
+    import sys
+
+    process = subprocess.run([sys.executable, "-m", "fewear.cli", "plot", str(explicit_run)],
+                             capture_output=True, text=True, timeout=300,
+                             env={**os.environ, "PYVISTA_OFF_SCREEN": "true"})
+    assert process.returncode == 0, process.stderr
+    assert (explicit_run / "worn_bushing.png").stat().st_size > 10_000
+    assert main(["plot", str(explicit_run / "absent")]) == 2
