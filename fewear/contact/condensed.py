@@ -59,26 +59,8 @@ from fewear.contact.solver import (
     solve_by_contact_angle,
     unit,
 )
+from fewear.mesh.bore import bore_node_weights
 from fewear.mesh.bushing import BORE_TAG
-
-
-def bore_node_weights(msh, bore) -> np.ndarray:
-    """Gauss-Lobatto weights of the bore nodes (m), gathered order: per facet with nodes
-    (vertex, vertex, midpoint) and the quadratic map x(s), s in [0, 1], the weights
-    (1/6 |x'(0)|, 1/6 |x'(1)|, 2/3 |x'(1/2)|) -- what FFCx integrates with for the GLL rule."""
-    x = msh.geometry.x[:, :2]
-    v0, v1, mid = (x[bore.facet_nodes[:, k]] for k in range(3))
-    d0 = np.linalg.norm(-3.0 * v0 - v1 + 4.0 * mid, axis=1)
-    d1 = np.linalg.norm(v0 + 3.0 * v1 - 4.0 * mid, axis=1)
-    dm = np.linalg.norm(v1 - v0, axis=1)
-    position = {node: k for k, node in enumerate(bore.local_nodes)}
-    weights = np.zeros(bore.local_nodes.size)
-    for column, values in ((0, d0 / 6.0), (1, d1 / 6.0), (2, 2.0 * dm / 3.0)):
-        for node, value in zip(bore.facet_nodes[:, column], values):
-            weights[position[node]] += value
-    total = np.zeros(bore.global_ids.size)
-    total[bore.local_index] = weights
-    return bore.comm.allreduce(total, op=MPI.SUM)
 
 
 class CondensedBushingContact:

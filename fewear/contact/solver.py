@@ -73,11 +73,8 @@ from petsc4py import PETSc
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.errors import FewearInputError
+from fewear.mesh.bore import BoreNodes
 from fewear.mesh.bushing import BORE_TAG, OUTER_TAG, bushing_mesh
-
-# DOLFINx reference quadrilateral: local edge e joins these vertices; geometry node 4 + e is the
-# edge's midpoint node of the 9-node geometry.
-QUAD_EDGE_VERTICES = ((0, 1), (0, 2), (1, 3), (2, 3))
 
 # The contact integral's quadrature: 3-point Gauss-Lobatto (Simpson) on each bore facet, whose
 # points are the facet's Q8 nodes (two vertices and the edge midpoint, weights 1/6, 1/6, 2/3).
@@ -110,68 +107,6 @@ def checked_rotation(rotation_increment_rad: float) -> float:
             f"rotation increment = {rotation_increment_rad!r} rad: expected a finite number"
         )
     return value
-
-
-class BoreNodes:
-    """The bore's facets and Q8 nodes on this rank, and their gathered, angle-sorted union.
-
-    Attributes (local): ``facets``, ``cells`` (a cell of each facet), ``facet_nodes`` (n_f, 3)
-    geometry nodes (vertex, vertex, midpoint). Gathered on every rank: ``global_ids`` (the gmsh node
-    numbers), ``points`` (n, 2) undeformed coordinates, ``angles`` in [0, 2 pi).
-    ``local_index`` maps the local node list into the gathered order.
-    """
-
-    def __init__(self, msh, facet_tags, comm):
-        tdim = msh.topology.dim
-        msh.topology.create_connectivity(tdim - 1, tdim)
-        msh.topology.create_connectivity(tdim, tdim - 1)
-        n_owned = msh.topology.index_map(tdim - 1).size_local
-        facets = facet_tags.find(BORE_TAG)
-        self.facets = facets[facets < n_owned].astype(np.int32)
-        f2c = msh.topology.connectivity(tdim - 1, tdim)
-        c2f = msh.topology.connectivity(tdim, tdim - 1)
-        self.cells = np.array([f2c.links(f)[0] for f in self.facets], dtype=np.int32)
-        nodes = []
-        for facet, cell in zip(self.facets, self.cells):
-            local = list(c2f.links(cell)).index(facet)
-            dofs = msh.geometry.dofmap.links(cell)
-            a, b = QUAD_EDGE_VERTICES[local]
-            nodes.append((dofs[a], dofs[b], dofs[4 + local]))
-        self.facet_nodes = np.array(nodes, dtype=np.int32).reshape(-1, 3)
-        self.msh = msh
-        self.comm = comm
-        self.update_geometry()
-
-    def update_geometry(self) -> None:
-        """Re-read node coordinates (after the mesh moved) and rebuild the gathered node list."""
-        msh = self.msh
-        local_nodes, first = np.unique(self.facet_nodes, return_index=True)
-        self.local_nodes = local_nodes
-        self.local_node_cells = self.cells[first // 3]
-        ids = np.asarray(msh.geometry.input_global_indices, dtype=np.int64)[local_nodes]
-        xy = msh.geometry.x[local_nodes, :2]
-        all_ids = np.concatenate(self.comm.allgather(ids))
-        all_xy = np.concatenate(self.comm.allgather(xy)).reshape(-1, 2)
-        unique_ids, first = np.unique(all_ids, return_index=True)
-        points = all_xy[first]
-        angles = np.mod(np.arctan2(points[:, 1], points[:, 0]), 2.0 * math.pi)
-        order = np.lexsort((unique_ids, angles))
-        self.global_ids = unique_ids[order]
-        self.points = points[order]
-        self.angles = angles[order]
-        position = {gid: k for k, gid in enumerate(self.global_ids)}
-        self.local_index = np.array([position[g] for g in ids], dtype=np.int64)
-
-    def gather(self, local_values: np.ndarray) -> np.ndarray:
-        """Values at the local nodes (n_local, ...) -> the same on every rank in gathered order."""
-        shape = (self.global_ids.size,) + local_values.shape[1:]
-        out = np.zeros(shape)
-        count = np.zeros(self.global_ids.size)
-        out[self.local_index] = local_values
-        count[self.local_index] = 1.0
-        out = self.comm.allreduce(out, op=MPI.SUM)
-        count = self.comm.allreduce(count, op=MPI.SUM)
-        return out / count.reshape((-1,) + (1,) * (out.ndim - 1))
 
 
 def nodal_result(problem: ContactProblem, points: np.ndarray, angles: np.ndarray,
