@@ -8,8 +8,10 @@ thickness). Since the bushing is linear elastic, the nodal displacements are
     U = G f,      G = N K^-1 N^T      (the bore's nodal compliance, m per N/m),
 
 with K the clamped elastic stiffness and N the evaluation of the S2 field at the bore nodes. G is
-computed once per mesh: one LU factorisation of K (MUMPS) and one solve per bore node and
-direction (``2 n`` right-hand sides). What is left per load step is the small nonlinear problem
+computed once per mesh geometry: one LU factorisation of K (MUMPS) and one solve with the ``2 n``
+columns of N^T as a dense multiple right-hand side (``Mat.matSolve``). N itself depends only on
+the reference coordinates of the bore nodes in their cells, so it is evaluated once per mesh
+topology and kept when the mesh moves (:meth:`CondensedBushingContact.update_geometry`). What is left per load step is the small nonlinear problem
 
     f_q = w_q T(X_q + U_q - c),  U = G f,  sum_q f_q = F / L,
 
@@ -41,6 +43,7 @@ import math
 import numpy as np
 from dolfinx import fem
 from mpi4py import MPI
+from petsc4py import PETSc
 
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
@@ -83,6 +86,8 @@ class CondensedBushingContact:
         self.comm = solver.comm
         self._k = self.problem.penalty_stiffness_Pa_per_m()
         self._friction_value = 0.0
+        self._dofs = self._bore_dofs()
+        self._table = self._nodal_evaluation()
         self.update_geometry(update_solver=False)
 
     # -- set-up ------------------------------------------------------------------------------
@@ -101,7 +106,8 @@ class CondensedBushingContact:
         self._last_direction = None
 
     def _bore_dofs(self):
-        """Local indices (unrolled) of the S2 dofs on the bore, and their global numbers."""
+        """Local indices (unrolled) of the S2 dofs on the bore, their columns in the gathered,
+        sorted list of global dof numbers, and that list's length."""
         solver = self.solver
         V = solver.V
         tdim = solver.mesh.topology.dim
@@ -112,60 +118,61 @@ class CondensedBushingContact:
         all_ids = np.unique(np.concatenate(self.comm.allgather(global_ids)))
         return local, np.searchsorted(all_ids, global_ids), all_ids.size
 
-    def _nodal_evaluation(self, local_dofs, columns, n_columns) -> np.ndarray:
-        """N_local (n_local_nodes * 2, n_columns): S2 basis functions at the local bore nodes."""
+    def _nodal_evaluation(self) -> np.ndarray:
+        """N_local (2 n_local_nodes, n_columns): the S2 basis functions of the bore dofs at the
+        local bore nodes, rows (node, direction). The nodes sit at fixed reference coordinates
+        of their cells (vertices, edge midpoints), so N does not change when the mesh moves: it
+        is evaluated once, with one probe per dof pair (x and y of a node block)."""
         solver, bore = self.solver, self.solver.bore
+        local_dofs, columns, n_columns = self._dofs
         probe = fem.Function(solver.V)
         points = np.zeros((bore.local_nodes.size, 3))
         points[:, :2] = solver.mesh.geometry.x[bore.local_nodes, :2]
         table = np.zeros((2 * bore.local_nodes.size, n_columns))
-        for column in range(n_columns):
+        for pair in range(0, n_columns, 2):  # columns 2j, 2j+1: x and y of one dof block
             probe.x.array[:] = 0.0
-            probe.x.array[local_dofs[columns == column]] = 1.0
+            probe.x.array[local_dofs[(columns == pair) | (columns == pair + 1)]] = 1.0
             if bore.local_nodes.size:
-                table[:, column] = probe.eval(points, bore.local_node_cells).reshape(-1)
+                values = probe.eval(points, bore.local_node_cells)
+                table[0::2, pair] = values[:, 0]
+                table[1::2, pair + 1] = values[:, 1]
         return table
 
+    def _gathered_evaluation(self) -> np.ndarray:
+        """N (2n, n_columns) in the gathered node order, the same on every rank."""
+        bore = self.solver.bore
+        n_columns = self._dofs[2]
+        rows = (2 * bore.local_index[:, None] + np.arange(2)[None, :]).reshape(-1)
+        local = np.zeros((2 * bore.global_ids.size, n_columns))
+        local[rows] = self._table
+        count = np.zeros(2 * bore.global_ids.size)
+        count[rows] = 1.0
+        return (self.comm.allreduce(local, op=MPI.SUM)
+                / self.comm.allreduce(count, op=MPI.SUM)[:, None])
+
     def _nodal_compliance(self) -> np.ndarray:
-        """G = N K^-1 N^T with K the elastic stiffness, one LU solve per node and direction."""
-        solver, bore = self.solver, self.solver.bore
-        local_dofs, columns, n_columns = self._bore_dofs()
-        table = self._nodal_evaluation(local_dofs, columns, n_columns)
+        """G = N K^-1 N^T with K the clamped elastic stiffness: one MUMPS LU factorisation of K
+        and one multiple-right-hand-side solve K X = N^T (``Mat.matSolve`` with the 2n columns
+        of N^T as a dense matrix); each rank then adds N X over the bore dofs it owns."""
+        solver = self.solver
+        local_dofs, columns, _ = self._dofs
         owned = local_dofs < solver.V.dofmap.index_map.size_local * 2
+        N = self._gathered_evaluation()
         ksp = solver._make_lu_solver()
         ksp.setOperators(solver._K_elastic)
-        rhs, x = solver._rhs[0], solver._sol[0]
-        n_nodes = bore.global_ids.size
-        gathered_rows = 2 * bore.local_index[:, None] + np.arange(2)[None, :]
-        G = np.zeros((2 * n_nodes, 2 * n_nodes))
-        local_row = np.zeros((2 * n_nodes, n_columns))
-        local_row[gathered_rows.reshape(-1)] = table
-        count = np.zeros(2 * n_nodes)
-        count[gathered_rows.reshape(-1)] = 1.0
-        N = self.comm.allreduce(local_row, op=MPI.SUM) / self.comm.allreduce(count, op=MPI.SUM)[
-            :, None]
-        for row in range(2 * n_nodes):
-            with rhs.localForm() as local:
-                local.set(0.0)
-            rhs.array_w[local_dofs[owned]] = N[row, columns[owned]]
-            rhs.assemble()
-            ksp.solve(rhs, x)
-            solution = solver._du
-            x.copy(solution.vector)
-            solution.x.scatter_forward()
-            at_dofs = np.zeros(n_columns)
-            at_dofs[columns] = solution.x.array[local_dofs]
-            at_dofs = self._combine(at_dofs, columns, n_columns)
-            G[:, row] = N @ at_dofs
-        ksp.destroy()
+        ksp.setUp()
+        sizes = (solver._K_elastic.getSizes()[0], (None, N.shape[0]))
+        loads = PETSc.Mat().createDense(sizes, comm=self.comm)
+        loads.setUp()
+        loads.getDenseArray()[local_dofs[owned], :] = N[:, columns[owned]].T
+        loads.assemble()
+        displacements = loads.duplicate()
+        ksp.getPC().getFactorMatrix().matSolve(loads, displacements)
+        at_owned_dofs = displacements.getDenseArray()[local_dofs[owned], :]
+        G = self.comm.allreduce(N[:, columns[owned]] @ at_owned_dofs, op=MPI.SUM)
+        for matrix in (loads, displacements, ksp):
+            matrix.destroy()
         return G
-
-    def _combine(self, values, columns, n_columns) -> np.ndarray:
-        """Per-rank values at the bore dofs -> the same full vector on every rank."""
-        present = np.zeros(n_columns)
-        present[columns] = 1.0
-        total = self.comm.allreduce(values, op=MPI.SUM)
-        return total / np.maximum(self.comm.allreduce(present, op=MPI.SUM), 1.0)
 
     # -- the per-step problem ----------------------------------------------------------------
     def solve(self, force_N, rotation_increment_rad: float = 0.0,
