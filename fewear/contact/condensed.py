@@ -50,7 +50,13 @@ from dolfinx import fem
 from mpi4py import MPI
 from petsc4py import PETSc
 
-from fewear.contact.newton import ContactNewton, contact_direction
+from fewear.contact.admissible import (
+    ContactLoadError,
+    beyond_small_displacements,
+    cosine_law_nodal_forces,
+    displacement_limit_m,
+)
+from fewear.contact.newton import ContactNewton, ContactNotConverged, contact_direction
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.contact.solver import (
@@ -187,35 +193,64 @@ class CondensedBushingContact:
             return nodal_result(self.problem, self.points, self.angles, np.zeros((n, 2)),
                                 self.pin_centre_m, force, np.zeros(2), np.zeros(2), rotation, 0)
         L = self.problem.geometry.width_m
-        iterations = self.newton.solve(force / L, contact_direction(force, self._friction_value))
+        direction = contact_direction(force, self._friction_value)
+        try:
+            iterations = self.newton.solve(force / L, direction)
+        except ContactNotConverged:
+            self._refuse(force, "the contact Newton found no equilibrium")
         U = self._U.reshape(n, 2)
-        f, _, p, normal = self._nodal_forces(U, self.pin_centre_m)
+        f, p, normal, _ = self._nodal_forces(U, self.pin_centre_m)
+        reason = beyond_small_displacements(self.problem, float(np.hypot(*U.T).max()))
+        if reason is not None:
+            self._refuse(force, reason)
         return nodal_result(self.problem, self.points, self.angles, U, self.pin_centre_m, force,
                             L * f.sum(axis=0), L * (self.weights_m[:, None] * p[:, None]
                                                     * normal).sum(axis=0), rotation, iterations)
 
-    def _nodal_forces(self, U: np.ndarray, c: np.ndarray, with_jacobian: bool = False):
-        """Nodal forces f = w p (n + mu s t) (n, 2), their Jacobian blocks w dT/dd (n, 2, 2),
-        pressures p (n,), normals n (n, 2) for nodal displacements U and pin centre c."""
+    def _refuse(self, force: np.ndarray, reason: str) -> None:
+        """Raise :class:`ContactLoadError` for ``force`` (N); the next solve starts afresh."""
+        self.zero_displacement()
+        self.pin_centre_m = np.zeros(2)
+        self.newton.forget()
+        raise ContactLoadError(force, reason, displacement_limit_m(self.problem),
+                               self.admissible_force_N(force))
+
+    def admissible_force_N(self, force_N) -> float:
+        """The largest admissible |F| (N) in the direction of ``force_N``
+        (:mod:`fewear.contact.admissible`): u_max / max_q |u_q| under the cosine-law load of 1 N."""
+        direction = np.asarray(force_N, dtype=float) / np.linalg.norm(force_N)
+        geometry = self.problem.geometry
+        forces = cosine_law_nodal_forces(self.points, self.weights_m, direction,
+                                         geometry.inner_radius_m, geometry.width_m)
+        U = (self.compliance @ forces.reshape(-1)).reshape(-1, 2)
+        return displacement_limit_m(self.problem) / float(np.hypot(U[:, 0], U[:, 1]).max())
+
+    def _nodal_forces(self, U: np.ndarray, c: np.ndarray):
+        """Nodal forces f = w p (n + mu s t) (n, 2), pressures p (n,), normals n (n, 2) and
+        distances r = |X + U - c| (n,) for nodal displacements U and pin centre c."""
         d = self.points + U - c
         r = np.hypot(d[:, 0], d[:, 1])
         normal = d / r[:, None]
-        tangent = np.stack([-normal[:, 1], normal[:, 0]], axis=1)
-        penetration = self.problem.geometry.pin_radius_m - r
-        active = penetration > 0.0
-        p = np.where(active, self._k * penetration, 0.0)
-        μs = self._friction_value
-        f = (self.weights_m * p)[:, None] * (normal + μs * tangent)
-        if not with_jacobian:
-            return f, None, p, normal
-        nn = np.einsum("qi,qj->qij", normal, normal)
+        p = self._k * np.maximum(self.problem.geometry.pin_radius_m - r, 0.0)
+        tangent = np.column_stack([-normal[:, 1], normal[:, 0]])
+        f = (self.weights_m * p)[:, None] * (normal + self._friction_value * tangent)
+        return f, p, normal, r
+
+    def _jacobian_blocks(self, A: np.ndarray, p: np.ndarray, normal: np.ndarray,
+                         r: np.ndarray) -> np.ndarray:
+        """w dT/dd (|A|, 2, 2) at the active nodes A, T = p (n + mu s t), p = k (R_p - |d|):
+        dT/dd = -k n n^T + p/r P + mu s (-k t n^T + p/r R P), P = I - n n^T, R the turn by
+        90 degrees (t = R n)."""
+        n = normal[A]
+        t = np.column_stack([-n[:, 1], n[:, 0]])
+        nn = n[:, :, None] * n[:, None, :]
         projector = np.eye(2)[None] - nn
         rotate = np.array([[0.0, -1.0], [1.0, 0.0]])
-        tn = np.einsum("qi,qj->qij", tangent, normal)
-        dT = (-self._k * nn + (p / r)[:, None, None] * projector
-              + μs * (-self._k * tn + (p / r)[:, None, None] * (rotate[None] @ projector)))
-        dT[~active] = 0.0
-        return f, self.weights_m[:, None, None] * dT, p, normal
+        tn = t[:, :, None] * n[:, None, :]
+        p_r = (p[A] / r[A])[:, None, None]
+        μs = self._friction_value
+        dT = -self._k * nn + p_r * projector + μs * (-self._k * tn + p_r * (rotate @ projector))
+        return self.weights_m[A, None, None] * dT
 
     # -- the discretisation for ContactNewton --------------------------------------------------
     can_turn_state = True
@@ -239,22 +274,21 @@ class CondensedBushingContact:
     def linearise(self, load: np.ndarray) -> tuple[np.ndarray, float]:
         """Nodal forces and their Jacobian blocks at the current state (kept for the step);
         the pin residual sum f - F/L (N/m) and the active length (m)."""
-        f, WM, p, _ = self._nodal_forces(self._U.reshape(-1, 2), self.pin_centre_m,
-                                         with_jacobian=True)
+        f, p, normal, r = self._nodal_forces(self._U.reshape(-1, 2), self.pin_centre_m)
         active_nodes = np.flatnonzero(p > 0.0)
-        self._linear = (f, WM, active_nodes)
+        WM_A = self._jacobian_blocks(active_nodes, p, normal, r)
+        self._linear = (f, WM_A, active_nodes)
         return f.sum(axis=0) - load, float(self.weights_m[active_nodes].sum())
 
     def newton_direction(self, pin_residual, load, basis):
         """One Newton step (module docstring) with the pin update dc = basis dz: the update
         (dg, dU = G dg) of the nodal forces and displacements, and dc. Only the columns of G on
         the old and new support are used."""
-        f, WM, A = self._linear
+        f, WM_A, A = self._linear
         U = self._U.reshape(-1, 2)
         m, k = A.size, basis.shape[1]
         rows = (2 * A[:, None] + np.arange(2)[None, :]).reshape(-1)
         G_AA = self.compliance[np.ix_(rows, rows)]
-        WM_A = WM[A]
         system = np.zeros((2 * m + k, 2 * m + k))
         blocks_G = np.einsum("kij,kjl->kil", WM_A, G_AA.reshape(m, 2, 2 * m))
         system[:2 * m, :2 * m] = np.eye(2 * m) - blocks_G.reshape(2 * m, 2 * m)

@@ -21,9 +21,9 @@ through the methods of :class:`ContactDiscretisation`; this module holds the alg
 - **Step rules.** The pin moves by :func:`pin_update` (a move along the bore by more than one
   node spacing as a turn about the bushing centre, a smaller one straight) plus a second-order
   correction that keeps the nodes in contact as deep as the linearisation predicts (gaps curve
-  with 1/R_p); by at most one bore element per step (:func:`slide_limit`); in light contact, not
-  past the step at which the next node entering contact could carry the load alone (the pin's
-  sliding mode is soft there); a step never loses all contact; without friction, Armijo
+  with 1/R_p); by at most one bore element per step (:func:`slide_limit`) and not past the
+  step at which the next node entering contact could carry the load alone (the pin's sliding
+  mode is soft against the active set); a step never loses all contact; without friction, Armijo
   backtracking on the penalty potential, which with friction is no potential of the equations;
   a step cap that halves when the active set alternates (:class:`NewtonControl`).
 - **Stopping test** (:class:`NewtonControl`), on the state returned: last updates at the Newton
@@ -202,7 +202,8 @@ class NewtonControl:
     residual below ``FORCE_TOLERANCE`` |F/L|, or, stagnating (not halved by the last step),
     below ``ROUNDING_FACTOR`` times the rounding level of the penalty forces on the active nodes,
     k eps R_p sum_A w_q (a gap |X + u - c| - R_p is computed to about eps R_p; at light loads
-    on fine meshes this is the larger bound).
+    on fine meshes this is the larger bound), or the last pin update was at 8 rounding units
+    (the residual is the noise of the LU solves of the penalty-stiffened full system).
     Semi-smooth Newton can alternate between two active sets around a node that is just entering
     contact; when the active set (measured by its length) returns to the one of two iterations
     before, the step cap is halved, which turns the alternation into a converging bisection; it
@@ -237,7 +238,8 @@ class NewtonControl:
         stagnating = 2.0 * force_residual >= self.last_residual
         self.last_residual = force_residual
         return small and (force_residual <= FORCE_TOLERANCE * load
-                          or (stagnating and force_residual <= rounding))
+                          or (stagnating and force_residual <= rounding)
+                          or pin_update <= self.floor / 8.0)
 
 
 def solve_by_contact_angle(inner, pin_residual, direction: np.ndarray, load: np.ndarray,
@@ -446,13 +448,12 @@ class ContactNewton:
     def _line_search(self, update, dc, pin_residual, load, cap: float) -> float:
         """Step length along the Newton direction; leaves the state there and returns it.
 
-        Starts from the smaller of ``cap`` and :func:`slide_limit`; in light contact (at most
-        ``LIGHT_CONTACT_NODES`` nodes) also from the step at which the first node entering
-        contact carries the load alone (:meth:`_entering_limit`). Then halves the step while
-        the trial loses all contact, and, for a descent direction, backtracks (Armijo, at most
-        ``BACKTRACK_RANGE`` below the first contact-keeping step) on the penalty potential. At
-        rounding level near convergence, or with friction (not a potential), the first
-        contact-keeping step is taken.
+        Starts from the smaller of ``cap``, :func:`slide_limit` and the step at which the first
+        node entering contact could carry the load alone (:meth:`_entering_limit`). Then halves
+        the step while the trial loses all contact, and, for a descent direction, backtracks
+        (Armijo, at most ``BACKTRACK_RANGE`` below the first contact-keeping step) on the
+        penalty potential. At rounding level near convergence, or with friction (not a
+        potential), the first contact-keeping step is taken.
         """
         path = self.path
         gaps0 = self._gaps()
@@ -465,12 +466,11 @@ class ContactNewton:
             np.linalg.norm(load) * np.linalg.norm(base.centre))
         energy0 = path.energy(load) if descent else math.nan
         step = min(cap, slide_limit(base.centre, dc, path.problem))
-        light = np.count_nonzero(gaps0 < 0.0) <= LIGHT_CONTACT_NODES
         keeps_contact = None
         while step >= SMALLEST_STEP:
             self._try(step, base, dc)
             gaps = self._gaps()
-            if light and step > (limit := self._entering_limit(gaps0, gaps, step, load)):
+            if step > (limit := self._entering_limit(gaps0, gaps, step, load)):
                 step = limit
                 self._try(step, base, dc)
                 gaps = self._gaps()
@@ -495,8 +495,9 @@ class ContactNewton:
                         load: np.ndarray) -> float:
         """The step at which the first node that enters contact between step 0 and ``step``
         reaches the penetration at which it would carry the load alone (:meth:`_load_penetration`),
-        with the gaps linear in the step; ``step`` if no node enters. In light contact the
-        pin's sliding mode is soft and the Newton step may slide it past the next node."""
+        with the gaps linear in the step; ``step`` if no node enters. The pin's sliding mode is
+        soft against the active set (nearly free when it holds one or two nodes), so a Newton
+        step may slide the pin far past the node that stops it."""
         entering = (gaps0 >= 0.0) & (gaps < 0.0)
         if not np.any(entering):
             return step

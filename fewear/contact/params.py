@@ -46,7 +46,8 @@ class ContactSettings:
     - ``friction_coefficient`` (-): Coulomb mu; the tangential traction is mu*p when friction is on.
     - ``newton_tolerance`` (-): Newton stops when the update of pin centre and displacement is
       below this fraction of the clearance and the residual is below it relative to the force.
-    - ``newton_max_iterations``: more iterations raise ``RuntimeError``.
+    - ``newton_max_iterations``: more iterations (in the contact-angle fallback) refuse the
+      force (:class:`fewear.contact.admissible.ContactLoadError`).
     """
 
     penalty_factor: float = 100.0

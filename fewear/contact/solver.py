@@ -62,7 +62,12 @@ from dolfinx.fem import petsc as fem_petsc
 from mpi4py import MPI
 from petsc4py import PETSc
 
-from fewear.contact.newton import ContactNewton, contact_direction
+from fewear.contact.admissible import (
+    ContactLoadError,
+    beyond_small_displacements,
+    displacement_limit_m,
+)
+from fewear.contact.newton import ContactNewton, ContactNotConverged, contact_direction
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.errors import FewearInputError
@@ -170,6 +175,14 @@ class BushingContactSolver:
         self._normal_force = [fem.form(pressure * normal[i] * ds(BORE_TAG)) for i in range(2)]
         penetration = pressure / self.penalty
         self._penalty_energy = fem.form(0.5 * self.penalty * penetration**2 * ds(BORE_TAG))
+        # The cosine-law pressure of a 1 N joint force along load_direction (admissible.py)
+        self.load_direction = fem.Constant(msh, np.array([1.0, 0.0], dtype=PETSc.ScalarType))
+        x = ufl.SpatialCoordinate(msh)
+        radial = x / ufl.sqrt(ufl.inner(x, x))
+        facing = ufl.inner(radial, self.load_direction)
+        cosine_law = (2.0 / (math.pi * problem.geometry.inner_radius_m * problem.geometry.width_m)
+                      * ufl.conditional(ufl.gt(facing, 0.0), facing, 0.0))
+        self._cosine_law_load = fem.form(cosine_law * ufl.inner(radial, test) * ds(BORE_TAG))
         self._contact_length = fem.form(ufl.conditional(ufl.gt(pressure, 0.0), 1.0, 0.0)
                                         * ds(BORE_TAG))
 
@@ -242,17 +255,55 @@ class BushingContactSolver:
         if not np.any(force):
             return self._no_contact_result(force, rotation)
         load = force / self.problem.geometry.width_m
-        iterations = self.newton.solve(load, contact_direction(force, μs))
+        try:
+            iterations = self.newton.solve(load, contact_direction(force, μs))
+        except ContactNotConverged:
+            self._refuse(force, "the contact Newton found no equilibrium")
         self.pin_centre.value = self.pin_centre_m
         self._assemble_contact(load)
-        self.last_result = self._result(force, rotation, iterations)
-        return self.last_result
+        displacement = self.nodal_displacement()
+        result = self._result(force, rotation, iterations, displacement)
+        reason = beyond_small_displacements(self.problem, float(np.hypot(*displacement.T).max()))
+        if reason is not None:
+            self._refuse(force, reason)
+        self.last_result = result
+        return result
 
-    def _no_contact_result(self, force, rotation) -> ContactResult:
+    def _reset(self) -> None:
+        """No displacement, the pin centred; the next solve starts cold."""
         self.displacement.x.array[:] = 0.0
         self.pin_centre_m = np.zeros(2)
         self.pin_centre.value = self.pin_centre_m
         self.newton.forget()
+
+    def _refuse(self, force: np.ndarray, reason: str) -> None:
+        """Raise :class:`ContactLoadError` for ``force`` (N); the next solve starts afresh."""
+        self._reset()
+        raise ContactLoadError(force, reason, displacement_limit_m(self.problem),
+                               self.admissible_force_N(force))
+
+    def admissible_force_N(self, force_N) -> float:
+        """The largest admissible |F| (N) in the direction of ``force_N``
+        (:mod:`fewear.contact.admissible`): u_max / max_q |u_q| with u the elastic displacement
+        under the cosine-law pressure of 1 N on the bore (one LU solve with K_el)."""
+        self.load_direction.value = np.asarray(force_N, dtype=float) / np.linalg.norm(force_N)
+        rhs = self._rhs[0]
+        with rhs.localForm() as local:
+            local.set(0.0)
+        fem_petsc.assemble_vector(rhs, self._cosine_law_load)
+        rhs.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+        rhs.array_w[self._bc_local] = 0.0
+        ksp = self._make_lu_solver()
+        ksp.setOperators(self._K_elastic)
+        unit_response = fem.Function(self.V)
+        ksp.solve(rhs, unit_response.vector)
+        unit_response.x.scatter_forward()
+        ksp.destroy()
+        U = self._at_bore_nodes(unit_response)
+        return displacement_limit_m(self.problem) / float(np.hypot(U[:, 0], U[:, 1]).max())
+
+    def _no_contact_result(self, force, rotation) -> ContactResult:
+        self._reset()
         zeros = np.zeros((self.bore.points.shape[0], 2))
         self.last_result = nodal_result(
             self.problem, self.bore.points, self.bore.angles, zeros, self.pin_centre_m, force,
@@ -370,21 +421,24 @@ class BushingContactSolver:
     # -- output ------------------------------------------------------------------------------
     def nodal_displacement(self) -> np.ndarray:
         """u at the gathered bore nodes (n, 2), by evaluating the S2 field (m)."""
+        return self._at_bore_nodes(self.displacement)
+
+    def _at_bore_nodes(self, field: fem.Function) -> np.ndarray:
+        """A vector field of V at the gathered bore nodes (n, 2)."""
         points = np.zeros((self.bore.local_nodes.size, 3))
         points[:, :2] = self.mesh.geometry.x[self.bore.local_nodes, :2]
         values = np.zeros((points.shape[0], 2))
         if points.shape[0]:  # a rank may own no part of the bore
-            values = self.displacement.eval(points, self.bore.local_node_cells).reshape(-1, 2)
+            values = field.eval(points, self.bore.local_node_cells).reshape(-1, 2)
         return self.bore.gather(values)
 
-    def _result(self, force, rotation, iterations) -> ContactResult:
+    def _result(self, force, rotation, iterations, displacement) -> ContactResult:
         L = self.problem.geometry.width_m
         resultant = L * np.array([-self.uniform[i].dot(self._r) for i in range(2)])  # E^T r
         normal = L * np.array([self.comm.allreduce(fem.assemble_scalar(form), op=MPI.SUM)
                                for form in self._normal_force])
-        return nodal_result(self.problem, self.bore.points, self.bore.angles,
-                            self.nodal_displacement(), self.pin_centre_m, force, resultant,
-                            normal, rotation, iterations)
+        return nodal_result(self.problem, self.bore.points, self.bore.angles, displacement,
+                            self.pin_centre_m, force, resultant, normal, rotation, iterations)
 
     def pressure_function(self) -> fem.Function:
         """The penalty pressure p = k <R_p - |x + u - c|>_+ interpolated at the nodes of the
