@@ -259,11 +259,14 @@ class CondensedBushingContact:
         self._g = np.zeros(2 * self.points.shape[0])
         self._U = np.zeros_like(self._g)
 
-    def turn_state(self, elements: int) -> None:
-        """Turn nodal forces and pin centre by ``elements`` bore elements (2 nodes each, at
-        uniform angles, sorted by angle), U = G g; on the circular O-grid, whose compliance
-        is invariant under such turns, the turned state is the turned solution."""
-        angle = elements * 2.0 * math.pi / (self.points.shape[0] // 2)
+    def turn_state(self, angle_rad: float) -> None:
+        """Turn nodal forces and pin centre by the whole number of bore elements (2 nodes each,
+        at uniform angles, sorted by angle) nearest to ``angle_rad``, U = G g; on the circular
+        O-grid, whose compliance is invariant under such turns, the turned state is the turned
+        solution (on a worn bore it is an approximation, and only a start)."""
+        element_rad = 2.0 * math.pi / (self.points.shape[0] // 2)
+        elements = round(angle_rad / element_rad)
+        angle = elements * element_rad
         rotation = np.array([[math.cos(angle), -math.sin(angle)],
                              [math.sin(angle), math.cos(angle)]])
         g = np.roll(self._g.reshape(-1, 2), 2 * elements, axis=0) @ rotation.T

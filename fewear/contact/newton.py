@@ -6,15 +6,17 @@ thickness); the equations are the elastic equilibrium of the bushing under the p
 and the pin's force balance sum_q f_q = F / L. Each discretisation provides the linear algebra
 through the methods of :class:`ContactDiscretisation`; this module holds the algorithm:
 
-- **Start.** At a light load (the last solution had at most ``LIGHT_CONTACT_NODES`` nodes in
-  contact and the load grew by at most ``LIGHT_LOAD_GROWTH``) and for the first solve: the
-  *corner start*. The region of pin centres free of contact with the bore nodes is a polygon
-  whose corners c_j touch two neighbouring nodes; a light load presses the pin into the corner
-  furthest along the contact direction, which is taken with no displacement and the penetration
-  |F/L| / (k (w_j + w_j+1)) of two nodes carrying the load. Otherwise the *warm start*: the last
-  solution, turned with the load by whole bore elements where the discretisation can turn its
-  state (the condensed path; pin and indentation together), else kept as it is when the
-  direction turned by at most ``WARM_START_MAX_ANGLE_RAD`` (else the corner start).
+- **Start.** The *corner start* for the first solve: the region of pin centres free of contact
+  with the bore nodes is a polygon whose corners c_j touch two neighbouring nodes; a light load
+  presses the pin into the corner furthest along the contact direction, which is taken with no
+  displacement and the penetration |F/L| / (k (w_j + w_j+1)) of two nodes carrying the load.
+  Afterwards the *warm start*: the last solution, turned with the load by whole bore elements
+  where the discretisation can turn its state (the condensed path; pin and indentation
+  together), with the pin moved to the corner of the turned bore at a light load (the last
+  solution had at most ``LIGHT_CONTACT_NODES`` nodes in contact and the load grew by at most
+  ``LIGHT_LOAD_GROWTH``). Where it cannot (the full path), the last solution as it is if the
+  load is not light and the direction turned by at most ``WARM_START_MAX_ANGLE_RAD``, else the
+  corner start.
 - **Step.** Semi-smooth (active-set) Newton: the active set is the set of bore nodes in contact
   at the current iterate; each step solves the bordered system of that active set for the
   displacement update and the pin update dc.
@@ -35,8 +37,9 @@ through the methods of :class:`ContactDiscretisation`; this module holds the alg
   ray) being a well-posed Newton problem.
 
 At light loads the discrete problem can have more than one stable equilibrium (the pin resting
-in either corner next to a node whose normal is nearly along the load); both discretisations
-take the same corner from the same start.
+in either corner next to a node whose normal is nearly along the load). Both discretisations
+start in the corner furthest along the contact direction; only where two corners tie to within
+the bore displacement could they settle in different ones (not seen in the tests and benchmark).
 
 A load the Newton cannot balance raises :class:`ContactNotConverged`.
 """
@@ -99,9 +102,9 @@ class ContactDiscretisation(Protocol):
     def zero_displacement(self) -> None:
         """Set the displacement to zero."""
 
-    def turn_state(self, elements: int) -> None:
-        """Turn the state (pin centre and displacement) by a whole number of bore elements
-        about the bushing centre (only called if ``can_turn_state``)."""
+    def turn_state(self, angle_rad: float) -> None:
+        """Turn the state (pin centre and displacement) about the bushing centre by the whole
+        number of bore elements nearest to ``angle_rad`` (only called if ``can_turn_state``)."""
 
     def linearise(self, load: np.ndarray) -> tuple[np.ndarray, float]:
         """Evaluate the contact at the current state; return the pin residual R - F/L (N/m)
@@ -313,8 +316,9 @@ class ContactNewton:
         self.last_direction: np.ndarray | None = None
         self.last_contact_nodes = 0
         self.last_load = 0.0
-        self.node_spacing_rad = 0.5 * (path.problem.mesh.bore_element_size_m
-                                       / path.problem.geometry.inner_radius_m)
+        elements = path.problem.mesh.circumferential_element_count(
+            path.problem.geometry.inner_radius_m)
+        self.node_spacing_rad = math.pi / elements  # two bore nodes per element
 
     def forget(self) -> None:
         self.last_direction = None
@@ -359,23 +363,27 @@ class ContactNewton:
                                               * weight_m)
 
     def _start(self, direction: np.ndarray, load: np.ndarray) -> None:
-        """Warm start unless the last solution was in light contact (at most
-        ``LIGHT_CONTACT_NODES`` nodes) and the load did not grow by more than
-        ``LIGHT_LOAD_GROWTH``: the last solution, turned by the whole number of bore elements
-        nearest to the turn of the contact direction if the discretisation can turn its state
-        (pin and indentation together: turning the pin alone against the old indentation
-        would start far from equilibrium), else kept as it is if the direction turned by at
-        most ``WARM_START_MAX_ANGLE_RAD``. Otherwise, and without a previous solution, the
-        corner start (:meth:`_corner_start`)."""
+        """Without a previous solution: the corner start (:meth:`_corner_start`). Else, if the
+        discretisation can turn its state: the last solution turned by the whole number of bore
+        elements nearest to the turn of the contact direction (pin and indentation together:
+        turning the pin alone against the old indentation would start far from equilibrium),
+        and at a light load (the last solution had at most ``LIGHT_CONTACT_NODES`` nodes in
+        contact and the load grew by at most ``LIGHT_LOAD_GROWTH``) the pin moved to
+        :meth:`_corner` of that turned bore. If it cannot: the last solution as it is when the
+        load is not light and the direction turned by at most ``WARM_START_MAX_ANGLE_RAD``,
+        else the corner start."""
         last, path = self.last_direction, self.path
         size = float(np.linalg.norm(load))
         light = (self.last_contact_nodes <= LIGHT_CONTACT_NODES
                  and size <= LIGHT_LOAD_GROWTH * self.last_load)
+        if last is not None and path.can_turn_state:
+            turn = math.atan2(last[0] * direction[1] - last[1] * direction[0], last @ direction)
+            path.turn_state(turn)
+            if light:
+                path.pin_centre_m = self._corner(direction, load)
+            return
         if last is not None and not light:
             turn = math.atan2(last[0] * direction[1] - last[1] * direction[0], last @ direction)
-            if path.can_turn_state:
-                path.turn_state(round(turn / (2.0 * self.node_spacing_rad)))
-                return
             if abs(turn) <= WARM_START_MAX_ANGLE_RAD:
                 return
         self._corner_start(direction, load)
