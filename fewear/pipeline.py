@@ -33,6 +33,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from fewear.contact.admissible import ContactLoadError
 from fewear.errors import FewearInputError
 from fewear.mbd.history import JointHistory
 from fewear.wear.archard import (
@@ -303,7 +304,7 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress) -> None:
         try:
             wear = cycle_wear(bushing, steps, inputs.wear_coefficient, loop.friction_in_contact,
                               implicit=loop.implicit_wear_step)
-        except RuntimeError as exc:  # the contact Newton found no equilibrium
+        except ContactLoadError as exc:  # a force the model cannot carry, or no equilibrium
             raise FewearInputError(
                 f"{rod} rod, block {state.blocks + 1} at {state.cycles:,} cycles: the FE contact "
                 f"on the worn bore failed ({exc}); peak joint force "

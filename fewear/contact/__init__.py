@@ -1,6 +1,7 @@
 """Pin-in-bushing contact: the FE model of the joint's bore (DOLFINx/PETSc, imported explicitly).
 
-- :mod:`fewear.contact.params`: input dataclasses and ``contact_problem_from_config`` (no DOLFINx).
+- :mod:`fewear.contact.params`: material, contact settings, ``ContactProblem`` and
+  ``contact_problem_from_config`` (no DOLFINx; the geometry is in :mod:`fewear.mesh.geometry`).
 - :mod:`fewear.contact.result`: ``ContactResult``, the plain-data output (no DOLFINx).
 - :mod:`fewear.contact.solver`: ``BushingContactSolver``, the full Newton solve in DOLFINx.
 - :mod:`fewear.contact.condensed`: ``CondensedBushingContact``, the same answer from the bushing

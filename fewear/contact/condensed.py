@@ -8,27 +8,34 @@ thickness). Since the bushing is linear elastic, the nodal displacements are
     U = G f,      G = N K^-1 N^T      (the bore's nodal compliance, m per N/m),
 
 with K the clamped elastic stiffness and N the evaluation of the S2 field at the bore nodes. G is
-computed once per mesh: one LU factorisation of K (MUMPS) and one solve per bore node and
-direction (``2 n`` right-hand sides). What is left per load step is the small nonlinear problem
+computed once per mesh geometry: one LU factorisation of K (MUMPS) and one solve with the ``2 n``
+columns of N^T as a dense multiple right-hand side (``Mat.matSolve``). N itself depends only on
+the reference coordinates of the bore nodes in their cells, so it is evaluated once per mesh
+topology and kept when the mesh moves (:meth:`CondensedBushingContact.update_geometry`).
+
+What is left per load step is the small nonlinear problem
 
     f_q = w_q T(X_q + U_q - c),  U = G f,  sum_q f_q = F / L,
 
-solved by the same semi-smooth Newton as the full path, restricted to the nodes in contact (the
-other nodes carry no force; their displacement follows from U = G f). Written for the state
+solved by the active-set (semi-smooth) Newton of :mod:`fewear.contact.newton`, the same algorithm
+as the full path's (start, step rules, stopping test, fallback), restricted to the nodes in contact
+(the other nodes carry no force; their displacement follows from U = G f). Written for the state
 g (a nodal force vector, U = G g) and the pin centre c, one Newton step solves for the new forces
 g' on the active set A and the pin update dc:
 
     g'_A = f_A + W M (G_AA g'_A - U_A - dc),    sum_A g'_A = F / L,
 
 W M the 2x2 blocks w_q dT/dd. This is the full path's Newton step written on the bore (its
-displacement update is the elastic response to the linearised contact forces), with the same
-globalisation (polar pin update and slide limit, contact-keeping and Armijo rules on the potential
-Pi = 1/2 g.G g + sum w k/2 <-g>^2 - F/L . c, the step cap of :class:`NewtonControl`) and the same
-fallback on the pin angle (:func:`solve_by_contact_angle`), so both paths converge to the same
-solution; the tests check nodal pressures and pin centre to 1e-6 (measured: ~1e-7 and below).
-Per step this costs O(n |A|) for the update of U and a dense solve of size 2|A| + 2, |A| the
-nodes in contact. Under MPI, G is built collectively and every rank solves the small problem
-redundantly, so all ranks hold the same result.
+displacement update is the elastic response to the linearised contact forces), with the
+potential Pi = 1/2 g.G g + sum w k/2 <-g>^2 - F/L . c for the line search. Unlike the full
+path, this one can turn its state with the load for a warm start (g rolled by whole elements
+along the angle-sorted bore nodes, U = G g), so a load step starts from the previous solution
+turned with the force, a handful of iterations away from the new one. Both paths converge to
+the same solution; the tests and the benchmark check nodal pressures and pin centre to 1e-6
+(measured: ~2e-7 and below, on 200 load steps of a crank cycle).
+Per step this costs O(n |A|) per iteration for the update of U and a dense solve of size
+2|A| + 2, |A| the nodes in contact. Under MPI, G is built collectively and every rank solves the
+small problem redundantly, so all ranks hold the same result.
 
 Displacements, pin centre and forces are per unit thickness as in the full path; forces are
 multiplied by the width L for the result (N).
@@ -41,44 +48,25 @@ import math
 import numpy as np
 from dolfinx import fem
 from mpi4py import MPI
+from petsc4py import PETSc
 
+from fewear.contact.admissible import (
+    ContactLoadError,
+    beyond_small_displacements,
+    cosine_law_nodal_forces,
+    displacement_limit_m,
+)
+from fewear.contact.newton import ContactNewton, ContactNotConverged, contact_direction
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.contact.solver import (
-    COUPLED_ITERATIONS,
-    CYCLE_CAP,
-    WARM_START_MAX_ANGLE_RAD,
     BushingContactSolver,
-    NewtonControl,
     checked_force,
     checked_rotation,
-    first_touch_centre,
     nodal_result,
-    polar_update,
-    slide_limit,
-    solve_by_contact_angle,
-    unit,
 )
+from fewear.mesh.bore import bore_node_weights
 from fewear.mesh.bushing import BORE_TAG
-
-
-def bore_node_weights(msh, bore) -> np.ndarray:
-    """Gauss-Lobatto weights of the bore nodes (m), gathered order: per facet with nodes
-    (vertex, vertex, midpoint) and the quadratic map x(s), s in [0, 1], the weights
-    (1/6 |x'(0)|, 1/6 |x'(1)|, 2/3 |x'(1/2)|) -- what FFCx integrates with for the GLL rule."""
-    x = msh.geometry.x[:, :2]
-    v0, v1, mid = (x[bore.facet_nodes[:, k]] for k in range(3))
-    d0 = np.linalg.norm(-3.0 * v0 - v1 + 4.0 * mid, axis=1)
-    d1 = np.linalg.norm(v0 + 3.0 * v1 - 4.0 * mid, axis=1)
-    dm = np.linalg.norm(v1 - v0, axis=1)
-    position = {node: k for k, node in enumerate(bore.local_nodes)}
-    weights = np.zeros(bore.local_nodes.size)
-    for column, values in ((0, d0 / 6.0), (1, d1 / 6.0), (2, 2.0 * dm / 3.0)):
-        for node, value in zip(bore.facet_nodes[:, column], values):
-            weights[position[node]] += value
-    total = np.zeros(bore.global_ids.size)
-    total[bore.local_index] = weights
-    return bore.comm.allreduce(total, op=MPI.SUM)
 
 
 class CondensedBushingContact:
@@ -101,6 +89,9 @@ class CondensedBushingContact:
         self.comm = solver.comm
         self._k = self.problem.penalty_stiffness_Pa_per_m()
         self._friction_value = 0.0
+        self.newton = ContactNewton(self)
+        self._dofs = self._bore_dofs()
+        self._table = self._nodal_evaluation()
         self.update_geometry(update_solver=False)
 
     # -- set-up ------------------------------------------------------------------------------
@@ -113,13 +104,13 @@ class CondensedBushingContact:
         self.angles = bore.angles.copy()
         self.weights_m = bore_node_weights(self.solver.mesh, bore)
         self.compliance = self._nodal_compliance()
-        self._g = np.zeros(2 * self.points.shape[0])
-        self._U = np.zeros_like(self._g)
+        self.zero_displacement()
         self.pin_centre_m = np.zeros(2)
-        self._last_direction = None
+        self.newton.forget()
 
     def _bore_dofs(self):
-        """Local indices (unrolled) of the S2 dofs on the bore, and their global numbers."""
+        """Local indices (unrolled) of the S2 dofs on the bore, their columns in the gathered,
+        sorted list of global dof numbers, and that list's length."""
         solver = self.solver
         V = solver.V
         tdim = solver.mesh.topology.dim
@@ -130,60 +121,61 @@ class CondensedBushingContact:
         all_ids = np.unique(np.concatenate(self.comm.allgather(global_ids)))
         return local, np.searchsorted(all_ids, global_ids), all_ids.size
 
-    def _nodal_evaluation(self, local_dofs, columns, n_columns) -> np.ndarray:
-        """N_local (n_local_nodes * 2, n_columns): S2 basis functions at the local bore nodes."""
+    def _nodal_evaluation(self) -> np.ndarray:
+        """N_local (2 n_local_nodes, n_columns): the S2 basis functions of the bore dofs at the
+        local bore nodes, rows (node, direction). The nodes sit at fixed reference coordinates
+        of their cells (vertices, edge midpoints), so N does not change when the mesh moves: it
+        is evaluated once, with one probe per dof pair (x and y of a node block)."""
         solver, bore = self.solver, self.solver.bore
+        local_dofs, columns, n_columns = self._dofs
         probe = fem.Function(solver.V)
         points = np.zeros((bore.local_nodes.size, 3))
         points[:, :2] = solver.mesh.geometry.x[bore.local_nodes, :2]
         table = np.zeros((2 * bore.local_nodes.size, n_columns))
-        for column in range(n_columns):
+        for pair in range(0, n_columns, 2):  # columns 2j, 2j+1: x and y of one dof block
             probe.x.array[:] = 0.0
-            probe.x.array[local_dofs[columns == column]] = 1.0
+            probe.x.array[local_dofs[(columns == pair) | (columns == pair + 1)]] = 1.0
             if bore.local_nodes.size:
-                table[:, column] = probe.eval(points, bore.local_node_cells).reshape(-1)
+                values = probe.eval(points, bore.local_node_cells)
+                table[0::2, pair] = values[:, 0]
+                table[1::2, pair + 1] = values[:, 1]
         return table
 
+    def _gathered_evaluation(self) -> np.ndarray:
+        """N (2n, n_columns) in the gathered node order, the same on every rank."""
+        bore = self.solver.bore
+        n_columns = self._dofs[2]
+        rows = (2 * bore.local_index[:, None] + np.arange(2)[None, :]).reshape(-1)
+        local = np.zeros((2 * bore.global_ids.size, n_columns))
+        local[rows] = self._table
+        count = np.zeros(2 * bore.global_ids.size)
+        count[rows] = 1.0
+        return (self.comm.allreduce(local, op=MPI.SUM)
+                / self.comm.allreduce(count, op=MPI.SUM)[:, None])
+
     def _nodal_compliance(self) -> np.ndarray:
-        """G = N K^-1 N^T with K the elastic stiffness, one LU solve per node and direction."""
-        solver, bore = self.solver, self.solver.bore
-        local_dofs, columns, n_columns = self._bore_dofs()
-        table = self._nodal_evaluation(local_dofs, columns, n_columns)
+        """G = N K^-1 N^T with K the clamped elastic stiffness: one MUMPS LU factorisation of K
+        and one multiple-right-hand-side solve K X = N^T (``Mat.matSolve`` with the 2n columns
+        of N^T as a dense matrix); each rank then adds N X over the bore dofs it owns."""
+        solver = self.solver
+        local_dofs, columns, _ = self._dofs
         owned = local_dofs < solver.V.dofmap.index_map.size_local * 2
+        N = self._gathered_evaluation()
         ksp = solver._make_lu_solver()
         ksp.setOperators(solver._K_elastic)
-        rhs, x = solver._rhs[0], solver._sol[0]
-        n_nodes = bore.global_ids.size
-        gathered_rows = 2 * bore.local_index[:, None] + np.arange(2)[None, :]
-        G = np.zeros((2 * n_nodes, 2 * n_nodes))
-        local_row = np.zeros((2 * n_nodes, n_columns))
-        local_row[gathered_rows.reshape(-1)] = table
-        count = np.zeros(2 * n_nodes)
-        count[gathered_rows.reshape(-1)] = 1.0
-        N = self.comm.allreduce(local_row, op=MPI.SUM) / self.comm.allreduce(count, op=MPI.SUM)[
-            :, None]
-        for row in range(2 * n_nodes):
-            with rhs.localForm() as local:
-                local.set(0.0)
-            rhs.array_w[local_dofs[owned]] = N[row, columns[owned]]
-            rhs.assemble()
-            ksp.solve(rhs, x)
-            solution = solver._du
-            x.copy(solution.vector)
-            solution.x.scatter_forward()
-            at_dofs = np.zeros(n_columns)
-            at_dofs[columns] = solution.x.array[local_dofs]
-            at_dofs = self._combine(at_dofs, columns, n_columns)
-            G[:, row] = N @ at_dofs
-        ksp.destroy()
+        ksp.setUp()
+        sizes = (solver._K_elastic.getSizes()[0], (None, N.shape[0]))
+        loads = PETSc.Mat().createDense(sizes, comm=self.comm)
+        loads.setUp()
+        loads.getDenseArray()[local_dofs[owned], :] = N[:, columns[owned]].T
+        loads.assemble()
+        displacements = loads.duplicate()
+        ksp.getPC().getFactorMatrix().matSolve(loads, displacements)
+        at_owned_dofs = displacements.getDenseArray()[local_dofs[owned], :]
+        G = self.comm.allreduce(N[:, columns[owned]] @ at_owned_dofs, op=MPI.SUM)
+        for matrix in (loads, displacements, ksp):
+            matrix.destroy()
         return G
-
-    def _combine(self, values, columns, n_columns) -> np.ndarray:
-        """Per-rank values at the bore dofs -> the same full vector on every rank."""
-        present = np.zeros(n_columns)
-        present[columns] = 1.0
-        total = self.comm.allreduce(values, op=MPI.SUM)
-        return total / np.maximum(self.comm.allreduce(present, op=MPI.SUM), 1.0)
 
     # -- the per-step problem ----------------------------------------------------------------
     def solve(self, force_N, rotation_increment_rad: float = 0.0,
@@ -195,127 +187,111 @@ class CondensedBushingContact:
                                 if friction else 0.0)
         n = self.points.shape[0]
         if not np.any(force):
-            self._g = np.zeros(2 * n)
-            self._U = np.zeros(2 * n)
+            self.zero_displacement()
             self.pin_centre_m = np.zeros(2)
-            self._last_direction = None
+            self.newton.forget()
             return nodal_result(self.problem, self.points, self.angles, np.zeros((n, 2)),
                                 self.pin_centre_m, force, np.zeros(2), np.zeros(2), rotation, 0)
-        iterations = self._newton(force / self.problem.geometry.width_m)
-        U = self._U.reshape(n, 2)
-        f, _, p, normal = self._nodal_forces(U, self.pin_centre_m)
         L = self.problem.geometry.width_m
+        direction = contact_direction(force, self._friction_value)
+        try:
+            iterations = self.newton.solve(force / L, direction)
+        except ContactNotConverged:
+            self._refuse(force, "the contact Newton found no equilibrium")
+        U = self._U.reshape(n, 2)
+        f, p, normal, _ = self._nodal_forces(U, self.pin_centre_m)
+        reason = beyond_small_displacements(self.problem, float(np.hypot(*U.T).max()))
+        if reason is not None:
+            self._refuse(force, reason)
         return nodal_result(self.problem, self.points, self.angles, U, self.pin_centre_m, force,
                             L * f.sum(axis=0), L * (self.weights_m[:, None] * p[:, None]
                                                     * normal).sum(axis=0), rotation, iterations)
 
-    def _nodal_forces(self, U: np.ndarray, c: np.ndarray, with_jacobian: bool = False):
-        """Nodal forces f = w p (n + mu s t) (n, 2), their Jacobian blocks w dT/dd (n, 2, 2),
-        pressures p (n,), normals n (n, 2) for nodal displacements U and pin centre c."""
+    def _refuse(self, force: np.ndarray, reason: str) -> None:
+        """Raise :class:`ContactLoadError` for ``force`` (N); the next solve starts afresh."""
+        self.zero_displacement()
+        self.pin_centre_m = np.zeros(2)
+        self.newton.forget()
+        raise ContactLoadError(force, reason, displacement_limit_m(self.problem),
+                               self.admissible_force_N(force))
+
+    def admissible_force_N(self, force_N) -> float:
+        """The largest admissible |F| (N) in the direction of ``force_N``
+        (:mod:`fewear.contact.admissible`): u_max / max_q |u_q| under the cosine-law load of 1 N."""
+        direction = np.asarray(force_N, dtype=float) / np.linalg.norm(force_N)
+        geometry = self.problem.geometry
+        forces = cosine_law_nodal_forces(self.points, self.weights_m, direction,
+                                         geometry.inner_radius_m, geometry.width_m)
+        U = (self.compliance @ forces.reshape(-1)).reshape(-1, 2)
+        return displacement_limit_m(self.problem) / float(np.hypot(U[:, 0], U[:, 1]).max())
+
+    def _nodal_forces(self, U: np.ndarray, c: np.ndarray):
+        """Nodal forces f = w p (n + mu s t) (n, 2), pressures p (n,), normals n (n, 2) and
+        distances r = |X + U - c| (n,) for nodal displacements U and pin centre c."""
         d = self.points + U - c
         r = np.hypot(d[:, 0], d[:, 1])
         normal = d / r[:, None]
-        tangent = np.stack([-normal[:, 1], normal[:, 0]], axis=1)
-        penetration = self.problem.geometry.pin_radius_m - r
-        active = penetration > 0.0
-        p = np.where(active, self._k * penetration, 0.0)
-        μs = self._friction_value
-        f = (self.weights_m * p)[:, None] * (normal + μs * tangent)
-        if not with_jacobian:
-            return f, None, p, normal
-        nn = np.einsum("qi,qj->qij", normal, normal)
+        p = self._k * np.maximum(self.problem.geometry.pin_radius_m - r, 0.0)
+        tangent = np.column_stack([-normal[:, 1], normal[:, 0]])
+        f = (self.weights_m * p)[:, None] * (normal + self._friction_value * tangent)
+        return f, p, normal, r
+
+    def _jacobian_blocks(self, A: np.ndarray, p: np.ndarray, normal: np.ndarray,
+                         r: np.ndarray) -> np.ndarray:
+        """w dT/dd (|A|, 2, 2) at the active nodes A, T = p (n + mu s t), p = k (R_p - |d|):
+        dT/dd = -k n n^T + p/r P + mu s (-k t n^T + p/r R P), P = I - n n^T, R the turn by
+        90 degrees (t = R n)."""
+        n = normal[A]
+        t = np.column_stack([-n[:, 1], n[:, 0]])
+        nn = n[:, :, None] * n[:, None, :]
         projector = np.eye(2)[None] - nn
         rotate = np.array([[0.0, -1.0], [1.0, 0.0]])
-        tn = np.einsum("qi,qj->qij", tangent, normal)
-        dT = (-self._k * nn + (p / r)[:, None, None] * projector
-              + μs * (-self._k * tn + (p / r)[:, None, None] * (rotate[None] @ projector)))
-        dT[~active] = 0.0
-        return f, self.weights_m[:, None, None] * dT, p, normal
+        tn = t[:, :, None] * n[:, None, :]
+        p_r = (p[A] / r[A])[:, None, None]
+        μs = self._friction_value
+        dT = -self._k * nn + p_r * projector + μs * (-self._k * tn + p_r * (rotate @ projector))
+        return self.weights_m[A, None, None] * dT
 
-    def _start(self, direction: np.ndarray) -> None:
-        last = self._last_direction
-        if last is not None:
-            turn = math.atan2(last[0] * direction[1] - last[1] * direction[0], last @ direction)
-            if abs(turn) <= WARM_START_MAX_ANGLE_RAD:
-                rotation = np.array([[math.cos(turn), -math.sin(turn)],
-                                     [math.sin(turn), math.cos(turn)]])
-                self.pin_centre_m = rotation @ self.pin_centre_m
-                return
-        self._cold_start(direction)
+    # -- the discretisation for ContactNewton --------------------------------------------------
+    can_turn_state = True
 
-    def _cold_start(self, direction: np.ndarray) -> None:
-        """As the full path: g = 0, pin at first touch plus the +-3-element rigid penetration."""
-        geometry = self.problem.geometry
-        self._g = np.zeros_like(self._g)
+    def zero_displacement(self) -> None:
+        self._g = np.zeros(2 * self.points.shape[0])
         self._U = np.zeros_like(self._g)
-        touch = first_touch_centre(self.points, np.zeros(2), direction, geometry.pin_radius_m)
-        θ0 = 3.0 * self.problem.mesh.bore_element_size_m / geometry.inner_radius_m
-        self.pin_centre_m = touch + 0.5 * geometry.clearance_m * θ0**2 * direction
 
-    def _newton(self, load: np.ndarray) -> int:
-        """The full path's iteration (same start, step rules, stopping test and fallback) on
-        the state (g, c); returns the number of Newton iterations."""
-        φ = math.atan2(load[1], load[0]) - math.atan(self._friction_value)
-        direction = unit(φ)
-        self._start(direction)
-        iterations = self._coupled_newton(load, direction, np.eye(2), COUPLED_ITERATIONS)
-        if iterations is not None:
-            self._last_direction = direction
-            return iterations
-        settings = self.problem.contact
+    def turn_state(self, angle_rad: float) -> None:
+        """Turn nodal forces and pin centre by the whole number of bore elements (2 nodes each,
+        at uniform angles, sorted by angle) nearest to ``angle_rad``, U = G g; on the circular
+        O-grid, whose compliance is invariant under such turns, the turned state is the turned
+        solution (on a worn bore it is an approximation, and only a start)."""
+        element_rad = 2.0 * math.pi / (self.points.shape[0] // 2)
+        elements = round(angle_rad / element_rad)
+        angle = elements * element_rad
+        rotation = np.array([[math.cos(angle), -math.sin(angle)],
+                             [math.sin(angle), math.cos(angle)]])
+        g = np.roll(self._g.reshape(-1, 2), 2 * elements, axis=0) @ rotation.T
+        self._g = g.reshape(-1)
+        self._U = self.compliance @ self._g
+        self.pin_centre_m = rotation @ self.pin_centre_m
 
-        def inner(a):
-            self.pin_centre_m = max(a @ self.pin_centre_m, 0.0) * a
-            count = self._coupled_newton(load, a, a[:, None], settings.newton_max_iterations)
-            if count is None:
-                raise RuntimeError(f"condensed contact Newton did not converge for force "
-                                   f"{load * self.problem.geometry.width_m} N")
-            return count
+    def linearise(self, load: np.ndarray) -> tuple[np.ndarray, float]:
+        """Nodal forces and their Jacobian blocks at the current state (kept for the step);
+        the pin residual sum f - F/L (N/m) and the active length (m)."""
+        f, p, normal, r = self._nodal_forces(self._U.reshape(-1, 2), self.pin_centre_m)
+        active_nodes = np.flatnonzero(p > 0.0)
+        WM_A = self._jacobian_blocks(active_nodes, p, normal, r)
+        self._linear = (f, WM_A, active_nodes)
+        return f.sum(axis=0) - load, float(self.weights_m[active_nodes].sum())
 
-        def pin_residual():
-            return self._nodal_forces(self._U.reshape(-1, 2), self.pin_centre_m)[0].sum(
-                axis=0) - load
-
-        total = COUPLED_ITERATIONS + solve_by_contact_angle(
-            inner, pin_residual, direction, load, settings.newton_max_iterations)
-        self._last_direction = direction
-        return total
-
-    def _coupled_newton(self, load, direction, basis, max_iterations) -> int | None:
-        """Semi-smooth Newton on (g, c) with c moving in the span of ``basis`` (2, k); returns
-        the iterations, or None when not converged within ``max_iterations`` or as soon as the
-        active set alternates (:class:`NewtonControl`)."""
-        n = self.points.shape[0]
-        settings = self.problem.contact
-        pin_radius = self.problem.geometry.pin_radius_m
-        control = NewtonControl(settings, pin_radius)
-        for iteration in range(1, max_iterations + 1):
-            U = self._U.reshape(n, 2)
-            f, WM, p, _ = self._nodal_forces(U, self.pin_centre_m, with_jacobian=True)
-            active_nodes = np.flatnonzero(p > 0.0)
-            if active_nodes.size == 0:
-                self._cold_start(direction)
-                control = NewtonControl(settings, pin_radius)
-                continue
-            cap = control.step_cap(float(self.weights_m[active_nodes].sum()))
-            if cap < CYCLE_CAP and basis.shape[1] == 2:
-                return None
-            rows, g_rows, dc = self._bordered_step(active_nodes, U, f, WM, load, basis)
-            dU = self._line_search(rows, g_rows, dc, f, load, cap)
-            pin_residual = basis.T @ (f.sum(axis=0) - load)
-            if control.converged(np.linalg.norm(dc), np.abs(dU).max(),
-                                 self._max_penetration(self._U), np.abs(self._U).max(),
-                                 np.linalg.norm(pin_residual) / np.linalg.norm(load)):
-                return iteration
-        return None
-
-    def _bordered_step(self, A, U, f, WM, load, basis):
-        """One Newton step (module docstring) with the pin update dc = basis dz: the rows
-        (node, direction) of the active set, the new nodal forces g'_A on them and dc."""
+    def newton_direction(self, pin_residual, load, basis):
+        """One Newton step (module docstring) with the pin update dc = basis dz: the update
+        (dg, dU = G dg) of the nodal forces and displacements, and dc. Only the columns of G on
+        the old and new support are used."""
+        f, WM_A, A = self._linear
+        U = self._U.reshape(-1, 2)
         m, k = A.size, basis.shape[1]
         rows = (2 * A[:, None] + np.arange(2)[None, :]).reshape(-1)
         G_AA = self.compliance[np.ix_(rows, rows)]
-        WM_A = WM[A]
         system = np.zeros((2 * m + k, 2 * m + k))
         blocks_G = np.einsum("kij,kjl->kil", WM_A, G_AA.reshape(m, 2, 2 * m))
         system[:2 * m, :2 * m] = np.eye(2 * m) - blocks_G.reshape(2 * m, 2 * m)
@@ -325,51 +301,39 @@ class CondensedBushingContact:
         rhs[:2 * m] = (f[A] - np.einsum("kij,kj->ki", WM_A, U[A])).reshape(-1)
         rhs[2 * m:] = basis.T @ load
         solution = np.linalg.solve(system, rhs)
-        return rows, solution[:2 * m], basis @ solution[2 * m:]
-
-    def _energy(self, g: np.ndarray, U: np.ndarray, c: np.ndarray, load: np.ndarray) -> float:
-        """Pi = 1/2 g.U + sum_q w_q k/2 <-gap_q>^2 - F/L . c (J/m), with U = G g."""
-        d = self.points + U.reshape(-1, 2) - c
-        penetration = np.maximum(self.problem.geometry.pin_radius_m - np.hypot(d[:, 0], d[:, 1]),
-                                 0.0)
-        return 0.5 * g @ U + 0.5 * self._k * float(self.weights_m @ penetration**2) - float(
-            load @ c)
-
-    def _line_search(self, rows, g_rows, dc, f, load, cap: float = 1.0) -> np.ndarray:
-        """The full path's step rules (cap, slide limit, keep contact, Armijo on Pi); updates
-        the state g, U = G g, c and returns the full Newton update dU of the nodal displacements.
-        Only the columns of G on the old and new support are used."""
-        g0, U0, c0 = self._g, self._U, self.pin_centre_m.copy()
-        g_new = np.zeros_like(g0)
-        g_new[rows] = g_rows
-        dg = g_new - g0
+        dg = -self._g
+        dg[rows] += solution[:2 * m]
         support = np.flatnonzero(dg)
-        dU = self.compliance[:, support] @ dg[support]
-        slope = float((g0 - f.reshape(-1)) @ dU) + float((f.sum(axis=0) - load) @ dc)
-        energy0 = self._energy(g0, U0, c0, load)
-        step = min(cap, slide_limit(c0, dc, self.problem))
-        keeps_contact = None
-        while step >= 2.0**-10:
-            U = U0 + step * dU
-            c = polar_update(c0, step * dc)
-            if self._max_penetration(U, c) == 0.0:
-                step *= 0.5
-                continue
-            if keeps_contact is None:
-                keeps_contact = step
-            if slope >= 0.0 or step < keeps_contact * 2.0**-6:
-                break
-            if self._energy(g0 + step * dg, U, c, load) <= energy0 + 1e-4 * step * slope:
-                keeps_contact = step
-                break
-            step *= 0.5
-        step = keeps_contact if keeps_contact is not None else step
+        return (dg, self.compliance[:, support] @ dg[support]), basis @ solution[2 * m:]
+
+    def begin_line_search(self, update, dc, pin_residual) -> float:
+        """Slope of Pi along (dg, dU, dc): (g - f) . dU + (sum f - F/L) . dc (J/m)."""
+        f = self._linear[0]
+        self._base = (self._g, self._U, update)
+        return float((self._g - f.reshape(-1)) @ update[1]) + float(pin_residual @ dc)
+
+    def try_step(self, step: float, pin_centre: np.ndarray) -> None:
+        g0, U0, (dg, dU) = self._base
         self._g = g0 + step * dg
         self._U = U0 + step * dU
-        self.pin_centre_m = polar_update(c0, step * dc)
-        return dU
+        self.pin_centre_m = pin_centre
 
-    def _max_penetration(self, U: np.ndarray, c: np.ndarray | None = None) -> float:
-        d = self.points + U.reshape(-1, 2) - (self.pin_centre_m if c is None else c)
-        return float(max(self.problem.geometry.pin_radius_m - np.hypot(d[:, 0], d[:, 1]).min(),
-                         0.0))
+    def energy(self, load: np.ndarray) -> float:
+        """Pi = 1/2 g.U + sum_q w_q k/2 <-gap_q>^2 - F/L . c (J/m), with U = G g."""
+        penetration = self._penetrations()
+        return 0.5 * self._g @ self._U + 0.5 * self._k * float(
+            self.weights_m @ penetration**2) - float(load @ self.pin_centre_m)
+
+    def deformed_points(self) -> np.ndarray:
+        return self.points + self._U.reshape(-1, 2)
+
+    def frictionless(self) -> bool:
+        return self._friction_value == 0.0
+
+    def update_sizes(self, update) -> tuple[float, float]:
+        return float(np.abs(update[1]).max()), float(np.abs(self._U).max())
+
+    def _penetrations(self) -> np.ndarray:
+        """<R_p - |X + U - c|>_+ at the bore nodes (m)."""
+        d = self.points + self._U.reshape(-1, 2) - self.pin_centre_m
+        return np.maximum(self.problem.geometry.pin_radius_m - np.hypot(d[:, 0], d[:, 1]), 0.0)

@@ -11,51 +11,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from fewear.errors import FewearInputError
-
-
-def _require(ok: bool, message: str) -> None:
-    if not ok:
-        raise FewearInputError(message)
-
-
-def _finite_positive(name: str, value: float) -> None:
-    _require(
-        isinstance(value, (int, float)) and math.isfinite(value) and value > 0.0,
-        f"{name} = {value!r}: must be a finite number > 0",
-    )
-
-
-@dataclass(frozen=True)
-class BushingGeometry:
-    """The joint's geometry (m): bushing bore and outer radius, joint width, pin radius.
-
-    The radial clearance is ``inner_radius_m - pin_radius_m`` (the paper: 0.5 mm).
-    """
-
-    inner_radius_m: float
-    outer_radius_m: float
-    width_m: float
-    pin_radius_m: float
-
-    def __post_init__(self) -> None:
-        for name in ("inner_radius_m", "outer_radius_m", "width_m", "pin_radius_m"):
-            _finite_positive(name, getattr(self, name))
-        _require(
-            self.pin_radius_m < self.inner_radius_m,
-            f"pin radius_m = {self.pin_radius_m!r} must be smaller than the bushing "
-            f"inner_radius_m = {self.inner_radius_m!r} (a clearance joint)",
-        )
-        _require(
-            self.inner_radius_m < self.outer_radius_m,
-            f"bushing inner_radius_m = {self.inner_radius_m!r} must be smaller than "
-            f"outer_radius_m = {self.outer_radius_m!r}",
-        )
-
-    @property
-    def clearance_m(self) -> float:
-        """Radial clearance c = R_b - R_p (m)."""
-        return self.inner_radius_m - self.pin_radius_m
+from fewear.errors import require, require_finite_positive
+from fewear.mesh.geometry import BushingGeometry, MeshSettings
 
 
 @dataclass(frozen=True)
@@ -66,9 +23,9 @@ class BushingMaterial:
     poisson_ratio: float
 
     def __post_init__(self) -> None:
-        _finite_positive("bushing youngs_modulus_Pa", self.youngs_modulus_Pa)
+        require_finite_positive("bushing youngs_modulus_Pa", self.youngs_modulus_Pa)
         ν = self.poisson_ratio
-        _require(
+        require(
             isinstance(ν, (int, float)) and math.isfinite(ν) and -1.0 < ν < 0.5,
             f"bushing poisson_ratio = {ν!r}: must lie in (-1, 0.5)",
         )
@@ -77,40 +34,6 @@ class BushingMaterial:
     def plane_strain_modulus_Pa(self) -> float:
         """E' = E / (1 - nu^2), the modulus of plane strain (and E* of a rigid counterpart)."""
         return self.youngs_modulus_Pa / (1.0 - self.poisson_ratio**2)
-
-
-@dataclass(frozen=True)
-class MeshSettings:
-    """The structured O-grid of the bushing (see :mod:`fewear.mesh.bushing`).
-
-    - ``bore_element_size_m``: element edge length along the bore (m); the number of elements
-      around the circumference is 2 pi R_b / size rounded up to a multiple of 4.
-    - ``radial_element_count``: elements across the wall (>= 2).
-    - ``radial_grading_ratio``: radial size of the outermost over the innermost element (>= 1
-      grades toward the bore, where the contact stresses are).
-    """
-
-    bore_element_size_m: float
-    radial_element_count: int = 8
-    radial_grading_ratio: float = 4.0
-
-    def __post_init__(self) -> None:
-        _finite_positive("mesh bore_element_size_m", self.bore_element_size_m)
-        _require(
-            isinstance(self.radial_element_count, int) and 2 <= self.radial_element_count <= 1000,
-            f"mesh radial_element_count = {self.radial_element_count!r}: must be a whole "
-            "number in [2, 1000]",
-        )
-        g = self.radial_grading_ratio
-        _require(
-            isinstance(g, (int, float)) and math.isfinite(g) and 1.0 <= g <= 1000.0,
-            f"mesh radial_grading_ratio = {g!r}: must lie in [1, 1000]",
-        )
-
-    def circumferential_element_count(self, inner_radius_m: float) -> int:
-        """Elements around the bore: ceil(2 pi R_b / h) rounded up to a multiple of 4 (>= 8)."""
-        n = math.ceil(2.0 * math.pi * inner_radius_m / self.bore_element_size_m - 1e-9)
-        return max(8, 4 * math.ceil(n / 4))
 
 
 @dataclass(frozen=True)
@@ -123,7 +46,8 @@ class ContactSettings:
     - ``friction_coefficient`` (-): Coulomb mu; the tangential traction is mu*p when friction is on.
     - ``newton_tolerance`` (-): Newton stops when the update of pin centre and displacement is
       below this fraction of the clearance and the residual is below it relative to the force.
-    - ``newton_max_iterations``: more iterations raise ``RuntimeError``.
+    - ``newton_max_iterations``: more iterations (in the contact-angle fallback) refuse the
+      force (:class:`fewear.contact.admissible.ContactLoadError`).
     """
 
     penalty_factor: float = 100.0
@@ -132,18 +56,18 @@ class ContactSettings:
     newton_max_iterations: int = 60
 
     def __post_init__(self) -> None:
-        _finite_positive("contact penalty_factor", self.penalty_factor)
+        require_finite_positive("contact penalty_factor", self.penalty_factor)
         μ = self.friction_coefficient
-        _require(
+        require(
             isinstance(μ, (int, float)) and math.isfinite(μ) and 0.0 <= μ <= 2.0,
             f"friction_coefficient = {μ!r}: must lie in [0, 2]",
         )
         tol = self.newton_tolerance
-        _require(
+        require(
             isinstance(tol, (int, float)) and math.isfinite(tol) and 0.0 < tol < 1e-3,
             f"contact newton_tolerance = {tol!r}: must lie in (0, 1e-3)",
         )
-        _require(
+        require(
             isinstance(self.newton_max_iterations, int) and self.newton_max_iterations >= 1,
             f"contact newton_max_iterations = {self.newton_max_iterations!r}: must be a whole "
             "number >= 1",

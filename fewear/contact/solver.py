@@ -41,18 +41,10 @@ Since the nodes are the quadrature points, these are exactly the pressures whose
 
 F = 0 exactly: no contact; the pin is returned centred (c = 0), u = 0, zero pressure.
 
-Newton: semi-smooth (the active set follows the iterates), warm-started from the previous solve
-(its pin centre turned onto the new contact direction); a cold start places the pin along the
-expected contact direction at first touch plus a penetration that brings +-3 elements into contact.
-Globalisation: the pin's tangential update is applied as a turn about the bushing centre (it
-slides around the bore), by at most one bore element per step; a step never loses all contact;
-Armijo backtracking on the penalty potential (frictionless); a step cap that halves when the
-active set alternates (:class:`NewtonControl`, which also holds the stopping test).
-When only a few nodes carry the load (light loads: the pin rests on one or two nodes) the pin's
-sliding mode is nearly free within a fixed active set and this coupled iteration may not settle;
-after ``COUPLED_ITERATIONS`` (or a persistent alternation) :func:`solve_by_contact_angle` takes
-over: the pin angle becomes an outer unknown found by bracketing, each inner problem (pin on a
-fixed ray) being a well-posed Newton problem. ``newton_iterations`` counts all iterations.
+Newton: :class:`fewear.contact.newton.ContactNewton` (start, active-set steps, step rules,
+stopping test and the contact-angle fallback, shared with the condensed path); this class provides
+its linear algebra (assembly of r and J, the bordered step above, the penalty potential).
+``newton_iterations`` counts all iterations.
 
 Forms are compiled once per mesh; load, pin centre, penalty and friction are ``fem.Constant``s.
 After the bore has been moved (``mesh.geometry.x`` written, ALE), call :meth:`update_geometry`.
@@ -70,30 +62,21 @@ from dolfinx.fem import petsc as fem_petsc
 from mpi4py import MPI
 from petsc4py import PETSc
 
+from fewear.contact.admissible import (
+    ContactLoadError,
+    beyond_small_displacements,
+    displacement_limit_m,
+)
+from fewear.contact.newton import ContactNewton, ContactNotConverged, contact_direction
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.errors import FewearInputError
+from fewear.mesh.bore import BoreNodes, bore_node_weights
 from fewear.mesh.bushing import BORE_TAG, OUTER_TAG, bushing_mesh
-
-# DOLFINx reference quadrilateral: local edge e joins these vertices; geometry node 4 + e is the
-# edge's midpoint node of the 9-node geometry.
-QUAD_EDGE_VERTICES = ((0, 1), (0, 2), (1, 3), (2, 3))
 
 # The contact integral's quadrature: 3-point Gauss-Lobatto (Simpson) on each bore facet, whose
 # points are the facet's Q8 nodes (two vertices and the edge midpoint, weights 1/6, 1/6, 2/3).
 CONTACT_QUADRATURE = {"quadrature_degree": 3, "quadrature_rule": "GLL"}
-
-# Newton starts from the previous solution when the force turned by less than this (rad).
-WARM_START_MAX_ANGLE_RAD = math.radians(20.0)
-
-# Relative force residual of the pin at which Newton may stop (see NewtonControl).
-FORCE_TOLERANCE = 1e-10
-
-# Iterations of the coupled Newton on (u, c) before the fallback on the pin angle takes over.
-COUPLED_ITERATIONS = 12
-# ... or as soon as its step cap against active-set alternation has fallen below this.
-CYCLE_CAP = 0.2
-
 
 def checked_force(force_N) -> np.ndarray:
     """The joint force as a finite (2,) array (N), else FewearInputError."""
@@ -112,68 +95,6 @@ def checked_rotation(rotation_increment_rad: float) -> float:
     return value
 
 
-class BoreNodes:
-    """The bore's facets and Q8 nodes on this rank, and their gathered, angle-sorted union.
-
-    Attributes (local): ``facets``, ``cells`` (a cell of each facet), ``facet_nodes`` (n_f, 3)
-    geometry nodes (vertex, vertex, midpoint). Gathered on every rank: ``global_ids`` (the gmsh node
-    numbers), ``points`` (n, 2) undeformed coordinates, ``angles`` in [0, 2 pi).
-    ``local_index`` maps the local node list into the gathered order.
-    """
-
-    def __init__(self, msh, facet_tags, comm):
-        tdim = msh.topology.dim
-        msh.topology.create_connectivity(tdim - 1, tdim)
-        msh.topology.create_connectivity(tdim, tdim - 1)
-        n_owned = msh.topology.index_map(tdim - 1).size_local
-        facets = facet_tags.find(BORE_TAG)
-        self.facets = facets[facets < n_owned].astype(np.int32)
-        f2c = msh.topology.connectivity(tdim - 1, tdim)
-        c2f = msh.topology.connectivity(tdim, tdim - 1)
-        self.cells = np.array([f2c.links(f)[0] for f in self.facets], dtype=np.int32)
-        nodes = []
-        for facet, cell in zip(self.facets, self.cells):
-            local = list(c2f.links(cell)).index(facet)
-            dofs = msh.geometry.dofmap.links(cell)
-            a, b = QUAD_EDGE_VERTICES[local]
-            nodes.append((dofs[a], dofs[b], dofs[4 + local]))
-        self.facet_nodes = np.array(nodes, dtype=np.int32).reshape(-1, 3)
-        self.msh = msh
-        self.comm = comm
-        self.update_geometry()
-
-    def update_geometry(self) -> None:
-        """Re-read node coordinates (after the mesh moved) and rebuild the gathered node list."""
-        msh = self.msh
-        local_nodes, first = np.unique(self.facet_nodes, return_index=True)
-        self.local_nodes = local_nodes
-        self.local_node_cells = self.cells[first // 3]
-        ids = np.asarray(msh.geometry.input_global_indices, dtype=np.int64)[local_nodes]
-        xy = msh.geometry.x[local_nodes, :2]
-        all_ids = np.concatenate(self.comm.allgather(ids))
-        all_xy = np.concatenate(self.comm.allgather(xy)).reshape(-1, 2)
-        unique_ids, first = np.unique(all_ids, return_index=True)
-        points = all_xy[first]
-        angles = np.mod(np.arctan2(points[:, 1], points[:, 0]), 2.0 * math.pi)
-        order = np.lexsort((unique_ids, angles))
-        self.global_ids = unique_ids[order]
-        self.points = points[order]
-        self.angles = angles[order]
-        position = {gid: k for k, gid in enumerate(self.global_ids)}
-        self.local_index = np.array([position[g] for g in ids], dtype=np.int64)
-
-    def gather(self, local_values: np.ndarray) -> np.ndarray:
-        """Values at the local nodes (n_local, ...) -> the same on every rank in gathered order."""
-        shape = (self.global_ids.size,) + local_values.shape[1:]
-        out = np.zeros(shape)
-        count = np.zeros(self.global_ids.size)
-        out[self.local_index] = local_values
-        count[self.local_index] = 1.0
-        out = self.comm.allreduce(out, op=MPI.SUM)
-        count = self.comm.allreduce(count, op=MPI.SUM)
-        return out / count.reshape((-1,) + (1,) * (out.ndim - 1))
-
-
 def nodal_result(problem: ContactProblem, points: np.ndarray, angles: np.ndarray,
                  nodal_displacement: np.ndarray, pin_centre: np.ndarray, force: np.ndarray,
                  resultant: np.ndarray, normal: np.ndarray, rotation: float,
@@ -189,144 +110,6 @@ def nodal_result(problem: ContactProblem, points: np.ndarray, angles: np.ndarray
         applied_force_N=np.array(force, float), resultant_force_N=np.array(resultant, float),
         newton_iterations=int(iterations), normal_force_N=np.array(normal, float),
     )
-
-
-def first_touch_centre(points: np.ndarray, centre: np.ndarray, direction: np.ndarray,
-                       pin_radius: float) -> np.ndarray:
-    """Move the pin from ``centre`` along ``direction`` until its circle first meets ``points``.
-
-    For a point q (relative to the centre) outside the circle, |q - s d| = R_p at
-    s = q.d - sqrt((q.d)^2 - |q|^2 + R_p^2); the smallest such s over the points is the touch.
-    """
-    q = points - centre
-    qd = q @ direction
-    disc = qd**2 - np.einsum("ij,ij->i", q, q) + pin_radius**2
-    s = np.where(disc >= 0.0, qd - np.sqrt(np.maximum(disc, 0.0)), np.inf)
-    s = s[s >= 0.0]
-    return centre + (s.min() if s.size else 0.0) * direction
-
-
-class NewtonControl:
-    """The stopping test and the cap on the step against active-set cycling (both paths).
-
-    Converged when the Newton update of the pin centre is below ``newton_tolerance`` times the
-    largest penetration or 64 rounding units of R_p (the level at which gaps are computed), the
-    largest displacement update below 1000 ``newton_tolerance`` times the largest displacement
-    (the LU solves of the penalty-stiffened system are not more accurate) or the same rounding
-    level, and either the pin's force residual before the update was below
-    ``FORCE_TOLERANCE`` |F| (the pin is in balance) or the pin update is at 8 rounding units
-    (the residual is rounding noise: light loads on fine meshes).
-    Semi-smooth Newton can alternate between two active sets around a node that is just entering
-    contact; when the active set (measured by its length) returns to the one of two iterations
-    before, the step cap is halved, which turns the alternation into a converging bisection; it
-    is lifted again as soon as the active set stays the same (full Newton steps converge then).
-    """
-
-    def __init__(self, settings, pin_radius_m: float):
-        self.tolerance = settings.newton_tolerance
-        self.floor = 64.0 * np.finfo(float).eps * pin_radius_m
-        self.history: list[float] = []
-        self.cap = 1.0
-
-    def step_cap(self, active: float) -> float:
-        if len(self.history) >= 2 and active == self.history[-2] != self.history[-1]:
-            self.cap *= 0.5
-        elif self.history and active == self.history[-1]:
-            self.cap = 1.0
-        self.history.append(active)
-        return self.cap
-
-    def converged(self, pin_update: float, displacement_update: float, penetration: float,
-                  displacement: float, force_residual: float) -> bool:
-        """``force_residual``: |pin residual| / |F/L| before the update (-)."""
-        small = (pin_update <= max(self.tolerance * penetration, self.floor)
-                 and displacement_update <= max(1e3 * self.tolerance * displacement, self.floor))
-        return small and (force_residual <= FORCE_TOLERANCE or pin_update <= self.floor / 8.0)
-
-
-def unit(angle: float) -> np.ndarray:
-    return np.array([math.cos(angle), math.sin(angle)])
-
-
-def polar_update(centre: np.ndarray, dc: np.ndarray) -> np.ndarray:
-    """The pin centre after the Newton update dc, its tangential part applied as a turn about
-    the bushing centre: c' = (|c| + dc.e_r) e_r turned by (dc.e_t)/|c|. The pin then slides
-    around the bore instead of along a tangent, which would change its radial position by
-    (dc.e_t)^2 / (2|c|), far more than the penetrations; it equals c + dc to second order."""
-    radius = float(np.linalg.norm(centre))
-    if radius == 0.0:
-        return centre + dc
-    radial = centre / radius
-    tangential = radial[0] * dc[1] - radial[1] * dc[0]
-    return (radius + float(radial @ dc)) * unit(math.atan2(radial[1], radial[0])
-                                               + tangential / radius)
-
-
-def slide_limit(centre: np.ndarray, dc: np.ndarray, problem: ContactProblem) -> float:
-    """Step factor that lets the pin turn by at most one bore element, h / R_b, per step."""
-    radius = float(np.linalg.norm(centre))
-    if radius == 0.0:
-        return 1.0
-    tangential = abs(centre[0] * dc[1] - centre[1] * dc[0]) / radius
-    limit = radius * problem.mesh.bore_element_size_m / problem.geometry.inner_radius_m
-    return min(1.0, limit / tangential) if tangential > 0.0 else 1.0
-
-
-def solve_by_contact_angle(inner, pin_residual, direction: np.ndarray, load: np.ndarray,
-                           max_iterations: int) -> int:
-    """The fallback when the coupled Newton cycles: the pin angle psi as an outer unknown.
-
-    ``inner(a)`` solves the contact with the pin centre on the ray c = e a (force control of
-    the component a . F only: a Newton problem without the pin's nearly free sliding mode) and
-    returns its Newton iterations; ``pin_residual()`` then gives R - F/L (N/m) for the last inner
-    solution. The tangential residual tau(psi) = (R - F/L) . a_perp is continuous and grows with
-    psi overall (slope about |F|/L for a rigid pin), though only piecewise between the angles
-    where nodes enter contact. So: step against tau, doubling the step until tau changes sign
-    (the first step is the rigid estimate -tau L/|F|, at least 1e-4 rad), then the Illinois
-    variant of regula falsi on the bracket until it is 1e-12 rad wide (the pin centre to
-    ~1e-15 m) or |tau| <= 1e-9 |F|/L (about the rounding level of the penalty forces). The
-    state is left at the last angle evaluated (inside the final bracket). Returns the inner
-    iterations.
-    """
-    total = 0
-    tolerance = 1e-9 * float(np.linalg.norm(load))
-
-    def tangential_residual(ψ: float) -> float:
-        nonlocal total
-        total += inner(unit(ψ))
-        return float(pin_residual() @ unit(ψ + 0.5 * math.pi))
-
-    ψ0 = math.atan2(direction[1], direction[0])
-    τ0 = tangential_residual(ψ0)
-    step = -math.copysign(max(abs(τ0) / float(np.linalg.norm(load)), 1e-4), τ0)
-    iterations = 0
-    while abs(τ0) > tolerance:
-        ψ1 = ψ0 + step
-        τ1 = tangential_residual(ψ1)
-        iterations += 1
-        if (τ1 > 0.0) != (τ0 > 0.0) or abs(τ1) <= tolerance:
-            break
-        ψ0, τ0, step = ψ1, τ1, 2.0 * step
-        if abs(step) > math.pi or iterations > max_iterations:
-            raise RuntimeError(f"contact angle iteration found no equilibrium (load {load} N/m)")
-    else:
-        return total
-    ψ, τ, side = ψ1, τ1, 0
-    while abs(τ) > tolerance and abs(ψ1 - ψ0) > 1e-12:
-        iterations += 1
-        if iterations > max_iterations:
-            raise RuntimeError(f"contact angle iteration did not converge (load {load} N/m)")
-        ψ = (ψ0 * τ1 - ψ1 * τ0) / (τ1 - τ0)
-        τ = tangential_residual(ψ)
-        if (τ > 0.0) == (τ1 > 0.0):
-            ψ1, τ1 = ψ, τ
-            τ0 = 0.5 * τ0 if side == 1 else τ0
-            side = 1
-        else:
-            ψ0, τ0 = ψ, τ
-            τ1 = 0.5 * τ1 if side == -1 else τ1
-            side = -1
-    return total
 
 
 class BushingContactSolver:
@@ -350,7 +133,7 @@ class BushingContactSolver:
         self.bore = BoreNodes(self.mesh, self.facet_tags, comm)
         self._ksp = self._make_lu_solver()
         self.pin_centre_m = np.zeros(2)
-        self._last_direction: np.ndarray | None = None
+        self.newton = ContactNewton(self)
         self.last_result: ContactResult | None = None
         self.update_geometry()
 
@@ -392,6 +175,14 @@ class BushingContactSolver:
         self._normal_force = [fem.form(pressure * normal[i] * ds(BORE_TAG)) for i in range(2)]
         penetration = pressure / self.penalty
         self._penalty_energy = fem.form(0.5 * self.penalty * penetration**2 * ds(BORE_TAG))
+        # The cosine-law pressure of a 1 N joint force along load_direction (admissible.py)
+        self.load_direction = fem.Constant(msh, np.array([1.0, 0.0], dtype=PETSc.ScalarType))
+        x = ufl.SpatialCoordinate(msh)
+        radial = x / ufl.sqrt(ufl.inner(x, x))
+        facing = ufl.inner(radial, self.load_direction)
+        cosine_law = (2.0 / (math.pi * problem.geometry.inner_radius_m * problem.geometry.width_m)
+                      * ufl.conditional(ufl.gt(facing, 0.0), facing, 0.0))
+        self._cosine_law_load = fem.form(cosine_law * ufl.inner(radial, test) * ds(BORE_TAG))
         self._contact_length = fem.form(ufl.conditional(ufl.gt(pressure, 0.0), 1.0, 0.0)
                                         * ds(BORE_TAG))
 
@@ -446,6 +237,7 @@ class BushingContactSolver:
         self._K_elastic.assemble()
         self._K = self._K_elastic.duplicate(copy=True)
         self.bore.update_geometry()
+        self.weights_m = bore_node_weights(self.mesh, self.bore)
 
     # -- solving -----------------------------------------------------------------------------
     def solve(self, force_N, rotation_increment_rad: float = 0.0,
@@ -462,109 +254,96 @@ class BushingContactSolver:
         self.friction.value = μs
         if not np.any(force):
             return self._no_contact_result(force, rotation)
-        iterations = self._newton(force)
-        self.last_result = self._result(force, rotation, iterations)
-        return self.last_result
+        load = force / self.problem.geometry.width_m
+        try:
+            iterations = self.newton.solve(load, contact_direction(force, μs))
+        except ContactNotConverged:
+            self._refuse(force, "the contact Newton found no equilibrium")
+        self.pin_centre.value = self.pin_centre_m
+        self._assemble_contact(load)
+        displacement = self.nodal_displacement()
+        result = self._result(force, rotation, iterations, displacement)
+        reason = beyond_small_displacements(self.problem, float(np.hypot(*displacement.T).max()))
+        if reason is not None:
+            self._refuse(force, reason)
+        self.last_result = result
+        return result
 
-    def _no_contact_result(self, force, rotation) -> ContactResult:
+    def _reset(self) -> None:
+        """No displacement, the pin centred; the next solve starts cold."""
         self.displacement.x.array[:] = 0.0
         self.pin_centre_m = np.zeros(2)
         self.pin_centre.value = self.pin_centre_m
-        self._last_direction = None
+        self.newton.forget()
+
+    def _refuse(self, force: np.ndarray, reason: str) -> None:
+        """Raise :class:`ContactLoadError` for ``force`` (N); the next solve starts afresh."""
+        self._reset()
+        raise ContactLoadError(force, reason, displacement_limit_m(self.problem),
+                               self.admissible_force_N(force))
+
+    def admissible_force_N(self, force_N) -> float:
+        """The largest admissible |F| (N) in the direction of ``force_N``
+        (:mod:`fewear.contact.admissible`): u_max / max_q |u_q| with u the elastic displacement
+        under the cosine-law pressure of 1 N on the bore (one LU solve with K_el)."""
+        self.load_direction.value = np.asarray(force_N, dtype=float) / np.linalg.norm(force_N)
+        rhs = self._rhs[0]
+        with rhs.localForm() as local:
+            local.set(0.0)
+        fem_petsc.assemble_vector(rhs, self._cosine_law_load)
+        rhs.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+        rhs.array_w[self._bc_local] = 0.0
+        ksp = self._make_lu_solver()
+        ksp.setOperators(self._K_elastic)
+        unit_response = fem.Function(self.V)
+        ksp.solve(rhs, unit_response.vector)
+        unit_response.x.scatter_forward()
+        ksp.destroy()
+        U = self._at_bore_nodes(unit_response)
+        return displacement_limit_m(self.problem) / float(np.hypot(U[:, 0], U[:, 1]).max())
+
+    def _no_contact_result(self, force, rotation) -> ContactResult:
+        self._reset()
         zeros = np.zeros((self.bore.points.shape[0], 2))
         self.last_result = nodal_result(
             self.problem, self.bore.points, self.bore.angles, zeros, self.pin_centre_m, force,
             np.zeros(2), np.zeros(2), rotation, 0)
         return self.last_result
 
-    def contact_direction(self, force: np.ndarray) -> np.ndarray:
-        """Expected direction of the contact arc's centre: F turned by -atan(mu s), since the
-        traction p (n + mu s t) of a narrow arc around n has the direction of n turned by
-        atan(mu s)."""
-        φ = math.atan2(force[1], force[0]) - math.atan(float(self.friction.value))
-        return np.array([math.cos(φ), math.sin(φ)])
+    # -- the discretisation for ContactNewton --------------------------------------------------
+    # The displacement field is not turned for a warm start (no interpolation between rotated
+    # meshes in DOLFINx 0.5).
+    can_turn_state = False
 
-    def _cold_start(self, direction: np.ndarray) -> None:
-        """u = 0; the pin along ``direction`` at first touch of the bore plus the penetration
-        delta_0 = c theta_0^2 / 2 that puts a rigid bore in contact over +-theta_0 = +-3 elements
-        (so that the tangential balance of the pin is well posed from the first step)."""
+    def zero_displacement(self) -> None:
         self.displacement.x.array[:] = 0.0
-        geometry = self.problem.geometry
-        touch = first_touch_centre(self.bore.points, np.zeros(2), direction, geometry.pin_radius_m)
-        θ0 = 3.0 * self.problem.mesh.bore_element_size_m / geometry.inner_radius_m
-        self.pin_centre_m = touch + 0.5 * geometry.clearance_m * θ0**2 * direction
 
-    def _start(self, direction: np.ndarray) -> None:
-        """Initial guess: the last solution with its pin centre turned onto ``direction`` when
-        the last solve was in contact within ``WARM_START_MAX_ANGLE_RAD``, else a cold start."""
-        last = self._last_direction
-        if last is None:
-            self._cold_start(direction)
-            return
-        turn = math.atan2(last[0] * direction[1] - last[1] * direction[0], last @ direction)
-        if abs(turn) > WARM_START_MAX_ANGLE_RAD:
-            self._cold_start(direction)
-            return
-        rotation = np.array([[math.cos(turn), -math.sin(turn)], [math.sin(turn), math.cos(turn)]])
-        self.pin_centre_m = rotation @ self.pin_centre_m
-
-    def _newton(self, force) -> int:
-        """Coupled semi-smooth Newton on (u, c), globalised by :meth:`_line_search` and
-        :class:`NewtonControl`; if its active set alternates or it needs more than
-        ``COUPLED_ITERATIONS``, :func:`solve_by_contact_angle` takes over from where it stopped.
-        Returns the number of Newton iterations (all inner ones included)."""
-        load = force / self.problem.geometry.width_m
-        settings = self.problem.contact
-        direction = self.contact_direction(force)
-        self._start(direction)
-        iterations = self._coupled_newton(load, direction, np.eye(2), COUPLED_ITERATIONS)
-        if iterations is None:
-
-            def inner(a):
-                self.pin_centre_m = max(a @ self.pin_centre_m, 0.0) * a
-                count = self._coupled_newton(load, a, a[:, None], settings.newton_max_iterations)
-                if count is None:
-                    raise RuntimeError(f"contact Newton did not converge for force {force} N")
-                return count
-
-            def pin_residual():
-                self.pin_centre.value = self.pin_centre_m
-                return self._assemble_contact(load, jacobian=False)
-
-            iterations = COUPLED_ITERATIONS + solve_by_contact_angle(
-                inner, pin_residual, direction, load, settings.newton_max_iterations)
-        self._last_direction = direction
+    def linearise(self, load: np.ndarray) -> tuple[np.ndarray, float]:
+        """Assemble r and J at the current state; the pin residual (N/m) and active length (m)."""
         self.pin_centre.value = self.pin_centre_m
-        self._assemble_contact(load)
-        return iterations
+        return self._assemble_contact(load), self._active_length()
 
-    def _coupled_newton(self, load, direction, basis, max_iterations) -> int | None:
-        """Semi-smooth Newton on (u, c) with c moving in the span of ``basis`` (2, k); returns
-        the iterations, or None when not converged within ``max_iterations`` or, for the free pin
-        (k = 2), as soon as the active set alternates."""
-        settings = self.problem.contact
-        control = NewtonControl(settings, self.problem.geometry.pin_radius_m)
-        for iteration in range(1, max_iterations + 1):
-            self.pin_centre.value = self.pin_centre_m
-            r_pin = self._assemble_contact(load)
-            active = self._active_length()
-            if active == 0.0:
-                self._cold_start(direction)
-                control = NewtonControl(settings, self.problem.geometry.pin_radius_m)
-                continue
-            cap = control.step_cap(active)
-            if cap < CYCLE_CAP and basis.shape[1] == 2:
-                return None
-            du, dc = self._bordered_step(r_pin, basis)
-            self._line_search(du, dc, r_pin, load, cap)
-            if control.converged(np.linalg.norm(dc), du.norm(PETSc.NormType.NORM_INFINITY),
-                                 self._max_penetration(),
-                                 self.displacement.vector.norm(PETSc.NormType.NORM_INFINITY),
-                                 np.linalg.norm(basis.T @ r_pin) / np.linalg.norm(load)):
-                return iteration
-        return None
+    def newton_direction(self, pin_residual, load, basis):
+        return self._bordered_step(pin_residual, basis)
 
-    def _energy(self, load: np.ndarray) -> float:
+    def begin_line_search(self, du, dc, pin_residual) -> float:
+        """Slope of Pi along (du, dc): (K_el u + r) . du + r_c . dc (J/m)."""
+        rhs = self._rhs[1]
+        self._K_elastic.mult(self.displacement.vector, rhs)
+        rhs.axpy(1.0, self._r)
+        rhs.array_w[self._bc_local] = 0.0
+        self._line = (du, 0.0)
+        return rhs.dot(du) + float(pin_residual @ dc)
+
+    def try_step(self, step: float, pin_centre: np.ndarray) -> None:
+        du, taken = self._line
+        self.displacement.vector.axpy(step - taken, du)
+        self.displacement.x.scatter_forward()
+        self._line = (du, step)
+        self.pin_centre_m = pin_centre
+        self.pin_centre.value = pin_centre
+
+    def energy(self, load: np.ndarray) -> float:
         """Penalty potential per unit thickness (J/m):
         Pi = 1/2 u.K_el u + int 1/2 k <-g>_+^2 ds - F/L . c (its gradient is the residual)."""
         u = self.displacement.vector
@@ -572,48 +351,15 @@ class BushingContactSolver:
         penalty = self.comm.allreduce(fem.assemble_scalar(self._penalty_energy), op=MPI.SUM)
         return 0.5 * u.dot(self._rhs[2]) + penalty - float(load @ self.pin_centre_m)
 
-    def _line_search(self, du, dc, r_pin, load, cap: float = 1.0) -> float:
-        """Step length along the Newton direction (du, dc); updates u and c and returns it.
+    def deformed_points(self) -> np.ndarray:
+        return self.bore.points + self.nodal_displacement()
 
-        The pin moves by :func:`polar_update`. Starts from the smaller of ``cap`` and
-        :func:`slide_limit`, halves the step while the trial loses all contact, and, for a
-        descent direction, backtracks (Armijo, at most 2^-6) on the penalty potential
-        :meth:`_energy`. At rounding level near convergence, or with friction
-        (not a potential), the first contact-keeping step is taken.
-        """
-        u = self.displacement
-        c0 = self.pin_centre_m.copy()
-        rhs = self._rhs[1]
-        self._K_elastic.mult(u.vector, rhs)
-        rhs.axpy(1.0, self._r)
-        rhs.array_w[self._bc_local] = 0.0
-        slope = rhs.dot(du) + float(r_pin @ dc)
-        energy0 = self._energy(load)
-        step, taken = min(cap, slide_limit(c0, dc, self.problem)), 0.0
-        keeps_contact = None
-        while True:
-            u.vector.axpy(step - taken, du)
-            u.x.scatter_forward()
-            taken = step
-            self.pin_centre_m = polar_update(c0, step * dc)
-            self.pin_centre.value = self.pin_centre_m
-            if step < 2.0**-10:
-                return step
-            if self._active_length() == 0.0:
-                step *= 0.5
-                continue
-            if keeps_contact is None:
-                keeps_contact = step
-            if slope >= 0.0 or step < keeps_contact * 2.0**-6:
-                break
-            if self._energy(load) <= energy0 + 1e-4 * step * slope:
-                return step
-            step *= 0.5
-        u.vector.axpy(keeps_contact - taken, du)
-        u.x.scatter_forward()
-        self.pin_centre_m = polar_update(c0, keeps_contact * dc)
-        self.pin_centre.value = self.pin_centre_m
-        return keeps_contact
+    def frictionless(self) -> bool:
+        return float(self.friction.value) == 0.0
+
+    def update_sizes(self, du) -> tuple[float, float]:
+        return (du.norm(PETSc.NormType.NORM_INFINITY),
+                self.displacement.vector.norm(PETSc.NormType.NORM_INFINITY))
 
     def _assemble_contact(self, load: np.ndarray, jacobian: bool = True) -> np.ndarray:
         """Assemble r (contact residual) and, if asked, J; return the pin residual
@@ -641,11 +387,6 @@ class BushingContactSolver:
         """Sum of the quadrature weights of the bore points in contact (m); it changes with the
         active set and is 0 without contact."""
         return self.comm.allreduce(fem.assemble_scalar(self._contact_length), op=MPI.SUM)
-
-    def _max_penetration(self) -> float:
-        deformed = self.bore.points + self.nodal_displacement() - self.pin_centre_m
-        gap = np.hypot(deformed[:, 0], deformed[:, 1]) - self.problem.geometry.pin_radius_m
-        return float(max(-gap.min(), 0.0))
 
     def _bordered_step(self, r_pin: np.ndarray, basis: np.ndarray):
         """Newton direction (du, dc) of the bordered system by the Schur complement on the pin
@@ -680,21 +421,24 @@ class BushingContactSolver:
     # -- output ------------------------------------------------------------------------------
     def nodal_displacement(self) -> np.ndarray:
         """u at the gathered bore nodes (n, 2), by evaluating the S2 field (m)."""
+        return self._at_bore_nodes(self.displacement)
+
+    def _at_bore_nodes(self, field: fem.Function) -> np.ndarray:
+        """A vector field of V at the gathered bore nodes (n, 2)."""
         points = np.zeros((self.bore.local_nodes.size, 3))
         points[:, :2] = self.mesh.geometry.x[self.bore.local_nodes, :2]
         values = np.zeros((points.shape[0], 2))
         if points.shape[0]:  # a rank may own no part of the bore
-            values = self.displacement.eval(points, self.bore.local_node_cells).reshape(-1, 2)
+            values = field.eval(points, self.bore.local_node_cells).reshape(-1, 2)
         return self.bore.gather(values)
 
-    def _result(self, force, rotation, iterations) -> ContactResult:
+    def _result(self, force, rotation, iterations, displacement) -> ContactResult:
         L = self.problem.geometry.width_m
         resultant = L * np.array([-self.uniform[i].dot(self._r) for i in range(2)])  # E^T r
         normal = L * np.array([self.comm.allreduce(fem.assemble_scalar(form), op=MPI.SUM)
                                for form in self._normal_force])
-        return nodal_result(self.problem, self.bore.points, self.bore.angles,
-                            self.nodal_displacement(), self.pin_centre_m, force, resultant,
-                            normal, rotation, iterations)
+        return nodal_result(self.problem, self.bore.points, self.bore.angles, displacement,
+                            self.pin_centre_m, force, resultant, normal, rotation, iterations)
 
     def pressure_function(self) -> fem.Function:
         """The penalty pressure p = k <R_p - |x + u - c|>_+ interpolated at the nodes of the

@@ -31,8 +31,8 @@ import gmsh
 import numpy as np
 from mpi4py import MPI
 
-from fewear.contact.params import BushingGeometry, MeshSettings
 from fewear.errors import FewearInputError
+from fewear.mesh.geometry import BushingGeometry, MeshSettings
 from fewear.mesh.profile import checked_periodic_table, periodic_linear, polar_angle
 
 BORE_TAG = 1

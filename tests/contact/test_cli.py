@@ -209,6 +209,25 @@ def test_non_finite_force_exits_2(tmp_path, capsys, force, named):
     assert not out.exists()
 
 
+def test_force_the_bushing_cannot_carry_exits_2(tmp_path, capsys):
+    """1e12 N: no traceback, the force and the admissible range named, nothing written; the
+    range is the one the condensed path derives independently (G instead of an LU solve)."""
+    from fewear.contact.condensed import CondensedBushingContact
+    from fewear.contact.params import contact_problem_from_config
+    from fewear.io.config import load_config
+
+    out = tmp_path / "out"
+    status = main(["contact", "--force", "1e12", "0", "--out", str(out)])
+    error = capsys.readouterr().err
+    assert status == 2
+    assert error.startswith("fewear: error: force = (1e+12, 0) N: the bushing cannot carry it")
+    assert "Traceback" not in error and not out.exists()
+    admissible = float(error.split("|F| <= ")[1].split(" N")[0])
+    problem = contact_problem_from_config(load_config(None, CONFIG_SECTIONS))
+    fast = CondensedBushingContact(problem)
+    assert admissible == pytest.approx(fast.admissible_force_N((1.0, 0.0)), rel=1e-2)
+
+
 def test_unwritable_output_folder_exits_2(tmp_path, capsys):
     blocker = tmp_path / "file.txt"
     blocker.write_text("a file, not a folder")

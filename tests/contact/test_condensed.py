@@ -48,6 +48,37 @@ def test_fast_path_reproduces_the_full_solve(paths, force, rotation, friction):
     assert result.force_balance_rel_error < 1e-8
 
 
+def crank_cycle(steps):
+    """(force N, rotation increment rad, friction) of a slider-crank-like joint-force cycle:
+    |F| from 10 N to 5 kN and back, direction swinging +-20 degrees about the rod line and
+    reversing at half cycle, friction off at every 7th step."""
+    loads = []
+    for k in range(steps):
+        φ = 2 * math.pi * k / steps
+        magnitude = 10.0 * 500.0 ** (0.5 * (1.0 - math.cos(φ)))
+        direction = math.radians(20.0) * math.sin(φ) + (math.pi if φ < math.pi else 0.0)
+        loads.append((magnitude * np.array([math.cos(direction), math.sin(direction)]),
+                      0.02 * math.cos(φ), k % 7 != 3))
+    return loads
+
+
+def test_a_crank_cycle_of_loads_as_the_full_solve_in_a_handful_of_iterations():
+    """60 warm-started load steps, light loads and friction switching included: every step as
+    the full solve to 1e-6; the active-set Newton needs a handful of iterations (measured on
+    this mesh: mean 4.2, max 8)."""
+    from fewear.contact.condensed import CondensedBushingContact
+    from fewear.contact.solver import BushingContactSolver
+
+    full = BushingContactSolver(coarse_problem())
+    fast = CondensedBushingContact(full)
+    iterations = []
+    for force, rotation, friction in crank_cycle(60):
+        result = fast.solve(force, rotation, friction)
+        assert_same(full.solve(force, rotation, friction), result)
+        iterations.append(result.newton_iterations)
+    assert np.mean(iterations) < 5.0 and max(iterations) <= 10
+
+
 def test_zero_force(paths):
     _, fast = paths
     fast.solve((100.0, 0.0))
@@ -205,3 +236,51 @@ def test_two_ranks_give_the_serial_result(tmp_path):
             centre = serial[key + "pin_centre_m"]
             assert np.linalg.norm(centre - parallel[key + "pin_centre_m"]) < 1e-8 * np.linalg.norm(
                 centre)
+
+
+def test_a_force_beyond_the_admissible_range_is_refused_by_both_paths(paths):
+    """Both paths raise ContactLoadError (a FewearInputError) naming the force and the same
+    admissible range (computed with G and with an LU solve of K: agree to 1e-6), and solve the
+    next admissible force as from scratch."""
+    from fewear.contact.admissible import ContactLoadError
+    from fewear.errors import FewearInputError
+
+    full, fast = paths
+    force = (3e11, -4e11)
+    for path in (full, fast):
+        with pytest.raises(ContactLoadError) as caught:
+            path.solve(force)
+        assert isinstance(caught.value, FewearInputError)
+        assert "(3e+11, -4e+11) N" in str(caught.value)
+    limits = [path.admissible_force_N(force) for path in (full, fast)]
+    assert limits[1] == pytest.approx(limits[0], rel=1e-6)
+    assert 1e5 < limits[0] < 1e8
+    assert_same(full.solve((300.0, -3000.0)), fast.solve((300.0, -3000.0)))
+
+
+def test_admissible_force_moves_the_bore_by_the_limit_under_the_cosine_law(paths):
+    """At |F|_max the cosine-law pressure moves the bore by a tenth of the wall (linear
+    elasticity: |F|_max times the 1 N response), and the cosine-law nodal forces carry the
+    force: sum f_q L = F."""
+    from fewear.contact.admissible import cosine_law_nodal_forces
+
+    _, fast = paths
+    direction = np.array([0.6, -0.8])
+    geometry = fast.problem.geometry
+    forces = cosine_law_nodal_forces(fast.points, fast.weights_m, direction,
+                                     geometry.inner_radius_m, geometry.width_m)
+    np.testing.assert_allclose(forces.sum(axis=0) * geometry.width_m, direction, atol=1e-4)
+    limit = fast.admissible_force_N(direction)
+    U = (fast.compliance @ (limit * forces).reshape(-1)).reshape(-1, 2)
+    wall = geometry.outer_radius_m - geometry.inner_radius_m
+    assert np.hypot(U[:, 0], U[:, 1]).max() == pytest.approx(0.1 * wall, rel=1e-12)
+
+
+def test_only_small_displacements_are_admissible():
+    from fewear.contact.admissible import beyond_small_displacements
+
+    problem = coarse_problem()
+    wall = problem.geometry.outer_radius_m - problem.geometry.inner_radius_m
+    assert beyond_small_displacements(problem, 0.09 * wall) is None
+    assert "bore would move" in beyond_small_displacements(problem, 0.11 * wall)
+    assert beyond_small_displacements(problem, float("nan")) is not None

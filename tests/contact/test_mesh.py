@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from fewear.contact.params import BushingGeometry, MeshSettings
+from fewear.mesh.geometry import BushingGeometry, MeshSettings
 
 GEOMETRY = BushingGeometry(inner_radius_m=0.010, outer_radius_m=0.015, width_m=0.018,
                            pin_radius_m=0.0095)
@@ -20,7 +20,7 @@ def build(n_theta, radial_count=4, grading=1.0):
 
 def facet_geometry_nodes(msh, facets):
     """Geometry nodes (vertices and edge midpoint) of each facet, by the solver's convention."""
-    from fewear.contact.solver import QUAD_EDGE_VERTICES
+    from fewear.mesh.bore import QUAD_EDGE_VERTICES
 
     tdim = msh.topology.dim
     msh.topology.create_connectivity(tdim - 1, tdim)

@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 
-from fewear.contact.params import BushingGeometry, MeshSettings
+from fewear.mesh.geometry import BushingGeometry, MeshSettings
 
 GEOMETRY = BushingGeometry(inner_radius_m=0.010, outer_radius_m=0.015, width_m=0.018,
                            pin_radius_m=0.0095)

@@ -1,0 +1,547 @@
+"""The contact Newton: one algorithm for both discretisations of the pin-in-bushing problem.
+
+The unknowns are the bore displacement (the DOLFINx field u in :mod:`fewear.contact.solver`, the
+nodal forces g with U = G g in :mod:`fewear.contact.condensed`) and the pin centre c (m, per unit
+thickness); the equations are the elastic equilibrium of the bushing under the penalty tractions
+and the pin's force balance sum_q f_q = F / L. Each discretisation provides the linear algebra
+through the methods of :class:`ContactDiscretisation`; this module holds the algorithm:
+
+- **Start.** The *corner start* for the first solve: the region of pin centres free of contact
+  with the bore nodes is a polygon whose corners c_j touch two neighbouring nodes; a light load
+  presses the pin into the corner furthest along the contact direction, which is taken with no
+  displacement and the penetration |F/L| / (k (w_j + w_j+1)) of two nodes carrying the load.
+  Afterwards the *warm start*: the last solution, turned with the load by whole bore elements
+  where the discretisation can turn its state (the condensed path; pin and indentation
+  together), with the pin moved to the corner of the turned bore at a light load (the last
+  solution had at most ``LIGHT_CONTACT_NODES`` nodes in contact and the load grew by at most
+  ``LIGHT_LOAD_GROWTH``). Where it cannot (the full path), the last solution as it is if the
+  load is not light and the direction turned by at most ``WARM_START_MAX_ANGLE_RAD``, else the
+  corner start.
+- **Step.** Semi-smooth (active-set) Newton: the active set is the set of bore nodes in contact
+  at the current iterate; each step solves the bordered system of that active set for the
+  displacement update and the pin update dc.
+- **Step rules.** The pin moves by :func:`pin_update` (a move along the bore by more than one
+  node spacing as a turn about the bushing centre, a smaller one straight) plus a second-order
+  correction that keeps the nodes in contact as deep as the linearisation predicts (gaps curve
+  with 1/R_p); by at most one bore element per step (:func:`slide_limit`) and not past the
+  step at which the next node entering contact could carry the load alone (the pin's sliding
+  mode is soft against the active set); a step never loses all contact; without friction, Armijo
+  backtracking on the penalty potential, which with friction is no potential of the equations;
+  a step cap that halves when the active set alternates (:class:`NewtonControl`).
+- **Stopping test** (:class:`NewtonControl`), on the state returned: last updates at the Newton
+  tolerance or rounding level, and the pin in force balance to ``FORCE_TOLERANCE`` or, at light
+  loads, to the rounding level of the penalty forces.
+- **Contact-angle fallback.** Should the coupled iteration not settle within
+  ``COUPLED_ITERATIONS`` (or alternate persistently), :func:`solve_by_contact_angle` takes over:
+  the pin angle becomes an outer unknown found by bracketing, each inner problem (pin on a fixed
+  ray) being a well-posed Newton problem.
+
+At light loads the discrete problem can have more than one stable equilibrium (the pin resting
+in either corner next to a node whose normal is nearly along the load). Both discretisations
+start in the corner furthest along the contact direction; only where two corners tie to within
+the bore displacement could they settle in different ones (not seen in the tests and benchmark).
+
+A load the Newton cannot balance raises :class:`ContactNotConverged`.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Protocol
+
+import numpy as np
+
+# Newton starts from the previous solution when the force turned by less than this (rad).
+WARM_START_MAX_ANGLE_RAD = math.radians(20.0)
+
+# Relative force residual of the pin at which Newton may stop (see NewtonControl).
+FORCE_TOLERANCE = 1e-10
+
+# Force residuals within this many times the rounding level of the penalty forces are noise.
+ROUNDING_FACTOR = 0.5
+
+# Iterations of the coupled Newton on (u, c) before the fallback on the pin angle takes over.
+COUPLED_ITERATIONS = 12
+# ... or as soon as its step cap against active-set alternation has fallen below this.
+CYCLE_CAP = 0.2
+
+# At most this many nodes in contact is a light load: the next solve starts at a corner.
+LIGHT_CONTACT_NODES = 3
+# ... unless the load grows by more than this factor.
+LIGHT_LOAD_GROWTH = 1.5
+
+# Line search: smallest step tried, Armijo constant, and how far below the first
+# contact-keeping step the Armijo backtracking may go.
+SMALLEST_STEP = 2.0**-10
+ARMIJO = 1e-4
+BACKTRACK_RANGE = 2.0**-6
+ENERGY_ROUNDING = 1024.0 * np.finfo(float).eps
+
+
+class ContactNotConverged(RuntimeError):
+    """The contact Newton found no equilibrium for the load (N/m, per unit thickness)."""
+
+    def __init__(self, load: np.ndarray, reason: str):
+        self.load = np.array(load, dtype=float)
+        super().__init__(f"contact Newton {reason} (load {self.load} N/m)")
+
+
+class ContactDiscretisation(Protocol):
+    """What a discretisation provides to :class:`ContactNewton`.
+
+    State: the displacement (owned by the discretisation) and ``pin_centre_m`` (2,), m.
+    ``problem`` is the :class:`fewear.contact.params.ContactProblem`, ``weights_m`` (n,) the
+    Gauss-Lobatto weights of the bore nodes (m), in the angle-sorted order of the bore nodes.
+    """
+
+    problem: Any
+    weights_m: np.ndarray
+    can_turn_state: bool
+    pin_centre_m: np.ndarray
+
+    def zero_displacement(self) -> None:
+        """Set the displacement to zero."""
+
+    def turn_state(self, angle_rad: float) -> None:
+        """Turn the state (pin centre and displacement) about the bushing centre by the whole
+        number of bore elements nearest to ``angle_rad`` (only called if ``can_turn_state``)."""
+
+    def linearise(self, load: np.ndarray) -> tuple[np.ndarray, float]:
+        """Evaluate the contact at the current state; return the pin residual R - F/L (N/m)
+        and the active length (m, the sum of the weights of the nodes in contact)."""
+
+    def newton_direction(self, pin_residual: np.ndarray, load: np.ndarray,
+                         basis: np.ndarray) -> tuple[Any, np.ndarray]:
+        """The Newton update (displacement part, dc) of the last linearisation, with the pin
+        update dc = basis z restricted to the span of ``basis`` (2, k)."""
+
+    def begin_line_search(self, update: Any, dc: np.ndarray, pin_residual: np.ndarray) -> float:
+        """Remember the current state as the base of the line search along (update, dc);
+        return the slope dPi/dstep at step 0 (J/m)."""
+
+    def try_step(self, step: float, pin_centre: np.ndarray) -> None:
+        """Set the state to base + step * update, with the pin at ``pin_centre``."""
+
+    def energy(self, load: np.ndarray) -> float:
+        """The penalty potential Pi (J/m) of the current state."""
+
+    def frictionless(self) -> bool:
+        """Whether the present solve is without friction (then Pi is the potential of the
+        equations)."""
+
+    def deformed_points(self) -> np.ndarray:
+        """The bore nodes' current positions X + U (n, 2), m."""
+
+    def update_sizes(self, update: Any) -> tuple[float, float]:
+        """Largest displacement update and largest displacement (m), max norms."""
+
+
+def unit(angle: float) -> np.ndarray:
+    return np.array([math.cos(angle), math.sin(angle)])
+
+
+def contact_direction(force: np.ndarray, friction_value: float) -> np.ndarray:
+    """Expected direction of the contact arc's centre: F turned by -atan(mu s), since the
+    traction p (n + mu s t) of a narrow arc around n has the direction of n turned by
+    atan(mu s)."""
+    return unit(math.atan2(force[1], force[0]) - math.atan(friction_value))
+
+
+def first_touch_centre(points: np.ndarray, centre: np.ndarray, direction: np.ndarray,
+                       pin_radius: float) -> np.ndarray:
+    """Move the pin from ``centre`` along ``direction`` until its circle first meets ``points``.
+
+    For a point q (relative to the centre) outside the circle, |q - s d| = R_p at
+    s = q.d - sqrt((q.d)^2 - |q|^2 + R_p^2); the smallest such s over the points is the touch.
+    """
+    q = points - centre
+    qd = q @ direction
+    disc = qd**2 - np.einsum("ij,ij->i", q, q) + pin_radius**2
+    s = np.where(disc >= 0.0, qd - np.sqrt(np.maximum(disc, 0.0)), np.inf)
+    s = s[s >= 0.0]
+    return centre + (s.min() if s.size else 0.0) * direction
+
+
+def pin_update(centre: np.ndarray, dc: np.ndarray, node_spacing_rad: float) -> np.ndarray:
+    """The pin centre after the Newton update dc.
+
+    A move along the bore by more than one node spacing is applied as a turn about the bushing
+    centre: c' = (|c| + dc.e_r) e_r turned by (dc.e_t)/|c|. The pin then slides around the bore
+    (at constant depth in a conformal contact) instead of along a tangent, which would change
+    its radial position by (dc.e_t)^2 / (2|c|), far more than the penetrations. A smaller move
+    keeps the pin on the same nodes, whose gaps |X_q - c| - R_p curve only with 1/R_p: it is
+    applied as it is, c' = c + dc (the turn would add the radial error (dc.e_t)^2 / (2|c|),
+    R_p/|c| times more than the linearised gaps leave out, and lose a light contact).
+    """
+    radius = float(np.linalg.norm(centre))
+    if radius == 0.0:
+        return centre + dc
+    radial = centre / radius
+    tangential = radial[0] * dc[1] - radial[1] * dc[0]
+    if abs(tangential) <= radius * node_spacing_rad:
+        return centre + dc
+    return (radius + float(radial @ dc)) * unit(math.atan2(radial[1], radial[0])
+                                               + tangential / radius)
+
+
+def slide_limit(centre: np.ndarray, dc: np.ndarray, problem) -> float:
+    """Step factor that lets the pin turn by at most one bore element, h / R_b, per step."""
+    radius = float(np.linalg.norm(centre))
+    if radius == 0.0:
+        return 1.0
+    tangential = abs(centre[0] * dc[1] - centre[1] * dc[0]) / radius
+    limit = radius * problem.mesh.bore_element_size_m / problem.geometry.inner_radius_m
+    return min(1.0, limit / tangential) if tangential > 0.0 else 1.0
+
+
+class NewtonControl:
+    """The stopping test and the cap on the step against active-set cycling.
+
+    Converged when the last Newton update of the pin centre is below ``newton_tolerance`` times
+    the largest penetration or 64 rounding units of R_p (the level at which gaps are computed),
+    the largest displacement update below 1000 ``newton_tolerance`` times the largest
+    displacement (the LU solves of the penalty-stiffened system are not more accurate) or the
+    same rounding level, and the pin is in force balance at the present state: its force
+    residual below ``FORCE_TOLERANCE`` |F/L|, or, stagnating (not halved by the last step),
+    below ``ROUNDING_FACTOR`` times the rounding level of the penalty forces on the active nodes,
+    k eps R_p sum_A w_q (a gap |X + u - c| - R_p is computed to about eps R_p; at light loads
+    on fine meshes this is the larger bound), or the last pin update was at 8 rounding units
+    (the residual is the noise of the LU solves of the penalty-stiffened full system).
+    Semi-smooth Newton can alternate between two active sets around a node that is just entering
+    contact; when the active set (measured by its length) returns to the one of two iterations
+    before, the step cap is halved, which turns the alternation into a converging bisection; it
+    is lifted again as soon as the active set stays the same (full Newton steps converge then).
+    """
+
+    def __init__(self, problem):
+        self.tolerance = problem.contact.newton_tolerance
+        self.rounding_m = np.finfo(float).eps * problem.geometry.pin_radius_m
+        self.floor = 64.0 * self.rounding_m
+        self.penalty = problem.penalty_stiffness_Pa_per_m()
+        self.history: list[float] = []
+        self.cap = 1.0
+        self.last_residual = math.inf
+
+    def step_cap(self, active: float) -> float:
+        if len(self.history) >= 2 and active == self.history[-2] != self.history[-1]:
+            self.cap *= 0.5
+        elif self.history and active == self.history[-1]:
+            self.cap = 1.0
+        self.history.append(active)
+        return self.cap
+
+    def converged(self, pin_update: float, displacement_update: float, penetration: float,
+                  displacement: float, force_residual: float, load: float,
+                  active_length: float) -> bool:
+        """The last step's updates, the present penetration and displacement (m); the pin's
+        force residual |R - F/L| at the present state and |F/L| (N/m); the active length (m)."""
+        small = (pin_update <= max(self.tolerance * penetration, self.floor)
+                 and displacement_update <= max(1e3 * self.tolerance * displacement, self.floor))
+        rounding = ROUNDING_FACTOR * self.penalty * self.rounding_m * active_length
+        stagnating = 2.0 * force_residual >= self.last_residual
+        self.last_residual = force_residual
+        return small and (force_residual <= FORCE_TOLERANCE * load
+                          or (stagnating and force_residual <= rounding)
+                          or pin_update <= self.floor / 8.0)
+
+
+def solve_by_contact_angle(inner, pin_residual, direction: np.ndarray, load: np.ndarray,
+                           max_iterations: int) -> int:
+    """The fallback when the coupled Newton cycles: the pin angle psi as an outer unknown.
+
+    ``inner(a)`` solves the contact with the pin centre on the ray c = e a (force control of
+    the component a . F only: a Newton problem without the pin's nearly free sliding mode) and
+    returns its Newton iterations; ``pin_residual()`` then gives R - F/L (N/m) for the last inner
+    solution. The tangential residual tau(psi) = (R - F/L) . a_perp is continuous and grows with
+    psi overall (slope about |F|/L for a rigid pin), though only piecewise between the angles
+    where nodes enter contact. So: step against tau, doubling the step until tau changes sign
+    (the first step is the rigid estimate -tau L/|F|, at least 1e-4 rad), then the Illinois
+    variant of regula falsi on the bracket until it is 1e-12 rad wide (the pin centre to
+    ~1e-15 m) or |tau| <= 1e-9 |F|/L (about the rounding level of the penalty forces). The
+    state is left at the last angle evaluated (inside the final bracket). Returns the inner
+    iterations.
+    """
+    total = 0
+    tolerance = 1e-9 * float(np.linalg.norm(load))
+
+    def tangential_residual(ψ: float) -> float:
+        nonlocal total
+        total += inner(unit(ψ))
+        return float(pin_residual() @ unit(ψ + 0.5 * math.pi))
+
+    ψ0 = math.atan2(direction[1], direction[0])
+    τ0 = tangential_residual(ψ0)
+    step = -math.copysign(max(abs(τ0) / float(np.linalg.norm(load)), 1e-4), τ0)
+    iterations = 0
+    while abs(τ0) > tolerance:
+        ψ1 = ψ0 + step
+        τ1 = tangential_residual(ψ1)
+        iterations += 1
+        if (τ1 > 0.0) != (τ0 > 0.0) or abs(τ1) <= tolerance:
+            break
+        ψ0, τ0, step = ψ1, τ1, 2.0 * step
+        if abs(step) > math.pi or iterations > max_iterations:
+            raise ContactNotConverged(load, "found no contact angle in equilibrium")
+    else:
+        return total
+    ψ, τ, side = ψ1, τ1, 0
+    while abs(τ) > tolerance and abs(ψ1 - ψ0) > 1e-12:
+        iterations += 1
+        if iterations > max_iterations:
+            raise ContactNotConverged(load, "did not converge on the contact angle")
+        ψ = (ψ0 * τ1 - ψ1 * τ0) / (τ1 - τ0)
+        τ = tangential_residual(ψ)
+        if (τ > 0.0) == (τ1 > 0.0):
+            ψ1, τ1 = ψ, τ
+            τ0 = 0.5 * τ0 if side == 1 else τ0
+            side = 1
+        else:
+            ψ0, τ0 = ψ, τ
+            τ1 = 0.5 * τ1 if side == -1 else τ1
+            side = -1
+    return total
+
+
+class ContactNewton:
+    """The algorithm of the module docstring on a :class:`ContactDiscretisation`.
+
+    ``solve(load, direction)`` with the load F/L (N/m) and the expected contact direction
+    (:func:`contact_direction`) leaves the discretisation at the solution and returns the number
+    of Newton iterations (all inner ones of the fallback included); :meth:`forget` makes the
+    next solve start cold (after a zero force or a geometry change).
+    """
+
+    def __init__(self, path: ContactDiscretisation):
+        self.path = path
+        self.last_direction: np.ndarray | None = None
+        self.last_contact_nodes = 0
+        self.last_load = 0.0
+        elements = path.problem.mesh.circumferential_element_count(
+            path.problem.geometry.inner_radius_m)
+        self.node_spacing_rad = math.pi / elements  # two bore nodes per element
+
+    def forget(self) -> None:
+        self.last_direction = None
+
+    def solve(self, load: np.ndarray, direction: np.ndarray) -> int:
+        self._start(direction, load)
+        iterations = self._coupled_newton(load, direction, np.eye(2), COUPLED_ITERATIONS)
+        if iterations is None:
+            iterations = COUPLED_ITERATIONS + self._solve_by_contact_angle(load, direction)
+        self.last_direction = direction
+        self.last_contact_nodes = int(np.count_nonzero(self._gaps() < 0.0))
+        self.last_load = float(np.linalg.norm(load))
+        return iterations
+
+    def _solve_by_contact_angle(self, load: np.ndarray, direction: np.ndarray) -> int:
+        path, settings = self.path, self.path.problem.contact
+
+        def inner(a):
+            self._onto_ray(a, load)
+            count = self._coupled_newton(load, a, a[:, None], settings.newton_max_iterations)
+            if count is None:
+                raise ContactNotConverged(load, "did not converge with the pin on a fixed ray")
+            return count
+
+        return solve_by_contact_angle(inner, lambda: path.linearise(load)[0], direction, load,
+                                      settings.newton_max_iterations)
+
+    def _onto_ray(self, a: np.ndarray, load: np.ndarray) -> None:
+        """Put the pin on the ray c = e a, as deep in the (deformed) bore as it is now or at
+        least as deep as two nodes need to carry the load (:meth:`_load_penetration`): first
+        touch along a plus that penetration, so that it is in contact."""
+        path = self.path
+        penetration = max(-self._gaps().min(), self._load_penetration(
+            load, 2.0 * path.weights_m.max()))
+        touch = first_touch_centre(path.deformed_points(), np.zeros(2), a,
+                                   path.problem.geometry.pin_radius_m)
+        path.pin_centre_m = touch + penetration * a
+
+    def _load_penetration(self, load: np.ndarray, weight_m: float) -> float:
+        """The penetration (m) at which nodes of total weight w carry |F/L|: |F/L| / (k w)."""
+        return float(np.linalg.norm(load)) / (self.path.problem.penalty_stiffness_Pa_per_m()
+                                              * weight_m)
+
+    def _start(self, direction: np.ndarray, load: np.ndarray) -> None:
+        """Without a previous solution: the corner start (:meth:`_corner_start`). Else, if the
+        discretisation can turn its state: the last solution turned by the whole number of bore
+        elements nearest to the turn of the contact direction (pin and indentation together:
+        turning the pin alone against the old indentation would start far from equilibrium),
+        and at a light load (the last solution had at most ``LIGHT_CONTACT_NODES`` nodes in
+        contact and the load grew by at most ``LIGHT_LOAD_GROWTH``) the pin moved to
+        :meth:`_corner` of that turned bore. If it cannot: the last solution as it is when the
+        load is not light and the direction turned by at most ``WARM_START_MAX_ANGLE_RAD``,
+        else the corner start."""
+        last, path = self.last_direction, self.path
+        size = float(np.linalg.norm(load))
+        light = (self.last_contact_nodes <= LIGHT_CONTACT_NODES
+                 and size <= LIGHT_LOAD_GROWTH * self.last_load)
+        if last is not None and path.can_turn_state:
+            turn = math.atan2(last[0] * direction[1] - last[1] * direction[0], last @ direction)
+            path.turn_state(turn)
+            if light:
+                path.pin_centre_m = self._corner(direction, load)
+            return
+        if last is not None and not light:
+            turn = math.atan2(last[0] * direction[1] - last[1] * direction[0], last @ direction)
+            if abs(turn) <= WARM_START_MAX_ANGLE_RAD:
+                return
+        self._corner_start(direction, load)
+
+    def _corner_start(self, direction: np.ndarray, load: np.ndarray) -> None:
+        """No displacement, the pin at :meth:`_corner` of the undeformed bore."""
+        self.path.zero_displacement()
+        self.path.pin_centre_m = self._corner(direction, load)
+
+    def _corner(self, direction: np.ndarray, load: np.ndarray) -> np.ndarray:
+        """The light-load solution for the present bore displacement: the pin rests on the two
+        neighbouring bore nodes j, j+1 whose corner c_j (the pin centre touching both, at
+        R_p from each) lies furthest along ``direction`` d (the contact-free region of the pin
+        centre is the polygon of these corners), pressed in along d by the penetration
+        |F/L| / (k (w_j + w_j+1)) that two nodes of weight w need to carry the load."""
+        path = self.path
+        X = path.deformed_points()
+        ahead = np.roll(X, -1, axis=0)
+        middle = 0.5 * (X + ahead)
+        chord = ahead - X
+        half = 0.5 * np.hypot(chord[:, 0], chord[:, 1])
+        outward = np.column_stack([chord[:, 1], -chord[:, 0]]) / (2.0 * half[:, None])
+        outward *= np.sign(np.einsum("ij,ij->i", outward, middle))[:, None]
+        R_p = path.problem.geometry.pin_radius_m
+        corners = middle - np.sqrt(R_p**2 - half**2)[:, None] * outward
+        j = int(np.argmax(corners @ direction))
+        weight = path.weights_m[j] + path.weights_m[(j + 1) % len(X)]
+        centre = corners[j] + self._load_penetration(load, weight) * direction
+        return centre
+
+    def _coupled_newton(self, load, direction, basis, max_iterations) -> int | None:
+        """Semi-smooth Newton on (displacement, c) with c moving in the span of ``basis``
+        (2, k); returns the number of steps taken to the state that passes the stopping test,
+        or None when not converged within ``max_iterations`` steps or, for the free pin
+        (k = 2), as soon as the active set alternates persistently."""
+        path = self.path
+        control = NewtonControl(path.problem)
+        last_step = None  # (pin update, displacement update, penetration, displacement)
+        for iteration in range(max_iterations + 1):
+            pin_residual, active = path.linearise(load)
+            if active == 0.0:  # restart, on the ray if the pin is held on one
+                if basis.shape[1] == 2:
+                    self._corner_start(direction, load)
+                else:
+                    path.zero_displacement()
+                    self._onto_ray(direction, load)
+                control, last_step = NewtonControl(path.problem), None
+                continue
+            residual = float(np.linalg.norm(basis.T @ pin_residual))
+            if last_step is not None and control.converged(
+                    *last_step, residual, float(np.linalg.norm(load)), active):
+                return iteration
+            cap = control.step_cap(active)
+            if iteration == max_iterations or (cap < CYCLE_CAP and basis.shape[1] == 2):
+                return None
+            update, dc = path.newton_direction(pin_residual, load, basis)
+            self._line_search(update, dc, pin_residual, load, cap)
+            last_step = (float(np.linalg.norm(dc)), *self._sizes(update))
+        return None
+
+    def _sizes(self, update) -> tuple[float, float, float]:
+        displacement_update, displacement = self.path.update_sizes(update)
+        return displacement_update, max(-self._gaps().min(), 0.0), displacement
+
+    def _gaps(self) -> np.ndarray:
+        """Gaps |X + U - c| - R_p at the bore nodes (m), negative in contact."""
+        d = self.path.deformed_points() - self.path.pin_centre_m
+        return np.hypot(d[:, 0], d[:, 1]) - self.path.problem.geometry.pin_radius_m
+
+    def _line_search(self, update, dc, pin_residual, load, cap: float) -> float:
+        """Step length along the Newton direction; leaves the state there and returns it.
+
+        Starts from the smaller of ``cap``, :func:`slide_limit` and the step at which the first
+        node entering contact could carry the load alone (:meth:`_entering_limit`). Then halves
+        the step while the trial loses all contact, and, for a descent direction, backtracks
+        (Armijo, at most ``BACKTRACK_RANGE`` below the first contact-keeping step) on the
+        penalty potential. At rounding level near convergence, or with friction (not a
+        potential), the first contact-keeping step is taken.
+        """
+        path = self.path
+        gaps0 = self._gaps()
+        base = _LineBase(path.pin_centre_m.copy(), path.deformed_points(), gaps0)
+        slope = path.begin_line_search(update, dc, pin_residual)
+        # With friction Pi is no potential of the equations; without, it is a sum of terms of
+        # size |F/L| |c| and a decrease below ENERGY_ROUNDING of that is noise: in both cases
+        # the first contact-keeping step is taken as for a non-descent direction
+        descent = path.frictionless() and -slope > ENERGY_ROUNDING * float(
+            np.linalg.norm(load) * np.linalg.norm(base.centre))
+        energy0 = path.energy(load) if descent else math.nan
+        step = min(cap, slide_limit(base.centre, dc, path.problem))
+        keeps_contact = None
+        while step >= SMALLEST_STEP:
+            self._try(step, base, dc)
+            gaps = self._gaps()
+            if step > (limit := self._entering_limit(gaps0, gaps, step, load)):
+                step = limit
+                self._try(step, base, dc)
+                gaps = self._gaps()
+            if gaps.min() >= 0.0:
+                step *= 0.5
+                continue
+            if keeps_contact is None:
+                keeps_contact = step
+                if not descent:
+                    return step
+            if step < keeps_contact * BACKTRACK_RANGE:
+                break
+            if path.energy(load) <= energy0 + ARMIJO * step * slope:
+                return step
+            step *= 0.5
+        if keeps_contact is None:
+            keeps_contact = step  # every trial lost contact: a step below the smallest tried
+        self._try(keeps_contact, base, dc)
+        return keeps_contact
+
+    def _entering_limit(self, gaps0: np.ndarray, gaps: np.ndarray, step: float,
+                        load: np.ndarray) -> float:
+        """The step at which the first node that enters contact between step 0 and ``step``
+        reaches the penetration at which it would carry the load alone (:meth:`_load_penetration`),
+        with the gaps linear in the step; ``step`` if no node enters. The pin's sliding mode is
+        soft against the active set (nearly free when it holds one or two nodes), so a Newton
+        step may slide the pin far past the node that stops it."""
+        entering = (gaps0 >= 0.0) & (gaps < 0.0)
+        if not np.any(entering):
+            return step
+        closing_rate = (gaps0[entering] - gaps[entering]) / step
+        needed = np.array([self._load_penetration(load, w)
+                           for w in self.path.weights_m[entering]])
+        return float(np.min((gaps0[entering] + needed) / closing_rate))
+
+    def _try(self, step: float, base: _LineBase, dc: np.ndarray) -> None:
+        """Set the state to the trial ``step`` along (update, dc), the pin by :func:`pin_update`
+        plus a second-order correction: the nodes in contact at the base move off the pin by
+        more than their linearised gaps n_q . (dX_q - dc) predict (gaps curve with 1/R_p, which
+        at light loads is more than the penetrations); the pin follows them by the mean of that
+        excess along their mean normal."""
+        path = self.path
+        centre = pin_update(base.centre, step * dc, self.node_spacing_rad)
+        path.try_step(step, centre)
+        if not base.normals.size:
+            return
+        X = path.deformed_points()[base.contact]
+        moved = np.einsum("qi,qi->q", base.normals, X - base.points - (centre - base.centre))
+        d = X - centre
+        excess = np.hypot(d[:, 0], d[:, 1]) - path.problem.geometry.pin_radius_m - (
+            base.gaps + moved)
+        mean_normal = base.normals.sum(axis=0)
+        path.try_step(step, centre + excess.mean() * mean_normal / np.linalg.norm(mean_normal))
+
+
+class _LineBase:
+    """The state at the start of a line search: pin centre, the nodes in contact (indices),
+    their positions X + U, normals and gaps."""
+
+    def __init__(self, centre: np.ndarray, deformed_points: np.ndarray, gaps: np.ndarray):
+        self.centre = centre
+        self.contact = np.flatnonzero(gaps < 0.0)
+        self.points = deformed_points[self.contact]
+        d = self.points - centre
+        self.normals = d / np.hypot(d[:, 0], d[:, 1])[:, None]
+        self.gaps = gaps[self.contact]
