@@ -6,8 +6,10 @@ the bushing frame, theta = atan2(n) - phi_bushing, gives the clearance c(theta)
 (:class:`fewear.mbd.contact.ClearanceProfile`); the penetration is delta = d - c(theta) and its rate
 delta_dot = e'.n - c'(theta) theta_dot.
 
-Forces: the bushing pushes the pin with f = -F_n n + F_t t at the contact point (pin surface
-point r_pin + R_pin n, bore point r_bushing + R_bushing n); the bushing gets -f. The slip velocity
+Forces: the bushing pushes the pin with f = -F_n m + F_t m_perp at the contact point (pin surface
+point r_pin + R_pin n, bore point r_bushing + R_bushing n); the bushing gets -f. m is the normal
+of the clearance curve, the unit gradient of delta (:func:`contact_normal`): n on a circular bore,
+tilted against the slope c'(theta) of a worn one. The slip velocity
 of the pin relative to the bushing at the contact point is v_t = e'.t + R_pin omega_pin
 - R_bushing omega_bushing; friction F_t = -mu c_d F_n sign(v_t). Moments: R_pin F_t on the pin,
 -R_bushing F_t on the bushing.
@@ -31,6 +33,34 @@ import numpy as np
 
 from fewear.mbd.contact import ClearanceProfile, ContactLaw, Friction
 from fewear.mbd.points import rotation
+
+
+def contact_normal(nx: float, ny: float, slope: float) -> tuple[float, float]:
+    """The unit normal m of the clearance curve |e| = c(theta) at the direction n (pointing
+    from the bushing centre to the pin centre): the gradient of the penetration
+    delta = |e| - c(theta(e)), n - (c'(theta) / |e|) t, normalised (``slope`` = c'/|e|). On a
+    circular bore m = n; on a worn bore whose clearance varies with the angle the contact force
+    leans against the slope, so a pin sliding out of a worn pocket climbs its edge instead of
+    running into it (the elastic part F(delta) m is then the gradient of a potential)."""
+    mx, my = nx + slope * ny, ny - slope * nx
+    length = math.hypot(mx, my)
+    return mx / length, my / length
+
+
+def normal_turn(nx: float, ny: float, d: float, dc: float, F_n: float, F_t: float) -> np.ndarray:
+    """-F_n dm/de + F_t dm_perp/de (2, 2): how the force turns with the eccentricity e at fixed
+    F_n, F_t. With s = c'/d, m~ = n - s t, dn/de = t t^T / d, dt/de = -n t^T / d and
+    ds/de = -c' n^T / d^2 (c'' = 0 on the linear profile pieces):
+    dm~/de = (t t^T + s (t n^T + n t^T)) / d, dm/de = (I - m m^T) dm~/de / |m~|."""
+    n, t = np.array([nx, ny]), np.array([-ny, nx])
+    slope = dc / d
+    raw = n - slope * t
+    length = float(np.hypot(*raw))
+    m = raw / length
+    turn = (np.eye(2) - np.outer(m, m)) @ (
+        np.outer(t, t) + slope * (np.outer(t, n) + np.outer(n, t))) / (d * length)
+    quarter = np.array([[0.0, -1.0], [1.0, 0.0]])
+    return -F_n * turn + F_t * (quarter @ turn)
 
 
 class ClearanceJoint:
@@ -89,7 +119,8 @@ class ClearanceJoint:
         psi, dpsi = self.friction.factor(e_t + self.pin_radius * omega_p
                                          - self.bushing_radius * omega_b)
         F_t = -self.friction.coefficient * psi * F_n
-        f = (-F_n * nx + F_t * tx, -F_n * ny + F_t * ty)
+        mx, my = contact_normal(nx, ny, dc / d)
+        f = (-F_n * mx - F_t * my, -F_n * my + F_t * mx)
         if not derivatives:
             return f, F_n, F_t, None
         D = self._force_derivatives((d, nx, ny, e_n, e_t, dc), F_n, F_t, dF_ddelta, dF_drate,
@@ -115,15 +146,12 @@ class ClearanceJoint:
             dslip = np.array([-e_n * tx / d, -e_n * ty / d, tx, ty, self.pin_radius,
                               -self.bushing_radius, 0.0])
             dF_t -= mu * F_n * dpsi * dslip
+        mx, my = contact_normal(nx, ny, dc / d)
         D = np.empty((3, 7))
-        D[0] = -nx * dF_n + tx * dF_t
-        D[1] = -ny * dF_n + ty * dF_t
+        D[0] = -mx * dF_n - my * dF_t
+        D[1] = -my * dF_n + mx * dF_t
         D[2] = dF_t
-        a, b = -F_n / d, -F_t / d
-        D[0, 0] += (a * tx + b * nx) * tx
-        D[0, 1] += (a * tx + b * nx) * ty
-        D[1, 0] += (a * ty + b * ny) * tx
-        D[1, 1] += (a * ty + b * ny) * ty
+        D[0:2, 0:2] += normal_turn(nx, ny, d, dc, F_n, F_t)
         return D
 
     # --- force element interface -------------------------------------------------------------

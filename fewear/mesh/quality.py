@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 from mpi4py import MPI
 
+from fewear.mesh.bore import QUAD_EDGE_VERTICES
 from fewear.mesh.bushing import BORE_TAG
 
 # The reference lattice: 5 points per direction on the unit square (DOLFINx's reference quad).
@@ -33,7 +34,6 @@ LATTICE_1D = np.linspace(0.0, 1.0, 5)
 REFERENCE_LATTICE = np.array([[s, t] for t in LATTICE_1D for s in LATTICE_1D])
 # DOLFINx's reference quadrilateral: the local vertices (a, b) of edge e, the edge opposite to e,
 # and the Q9 geometry node of the midpoint of edge e (4 vertices first, then one node per edge).
-QUAD_EDGE_VERTICES = ((0, 1), (0, 2), (1, 3), (2, 3))
 EDGE_MIDPOINT_NODE_OFFSET = 4
 OPPOSITE_EDGE = (3, 2, 1, 0)
 

@@ -151,3 +151,22 @@ def test_generalized_force_jacobian_matches_finite_differences():
         numeric = (joint.evaluate(q, qd_step, 0.0)[0]
                    - joint.evaluate(q, -qd_step, 0.0)[0]) / (2 * step)
         np.testing.assert_allclose(C[:, k], numeric, rtol=1e-4, atol=1e-6 * np.abs(C).max())
+
+
+def test_contact_normal_is_the_gradient_of_the_penetration_on_a_worn_profile():
+    """On a clearance that varies with the angle the force direction m is grad delta / |grad
+    delta|, delta = |e| - c(theta(e)) (finite differences), not the radial n; m = n on a circle."""
+    from fewear.mbd.clearance import contact_normal
+
+    profile = ClearanceProfile(np.array([0.0, 0.5, 3.0]), np.array([5e-4, 8e-4, 6e-4]))
+
+    def delta(e):
+        return math.hypot(*e) - profile(math.atan2(e[1], e[0]))[0]
+
+    e = np.array([7.0e-4 * math.cos(0.3), 7.0e-4 * math.sin(0.3)])
+    h = 1e-10
+    gradient = np.array([(delta(e + h * k) - delta(e - h * k)) / (2 * h) for k in np.eye(2)])
+    d = math.hypot(*e)
+    m = contact_normal(e[0] / d, e[1] / d, profile(0.3)[1] / d)
+    np.testing.assert_allclose(m, gradient / np.linalg.norm(gradient), atol=1e-6)
+    assert contact_normal(0.6, 0.8, 0.0) == pytest.approx((0.6, 0.8))
