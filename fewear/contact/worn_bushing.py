@@ -13,6 +13,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from fewear.contact.admissible import ContactLoadError
 from fewear.contact.condensed import CondensedBushingContact
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
@@ -63,6 +64,7 @@ class WornBushing:
         self.element_height_m = bore_element_height_m(problem)
         self.ale_moves = 0
         self.remeshes = 0
+        self.cold_retries = 0
         self.last_quality = None
         self._mesh(bore_profile=None)
         self.angles = self.contact.angles.copy()
@@ -87,8 +89,16 @@ class WornBushing:
 
     def solve(self, force_N, rotation_increment_rad: float = 0.0,
               friction: bool = False) -> ContactResult:
-        """:meth:`CondensedBushingContact.solve`, nodal arrays in the order of ``angles``."""
-        result = self.contact.solve(force_N, rotation_increment_rad, friction)
+        """:meth:`CondensedBushingContact.solve`, nodal arrays in the order of ``angles``.
+
+        On a worn bore the warm start from the previous load step (turned with the load) can lead
+        the Newton iteration astray; a refused step is tried once more from a cold start (the
+        refusal resets the state), which counts in ``cold_retries``."""
+        try:
+            result = self.contact.solve(force_N, rotation_increment_rad, friction)
+        except ContactLoadError:
+            self.cold_retries += 1
+            result = self.contact.solve(force_N, rotation_increment_rad, friction)
         order = self._order
         return replace(result, angle_rad=self.angles.copy(), x_m=result.x_m[order],
                        y_m=result.y_m[order], pressure_Pa=result.pressure_Pa[order],
