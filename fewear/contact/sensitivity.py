@@ -39,8 +39,10 @@ def pressure_sensitivity(compliance: np.ndarray, weights_m: np.ndarray, points_m
     system = np.zeros((m + 2, m + 2))
     system[:m, :m] = np.eye(m) + penalty[:, None] * normal_compliance
     system[:m, m:] = -penalty[:, None] * normal
-    system[m:, :m] = normal.T
+    system[m:, :m] = normal.T * penalty.mean()  # scaled like the rows above (N^T df = 0)
     rhs = np.zeros((m + 2, m))
     rhs[:m] = -np.diag(penalty)
-    force_change = np.linalg.solve(system, rhs)[:m]
+    # least squares: with one or two nodes in contact the pin's sliding mode is free (the system
+    # is singular) and the minimum-norm solution keeps it still
+    force_change = np.linalg.lstsq(system, rhs, rcond=None)[0][:m]
     return force_change / weights_m[active][:, None]
