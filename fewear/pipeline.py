@@ -244,6 +244,8 @@ class CaseProgress:
     meshed_xy_m: np.ndarray | None = None  # the current mesh's nodes as made (motion reference)
     ale_moves: int = 0
     remeshes: int = 0
+    contact_retries: int = 0  # load steps solved again from a cold start
+    frictionless_steps: int = 0  # load steps solved without the Coulomb traction
     stage_wall_time_s: dict = field(default_factory=lambda: dict.fromkeys(STAGES, 0.0))
     done: bool = False
 
@@ -332,6 +334,9 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress) -> None:
                                                    bushing.meshed_xy_m)
     case.snapshots.append(snapshot.xy_m)
     case.ale_moves, case.remeshes = bushing.ale_moves, bushing.remeshes
+    case.contact_retries += bushing.cold_retries
+    case.frictionless_steps += bushing.frictionless_steps
+    bushing.cold_retries = bushing.frictionless_steps = 0
     case.records.append(BlockRecord(
         worn.cycles, cycles, worn.depth_m.copy(), history.peak_contact_force_N, history.impacts,
         float(wear.pressure_Pa.max()), float(per_cycle.depth_m.max())))
@@ -367,6 +372,8 @@ def case_summary(case: CaseProgress, inputs: RunInputs) -> dict:
         "blocks": int(state.blocks),
         "ale_moves": int(case.ale_moves),
         "remeshes": int(case.remeshes),
+        "contact_cold_retries": int(case.contact_retries),
+        "contact_frictionless_steps": int(case.frictionless_steps),
         "first_block": {"cycles": first.block_cycles,
                         "max_wear_depth_per_cycle_m": first.max_depth_per_cycle_m,
                         "peak_contact_force_N": first.peak_contact_force_N,

@@ -65,6 +65,7 @@ class WornBushing:
         self.ale_moves = 0
         self.remeshes = 0
         self.cold_retries = 0
+        self.frictionless_steps = 0
         self.last_quality = None
         self._mesh(bore_profile=None)
         self.angles = self.contact.angles.copy()
@@ -93,12 +94,21 @@ class WornBushing:
 
         On a worn bore the warm start from the previous load step (turned with the load) can lead
         the Newton iteration astray; a refused step is tried once more from a cold start (the
-        refusal resets the state), which counts in ``cold_retries``."""
+        refusal resets the state), counted in ``cold_retries``. If the step with the Coulomb
+        traction still finds no equilibrium, it is solved without it (the traction tilts the
+        pressure field by atan(mu), 5.7 deg for mu = 0.1), counted in ``frictionless_steps``
+        and reported; a step that fails without friction too is an error."""
         try:
             result = self.contact.solve(force_N, rotation_increment_rad, friction)
         except ContactLoadError:
             self.cold_retries += 1
-            result = self.contact.solve(force_N, rotation_increment_rad, friction)
+            try:
+                result = self.contact.solve(force_N, rotation_increment_rad, friction)
+            except ContactLoadError:
+                if not friction:
+                    raise
+                self.frictionless_steps += 1
+                result = self.contact.solve(force_N, rotation_increment_rad, False)
         order = self._order
         return replace(result, angle_rad=self.angles.copy(), x_m=result.x_m[order],
                        y_m=result.y_m[order], pressure_Pa=result.pressure_Pa[order],

@@ -84,6 +84,8 @@ class Checkpoint:
 def _case_meta(case) -> dict:
     return {"cycles": int(case.state.cycles), "blocks": int(case.state.blocks),
             "ale_moves": int(case.ale_moves), "remeshes": int(case.remeshes),
+            "contact_retries": int(case.contact_retries),
+            "frictionless_steps": int(case.frictionless_steps),
             "done": bool(case.done), "stage_wall_time_s": dict(case.stage_wall_time_s),
             "time_s": float(case.mechanism.time_s)}
 
@@ -127,6 +129,7 @@ def _case_from(rod: str, meta: dict, data: dict):
         records=records, snapshots=list(array("snapshots")), node_ids=array("node_ids"),
         cells=array("cells"), meshed_xy_m=array("meshed_xy_m"),
         ale_moves=meta["ale_moves"], remeshes=meta["remeshes"],
+        contact_retries=meta["contact_retries"], frictionless_steps=meta["frictionless_steps"],
         stage_wall_time_s=dict(meta["stage_wall_time_s"]), done=meta["done"])
 
 
