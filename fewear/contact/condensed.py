@@ -271,7 +271,8 @@ class CondensedBushingContact:
                              [math.sin(angle), math.cos(angle)]])
         g = np.roll(self._g.reshape(-1, 2), 2 * elements, axis=0) @ rotation.T
         self._g = g.reshape(-1)
-        self._U = self.compliance @ self._g
+        support = np.flatnonzero(self._g)  # the nodes in contact
+        self._U = self.compliance[:, support] @ self._g[support]
         self.pin_centre_m = rotation @ self.pin_centre_m
 
     def linearise(self, load: np.ndarray) -> tuple[np.ndarray, float]:
