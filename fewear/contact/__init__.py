@@ -3,6 +3,8 @@
 - :mod:`fewear.contact.params`: material, contact settings, ``ContactProblem`` and
   ``contact_problem_from_config`` (no DOLFINx; the geometry is in :mod:`fewear.mesh.geometry`).
 - :mod:`fewear.contact.result`: ``ContactResult``, the plain-data output (no DOLFINx).
+- :mod:`fewear.contact.newton`: ``ContactNewton``, the active-set Newton both paths share.
+- :mod:`fewear.contact.admissible`: the forces the model can carry; ``ContactLoadError``.
 - :mod:`fewear.contact.solver`: ``BushingContactSolver``, the full Newton solve in DOLFINx.
 - :mod:`fewear.contact.condensed`: ``CondensedBushingContact``, the same answer from the bushing
   condensed onto its bore (the fast path for the wear loop).
