@@ -65,7 +65,8 @@ COUPLED_ITERATIONS = 12
 # ... or as soon as its step cap against active-set alternation has fallen below this.
 CYCLE_CAP = 0.2
 
-# At most this many nodes in contact is a light load: the next solve starts at a corner.
+# At most this many nodes in contact is a light load: the next solve starts the pin at a corner
+# (ContactNewton._start) ...
 LIGHT_CONTACT_NODES = 3
 # ... unless the load grows by more than this factor.
 LIGHT_LOAD_GROWTH = 1.5
@@ -373,20 +374,18 @@ class ContactNewton:
         load is not light and the direction turned by at most ``WARM_START_MAX_ANGLE_RAD``,
         else the corner start."""
         last, path = self.last_direction, self.path
-        size = float(np.linalg.norm(load))
+        if last is None:
+            self._corner_start(direction, load)
+            return
+        turn = math.atan2(last[0] * direction[1] - last[1] * direction[0], last @ direction)
         light = (self.last_contact_nodes <= LIGHT_CONTACT_NODES
-                 and size <= LIGHT_LOAD_GROWTH * self.last_load)
-        if last is not None and path.can_turn_state:
-            turn = math.atan2(last[0] * direction[1] - last[1] * direction[0], last @ direction)
+                 and float(np.linalg.norm(load)) <= LIGHT_LOAD_GROWTH * self.last_load)
+        if path.can_turn_state:
             path.turn_state(turn)
             if light:
                 path.pin_centre_m = self._corner(direction, load)
-            return
-        if last is not None and not light:
-            turn = math.atan2(last[0] * direction[1] - last[1] * direction[0], last @ direction)
-            if abs(turn) <= WARM_START_MAX_ANGLE_RAD:
-                return
-        self._corner_start(direction, load)
+        elif light or abs(turn) > WARM_START_MAX_ANGLE_RAD:
+            self._corner_start(direction, load)
 
     def _corner_start(self, direction: np.ndarray, load: np.ndarray) -> None:
         """No displacement, the pin at :meth:`_corner` of the undeformed bore."""
@@ -411,8 +410,7 @@ class ContactNewton:
         corners = middle - np.sqrt(R_p**2 - half**2)[:, None] * outward
         j = int(np.argmax(corners @ direction))
         weight = path.weights_m[j] + path.weights_m[(j + 1) % len(X)]
-        centre = corners[j] + self._load_penetration(load, weight) * direction
-        return centre
+        return corners[j] + self._load_penetration(load, weight) * direction
 
     def _coupled_newton(self, load, direction, basis, max_iterations) -> int | None:
         """Semi-smooth Newton on (displacement, c) with c moving in the span of ``basis``
