@@ -393,24 +393,31 @@ class ContactNewton:
         self.path.pin_centre_m = self._corner(direction, load)
 
     def _corner(self, direction: np.ndarray, load: np.ndarray) -> np.ndarray:
-        """The light-load solution for the present bore displacement: the pin rests on the two
-        neighbouring bore nodes j, j+1 whose corner c_j (the pin centre touching both, at
-        R_p from each) lies furthest along ``direction`` d (the contact-free region of the pin
-        centre is the polygon of these corners), pressed in along d by the penetration
-        |F/L| / (k (w_j + w_j+1)) that two nodes of weight w need to carry the load."""
+        """The light-load solution for the present bore nodes X (deformed): the rigid pin
+        pushed along ``direction`` d as far as the nodes let it. Moved out along d, it first
+        touches a node; rolling about that node (its centre on the circle of radius R_p about
+        it) raises d . c until a second node touches: a corner of the region of contact-free
+        centres. While d is not between the two contact normals (no positive pressures could
+        balance it there), it rolls on about the newer node. On a circular bore the corner joins
+        two neighbouring nodes; on a worn one it may bridge a pocket. The pin is then pressed
+        in along d by |F/L| / (k (w_a + w_b)), the penetration at which the two nodes carry
+        the load."""
         path = self.path
         X = path.deformed_points()
-        ahead = np.roll(X, -1, axis=0)
-        middle = 0.5 * (X + ahead)
-        chord = ahead - X
-        half = 0.5 * np.hypot(chord[:, 0], chord[:, 1])
-        outward = np.column_stack([chord[:, 1], -chord[:, 0]]) / (2.0 * half[:, None])
-        outward *= np.sign(np.einsum("ij,ij->i", outward, middle))[:, None]
         R_p = path.problem.geometry.pin_radius_m
-        corners = middle - np.sqrt(R_p**2 - half**2)[:, None] * outward
-        j = int(np.argmax(corners @ direction))
-        weight = path.weights_m[j] + path.weights_m[(j + 1) % len(X)]
-        return corners[j] + self._load_penetration(load, weight) * direction
+        centre = first_touch_centre(X, np.zeros(2), direction, R_p)
+        pivot = int(np.argmin(np.abs(np.hypot(*(X - centre).T) - R_p)))
+        previous = None
+        for _ in range(X.shape[0]):
+            centre, touched = _roll(X, centre, pivot, direction, R_p, previous)
+            if touched is None:
+                break
+            previous, pivot = pivot, touched
+            normals = (X[[previous, pivot]] - centre) / R_p
+            if _between(direction, normals[0], normals[1]):
+                break
+        nodes = [pivot] if previous is None else [previous, pivot]
+        return centre + self._load_penetration(load, path.weights_m[nodes].sum()) * direction
 
     def _coupled_newton(self, load, direction, basis, max_iterations) -> int | None:
         """Semi-smooth Newton on (displacement, c) with c moving in the span of ``basis``
@@ -530,6 +537,41 @@ class ContactNewton:
             base.gaps + moved)
         mean_normal = base.normals.sum(axis=0)
         path.try_step(step, centre + excess.mean() * mean_normal / np.linalg.norm(mean_normal))
+
+
+def _between(d: np.ndarray, a: np.ndarray, b: np.ndarray) -> bool:
+    """Whether d lies in the cone of the unit vectors a and b (angle less than pi)."""
+    cross = a[0] * b[1] - a[1] * b[0]
+    return (a[0] * d[1] - a[1] * d[0]) * cross >= 0.0 and (d[0] * b[1] - d[1] * b[0]) * cross >= 0.0
+
+
+def _roll(X: np.ndarray, centre: np.ndarray, pivot: int, d: np.ndarray, R_p: float,
+          previous: int | None) -> tuple[np.ndarray, int | None]:
+    """Roll the pin (radius R_p, centre on the circle of radius R_p about X[pivot]) in the
+    sense that raises d . c, until it touches another node; returns the new centre and that
+    node (None when d . c peaks first, with the pin on the pivot alone). A node q is touched
+    where the two circles of radius R_p about X[pivot] and X[q] meet."""
+    u0 = (X[pivot] - centre) / R_p  # from the centre to the pivot
+    start = math.atan2(u0[1], u0[0])
+    # d . c = d . X_pivot - R_p cos(alpha - theta_d): rises while |alpha - theta_d| grows
+    offset = math.remainder(start - math.atan2(d[1], d[0]), 2.0 * math.pi)
+    sense = 1.0 if offset >= 0.0 else -1.0
+    room = math.pi - abs(offset)  # the roll at which d . c peaks
+    others = np.delete(np.arange(X.shape[0]), [pivot] + ([] if previous is None else [previous]))
+    chord = X[others] - X[pivot]
+    half = 0.5 * np.hypot(chord[:, 0], chord[:, 1])
+    reach = half < R_p
+    others, chord, half = others[reach], chord[reach], half[reach]
+    back = np.arctan2(-chord[:, 1], -chord[:, 0])  # from the chord's middle to the pivot
+    spread = np.arccos(half / R_p)  # the meeting points' u are at back -+ spread
+    rolls = np.concatenate([back - spread, back + spread]) - start
+    rolls = np.mod(sense * rolls, 2.0 * math.pi)
+    candidates = np.concatenate([others, others])
+    first = int(np.argmin(rolls)) if rolls.size else -1
+    roll = rolls[first] if rolls.size and rolls[first] < room else room
+    alpha = start + sense * roll
+    new_centre = X[pivot] - R_p * np.array([math.cos(alpha), math.sin(alpha)])
+    return new_centre, (int(candidates[first]) if roll < room else None)
 
 
 class _LineBase:
