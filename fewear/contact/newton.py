@@ -7,9 +7,11 @@ and the pin's force balance sum_q f_q = F / L. Each discretisation provides the 
 through the methods of :class:`ContactDiscretisation`; this module holds the algorithm:
 
 - **Start.** The *corner start* for the first solve: the region of pin centres free of contact
-  with the bore nodes is a polygon whose corners c_j touch two neighbouring nodes; a light load
-  presses the pin into the corner furthest along the contact direction, which is taken with no
-  displacement and the penetration |F/L| / (k (w_j + w_j+1)) of two nodes carrying the load.
+  with the bore nodes is bounded by arcs of radius R_p about the nodes, meeting in corners that
+  touch two nodes (neighbours on a circular bore, a pocket's rims on a worn one); a light load
+  presses the pin into the corner reached by moving it out along the contact direction and
+  rolling it on the nodes (:meth:`ContactNewton._corner`), taken with no displacement and the
+  penetration |F/L| / (k (w_a + w_b)) of the two nodes carrying the load.
   Afterwards the *warm start*: the last solution, turned with the load by whole bore elements
   where the discretisation can turn its state (the condensed path; pin and indentation
   together), with the pin moved to the corner of the turned bore at a light load (the last
