@@ -14,11 +14,11 @@ through the methods of :class:`ContactDiscretisation`; this module holds the alg
   penetration |F/L| / (k (w_a + w_b)) of the two nodes carrying the load.
   Afterwards the *warm start*: the last solution, turned with the load by whole bore elements
   where the discretisation can turn its state (the condensed path; pin and indentation
-  together), with the pin moved to the corner of the turned bore at a light load (the last
-  solution had at most ``LIGHT_CONTACT_NODES`` nodes in contact and the load grew by at most
-  ``LIGHT_LOAD_GROWTH``). Where it cannot (the full path), the last solution as it is if the
-  load is not light and the direction turned by at most ``WARM_START_MAX_ANGLE_RAD``, else the
-  corner start.
+  together), with the pin moved to the corner of the turned bore after a light load (the last
+  solution had at most ``LIGHT_CONTACT_NODES`` nodes in contact). Where it cannot (the full
+  path), the corner start after a light load that grew by at most ``LIGHT_LOAD_GROWTH`` or a
+  turn of the direction by more than ``WARM_START_MAX_ANGLE_RAD``, else the last solution as it
+  is.
 - **Step.** Semi-smooth (active-set) Newton: the active set is the set of bore nodes in contact
   at the current iterate; each step solves the bordered system of that active set for the
   displacement update and the pin update dc.
@@ -70,7 +70,7 @@ CYCLE_CAP = 0.2
 # At most this many nodes in contact is a light load: the next solve starts the pin at a corner
 # (ContactNewton._start) ...
 LIGHT_CONTACT_NODES = 3
-# ... unless the load grows by more than this factor.
+# ... on the full path unless the load grows by more than this factor.
 LIGHT_LOAD_GROWTH = 1.5
 
 # Line search: smallest step tried, Armijo constant, and how far below the first
@@ -366,27 +366,26 @@ class ContactNewton:
                                               * weight_m)
 
     def _start(self, direction: np.ndarray, load: np.ndarray) -> None:
-        """Without a previous solution: the corner start (:meth:`_corner_start`). Else, if the
-        discretisation can turn its state: the last solution turned by the whole number of bore
-        elements nearest to the turn of the contact direction (pin and indentation together:
-        turning the pin alone against the old indentation would start far from equilibrium),
-        and at a light load (the last solution had at most ``LIGHT_CONTACT_NODES`` nodes in
-        contact and the load grew by at most ``LIGHT_LOAD_GROWTH``) the pin moved to
-        :meth:`_corner` of that turned bore. If it cannot: the last solution as it is when the
-        load is not light and the direction turned by at most ``WARM_START_MAX_ANGLE_RAD``,
-        else the corner start."""
+        """The start of the module docstring: without a previous solution the corner start
+        (:meth:`_corner_start`); else, if the discretisation can turn its state, the last
+        solution turned by the whole number of bore elements nearest to the turn of the
+        contact direction (pin and indentation together: turning the pin alone against the old
+        indentation would start far from equilibrium), the pin moved to :meth:`_corner` of the
+        turned bore after a light load; if it cannot, the corner start after a light load that
+        grew by at most ``LIGHT_LOAD_GROWTH`` or a turn beyond ``WARM_START_MAX_ANGLE_RAD``,
+        else the last solution as it is."""
         last, path = self.last_direction, self.path
         if last is None:
             self._corner_start(direction, load)
             return
         turn = math.atan2(last[0] * direction[1] - last[1] * direction[0], last @ direction)
-        light = (self.last_contact_nodes <= LIGHT_CONTACT_NODES
-                 and float(np.linalg.norm(load)) <= LIGHT_LOAD_GROWTH * self.last_load)
+        light = self.last_contact_nodes <= LIGHT_CONTACT_NODES
         if path.can_turn_state:
             path.turn_state(turn)
             if light:
                 path.pin_centre_m = self._corner(direction, load)
-        elif light or abs(turn) > WARM_START_MAX_ANGLE_RAD:
+        elif (light and float(np.linalg.norm(load)) <= LIGHT_LOAD_GROWTH * self.last_load
+              or abs(turn) > WARM_START_MAX_ANGLE_RAD):
             self._corner_start(direction, load)
 
     def _corner_start(self, direction: np.ndarray, load: np.ndarray) -> None:
