@@ -393,6 +393,7 @@ class Progress:
     def __init__(self, comm, total_cycles: int, n_cases: int):
         self.comm, self.total, self.n_cases = comm, total_cycles, n_cases
         self.start = time.perf_counter()
+        self.resumed_fraction = 0.0  # of the whole run, done before this process (--resume)
 
     def message(self, text: str) -> None:
         if self.comm.rank == 0:
@@ -403,7 +404,8 @@ class Progress:
         fraction = case.state.cycles / self.total
         overall = (done_before + fraction) / self.n_cases
         elapsed = time.perf_counter() - self.start
-        eta = elapsed * (1.0 - overall) / overall if overall > 0 else math.inf
+        done_here = overall - self.resumed_fraction
+        eta = elapsed * (1.0 - overall) / done_here if done_here > 0 else math.inf
         bar = "#" * int(20 * fraction) + "." * (20 - int(20 * fraction))
         self.message(f"{rod} [{bar}] block {case.state.blocks}, {case.state.cycles:,}/"
                      f"{self.total:,} cycles, max depth {case.state.depth_m.max():.3e} m, "
@@ -427,6 +429,9 @@ def main(args) -> int:
     store = checkpoint.Checkpoint(args.out, config, comm)
     cases = store.load() if getattr(args, "resume", False) else {}
     if cases:
+        progress.resumed_fraction = sum(
+            case.state.cycles / inputs.loop.total_cycles for case in cases.values()) / len(
+            inputs.loop.rod_models)
         progress.message(f"resuming from {store.path}: " + ", ".join(
             f"{rod} at {case.state.cycles:,} cycles" for rod, case in cases.items()))
     with staged_output(args.out, comm) as stage:
