@@ -35,11 +35,13 @@ through the methods of :class:`ContactDiscretisation`; this module holds the alg
 - **Stopping test** (:class:`NewtonControl`), on the state returned: last updates at the Newton
   tolerance or rounding level, and the pin in force balance to ``FORCE_TOLERANCE`` or, at light
   loads, to the rounding level of the penalty forces.
-- **Retry and contact-angle fallback.** Should the coupled iteration from a warm start not
-  settle within ``COUPLED_ITERATIONS`` (or alternate persistently), it starts once more from the
-  corner start (on a worn bore a warm start can send the pin sliding along a pocket's flank,
-  held by one node; from the corner it converges in a handful of iterations). Should that not
-  settle either, :func:`solve_by_contact_angle` takes over:
+- **Retry and contact-angle fallback.** Should the coupled iteration not settle within
+  ``COUPLED_ITERATIONS`` (or alternate persistently) from the last solution that a
+  discretisation able to turn its state left as it is (a worn bore), it starts once more from
+  the corner start (the untouched last solution can send the pin sliding along a pocket's
+  flank, held by one node; from the corner it converges in a handful of iterations; on the full
+  path and from a turned state the retry does not pay: measured on the crank cycle). Should
+  that not settle either, :func:`solve_by_contact_angle` takes over:
   the pin angle becomes an outer unknown found by bracketing, each inner problem (pin on a fixed
   ray) being a well-posed Newton problem.
 
@@ -387,12 +389,12 @@ class ContactNewton:
         self.last_direction = None
 
     def solve(self, load: np.ndarray, direction: np.ndarray) -> int:
-        warm = self._start(direction, load)
+        untouched = self._start(direction, load)
         iterations = self._coupled_newton(load, direction, np.eye(2), COUPLED_ITERATIONS)
         spent = COUPLED_ITERATIONS
-        if iterations is None and warm:
-            # a warm start can lead astray (on a worn bore the pin slides along a pocket's
-            # flank, held by one node): once more from the corner start
+        if iterations is None and untouched:
+            # the last solution, not turned on a worn bore, can lead astray (the pin slides
+            # along a pocket's flank, held by one node): once more from the corner start
             self._corner_start(direction, load)
             iterations = self._coupled_newton(load, direction, np.eye(2), COUPLED_ITERATIONS)
             if iterations is not None:
@@ -445,10 +447,11 @@ class ContactNewton:
         cannot (or the bore is worn: a turned state would put the pin into a pocket's flank):
         the last solution as it is when the load is not light and the direction turned by at
         most ``WARM_START_MAX_ANGLE_RAD``, else the corner start. Returns whether the start
-        is a warm one (not the corner start)."""
+        is the last solution left as it is by a discretisation that could not turn it (a worn
+        bore), which :meth:`solve` retries from the corner start should it not settle."""
         last, path = self.last_direction, self.path
         size = float(np.linalg.norm(load))
-        warm = last is not None
+        untouched = last is not None and path.can_turn_state
         light = (self.last_contact_nodes <= LIGHT_CONTACT_NODES
                  and size <= LIGHT_LOAD_GROWTH * self.last_load)
         if last is not None and path.can_turn_state:
@@ -456,11 +459,11 @@ class ContactNewton:
             if path.turn_state(turn):
                 if light:
                     path.pin_centre_m = self._corner(direction, load)
-                return warm
+                return False
         if last is not None and not light:
             turn = math.atan2(last[0] * direction[1] - last[1] * direction[0], last @ direction)
             if abs(turn) <= WARM_START_MAX_ANGLE_RAD:
-                return warm
+                return untouched
         self._corner_start(direction, load)
         return False
 

@@ -91,9 +91,9 @@ class WornBushing:
               friction: bool = False) -> ContactResult:
         """:meth:`CondensedBushingContact.solve`, nodal arrays in the order of ``angles``.
 
-        On a worn bore the warm start from the previous load step (turned with the load) can lead
-        the Newton iteration astray; a refused step is tried once more from a cold start (the
-        refusal resets the state), which counts in ``cold_retries``."""
+        Should a step be refused all the same (the Newton itself retries a warm start that does
+        not settle from the corner start, :mod:`fewear.contact.newton`), it is tried once more
+        from a cold start (the refusal resets the state), which counts in ``cold_retries``."""
         try:
             result = self.contact.solve(force_N, rotation_increment_rad, friction)
         except ContactLoadError:
