@@ -71,7 +71,8 @@ from fewear.mesh.bore import bore_node_weights
 from fewear.mesh.bushing import BORE_TAG
 
 # The state is turned with the load only where the bore nodes that carry the turned forces lie
-# where the turned nodes did to this fraction of the last solution's penetration.
+# where the turned nodes did to this fraction of the last solution's penetration or largest
+# displacement (whichever is larger: an error of the start the Newton corrects in a few steps).
 TURN_TOLERANCE = 0.1
 
 
@@ -273,8 +274,9 @@ class CondensedBushingContact:
         than the turned nodes did, by as much as the wear depth changes over the turn, and the
         turned pin can stand deep in a pocket's flank (hundreds of nodes in contact, a start the
         Newton does not recover from). So the state is turned only where the bore is invariant on
-        the nodes that carry the turned forces, to ``TURN_TOLERANCE`` times the penetration of
-        the last solution; else it is left as it is and False returned."""
+        the nodes that carry the turned forces, to ``TURN_TOLERANCE`` times the penetration or
+        the largest displacement of the last solution; else it is left as it is and False
+        returned."""
         n = self.points.shape[0]
         element_rad = 2.0 * math.pi / (n // 2)
         elements = round(angle_rad / element_rad)
@@ -287,7 +289,8 @@ class CondensedBushingContact:
         carrying = np.flatnonzero(np.any(g != 0.0, axis=1))
         turned = np.roll(self.points, 2 * elements, axis=0)[carrying] @ rotation.T
         mismatch = np.hypot(*(turned - self.points[carrying]).T)
-        if mismatch.size and mismatch.max() > TURN_TOLERANCE * self._penetrations().max():
+        scale = max(self._penetrations().max(), float(np.abs(self._U).max()))
+        if mismatch.size and mismatch.max() > TURN_TOLERANCE * scale:
             return False
         self._g = g.reshape(-1)
         self._U = self.compliance @ self._g
