@@ -30,7 +30,9 @@ displacement update is the elastic response to the linearised contact forces), w
 potential Pi = 1/2 g.G g + sum w k/2 <-g>^2 - F/L . c for the line search. Unlike the full
 path, this one can turn its state with the load for a warm start (g rolled by whole elements
 along the angle-sorted bore nodes, U = G g), so a load step starts from the previous solution
-turned with the force, a handful of iterations away from the new one. Both paths converge to
+turned with the force, a handful of iterations away from the new one; only where the bore is
+invariant under the turn, though (circular: on a worn bore the turned pin would stand in a
+pocket's flank), else it starts as the full path does. Both paths converge to
 the same solution; the tests and the benchmark check nodal pressures and pin centre to 1e-6
 (measured: ~2e-7 and below, on 200 load steps of a crank cycle).
 Per step this costs O(n |A|) per iteration for the update of U and a dense solve of size
@@ -67,6 +69,11 @@ from fewear.contact.solver import (
 )
 from fewear.mesh.bore import bore_node_weights
 from fewear.mesh.bushing import BORE_TAG
+
+# The state is turned with the load only where the bore nodes that carry the turned forces lie
+# where the turned nodes did to this fraction of the last solution's penetration or largest
+# displacement (whichever is larger: an error of the start the Newton corrects in a few steps).
+TURN_TOLERANCE = 0.1
 
 
 class CondensedBushingContact:
@@ -259,21 +266,37 @@ class CondensedBushingContact:
         self._g = np.zeros(2 * self.points.shape[0])
         self._U = np.zeros_like(self._g)
 
-    def turn_state(self, angle_rad: float) -> None:
+    def turn_state(self, angle_rad: float) -> bool:
         """Turn nodal forces and pin centre by the whole number of bore elements (2 nodes each,
         at uniform angles, sorted by angle) nearest to ``angle_rad``, U = G g; on the circular
         O-grid, whose compliance is invariant under such turns, the turned state is the turned
-        solution (on a worn bore it is an approximation, and only a start)."""
-        element_rad = 2.0 * math.pi / (self.points.shape[0] // 2)
+        solution. On a worn bore it is not: the nodes carrying the turned forces sit elsewhere
+        than the turned nodes did, by as much as the wear depth changes over the turn, and the
+        turned pin can stand deep in a pocket's flank (hundreds of nodes in contact, a start the
+        Newton does not recover from). So the state is turned only where the bore is invariant on
+        the nodes that carry the turned forces, to ``TURN_TOLERANCE`` times the penetration or
+        the largest displacement of the last solution; else it is left as it is and False
+        returned."""
+        n = self.points.shape[0]
+        element_rad = 2.0 * math.pi / (n // 2)
         elements = round(angle_rad / element_rad)
+        if elements % (n // 2) == 0:
+            return True
         angle = elements * element_rad
         rotation = np.array([[math.cos(angle), -math.sin(angle)],
                              [math.sin(angle), math.cos(angle)]])
         g = np.roll(self._g.reshape(-1, 2), 2 * elements, axis=0) @ rotation.T
+        carrying = np.flatnonzero(np.any(g != 0.0, axis=1))
+        turned = np.roll(self.points, 2 * elements, axis=0)[carrying] @ rotation.T
+        mismatch = np.hypot(*(turned - self.points[carrying]).T)
+        scale = max(self._penetrations().max(), float(np.abs(self._U).max()))
+        if mismatch.size and mismatch.max() > TURN_TOLERANCE * scale:
+            return False
         self._g = g.reshape(-1)
         support = np.flatnonzero(self._g)  # the nodes in contact
         self._U = self.compliance[:, support] @ self._g[support]
         self.pin_centre_m = rotation @ self.pin_centre_m
+        return True
 
     def linearise(self, load: np.ndarray) -> tuple[np.ndarray, float]:
         """Nodal forces and their Jacobian blocks at the current state (kept for the step);

@@ -6,19 +6,21 @@ thickness); the equations are the elastic equilibrium of the bushing under the p
 and the pin's force balance sum_q f_q = F / L. Each discretisation provides the linear algebra
 through the methods of :class:`ContactDiscretisation`; this module holds the algorithm:
 
-- **Start.** The *corner start* for the first solve: the region of pin centres free of contact
-  with the bore nodes is bounded by arcs of radius R_p about the nodes, meeting in corners that
-  touch two nodes (neighbours on a circular bore, a pocket's rims on a worn one); a light load
-  presses the pin into the corner reached by moving it out along the contact direction and
-  rolling it on the nodes (:meth:`ContactNewton._corner`), taken with no displacement and the
-  penetration |F/L| / (k (w_a + w_b)) of the two nodes carrying the load.
+- **Start.** The *corner start* for the first solve: on a convex (circular) bore the region of
+  pin centres free of contact with the bore nodes is a polygon whose corners c_j touch two
+  neighbouring nodes; a light load presses the pin into the corner furthest along the contact
+  direction, which is taken with no displacement and the penetration |F/L| / (k (w_j + w_j+1))
+  of two nodes carrying the load. On a worn bore with pockets that corner can lie beyond other
+  nodes (the bottom of a pocket narrower than the pin's curvature: the pin rests on its flanks);
+  then the vertex of the free region furthest along the direction is found by a walk along its
+  boundary (:func:`support_vertex`; two nodes, not necessarily neighbours).
   Afterwards the *warm start*: the last solution, turned with the load by whole bore elements
-  where the discretisation can turn its state (the condensed path; pin and indentation
-  together), with the pin moved to the corner of the turned bore after a light load (the last
-  solution had at most ``LIGHT_CONTACT_NODES`` nodes in contact). Where it cannot (the full
-  path), the corner start after a light load that grew by at most ``LIGHT_LOAD_GROWTH`` or a
-  turn of the direction by more than ``WARM_START_MAX_ANGLE_RAD``, else the last solution as it
-  is.
+  where the discretisation can turn its state (the condensed path on a bore invariant under the
+  turn, i.e. not worn; pin and indentation together), with the pin moved to the corner of the
+  turned bore at a light load (the last solution had at most ``LIGHT_CONTACT_NODES`` nodes in
+  contact and the load grew by at most ``LIGHT_LOAD_GROWTH``). Where it cannot (the full path,
+  a worn bore), the last solution as it is if the load is not light and the direction turned by
+  at most ``WARM_START_MAX_ANGLE_RAD``, else the corner start.
 - **Step.** Semi-smooth (active-set) Newton: the active set is the set of bore nodes in contact
   at the current iterate; each step solves the bordered system of that active set for the
   displacement update and the pin update dc.
@@ -33,8 +35,13 @@ through the methods of :class:`ContactDiscretisation`; this module holds the alg
 - **Stopping test** (:class:`NewtonControl`), on the state returned: last updates at the Newton
   tolerance or rounding level, and the pin in force balance to ``FORCE_TOLERANCE`` or, at light
   loads, to the rounding level of the penalty forces.
-- **Contact-angle fallback.** Should the coupled iteration not settle within
-  ``COUPLED_ITERATIONS`` (or alternate persistently), :func:`solve_by_contact_angle` takes over:
+- **Retry and contact-angle fallback.** Should the coupled iteration not settle within
+  ``COUPLED_ITERATIONS`` (or alternate persistently) from the last solution that a
+  discretisation able to turn its state left as it is (a worn bore), it starts once more from
+  the corner start (the untouched last solution can send the pin sliding along a pocket's
+  flank, held by one node; from the corner it converges in a handful of iterations; on the full
+  path and from a turned state the retry does not pay: measured on the crank cycle). Should
+  that not settle either, :func:`solve_by_contact_angle` takes over:
   the pin angle becomes an outer unknown found by bracketing, each inner problem (pin on a fixed
   ray) being a well-posed Newton problem.
 
@@ -67,10 +74,15 @@ COUPLED_ITERATIONS = 12
 # ... or as soon as its step cap against active-set alternation has fallen below this.
 CYCLE_CAP = 0.2
 
-# At most this many nodes in contact is a light load: the next solve starts the pin at a corner
-# (ContactNewton._start) ...
+# A corner closer than R_p (1 - this) to a node other than its two lies beyond the bore.
+CORNER_TOLERANCE = 1e-9
+
+# Nodes within R_p (1 + this) of the pin centre touch it in the vertex walk (support_vertex).
+VERTEX_TOLERANCE = 1e-11
+
+# At most this many nodes in contact is a light load: the next solve starts at a corner.
 LIGHT_CONTACT_NODES = 3
-# ... on the full path unless the load grows by more than this factor.
+# ... unless the load grows by more than this factor.
 LIGHT_LOAD_GROWTH = 1.5
 
 # Line search: smallest step tried, Armijo constant, and how far below the first
@@ -105,9 +117,11 @@ class ContactDiscretisation(Protocol):
     def zero_displacement(self) -> None:
         """Set the displacement to zero."""
 
-    def turn_state(self, angle_rad: float) -> None:
+    def turn_state(self, angle_rad: float) -> bool:
         """Turn the state (pin centre and displacement) about the bushing centre by the whole
-        number of bore elements nearest to ``angle_rad`` (only called if ``can_turn_state``)."""
+        number of bore elements nearest to ``angle_rad`` (only called if ``can_turn_state``) and
+        return True, or, where the bore is not invariant under that turn (worn), leave the state
+        as it is and return False."""
 
     def linearise(self, load: np.ndarray) -> tuple[np.ndarray, float]:
         """Evaluate the contact at the current state; return the pin residual R - F/L (N/m)
@@ -163,6 +177,54 @@ def first_touch_centre(points: np.ndarray, centre: np.ndarray, direction: np.nda
     s = np.where(disc >= 0.0, qd - np.sqrt(np.maximum(disc, 0.0)), np.inf)
     s = s[s >= 0.0]
     return centre + (s.min() if s.size else 0.0) * direction
+
+
+def support_vertex(points: np.ndarray, direction: np.ndarray,
+                   pin_radius: float) -> tuple[np.ndarray, tuple[int, int]]:
+    """The pin centre furthest along ``direction`` d in the contact-free region of a bore that
+    need not be convex (a worn bore with pockets), and two nodes it touches.
+
+    The free region {c : |X_q - c| >= R_p for all q} (the component of the bushing centre) is
+    bounded by arcs of the circles of radius R_p about the nodes, each concave toward the
+    region, so c . d is largest at a vertex, the intersection of two circles (not necessarily
+    of neighbouring nodes: a pin bridging a pocket rests on its rims). Walk: from the first
+    touch along d (:func:`first_touch_centre`), slide along the circle of a touched node, in the
+    sense that increases c . d and leads away from the other touched nodes (the one that
+    increases it most), up to the first other circle it meets; repeat until no touched node
+    offers such a sense. c . d grows at every vertex, so the walk ends, at the vertex sought.
+    """
+    centre = first_touch_centre(points, np.zeros(2), direction, pin_radius)
+    for _ in range(points.shape[0]):
+        d = points - centre
+        distance = np.hypot(d[:, 0], d[:, 1])
+        touching = np.flatnonzero(distance <= pin_radius * (1.0 + VERTEX_TOLERANCE))
+        best, node, sense = 0.0, -1, 0.0
+        for q in touching:
+            radial = (centre - points[q]) / pin_radius
+            for s in (1.0, -1.0):
+                tangent = s * np.array([-radial[1], radial[0]])
+                rate = float(tangent @ direction)
+                if rate > best and np.all(-d[touching] @ tangent >= -VERTEX_TOLERANCE * pin_radius):
+                    best, node, sense = rate, int(q), s
+        if node < 0:
+            nearest = touching[np.argsort(distance[touching])]
+            return centre, (int(nearest[0]), int(nearest[min(1, nearest.size - 1)]))
+        # the intersections of this node's circle with the others', as angles about the node
+        radial = centre - points[node]
+        α = math.atan2(radial[1], radial[0])
+        chord = points - points[node]
+        distance = np.hypot(chord[:, 0], chord[:, 1])
+        candidates = np.flatnonzero((distance > 0.0) & (distance < 2.0 * pin_radius))
+        base = np.arctan2(chord[candidates, 1], chord[candidates, 0])
+        half_angle = np.arccos(distance[candidates] / (2.0 * pin_radius))
+        travel = np.stack([np.mod(sense * (base + sign * half_angle - α), 2.0 * math.pi)
+                           for sign in (1.0, -1.0)])
+        travel[travel < VERTEX_TOLERANCE] = np.inf
+        step = float(travel.min())
+        if not np.isfinite(step):
+            break
+        centre = points[node] + pin_radius * unit(α + sense * step)
+    raise ValueError("no vertex of the contact-free region found along the direction")
 
 
 def pin_update(centre: np.ndarray, dc: np.ndarray, node_spacing_rad: float) -> np.ndarray:
@@ -327,10 +389,19 @@ class ContactNewton:
         self.last_direction = None
 
     def solve(self, load: np.ndarray, direction: np.ndarray) -> int:
-        self._start(direction, load)
+        untouched = self._start(direction, load)
         iterations = self._coupled_newton(load, direction, np.eye(2), COUPLED_ITERATIONS)
+        spent = COUPLED_ITERATIONS
+        if iterations is None and untouched:
+            # the last solution, not turned on a worn bore, can lead astray (the pin slides
+            # along a pocket's flank, held by one node): once more from the corner start
+            self._corner_start(direction, load)
+            iterations = self._coupled_newton(load, direction, np.eye(2), COUPLED_ITERATIONS)
+            if iterations is not None:
+                iterations += spent
+            spent += COUPLED_ITERATIONS
         if iterations is None:
-            iterations = COUPLED_ITERATIONS + self._solve_by_contact_angle(load, direction)
+            iterations = spent + self._solve_by_contact_angle(load, direction)
         self.last_direction = direction
         self.last_contact_nodes = int(np.count_nonzero(self._gaps() < 0.0))
         self.last_load = float(np.linalg.norm(load))
@@ -365,28 +436,36 @@ class ContactNewton:
         return float(np.linalg.norm(load)) / (self.path.problem.penalty_stiffness_Pa_per_m()
                                               * weight_m)
 
-    def _start(self, direction: np.ndarray, load: np.ndarray) -> None:
-        """The start of the module docstring: without a previous solution the corner start
-        (:meth:`_corner_start`); else, if the discretisation can turn its state, the last
-        solution turned by the whole number of bore elements nearest to the turn of the
-        contact direction (pin and indentation together: turning the pin alone against the old
-        indentation would start far from equilibrium), the pin moved to :meth:`_corner` of the
-        turned bore after a light load; if it cannot, the corner start after a light load that
-        grew by at most ``LIGHT_LOAD_GROWTH`` or a turn beyond ``WARM_START_MAX_ANGLE_RAD``,
-        else the last solution as it is."""
+    def _start(self, direction: np.ndarray, load: np.ndarray) -> bool:
+        """Without a previous solution: the corner start (:meth:`_corner_start`). Else, if the
+        discretisation can turn its state and the bore is invariant under the turn: the last
+        solution turned by the whole number of bore elements nearest to the turn of the contact
+        direction (pin and indentation together: turning the pin alone against the old
+        indentation would start far from equilibrium), and at a light load (the last solution
+        had at most ``LIGHT_CONTACT_NODES`` nodes in contact and the load grew by at most
+        ``LIGHT_LOAD_GROWTH``) the pin moved to :meth:`_corner` of that turned bore. If it
+        cannot (or the bore is worn: a turned state would put the pin into a pocket's flank):
+        the last solution as it is when the load is not light and the direction turned by at
+        most ``WARM_START_MAX_ANGLE_RAD``, else the corner start. Returns whether the start
+        is the last solution left as it is by a discretisation that could not turn it (a worn
+        bore), which :meth:`solve` retries from the corner start should it not settle."""
         last, path = self.last_direction, self.path
-        if last is None:
-            self._corner_start(direction, load)
-            return
-        turn = math.atan2(last[0] * direction[1] - last[1] * direction[0], last @ direction)
-        light = self.last_contact_nodes <= LIGHT_CONTACT_NODES
-        if path.can_turn_state:
-            path.turn_state(turn)
-            if light:
-                path.pin_centre_m = self._corner(direction, load)
-        elif (light and float(np.linalg.norm(load)) <= LIGHT_LOAD_GROWTH * self.last_load
-              or abs(turn) > WARM_START_MAX_ANGLE_RAD):
-            self._corner_start(direction, load)
+        size = float(np.linalg.norm(load))
+        untouched = last is not None and path.can_turn_state
+        light = (self.last_contact_nodes <= LIGHT_CONTACT_NODES
+                 and size <= LIGHT_LOAD_GROWTH * self.last_load)
+        if last is not None and path.can_turn_state:
+            turn = math.atan2(last[0] * direction[1] - last[1] * direction[0], last @ direction)
+            if path.turn_state(turn):
+                if light:
+                    path.pin_centre_m = self._corner(direction, load)
+                return False
+        if last is not None and not light:
+            turn = math.atan2(last[0] * direction[1] - last[1] * direction[0], last @ direction)
+            if abs(turn) <= WARM_START_MAX_ANGLE_RAD:
+                return untouched
+        self._corner_start(direction, load)
+        return False
 
     def _corner_start(self, direction: np.ndarray, load: np.ndarray) -> None:
         """No displacement, the pin at :meth:`_corner` of the undeformed bore."""
@@ -394,31 +473,32 @@ class ContactNewton:
         self.path.pin_centre_m = self._corner(direction, load)
 
     def _corner(self, direction: np.ndarray, load: np.ndarray) -> np.ndarray:
-        """The light-load solution for the present bore nodes X (deformed): the rigid pin
-        pushed along ``direction`` d as far as the nodes let it. Moved out along d, it first
-        touches a node; rolling about that node (its centre on the circle of radius R_p about
-        it) raises d . c until a second node touches: a corner of the region of contact-free
-        centres. While d is not between the two contact normals (no positive pressures could
-        balance it there), it rolls on about the newer node. On a circular bore the corner joins
-        two neighbouring nodes; on a worn one it may bridge a pocket. The pin is then pressed
-        in along d by |F/L| / (k (w_a + w_b)), the penetration at which the two nodes carry
-        the load."""
+        """The light-load solution for the present bore displacement: the pin rests on the two
+        neighbouring bore nodes j, j+1 whose corner c_j (the pin centre touching both, at
+        R_p from each) lies furthest along ``direction`` d (on a convex bore the contact-free
+        region of the pin centre is the polygon of these corners), pressed in along d by the
+        penetration |F/L| / (k (w_j + w_j+1)) that two nodes of weight w need to carry the load.
+        Should c_j lie closer than R_p to another node (a non-convex, worn bore), the vertex of
+        the free region furthest along d (:func:`support_vertex`) and its two nodes instead."""
         path = self.path
         X = path.deformed_points()
+        ahead = np.roll(X, -1, axis=0)
+        middle = 0.5 * (X + ahead)
+        chord = ahead - X
+        half = 0.5 * np.hypot(chord[:, 0], chord[:, 1])
+        outward = np.column_stack([chord[:, 1], -chord[:, 0]]) / (2.0 * half[:, None])
+        outward *= np.sign(np.einsum("ij,ij->i", outward, middle))[:, None]
         R_p = path.problem.geometry.pin_radius_m
-        centre = first_touch_centre(X, np.zeros(2), direction, R_p)
-        pivot = int(np.argmin(np.abs(np.hypot(*(X - centre).T) - R_p)))
-        previous = None
-        for _ in range(X.shape[0]):
-            centre, touched = _roll(X, centre, pivot, direction, R_p, previous)
-            if touched is None:
-                break
-            previous, pivot = pivot, touched
-            normals = (X[[previous, pivot]] - centre) / R_p
-            if _between(direction, normals[0], normals[1]):
-                break
-        nodes = [pivot] if previous is None else [previous, pivot]
-        return centre + self._load_penetration(load, path.weights_m[nodes].sum()) * direction
+        corners = middle - np.sqrt(R_p**2 - half**2)[:, None] * outward
+        j = int(np.argmax(corners @ direction))
+        pair = (j, (j + 1) % len(X))
+        corner = corners[j]
+        d = X - corner
+        if np.hypot(d[:, 0], d[:, 1]).min() < R_p * (1.0 - CORNER_TOLERANCE):
+            # a non-convex (worn) bore: the corner of the neighbours lies beyond other nodes
+            corner, pair = support_vertex(X, direction, R_p)
+        weight = path.weights_m[pair[0]] + path.weights_m[pair[1]]
+        return corner + self._load_penetration(load, weight) * direction
 
     def _coupled_newton(self, load, direction, basis, max_iterations) -> int | None:
         """Semi-smooth Newton on (displacement, c) with c moving in the span of ``basis``
@@ -538,41 +618,6 @@ class ContactNewton:
             base.gaps + moved)
         mean_normal = base.normals.sum(axis=0)
         path.try_step(step, centre + excess.mean() * mean_normal / np.linalg.norm(mean_normal))
-
-
-def _between(d: np.ndarray, a: np.ndarray, b: np.ndarray) -> bool:
-    """Whether d lies in the cone of the unit vectors a and b (angle less than pi)."""
-    cross = a[0] * b[1] - a[1] * b[0]
-    return (a[0] * d[1] - a[1] * d[0]) * cross >= 0.0 and (d[0] * b[1] - d[1] * b[0]) * cross >= 0.0
-
-
-def _roll(X: np.ndarray, centre: np.ndarray, pivot: int, d: np.ndarray, R_p: float,
-          previous: int | None) -> tuple[np.ndarray, int | None]:
-    """Roll the pin (radius R_p, centre on the circle of radius R_p about X[pivot]) in the
-    sense that raises d . c, until it touches another node; returns the new centre and that
-    node (None when d . c peaks first, with the pin on the pivot alone). A node q is touched
-    where the two circles of radius R_p about X[pivot] and X[q] meet."""
-    u0 = (X[pivot] - centre) / R_p  # from the centre to the pivot
-    start = math.atan2(u0[1], u0[0])
-    # d . c = d . X_pivot - R_p cos(alpha - theta_d): rises while |alpha - theta_d| grows
-    offset = math.remainder(start - math.atan2(d[1], d[0]), 2.0 * math.pi)
-    sense = 1.0 if offset >= 0.0 else -1.0
-    room = math.pi - abs(offset)  # the roll at which d . c peaks
-    others = np.delete(np.arange(X.shape[0]), [pivot] + ([] if previous is None else [previous]))
-    chord = X[others] - X[pivot]
-    half = 0.5 * np.hypot(chord[:, 0], chord[:, 1])
-    reach = half < R_p
-    others, chord, half = others[reach], chord[reach], half[reach]
-    back = np.arctan2(-chord[:, 1], -chord[:, 0])  # from the chord's middle to the pivot
-    spread = np.arccos(half / R_p)  # the meeting points' u are at back -+ spread
-    rolls = np.concatenate([back - spread, back + spread]) - start
-    rolls = np.mod(sense * rolls, 2.0 * math.pi)
-    candidates = np.concatenate([others, others])
-    first = int(np.argmin(rolls)) if rolls.size else -1
-    roll = rolls[first] if rolls.size and rolls[first] < room else room
-    alpha = start + sense * roll
-    new_centre = X[pivot] - R_p * np.array([math.cos(alpha), math.sin(alpha)])
-    return new_centre, (int(candidates[first]) if roll < room else None)
 
 
 class _LineBase:
