@@ -29,6 +29,7 @@ from __future__ import annotations
 import math
 import sys
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -254,23 +255,14 @@ class CaseProgress:
         return float(sum(self.stage_wall_time_s.values()))
 
 
-class StageClock:
-    """Adds the wall time of ``with clock("stage"):`` blocks to a case's stage times."""
-
-    def __init__(self, times: dict):
-        self.times = times
-
-    def __call__(self, stage: str):
-        clock = self
-
-        class _Timed:
-            def __enter__(self):
-                self.start = time.perf_counter()
-
-            def __exit__(self, *exc):
-                clock.times[stage] += time.perf_counter() - self.start
-
-        return _Timed()
+@contextmanager
+def timed(times: dict, stage: str):
+    """Add the wall time of the ``with`` block to ``times[stage]`` (s)."""
+    start = time.perf_counter()
+    try:
+        yield
+    finally:
+        times[stage] += time.perf_counter() - start
 
 
 def smoothed_block_wear(per_cycle: CycleSliding, state: WearState, extension, cycles: int,
@@ -289,7 +281,7 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress) -> None:
     """One wear block of ``case`` (stages 1-5), updating it in place."""
     from fewear.mbd.slider_crank import simulate
 
-    loop, clock = inputs.loop, StageClock(case.stage_wall_time_s)
+    loop, times = inputs.loop, case.stage_wall_time_s
     state = case.state
     crank = replace(inputs.dynamics.crank, rod=rod, joint="clearance",
                     recorded_cycles=loop.recorded_cycles_per_block,
@@ -298,10 +290,10 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress) -> None:
     joint = replace(inputs.dynamics.joint,
                     profile=state.clearance_profile(inputs.contact.geometry.inner_radius_m,
                                                     inputs.contact.geometry.pin_radius_m))
-    with clock("dynamics"):
+    with timed(times, "dynamics"):
         history, _, case.mechanism = simulate(replace(inputs.dynamics, crank=crank, joint=joint),
                                               start=case.mechanism)
-    with clock("contact"):
+    with timed(times, "contact"):
         steps = load_steps(history, loop.load_steps_per_cycle * loop.recorded_cycles_per_block)
         try:
             wear = cycle_wear(bushing, steps, inputs.wear_coefficient, loop.friction_in_contact,
@@ -313,7 +305,7 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress) -> None:
                 f"{history.peak_contact_force_N:.0f} N. The checkpoint holds the blocks done: "
                 "a smaller [wear_loop] max_depth_increment_fraction (adaptive extrapolation) or "
                 "a wider wear_smoothing_width_deg keeps the worn bore smoother") from None
-    with clock("wear"):
+    with timed(times, "wear"):
         per_cycle = cycle_sliding(wear, steps, loop.recorded_cycles_per_block,
                                   inputs.contact.contact.friction_coefficient)
         cycles, increment, sliding = extrapolate_block(
@@ -326,7 +318,7 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress) -> None:
         geometry = inputs.contact.geometry
         worn.checked_against_wall(geometry.inner_radius_m, geometry.outer_radius_m,
                                   loop.max_wall_fraction)
-    with clock("mesh"):
+    with timed(times, "mesh"):
         bushing.apply_wear(worn, increment)
         snapshot = bushing.snapshot()
     case.state = worn
