@@ -248,7 +248,6 @@ class CaseProgress:
     contact_retries: int = 0  # load steps solved again from a cold start
     frictionless_steps: int = 0  # load steps solved without the Coulomb traction
     stage_wall_time_s: dict = field(default_factory=lambda: dict.fromkeys(STAGES, 0.0))
-    done: bool = False
 
     @property
     def wall_time_s(self) -> float:
@@ -332,7 +331,6 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress) -> None:
     case.records.append(BlockRecord(
         worn.cycles, cycles, worn.depth_m.copy(), history.peak_contact_force_N, history.impacts,
         float(wear.pressure_Pa.max()), float(per_cycle.depth_m.max())))
-    case.done = worn.cycles >= loop.total_cycles
 
 
 def new_case(bushing) -> CaseProgress:
@@ -346,7 +344,7 @@ def new_case(bushing) -> CaseProgress:
 def predict_case(rod: str, inputs: RunInputs, bushing, case: CaseProgress, after_block) -> None:
     """Wear blocks until ``total_cycles``; ``after_block(case)`` runs after each (checkpoint,
     progress)."""
-    while not case.done:
+    while case.state.cycles < inputs.loop.total_cycles:
         run_block(rod, inputs, bushing, case)
         after_block(case)
 
