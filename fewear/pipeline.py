@@ -407,10 +407,11 @@ def main(args) -> int:
     nothing into ``args.out``; a checkpoint after every block (``--resume`` continues it)."""
     from mpi4py import MPI
 
-    from fewear.contact.worn_bushing import MeshSnapshot, WornBushing
+    from fewear.contact.worn_bushing import WornBushing
     from fewear.io import checkpoint
     from fewear.io.config import load_config
     from fewear.io.output import staged_output
+    from fewear.mesh.snapshot import MeshSnapshot
 
     comm = MPI.COMM_WORLD
     config = load_config(args.config, run_sections())

@@ -9,7 +9,7 @@ the bushing is re-meshed from r(theta). Moves and re-meshes are counted.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 
@@ -23,7 +23,7 @@ from fewear.mesh.ale import BoreMotion
 from fewear.mesh.bushing import bushing_mesh, radial_progression
 from fewear.mesh.profile import periodic_linear
 from fewear.mesh.quality import RemeshLimits
-from fewear.mesh.snapshot import gather_cells, gather_nodes, scatter_nodes
+from fewear.mesh.snapshot import MeshSnapshot, gather_nodes, scatter_nodes, take_snapshot
 from fewear.wear.state import WearState
 
 
@@ -35,16 +35,6 @@ def bore_element_height_m(problem: ContactProblem) -> float:
     n = problem.mesh.radial_element_count
     q = radial_progression(problem.mesh)
     return wall / n if q == 1.0 else wall * (q - 1.0) / (q**n - 1.0)
-
-
-@dataclass(frozen=True)
-class MeshSnapshot:
-    """The moved mesh: gmsh node numbers (n,), coordinates (n, 2) in m, and its cells as node
-    numbers in VTK order (:func:`fewear.mesh.snapshot.gather_cells`)."""
-
-    node_ids: np.ndarray
-    xy_m: np.ndarray
-    cells: np.ndarray
 
 
 class WornBushing:
@@ -77,12 +67,14 @@ class WornBushing:
         ``meshed_xy_m`` (a checkpoint's), and build the contact operator and mesh motion on it."""
         geometry, settings = self.problem.geometry, self.problem.mesh
         mesh_data = bushing_mesh(geometry, settings, self.comm, bore_profile=bore_profile)
+        node_ids, meshed_xy = gather_nodes(mesh_data[0], self.comm)
         if meshed_xy_m is not None:
-            scatter_nodes(mesh_data[0], gather_nodes(mesh_data[0], self.comm)[0], meshed_xy_m)
+            scatter_nodes(mesh_data[0], node_ids, meshed_xy_m)
+            meshed_xy = meshed_xy_m
         self.contact = CondensedBushingContact(
             BushingContactSolver(self.problem, self.comm, mesh_data=mesh_data))
         self.motion = BoreMotion(mesh_data[0], mesh_data[2], self.problem.material.poisson_ratio)
-        self.meshed_xy_m = gather_nodes(mesh_data[0], self.comm)[1]
+        self.meshed_xy_m = meshed_xy
 
     @property
     def mesh(self):
@@ -144,8 +136,7 @@ class WornBushing:
         self._order = sorter[np.searchsorted(current, self._node_ids, sorter=sorter)]
 
     def snapshot(self) -> MeshSnapshot:
-        return MeshSnapshot(*gather_nodes(self.mesh, self.comm),
-                            gather_cells(self.mesh, self.comm))
+        return take_snapshot(self.mesh, self.comm)
 
     def restore(self, meshed_xy_m: np.ndarray, snapshot: MeshSnapshot, ale_moves: int,
                 remeshes: int) -> None:

@@ -9,7 +9,24 @@ writer on rank 0 can draw the whole mesh.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
+
+
+@dataclass(frozen=True)
+class MeshSnapshot:
+    """A (moved) mesh: gmsh node numbers (n,), coordinates (n, 2) in m, and its cells as node
+    numbers in VTK order (:func:`gather_cells`)."""
+
+    node_ids: np.ndarray
+    xy_m: np.ndarray
+    cells: np.ndarray
+
+
+def take_snapshot(msh, comm) -> MeshSnapshot:
+    """The :class:`MeshSnapshot` of ``msh`` now, the same on every rank."""
+    return MeshSnapshot(*gather_nodes(msh, comm), gather_cells(msh, comm))
 
 
 def gather_nodes(msh, comm) -> tuple[np.ndarray, np.ndarray]:
