@@ -1,7 +1,6 @@
 """The stages of fewear.pipeline on their own: load steps, contact and Archard over a cycle."""
 
 import dataclasses
-import math
 
 import numpy as np
 import pytest
@@ -31,18 +30,6 @@ def test_load_steps_integrate_the_relative_rotation_and_sample_mid_step():
     middle = 2 * np.pi * steps.time_s / 0.05
     np.testing.assert_allclose(steps.force_N[:, 0], 1000.0 * np.cos(middle), atol=0.2)
     assert steps.duration_s == pytest.approx(0.05 / 20)
-
-
-@pytest.fixture(scope="module")
-def coarse_contact():
-    from fewear.contact.condensed import CondensedBushingContact
-    from fewear.contact.params import CONFIG_SECTIONS, contact_problem_from_config
-    from fewear.io.config import load_config
-
-    problem = contact_problem_from_config(load_config(None, CONFIG_SECTIONS))
-    size = 2 * math.pi * problem.geometry.inner_radius_m / 96 * (1 + 1e-9)
-    mesh = dataclasses.replace(problem.mesh, bore_element_size_m=size, radial_element_count=6)
-    return CondensedBushingContact(dataclasses.replace(problem, mesh=mesh))
 
 
 def test_worn_volume_is_archards_k_F_s(coarse_contact):

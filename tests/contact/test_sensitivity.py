@@ -1,24 +1,9 @@
 """dp/dh of fewear.contact.sensitivity against re-solving the contact with one bore node moved."""
 
-import dataclasses
-import math
 
 import numpy as np
-import pytest
 
 from fewear.contact.sensitivity import pressure_sensitivity
-
-
-@pytest.fixture(scope="module")
-def coarse_contact():
-    from fewear.contact.condensed import CondensedBushingContact
-    from fewear.contact.params import CONFIG_SECTIONS, contact_problem_from_config
-    from fewear.io.config import load_config
-
-    problem = contact_problem_from_config(load_config(None, CONFIG_SECTIONS))
-    size = 2 * math.pi * problem.geometry.inner_radius_m / 96 * (1 + 1e-9)
-    mesh = dataclasses.replace(problem.mesh, bore_element_size_m=size, radial_element_count=6)
-    return CondensedBushingContact(dataclasses.replace(problem, mesh=mesh))
 
 
 def test_sensitivity_equals_finite_differences_of_the_contact_solve(coarse_contact):
