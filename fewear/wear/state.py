@@ -6,8 +6,9 @@ worn bore is the periodic curve
 
     r(theta) = R_b + h(theta),
 
-h interpolated linearly in theta between the nodes (periodic, so the profile carries over exactly
-to any set of angles, e.g. the nodes of a re-meshed bushing). From it:
+h interpolated linearly in theta between the nodes (periodic). A re-meshed bushing puts its bore
+nodes at the same angles (k pi / n) exactly on r(theta), so the state carries over unchanged.
+From it:
 
 - the dynamics' clearance c(theta): how far the rigid pin's centre can move in the direction
   theta before the pin touches r(theta); c0 + h(theta) where the worn bore conforms to the pin
@@ -21,7 +22,7 @@ lagged frictional power) for the history-dependent wear laws of :mod:`fewear.wea
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -97,18 +98,6 @@ class WearState:
 
         return ClearanceProfile(self.angle_rad.copy(),
                                 self.pin_clearance_m(inner_radius_m, pin_radius_m))
-
-    def at_angles(self, angle_rad: np.ndarray) -> WearState:
-        """The same state carried over to other node angles (after a re-mesh): depth and sliding
-        history interpolated periodically; exact where the angles coincide."""
-        angle_rad = np.asarray(angle_rad, dtype=float)
-
-        def carry(values):
-            return periodic_linear(self.angle_rad, np.asarray(values, float))(angle_rad)
-
-        sliding = SlidingState(carry(self.sliding.distance_m), carry(self.sliding.time_s),
-                               carry(self.sliding.lagged_power_W_m2))
-        return replace(self, angle_rad=angle_rad, depth_m=carry(self.depth_m), sliding=sliding)
 
     def worn_area_m2(self, inner_radius_m: float) -> float:
         """Area removed from the bore cross-section (m^2, the worn volume per unit width):

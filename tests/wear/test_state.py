@@ -46,12 +46,6 @@ def test_worn_area_of_a_uniform_depth_is_the_annulus():
     assert state.worn_area_m2(R_B) == pytest.approx(math.pi * ((R_B + 1e-4) ** 2 - R_B**2))
 
 
-def test_carry_over_to_other_angles_is_exact_at_shared_angles():
-    depth = 1e-4 * (1 + np.cos(ANGLES))
-    moved = worn(depth).at_angles(ANGLES[::2])
-    np.testing.assert_array_equal(moved.depth_m, depth[::2])
-
-
 def test_wall_break_through_is_an_input_error():
     with pytest.raises(FewearInputError, match="worn through"):
         worn(np.full(N, 3e-3)).checked_against_wall(R_B, 0.015, 0.5)
