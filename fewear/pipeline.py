@@ -418,7 +418,7 @@ def main(args) -> int:
     inputs = run_inputs_from_config(config)
     progress = Progress(comm, inputs.loop.total_cycles, len(inputs.loop.rod_models))
     store = checkpoint.Checkpoint(args.out, config, comm)
-    cases = store.load() if getattr(args, "resume", False) else {}
+    cases = store.load() if args.resume else {}
     if cases:
         progress.resumed_fraction = sum(
             case.state.cycles / inputs.loop.total_cycles for case in cases.values()) / len(
@@ -427,12 +427,14 @@ def main(args) -> int:
             f"{rod} at {case.state.cycles:,} cycles" for rod, case in cases.items()))
     with staged_output(args.out, comm) as stage:
         for index, rod in enumerate(inputs.loop.rod_models):
+            case = cases.get(rod)
+            if case is not None and case.state.cycles >= inputs.loop.total_cycles:
+                continue  # finished before an interruption: nothing to mesh or solve
             progress.message(f"{rod} rod: meshing the bushing and condensing it onto the bore")
             bushing = WornBushing(inputs.contact, comm)
-            case = cases.get(rod)
             if case is None:
                 case = cases[rod] = new_case(bushing)
-            elif case.records:
+            else:
                 bushing.restore(case.meshed_xy_m,
                                 MeshSnapshot(case.node_ids, case.snapshots[-1], case.cells),
                                 case.ale_moves, case.remeshes)
