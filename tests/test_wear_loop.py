@@ -145,10 +145,11 @@ def test_wear_through_the_wall_is_an_input_error(tmp_path, capsys):
 
 @pytest.mark.mpi
 def test_two_ranks_give_the_serial_wear(tmp_path, explicit_run):
-    """`mpirun -n 2 fewear run` on the small case: the same profile as serial to 1e-6 of the
-    maximum depth (the dynamics run identically on every rank, the condensed contact is solved
-    redundantly from the same compliance; only rank 0 writes). Measured: 0 to 2.5e-7, at a node
-    on the edge of contact (the distributed LU's rounding decides at 1e-9 whether it touches)."""
+    """`mpirun -n 2 fewear run` on the small case: the same profile as serial to 1e-8 of the
+    maximum depth (the dynamics run identically on every rank on a clearance rounded to 1 pm, so
+    the FE solve's rounding, which differs with the process count, cannot switch the step-size
+    control onto another path; the condensed contact is solved redundantly from the same
+    compliance; only rank 0 writes). Measured: 9.9e-10 (2e-4 without the rounding)."""
     import os
     import shutil
     import subprocess
@@ -169,7 +170,7 @@ def test_two_ranks_give_the_serial_wear(tmp_path, explicit_run):
                         for folder in (explicit_run, tmp_path / "mpi"))
     scale = serial["wear_depth_m"].max()
     np.testing.assert_allclose(parallel["wear_depth_m"], serial["wear_depth_m"],
-                               atol=1e-6 * scale)
+                               atol=1e-8 * scale)
 
 
 def test_fewear_plot_renders_the_worn_bushing_off_screen(explicit_run):

@@ -47,20 +47,25 @@ def contact_normal(nx: float, ny: float, slope: float) -> tuple[float, float]:
     return mx / length, my / length
 
 
-def normal_turn(nx: float, ny: float, d: float, dc: float, F_n: float, F_t: float) -> np.ndarray:
-    """-F_n dm/de + F_t dm_perp/de (2, 2): how the force turns with the eccentricity e at fixed
-    F_n, F_t. With s = c'/d, m~ = n - s t, dn/de = t t^T / d, dt/de = -n t^T / d and
-    ds/de = -c' n^T / d^2 (c'' = 0 on the linear profile pieces):
-    dm~/de = (t t^T + s (t n^T + n t^T)) / d, dm/de = (I - m m^T) dm~/de / |m~|."""
+def normal_turn(nx: float, ny: float, d: float, dc: float, ddc: float, F_n: float,
+                F_t: float) -> tuple[np.ndarray, np.ndarray]:
+    """How the force -F_n m + F_t m_perp turns at fixed F_n, F_t: its derivatives (2, 2) with
+    respect to the eccentricity e and (2,) with respect to the bushing angle phi. With
+    s = c'/d, m~ = n - s t, dn/de = t t^T / d, dt/de = -n t^T / d, dtheta/de = t^T / d,
+    dtheta/dphi = -1, ds/de = (c'' t^T / d - c' n^T) / d^2 and ds/dphi = -c''/d:
+    dm~/de = ((1 - c''/d) t t^T + s (t n^T + n t^T)) / d, dm~/dphi = c'' t / d,
+    dm/d. = (I - m m^T) dm~/d. / |m~|."""
     n, t = np.array([nx, ny]), np.array([-ny, nx])
     slope = dc / d
     raw = n - slope * t
     length = float(np.hypot(*raw))
     m = raw / length
-    turn = (np.eye(2) - np.outer(m, m)) @ (
-        np.outer(t, t) + slope * (np.outer(t, n) + np.outer(n, t))) / (d * length)
-    quarter = np.array([[0.0, -1.0], [1.0, 0.0]])
-    return -F_n * turn + F_t * (quarter @ turn)
+    project = (np.eye(2) - np.outer(m, m)) / length
+    turn_e = project @ ((1.0 - ddc / d) * np.outer(t, t)
+                        + slope * (np.outer(t, n) + np.outer(n, t))) / d
+    turn_phi = project @ (ddc / d * t)
+    force_turn = -F_n * np.eye(2) + F_t * np.array([[0.0, -1.0], [1.0, 0.0]])
+    return force_turn @ turn_e, force_turn @ turn_phi
 
 
 class ClearanceJoint:
@@ -93,7 +98,7 @@ class ClearanceJoint:
         ex, ey, edx, edy, omega_b, phi_b = z[0], z[1], z[2], z[3], z[5], z[6]
         d = math.hypot(ex, ey)
         theta = math.atan2(ey, ex) - phi_b
-        c, dc = self.profile(theta)
+        c, dc, _ = self.profile(theta)
         if d == 0.0:
             return -c, 0.0, theta, d
         nx, ny = ex / d, ey / d
@@ -107,7 +112,7 @@ class ClearanceJoint:
         d = math.hypot(ex, ey)
         delta = -1.0
         if d > 0.0:
-            c, dc = self.profile(math.atan2(ey, ex) - phi_b)
+            c, dc, ddc = self.profile(math.atan2(ey, ex) - phi_b)
             delta = d - c
         if delta <= 0.0:
             return (0.0, 0.0), 0.0, 0.0, np.zeros((3, 7)) if derivatives else None
@@ -123,22 +128,26 @@ class ClearanceJoint:
         f = (-F_n * mx - F_t * my, -F_n * my + F_t * mx)
         if not derivatives:
             return f, F_n, F_t, None
-        D = self._force_derivatives((d, nx, ny, e_n, e_t, dc), F_n, F_t, dF_ddelta, dF_drate,
-                                    psi, dpsi)
+        D = self._force_derivatives((d, nx, ny, e_n, e_t, dc, ddc, omega_b), F_n, F_t,
+                                    dF_ddelta, dF_drate, psi, dpsi)
         return f, F_n, F_t, D
 
     def _force_derivatives(self, geometry, F_n, F_t, dF_ddelta, dF_drate, psi, dpsi):
-        """D = d(f1, f2, F_t)/dz (3, 7) at the contact ``geometry`` = (d, n, e'.n, e'.t, c').
+        """D = d(f1, f2, F_t)/dz (3, 7) at the contact ``geometry`` = (d, n, e'.n, e'.t, c', c'',
+        omega_bushing).
 
-        Derivatives of delta and rate with respect to z (c'' = 0: linear profile pieces):
-        dn/de = t t^T / d, dt/de = -n t^T / d, dtheta_dot/de = -(e_n t + e_t n) / d^2."""
-        d, nx, ny, e_n, e_t, dc = geometry
+        Derivatives of delta and rate = e_n - c'(theta) theta_dot with respect to z:
+        dn/de = t t^T / d, dt/de = -n t^T / d, dtheta/de = t^T / d, dtheta/dphi = -1,
+        dtheta_dot/de = -(e_n t + e_t n) / d^2 (theta_dot = e_t / d - omega_bushing)."""
+        d, nx, ny, e_n, e_t, dc, ddc, omega_b = geometry
         tx, ty = -ny, nx
         rx, ry = nx - dc * tx / d, ny - dc * ty / d
         dthx, dthy = -(e_n * tx + e_t * nx) / d**2, -(e_n * ty + e_t * ny) / d**2
+        curving = ddc * (e_t / d - omega_b)  # c'' theta_dot: how c' theta_dot moves with theta
         ddelta = np.array([rx, ry, 0.0, 0.0, 0.0, 0.0, dc])
-        drate = np.array([e_t * tx / d - dc * dthx, e_t * ty / d - dc * dthy, rx, ry, 0.0, dc,
-                          0.0])
+        drate = np.array([e_t * tx / d - dc * dthx - curving * tx / d,
+                          e_t * ty / d - dc * dthy - curving * ty / d, rx, ry, 0.0, dc,
+                          curving])
         dF_n = dF_ddelta * ddelta + dF_drate * drate
         mu = self.friction.coefficient
         dF_t = -mu * psi * dF_n
@@ -151,7 +160,9 @@ class ClearanceJoint:
         D[0] = -mx * dF_n - my * dF_t
         D[1] = -my * dF_n + mx * dF_t
         D[2] = dF_t
-        D[0:2, 0:2] += normal_turn(nx, ny, d, dc, F_n, F_t)
+        turn_e, turn_phi = normal_turn(nx, ny, d, dc, ddc, F_n, F_t)
+        D[0:2, 0:2] += turn_e
+        D[0:2, 6] += turn_phi
         return D
 
     # --- force element interface -------------------------------------------------------------

@@ -33,6 +33,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.interpolate import CubicSpline
 
 from fewear.errors import FewearInputError
 
@@ -167,10 +168,12 @@ class ClearanceProfile:
     ``angle_rad``: increasing angles in [0, 2 pi) of the direction from the bushing centre to the
     pin centre, measured from the bushing frame's x axis (for the slider: the slide direction);
     ``clearance_m``: the clearance c(theta) > 0 there = (local bore radius) - (pin radius). The
-    profile is periodic (2 pi) and interpolated linearly between the given angles: a single angle
-    gives a constant. The wear stage passes the worn bore here: c(theta) = c0 + wear depth(theta)
-    (valid while the wear depth varies slowly around the bore, so the pin touches the wall in the
-    direction of its centre). Penetration: delta = |e| - c(theta(e)).
+    profile is periodic (2 pi) and interpolated by a periodic cubic spline through the given angles
+    (C2: the contact normal, which leans with the slope c', turns continuously, so the integrator
+    is not kicked at the nodes of a worn profile; linear interpolation made the flexible rod's
+    steps collapse on a worn bore); a single angle gives a constant. The wear stage passes the
+    worn bore here: c(theta) = c0 + wear depth(theta) where it conforms to the pin.
+    Penetration: delta = |e| - c(theta(e)).
     """
 
     angle_rad: np.ndarray
@@ -196,17 +199,21 @@ class ClearanceProfile:
         object.__setattr__(self, "angle_rad", angle)
         object.__setattr__(self, "clearance_m", clearance)
         object.__setattr__(self, "is_constant", angle.size == 1)
+        if angle.size > 1:
+            spline = CubicSpline(np.append(angle, angle[0] + 2.0 * math.pi),
+                                 np.append(clearance, clearance[0]), bc_type="periodic")
+            object.__setattr__(self, "_cubic", spline.c.T.tolist())  # (c3, c2, c1, c0) per piece
 
-    def __call__(self, theta_rad: float) -> tuple[float, float]:
-        """(c, dc/dtheta) at the direction theta (any real angle)."""
+    def __call__(self, theta_rad: float) -> tuple[float, float, float]:
+        """(c, dc/dtheta, d2c/dtheta2) at the direction theta (any real angle)."""
         if self.is_constant:
-            return float(self.clearance_m[0]), 0.0
-        angle, clearance = self.angle_rad, self.clearance_m
+            return float(self.clearance_m[0]), 0.0, 0.0
+        angle = self.angle_rad
         theta = theta_rad % (2.0 * math.pi)
         k = int(np.searchsorted(angle, theta, side="right")) - 1
-        if k < 0:  # before the first angle: wrap to the last one
+        if k < 0:  # before the first angle: the last piece, which wraps past 2 pi
             k, theta = angle.size - 1, theta + 2.0 * math.pi
-        k_next = (k + 1) % angle.size
-        theta_next = angle[k_next] + (2.0 * math.pi if k_next <= k else 0.0)
-        slope = (clearance[k_next] - clearance[k]) / (theta_next - angle[k])
-        return float(clearance[k] + slope * (theta - angle[k])), float(slope)
+        c3, c2, c1, c0 = self._cubic[k]
+        x = theta - float(angle[k])
+        return (((c3 * x + c2) * x + c1) * x + c0, (3.0 * c3 * x + 2.0 * c2) * x + c1,
+                6.0 * c3 * x + 2.0 * c2)

@@ -30,6 +30,9 @@ from fewear.errors import FewearInputError
 from fewear.mesh.profile import periodic_linear
 from fewear.wear.extensions import SlidingState
 
+CLEARANCE_QUANTUM_M = 1e-12
+"""The resolution of the clearance handed to the dynamics (1 pm, far below any wear)."""
+
 
 @dataclass(frozen=True)
 class WearState:
@@ -93,11 +96,16 @@ class WearState:
         return np.where((discriminant >= 0.0) & (reach >= 0.0), reach, np.inf).min(axis=1)
 
     def clearance_profile(self, inner_radius_m: float, pin_radius_m: float):
-        """The clearance joint's c(theta) (:meth:`pin_clearance_m`) for the dynamics."""
+        """The clearance joint's c(theta) (:meth:`pin_clearance_m`) for the dynamics, rounded to
+        ``CLEARANCE_QUANTUM_M``: the impact dynamics with step-size control is discontinuous in
+        its input (an accepted or rejected step), so wear depths that differ in the last bits
+        (the FE solve's rounding differs between process counts) would otherwise send serial and
+        ``mpirun`` runs along different step sequences."""
         from fewear.mbd.contact import ClearanceProfile
 
+        clearance = self.pin_clearance_m(inner_radius_m, pin_radius_m)
         return ClearanceProfile(self.angle_rad.copy(),
-                                self.pin_clearance_m(inner_radius_m, pin_radius_m))
+                                np.round(clearance / CLEARANCE_QUANTUM_M) * CLEARANCE_QUANTUM_M)
 
     def worn_area_m2(self, inner_radius_m: float) -> float:
         """Area removed from the bore cross-section (m^2, the worn volume per unit width):

@@ -81,15 +81,30 @@ def test_friction_regularisation_is_continuous_and_odd():
     assert friction.factor(0.5 * (1e-4 + 1e-2))[0] == pytest.approx(0.5)
 
 
-def test_clearance_profile_is_periodic_and_interpolates():
-    profile = ClearanceProfile(np.radians([0.0, 90.0, 180.0, 270.0]),
-                               np.array([5e-4, 6e-4, 5e-4, 4e-4]))
-    assert profile(math.radians(45.0))[0] == pytest.approx(5.5e-4)
-    assert profile(math.radians(315.0))[0] == pytest.approx(4.5e-4)
-    assert profile(math.radians(-45.0))[0] == pytest.approx(4.5e-4)
-    assert profile(math.radians(405.0))[0] == pytest.approx(5.5e-4)
-    assert profile(math.radians(300.0))[1] == pytest.approx(1e-4 / (math.pi / 2))
-    assert ClearanceProfile.constant(5e-4)(1.234) == (5e-4, 0.0)
+def test_clearance_profile_is_a_periodic_c2_spline_through_the_given_clearances():
+    angles = np.radians([0.0, 90.0, 180.0, 270.0])
+    values = np.array([5e-4, 6e-4, 5e-4, 4e-4])
+    profile = ClearanceProfile(angles, values)
+    for angle, value in zip(angles, values):
+        assert profile(angle)[0] == pytest.approx(value, rel=1e-12)
+        assert profile(angle + 2 * math.pi)[0] == pytest.approx(value, rel=1e-12)
+        assert profile(angle - 2 * math.pi)[0] == pytest.approx(value, rel=1e-12)
+    eps = 1e-9  # value, slope and curvature continuous across every node, the wrap included
+    for angle in angles:
+        left, right = profile(angle - eps), profile(angle + eps)
+        np.testing.assert_allclose(left, right, rtol=1e-6, atol=1e-12)
+    # c' and c'' are the derivatives of c (central differences)
+    theta, h = 2.0, 1e-5
+    assert profile(theta)[1] == pytest.approx(
+        (profile(theta + h)[0] - profile(theta - h)[0]) / (2 * h), rel=1e-6)
+    assert profile(theta)[2] == pytest.approx(
+        (profile(theta + h)[1] - profile(theta - h)[1]) / (2 * h), rel=1e-6)
+    # symmetric data about 90 deg give a symmetric curve; a sinusoid is followed closely
+    assert profile(math.radians(45.0))[0] == pytest.approx(profile(math.radians(135.0))[0])
+    fine = np.radians(np.arange(0.0, 360.0, 10.0))
+    sinusoid = ClearanceProfile(fine, 5e-4 + 1e-4 * np.sin(fine))
+    assert sinusoid(1.234)[0] == pytest.approx(5e-4 + 1e-4 * math.sin(1.234), abs=1e-8)
+    assert ClearanceProfile.constant(5e-4)(1.234) == (5e-4, 0.0, 0.0)
 
 
 @pytest.mark.parametrize("values", [[5e-4, -1e-5], [5e-4, 0.0]])
