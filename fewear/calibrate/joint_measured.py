@@ -74,6 +74,8 @@ KIND_STEMS = {"profiles": ("angle", "wear_depth"), "max_wear": ("max_wear_depth"
               "force": ("fx", "fy"), "acceleration": ("slider_acceleration",)}
 """Column stems (any unit) that mark a header as one kind of joint data."""
 ANGLE_RANGE_deg = (-360.0, 720.0)
+MAX_CYCLES = 1e15
+"""Above this a cycle count no longer fits the reader's integers (and no test runs so long)."""
 IMPLAUSIBLE_DEPTH_m = 1e-2
 """A wear depth of this size (1 cm, the whole bore radius of a 10 mm bushing) is a unit mistake."""
 
@@ -357,7 +359,7 @@ def _check_finite(name: str, values: np.ndarray, where: Callable[[int], str]) ->
 
 
 def _cycles_column(values: np.ndarray, where: Callable[[int], str]) -> np.ndarray:
-    bad = np.flatnonzero((values < 0.0) | (values != np.round(values)))
+    bad = np.flatnonzero((values < 0.0) | (values != np.round(values)) | (values > MAX_CYCLES))
     if bad.size:
         raise FewearInputError(
             f"{where(bad[0])}, column cycles: {values[bad[0]]!r}; expected a non-negative whole "
