@@ -290,8 +290,15 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress) -> None:
                     profile=state.clearance_profile(inputs.contact.geometry.inner_radius_m,
                                                     inputs.contact.geometry.pin_radius_m))
     with timed(times, "dynamics"):
-        history, _, case.mechanism = simulate(replace(inputs.dynamics, crank=crank, joint=joint),
-                                              start=case.mechanism)
+        try:
+            history, _, case.mechanism = simulate(
+                replace(inputs.dynamics, crank=crank, joint=joint), start=case.mechanism)
+        except RuntimeError as exc:  # the integrator's step size collapsed
+            raise FewearInputError(
+                f"{rod} rod, block {state.blocks + 1} at {state.cycles:,} cycles: the dynamics "
+                f"on the worn clearance failed ({exc}). The checkpoint holds the blocks done: a "
+                "smaller [integrator] min_step_s, a larger gap_tolerance_m or a wider [wear_loop] "
+                "wear_smoothing_width_deg may get past it") from None
     with timed(times, "contact"):
         steps = load_steps(history, loop.load_steps_per_cycle * loop.recorded_cycles_per_block)
         try:
