@@ -14,7 +14,10 @@ block j:
    rigid pin on a pilot point) under each step's force: nodal pressures p and slips s.
 4. **Wear** (:mod:`fewear.wear`): Archard's law with k(p, v) (seed eq. 9-10) and the wear law's
    history multiplier, per node, averaged over the recorded cycles; the block extrapolates it over
-   A_j real cycles (fixed, or adaptive: bounded depth increment per block).
+   A_j real cycles (fixed, or adaptive: bounded depth increment per block). Optionally impacts
+   wear too: ``[wear] impact_wear_coefficient_m3_J`` k_imp > 0 adds k_imp times each step's
+   hysteresis work of the contact law, spread in proportion to the step's pressure
+   (:mod:`fewear.wear.impact`; default 0, none).
 5. **Geometry update**: the bore nodes move by the block's depth increment, the mesh follows (ALE)
    or is re-meshed from the worn bore, and the contact operator is rebuilt: the next block runs
    on the worn joint.
@@ -44,6 +47,7 @@ from fewear.wear.archard import (
     smoothed_periodic,
 )
 from fewear.wear.extrapolation import ExtrapolationSettings, extrapolate_block
+from fewear.wear.impact import hysteresis_work_J, impact_wear_depth_m
 from fewear.wear.state import WearState
 
 RUN_SECTIONS = ["wear_loop", "wear"]
@@ -105,6 +109,7 @@ class RunInputs:
     wear_coefficient: object  # k(p, v), fewear.wear.coefficient
     extension: object  # the wear law's history multiplier, fewear.wear.extensions
     loop: WearLoopSettings
+    impact_wear_coefficient_m3_J: float = 0.0  # k_imp, fewear.wear.impact
 
 
 def run_sections() -> list[str]:
@@ -119,11 +124,13 @@ def run_inputs_from_config(config: dict) -> RunInputs:
     from fewear.mbd.slider_crank import dynamics_inputs_from_config
     from fewear.wear.coefficient import wear_coefficient_from_config
     from fewear.wear.extensions import wear_extension_from_config
+    from fewear.wear.impact import impact_wear_coefficient_from_config
 
     return RunInputs(dynamics_inputs_from_config(config), contact_problem_from_config(config),
                      wear_coefficient_from_config(config["wear"]),
                      wear_extension_from_config(config["wear"]),
-                     WearLoopSettings.from_config(config["wear_loop"]))
+                     WearLoopSettings.from_config(config["wear_loop"]),
+                     impact_wear_coefficient_from_config(config["wear"]))
 
 
 @dataclass(frozen=True)
@@ -132,13 +139,16 @@ class LoadSteps:
 
     ``force_N`` (n, 2): joint force ON the pin pushing it into the bore (minus the bushing's
     reaction on the pin) at the middle of each step; ``rotation_rad`` (n,): rotation of the pin
-    relative to the bushing over the step; ``duration_s``: the length of one step.
+    relative to the bushing over the step; ``duration_s``: the length of one step;
+    ``hysteresis_work_J`` (n,): the work W_i the contact law's hysteresis dissipates over the step
+    (:func:`fewear.wear.impact.hysteresis_work_J`).
     """
 
     time_s: np.ndarray
     force_N: np.ndarray
     rotation_rad: np.ndarray
     duration_s: float
+    hysteresis_work_J: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -160,11 +170,14 @@ class CycleWear:
     depth_sensitivity: np.ndarray | None = None
 
 
-def load_steps(history: JointHistory, n_steps: int) -> LoadSteps:
+def load_steps(history: JointHistory, n_steps: int, law=None) -> LoadSteps:
     """Cut the recorded history into ``n_steps`` equal steps (stage 2).
 
     The force is sampled at each step's middle (linear interpolation of the variable-step history);
-    the relative rotation is the trapezoidal integral of ``rel_omega_rad_s`` over the step.
+    the relative rotation is the trapezoidal integral of ``rel_omega_rad_s`` over the step, and
+    the hysteresis work W_i that of the dissipated power of ``law`` (the clearance joint's
+    :class:`fewear.mbd.contact.ContactLaw`; None: no work, as for the ideal joint), both
+    interpolated linearly in time at the step edges.
     """
     t = history.time_s
     edges = np.linspace(t[0], t[-1], n_steps + 1)
@@ -175,7 +188,9 @@ def load_steps(history: JointHistory, n_steps: int) -> LoadSteps:
         [[0.0], np.cumsum(0.5 * (history.rel_omega_rad_s[1:] + history.rel_omega_rad_s[:-1])
                           * np.diff(t))])
     rotation = np.diff(np.interp(edges, t, angle))
-    return LoadSteps(middles, force, rotation, float(edges[1] - edges[0]))
+    work = np.zeros(n_steps) if law is None else np.diff(np.interp(
+        edges, t, hysteresis_work_J(law, history.penetration_m, history.normal_force_N)))
+    return LoadSteps(middles, force, rotation, float(edges[1] - edges[0]), work)
 
 
 def cycle_wear(contact_model, steps: LoadSteps, wear_coefficient, friction: bool,
@@ -204,24 +219,29 @@ def cycle_wear(contact_model, steps: LoadSteps, wear_coefficient, friction: bool
                      cycle_wear_depth_m(k, pressure, slip), sensitivity)
 
 
-def cycle_sliding(wear: CycleWear, steps: LoadSteps, cycles: int,
-                  friction_coefficient: float) -> CycleSliding:
+def cycle_sliding(wear: CycleWear, steps: LoadSteps, cycles: int, friction_coefficient: float,
+                  impact_wear_coefficient_m3_J: float = 0.0) -> CycleSliding:
     """What one crank cycle does at each node, averaged over the ``cycles`` recorded cycles:
-    Archard depth, sliding distance, time in sliding contact, mean frictional power mu p v, and
-    the depth's sensitivity to the wear."""
+    Archard depth, sliding distance, time in sliding contact, mean frictional power mu p v, the
+    depth's sensitivity to the wear, and the impact wear depth of k_imp =
+    ``impact_wear_coefficient_m3_J`` (:func:`fewear.wear.impact.impact_wear_depth_m`)."""
     sliding = wear.slip_m > 0.0
     distance = wear.slip_m.sum(axis=0) / cycles
     time_s = steps.duration_s * sliding.sum(axis=0) / cycles
     energy = friction_coefficient * (wear.pressure_Pa * wear.slip_m).sum(axis=0) / cycles
     power = np.divide(energy, time_s, out=np.zeros_like(energy), where=time_s > 0.0)
     sensitivity = None if wear.depth_sensitivity is None else wear.depth_sensitivity / cycles
-    return CycleSliding(wear.depth_per_cycle_m / cycles, distance, time_s, power, sensitivity)
+    impact = impact_wear_depth_m(impact_wear_coefficient_m3_J, steps.hysteresis_work_J,
+                                 steps.force_N, wear.pressure_Pa) / cycles
+    return CycleSliding(wear.depth_per_cycle_m / cycles, distance, time_s, power, sensitivity,
+                        impact)
 
 
 @dataclass(frozen=True)
 class BlockRecord:
     """One wear block: cycles at its end, its A_j, the depth profile after it (at the state's
-    node angles), and what its simulated cycles saw."""
+    node angles), and what its simulated cycles saw (the depth per cycle: Archard's plus the
+    impacts')."""
 
     cycles: int
     block_cycles: int
@@ -300,7 +320,8 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress) -> None:
                 "smaller [integrator] min_step_s, a larger gap_tolerance_m or a wider [wear_loop] "
                 "wear_smoothing_width_deg may get past it") from None
     with timed(times, "contact"):
-        steps = load_steps(history, loop.load_steps_per_cycle * loop.recorded_cycles_per_block)
+        steps = load_steps(history, loop.load_steps_per_cycle * loop.recorded_cycles_per_block,
+                           inputs.dynamics.joint.law)
         try:
             wear = cycle_wear(bushing, steps, inputs.wear_coefficient, loop.friction_in_contact,
                               implicit=loop.implicit_wear_step)
@@ -313,7 +334,8 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress) -> None:
                 "a wider wear_smoothing_width_deg keeps the worn bore smoother") from None
     with timed(times, "wear"):
         per_cycle = cycle_sliding(wear, steps, loop.recorded_cycles_per_block,
-                                  inputs.contact.contact.friction_coefficient)
+                                  inputs.contact.contact.friction_coefficient,
+                                  inputs.impact_wear_coefficient_m3_J)
         cycles, increment, sliding = extrapolate_block(
             loop.extrapolation,
             lambda cycles: smoothed_block_wear(per_cycle, state, inputs.extension, cycles,
@@ -337,7 +359,8 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress) -> None:
     bushing.cold_retries = bushing.frictionless_steps = 0
     case.records.append(BlockRecord(
         worn.cycles, cycles, worn.depth_m.copy(), history.peak_contact_force_N, history.impacts,
-        float(wear.pressure_Pa.max()), float(per_cycle.depth_m.max())))
+        float(wear.pressure_Pa.max()),
+        float((per_cycle.depth_m + per_cycle.impact_depth_m).max())))
 
 
 def new_case(bushing) -> CaseProgress:

@@ -45,6 +45,11 @@ constant_k_m2_N = {CONSTANT_K_m2_N!r}
 # "time_transient" or "thermal"; extension_params holds that extension's fitted parameters.
 extension = "none"
 extension_params = {{}}
+# Impact wear (fewear.wear.impact, energy wear after Fouvry et al., Wear 255 (2003)): worn volume
+# in m^3 per joule dissipated by the contact law's hysteresis (Lankarani-Nikravesh damping), spread
+# over the bore like the contact pressure and added to Archard's sliding wear. A number >= 0;
+# 0 = no impact wear (the default: sliding wear only).
+impact_wear_coefficient_m3_J = 0.0
 # The RBF network (fewear.wear.coefficient.RbfWearCoefficient): ln k = tail . (1, z_p, z_v)
 # + sum_i weights_i exp(-|z - centres_i|^2 / (2 widths_i^2)), z = (ln(p/Pa), ln(v/(m/s)))
 # standardised by log_input_mean and log_input_scale; p and v are clamped to pressure_range_Pa and

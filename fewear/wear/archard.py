@@ -40,7 +40,8 @@ class CycleSliding:
     ``power_W_m2``: mean frictional power mu p v over that time (0 where the node never slides);
     ``depth_sensitivity``: (n, n) d(depth_m)/dh, how the cycle's wear changes when the bore
     recedes by h (the contact pressures redistribute: sum over load steps of k s dp/dh), or None
-    (explicit extrapolation).
+    (explicit extrapolation); ``impact_depth_m``: the depth the cycle's impacts wear
+    (:mod:`fewear.wear.impact`; 0 without impact wear).
     """
 
     depth_m: np.ndarray
@@ -48,6 +49,7 @@ class CycleSliding:
     time_s: np.ndarray
     power_W_m2: np.ndarray
     depth_sensitivity: np.ndarray | None = None
+    impact_depth_m: np.ndarray | float = 0.0
 
 
 def block_wear(cycle: CycleSliding, sliding: SlidingState, extension, cycles: int,
@@ -73,6 +75,11 @@ def block_wear(cycle: CycleSliding, sliding: SlidingState, extension, cycles: in
     about 30 cycles, so the dwell points of one recorded cycle roughen the bore block after block.
     The implicit step damps every ripple for any A_j and equals the explicit one where the
     pressures do not depend on the wear (S = 0).
+
+    Impact wear (``cycle.impact_depth_m``, :mod:`fewear.wear.impact`) adds A_j h_imp to the
+    explicit increment: it is energy wear, not sliding, so the sliding-history multiplier m does
+    not scale it; and S holds only the Archard part's dp/dh (the impact depth's own dependence
+    on the wear is not linearised), so the implicit step treats h_imp as a given source.
     """
     if cycles < 1:
         raise FewearInputError(
@@ -84,7 +91,7 @@ def block_wear(cycle: CycleSliding, sliding: SlidingState, extension, cycles: in
                                    (i + 0.5) * share * cycle.time_s, cycle.power_W_m2)
         multiplier_sum += extension.multiplier(middle)
     mean_multiplier = multiplier_sum / substeps
-    increment = cycles * mean_multiplier * cycle.depth_m
+    increment = cycles * mean_multiplier * cycle.depth_m + cycles * cycle.impact_depth_m
     after = extension.advance(sliding, cycles * cycle.distance_m, cycles * cycle.time_s,
                               cycle.power_W_m2)
     if cycle.depth_sensitivity is not None:
