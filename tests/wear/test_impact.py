@@ -15,6 +15,7 @@ from fewear.pipeline import LoadSteps, cycle_sliding, cycle_wear, load_steps, ru
 from fewear.wear.archard import CycleSliding, block_wear
 from fewear.wear.coefficient import ConstantWearCoefficient
 from fewear.wear.extensions import RunningIn, SlidingState
+from fewear.wear.state import WearState
 from fewear.wear.impact import (
     hysteresis_work_J,
     impact_wear_coefficient_from_config,
@@ -208,7 +209,11 @@ def test_fewear_run_adds_k_imp_times_the_cycles_hysteresis_work(tmp_path):
     inputs = run_inputs_from_config(load_config(config, run_sections()))
     crank = dataclasses.replace(inputs.dynamics.crank, rod="rigid", joint="clearance",
                                 recorded_cycles=1)
-    history, _, _ = simulate(dataclasses.replace(inputs.dynamics, crank=crank))
+    # the clearance exactly as the run hands it to the dynamics (96 bore nodes, rounded to 1 pm)
+    unworn = WearState.unworn(np.arange(96) * (2 * math.pi / 96))
+    joint = dataclasses.replace(inputs.dynamics.joint,
+                                profile=unworn.clearance_profile(0.010, 0.0095))
+    history, _, _ = simulate(dataclasses.replace(inputs.dynamics, crank=crank, joint=joint))
     steps = load_steps(history, 40, inputs.dynamics.joint.law)
     loaded = np.linalg.norm(steps.force_N, axis=1) > 0.0
     expected = 2000 * 1e-12 * steps.hysteresis_work_J[loaded].sum()
