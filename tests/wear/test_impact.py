@@ -15,12 +15,12 @@ from fewear.pipeline import LoadSteps, cycle_sliding, cycle_wear, load_steps, ru
 from fewear.wear.archard import CycleSliding, block_wear
 from fewear.wear.coefficient import ConstantWearCoefficient
 from fewear.wear.extensions import RunningIn, SlidingState
-from fewear.wear.state import WearState
 from fewear.wear.impact import (
     hysteresis_work_J,
     impact_wear_coefficient_from_config,
     impact_wear_depth_m,
 )
+from fewear.wear.state import WearState
 
 MASS, V_IN, K = 0.5, 0.4, 5.0e9  # kg, m/s, N/m^1.5: a peak force of about 2 kN, 0.3-0.5 ms
 
