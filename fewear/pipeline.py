@@ -52,6 +52,9 @@ from fewear.wear.state import WearState
 
 RUN_SECTIONS = ["wear_loop", "wear"]
 STAGES = ("dynamics", "contact", "wear", "mesh")
+LIGHT_STEP_FRACTION = 0.01
+"""A load step lighter than this fraction of its cycle's peak force that finds no contact
+equilibrium is dropped (counted) instead of stopping the run."""
 
 
 @dataclass(frozen=True)
@@ -157,7 +160,9 @@ class CycleWear:
 
     ``pressure_Pa``, ``slip_m``, ``k_m2_N``: (n_steps, n_nodes); ``depth_per_cycle_m`` (n_nodes,):
     plain Archard depth summed over all the steps; ``depth_sensitivity`` (n_nodes, n_nodes) its
-    derivative with respect to the bore's wear depth, or None.
+    derivative with respect to the bore's wear depth, or None; ``dropped_light_steps``: steps
+    lighter than ``LIGHT_STEP_FRACTION`` of the cycle's peak force that found no contact
+    equilibrium on the worn bore and wear nothing.
     """
 
     angle_rad: np.ndarray
@@ -168,6 +173,7 @@ class CycleWear:
     k_m2_N: np.ndarray
     depth_per_cycle_m: np.ndarray
     depth_sensitivity: np.ndarray | None = None
+    dropped_light_steps: int = 0
 
 
 def load_steps(history: JointHistory, n_steps: int, law=None) -> LoadSteps:
@@ -201,8 +207,14 @@ def cycle_wear(contact_model, steps: LoadSteps, wear_coefficient, friction: bool
     ``pressure_sensitivity(result)``, as :class:`fewear.contact.worn_bushing.WornBushing` does)
     for the linearly implicit block step of :func:`fewear.wear.archard.block_wear`.
     """
-    results = [contact_model.solve(force, rotation, friction=friction)
+    light = LIGHT_STEP_FRACTION * np.linalg.norm(steps.force_N, axis=1).max()
+    results = [_solve_step(contact_model, force, rotation, friction, light)
                for force, rotation in zip(steps.force_N, steps.rotation_rad)]
+    solved = next(r for r in results if r is not None)  # the peak step is never dropped
+    dropped = sum(r is None for r in results)
+    empty = replace(solved, pressure_Pa=np.zeros_like(solved.pressure_Pa),
+                    slip_m=np.zeros_like(solved.slip_m))
+    results = [empty if r is None else r for r in results]
     pressure = np.array([r.pressure_Pa for r in results])
     slip = np.array([r.slip_m for r in results])
     speed = slip / steps.duration_s
@@ -214,9 +226,19 @@ def cycle_wear(contact_model, steps: LoadSteps, wear_coefficient, friction: bool
             if np.any(slip_step > 0.0) and np.any(result.pressure_Pa > 0.0):
                 active, J = contact_model.pressure_sensitivity(result)
                 sensitivity[np.ix_(active, active)] += (k_step * slip_step)[active, None] * J
-    first = results[0]
-    return CycleWear(first.angle_rad, first.x_m, first.y_m, pressure, slip, k,
-                     cycle_wear_depth_m(k, pressure, slip), sensitivity)
+    return CycleWear(solved.angle_rad, solved.x_m, solved.y_m, pressure, slip, k,
+                     cycle_wear_depth_m(k, pressure, slip), sensitivity, dropped)
+
+
+def _solve_step(contact_model, force_N, rotation_rad, friction: bool, light_N: float):
+    """The contact of one load step; None for a light step (|F| <= ``light_N``) that finds no
+    equilibrium on the worn bore (its wear is negligible beside the cycle's loaded steps)."""
+    try:
+        return contact_model.solve(force_N, rotation_rad, friction=friction)
+    except ContactLoadError:
+        if np.hypot(*force_N) > light_N:
+            raise
+        return None
 
 
 def cycle_sliding(wear: CycleWear, steps: LoadSteps, cycles: int, friction_coefficient: float,
@@ -267,6 +289,7 @@ class CaseProgress:
     remeshes: int = 0
     contact_retries: int = 0  # load steps solved again from a cold start
     frictionless_steps: int = 0  # load steps solved without the Coulomb traction
+    dropped_light_steps: int = 0  # light load steps without equilibrium (no wear)
     stage_wall_time_s: dict = field(default_factory=lambda: dict.fromkeys(STAGES, 0.0))
 
     @property
@@ -356,6 +379,7 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress) -> None:
     case.ale_moves, case.remeshes = bushing.ale_moves, bushing.remeshes
     case.contact_retries += bushing.cold_retries
     case.frictionless_steps += bushing.frictionless_steps
+    case.dropped_light_steps += wear.dropped_light_steps
     bushing.cold_retries = bushing.frictionless_steps = 0
     case.records.append(BlockRecord(
         worn.cycles, cycles, worn.depth_m.copy(), history.peak_contact_force_N, history.impacts,
@@ -394,6 +418,7 @@ def case_summary(case: CaseProgress, inputs: RunInputs) -> dict:
         "remeshes": int(case.remeshes),
         "contact_cold_retries": int(case.contact_retries),
         "contact_frictionless_steps": int(case.frictionless_steps),
+        "contact_dropped_light_steps": int(case.dropped_light_steps),
         "first_block": {"cycles": first.block_cycles,
                         "max_wear_depth_per_cycle_m": first.max_depth_per_cycle_m,
                         "peak_contact_force_N": first.peak_contact_force_N,

@@ -54,3 +54,29 @@ def test_zero_rotation_means_no_wear(coarse_contact):
                       friction=True)
     assert wear.pressure_Pa.max() > 0.0
     np.testing.assert_array_equal(wear.depth_per_cycle_m, 0.0)
+
+
+def test_a_light_step_without_equilibrium_wears_nothing_and_a_loaded_one_stops(coarse_contact):
+    """On a deeply worn bore the contact Newton may find no equilibrium for a near-zero force:
+    such a step (below 1% of the cycle's peak) is dropped and counted; a loaded one is an error."""
+    from fewear.contact.admissible import ContactLoadError
+    from fewear.pipeline import LoadSteps
+
+    class Refusing:
+        def __init__(self, refused):
+            self.refused = np.array(refused)
+
+        def solve(self, force, rotation, friction=False):
+            if np.allclose(force, self.refused):
+                raise ContactLoadError(force, "no equilibrium", 5e-4, 1e6)
+            return coarse_contact.solve(force, rotation, friction=friction)
+
+    forces = np.array([[0.0, -2000.0], [0.0, -10.0], [0.0, -1000.0]])
+    steps = LoadSteps(np.arange(3) * 1e-3, forces, np.full(3, 0.01), 1e-3, np.zeros(3))
+    k = ConstantWearCoefficient(2e-13)
+    wear = cycle_wear(Refusing(forces[1]), steps, k, friction=False)
+    assert wear.dropped_light_steps == 1
+    assert wear.pressure_Pa[1].max() == 0.0 and wear.slip_m[1].max() == 0.0
+    assert wear.pressure_Pa[0].max() > 0.0 and wear.pressure_Pa[2].max() > 0.0
+    with pytest.raises(ContactLoadError):
+        cycle_wear(Refusing(forces[2]), steps, k, friction=False)
