@@ -52,9 +52,10 @@ from fewear.wear.state import WearState
 
 RUN_SECTIONS = ["wear_loop", "wear"]
 STAGES = ("dynamics", "contact", "wear", "mesh")
-LIGHT_STEP_FRACTION = 0.01
-"""A load step lighter than this fraction of its cycle's peak force that finds no contact
-equilibrium is dropped (counted) instead of stopping the run."""
+DROPPABLE_SHARE = 0.01
+"""Load steps that find no contact equilibrium on a worn bore are dropped (counted, no wear)
+while together they carry at most this share of the cycle's load-slip product; beyond it the
+run stops with an error."""
 
 
 @dataclass(frozen=True)
@@ -161,8 +162,7 @@ class CycleWear:
     ``pressure_Pa``, ``slip_m``, ``k_m2_N``: (n_steps, n_nodes); ``depth_per_cycle_m`` (n_nodes,):
     plain Archard depth summed over all the steps; ``depth_sensitivity`` (n_nodes, n_nodes) its
     derivative with respect to the bore's wear depth, or None; ``dropped_light_steps``: steps
-    lighter than ``LIGHT_STEP_FRACTION`` of the cycle's peak force that found no contact
-    equilibrium on the worn bore and wear nothing.
+    that found no contact equilibrium on the worn bore, dropped within ``DROPPABLE_SHARE``.
     """
 
     angle_rad: np.ndarray
@@ -207,10 +207,8 @@ def cycle_wear(contact_model, steps: LoadSteps, wear_coefficient, friction: bool
     ``pressure_sensitivity(result)``, as :class:`fewear.contact.worn_bushing.WornBushing` does)
     for the linearly implicit block step of :func:`fewear.wear.archard.block_wear`.
     """
-    light = LIGHT_STEP_FRACTION * np.linalg.norm(steps.force_N, axis=1).max()
-    results = [_solve_step(contact_model, force, rotation, friction, light)
-               for force, rotation in zip(steps.force_N, steps.rotation_rad)]
-    solved = next(r for r in results if r is not None)  # the peak step is never dropped
+    results = _solve_steps(contact_model, steps, friction)
+    solved = next(r for r in results if r is not None)  # the heaviest step is never dropped
     dropped = sum(r is None for r in results)
     empty = replace(solved, pressure_Pa=np.zeros_like(solved.pressure_Pa),
                     slip_m=np.zeros_like(solved.slip_m))
@@ -230,15 +228,22 @@ def cycle_wear(contact_model, steps: LoadSteps, wear_coefficient, friction: bool
                      cycle_wear_depth_m(k, pressure, slip), sensitivity, dropped)
 
 
-def _solve_step(contact_model, force_N, rotation_rad, friction: bool, light_N: float):
-    """The contact of one load step; None for a light step (|F| <= ``light_N``) that finds no
-    equilibrium on the worn bore (its wear is negligible beside the cycle's loaded steps)."""
-    try:
-        return contact_model.solve(force_N, rotation_rad, friction=friction)
-    except ContactLoadError:
-        if np.hypot(*force_N) > light_N:
-            raise
-        return None
+def _solve_steps(contact_model, steps: LoadSteps, friction: bool) -> list:
+    """The contact of every load step; None for a step that finds no equilibrium on the worn
+    bore while the steps dropped so far carry at most ``DROPPABLE_SHARE`` of the cycle's
+    sum of |F| |rotation| (the load-slip product Archard's wear grows with)."""
+    load_slip = np.linalg.norm(steps.force_N, axis=1) * np.abs(steps.rotation_rad)
+    allowance = DROPPABLE_SHARE * load_slip.sum()
+    results = []
+    for force, rotation, share in zip(steps.force_N, steps.rotation_rad, load_slip):
+        try:
+            results.append(contact_model.solve(force, rotation, friction=friction))
+        except ContactLoadError:
+            if share > allowance:
+                raise
+            allowance -= share
+            results.append(None)
+    return results
 
 
 def cycle_sliding(wear: CycleWear, steps: LoadSteps, cycles: int, friction_coefficient: float,
