@@ -11,11 +11,23 @@ import argparse
 from fewear.calibrate.diagnose import DiagnoseSettings, diagnose, readings_from_measured
 from fewear.calibrate.measured import read_measured_wear
 from fewear.calibrate.report import write_outputs
+from fewear.errors import FewearInputError
 from fewear.io.config import load_config
 from fewear.io.output import staged_output
 
 
 def main(args: argparse.Namespace) -> int:
+    from fewear.calibrate.joint_measured import joint_data_kind
+
+    if joint_data_kind(args.measured[0]) is not None:
+        from fewear.calibrate.joint_command import main as diagnose_joint_data
+
+        return diagnose_joint_data(args)
+    if len(args.measured) != 1:
+        raise FewearInputError(
+            f"{len(args.measured)} files given: tribometer data are one file "
+            "(joint wear data may be several: profiles and maximum-depth growth)")
+    args.measured = args.measured[0]
     config = load_config(args.config, sections=["diagnose"])
     settings = DiagnoseSettings.from_config(config["diagnose"])
     data = read_measured_wear(args.measured)

@@ -1,0 +1,548 @@
+"""What the believed joint model gets wrong on measured joint wear, which cause explains it, and
+how much better the extended model predicts the later measurements (life prediction).
+
+Data (:mod:`fewear.calibrate.joint_measured`): bore profiles h(theta) at cycle counts N and/or the
+growth of the maximum depth. The instrument's angular origin is unknown: every model is fitted
+with an offset phi (measured angle + phi = bushing angle). The cycle counts are split in time:
+the earlier ones train, the later ``held_out_fraction`` are held out.
+
+Model of an observation (depth at angle theta after N cycles; a maximum depth is the maximum over
+the bore):
+
+.. math::  h(\\theta, N) = H_\\text{cause}\\big(\\theta + \\phi,\\ s\\,\\tau(N)\\big),
+
+H the wear loop's worn bore (:mod:`fewear.calibrate.joint_forward`) for the believed config with
+the cause switched on, s the wear coefficient's level (Archard's depth is a function of k N
+along the loop: scaling k scales the cycle axis, exactly, the geometry feedback included), and
+tau(N) = N except for running-in. The catalogue (every cause has s free, so each must beat
+``wear_coefficient``, the cheapest explanation):
+
+- ``wear_coefficient``: only the level s;
+- ``flexible_link``: the believed rigid rod is flexible (ANCF rod);
+- ``friction``: the friction coefficient mu differs (runs on a grid of mu, the worn bore
+  interpolated linearly between neighbouring runs);
+- ``impact_wear``: the impacts wear too, V = k_imp W_hysteresis (:mod:`fewear.wear.impact`; runs
+  on a grid of k_imp, interpolated);
+- ``running_in``: k falls from r k to k over each node's first metres of sliding, the [wear]
+  extension ``running_in`` (m = 1 + (r - 1) exp(-S / s0)): node a, sliding d_a per cycle in the
+  believed run, has worn after N cycles what the believed run wore after tau_a(N) = N + (r - 1)
+  N0_a (1 - exp(-N / N0_a)), N0_a = s0 / d_a (exact where the wear of a node follows its own
+  sliding, approximate where the worn geometry couples the nodes).
+
+Selection: each cause is fitted by least squares on the training data (Nelder-Mead from several
+starts). ``wear_coefficient`` is compared with the believed model, a richer cause with the
+believed model or, if it was accepted, with ``wear_coefficient``. A cause is accepted when (1) the
+extra-sum-of-squares F-test of the nested training fits gives p < ``significance`` / (causes
+tried) (Bonferroni), (2) its held-out RMS error is at least ``min_held_out_gain`` below the
+reference's and (3) its AICc is at least ``min_aicc_improvement`` lower (Burnham & Anderson 2002).
+Of the richer causes accepted the one with the smallest held-out error is named; the others are
+reported as confounded with it. The named cause's fitted model is then run in full (the extended
+config) and scored on the held-out data: the gain reported is that of the real run.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from scipy import optimize, stats
+
+from fewear.calibrate.joint_forward import (
+    WearHistory,
+    hysteresis_work_per_cycle_J,
+    model_config,
+    simulate_wear,
+    worn_volume_per_cycle_m3,
+)
+from fewear.calibrate.joint_measured import JointMeasurements
+from fewear.errors import FewearInputError
+from fewear.mesh.profile import periodic_linear
+
+RUNNING_IN_REACH = 3
+"""The believed model runs this many times further than the other candidates (running-in)."""
+CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in")
+MEANINGS = {
+    "wear_coefficient": "only the level of the wear coefficient k is off",
+    "flexible_link": "the connecting rod modelled rigid is flexible: its compliance changes the "
+                     "impacts and the continuous-contact sliding in the joint",
+    "friction": "the friction coefficient in the joint differs from the assumed one",
+    "impact_wear": "the impacts remove material too (wear in proportion to the energy the "
+                   "contact dissipates), not only the sliding",
+    "running_in": "the joint runs in: k is higher over the first cycles and falls to its steady "
+                  "value",
+    "none": "the believed model predicts the held-out measurements within their scatter",
+}
+
+
+@dataclass(frozen=True)
+class JointDiagnoseSettings:
+    """The ``[joint_diagnose]`` section (see ``fewear config``)."""
+
+    candidates: tuple[str, ...] = CAUSES
+    significance: float = 0.05
+    min_aicc_improvement: float = 2.0
+    min_held_out_gain: float = 0.1
+    held_out_fraction: float = 0.34
+    max_k_scale: float = 2.0
+    friction_grid: tuple[float, ...] = (0.05, 0.3)
+    impact_volume_ratios: tuple[float, ...] = (1.0,)
+    max_offset_deg: float = 30.0
+
+    def __post_init__(self):
+        unknown = [c for c in self.candidates if c not in CAUSES]
+        if unknown or not self.candidates:
+            raise FewearInputError(
+                f"[joint_diagnose] candidates = {list(self.candidates)!r}: expected a non-empty "
+                f"list of {', '.join(CAUSES)}")
+        if not 0.0 < self.held_out_fraction < 1.0:
+            raise FewearInputError(
+                f"[joint_diagnose] held_out_fraction = {self.held_out_fraction!r}: expected a "
+                "fraction in (0, 1)")
+        if not self.max_k_scale > 1.0:
+            raise FewearInputError(
+                f"[joint_diagnose] max_k_scale = {self.max_k_scale!r}: expected > 1")
+
+    @classmethod
+    def from_config(cls, section: dict) -> JointDiagnoseSettings:
+        values = {key: tuple(v) if isinstance(v, list) else v for key, v in section.items()}
+        return cls(**values)
+
+
+@dataclass(frozen=True, eq=False)
+class Observations:
+    """The measured depths as one vector: profile points (angle in the instrument's frame) and
+    maximum depths (angle NaN), each with its cycle count and whether it trains."""
+
+    cycles: np.ndarray
+    angle_rad: np.ndarray
+    depth_m: np.ndarray
+    train: np.ndarray
+
+    @property
+    def is_profile(self) -> np.ndarray:
+        return np.isfinite(self.angle_rad)
+
+
+def observations(data: JointMeasurements, held_out_fraction: float) -> Observations:
+    """Stack the profiles and maximum depths; the last ``held_out_fraction`` of the cycle counts
+    (at least one, leaving at least one) are held out."""
+    counts = sorted(set(data.cycle_counts) - {0})
+    if len(counts) < 2:
+        raise FewearInputError(
+            f"joint wear data at {len(counts)} cycle count(s) > 0: a life-prediction diagnosis "
+            "needs measurements at >= 2 cycle counts (the later ones are held out)")
+    n_held = min(max(1, round(held_out_fraction * len(counts))), len(counts) - 1)
+    first_held = counts[len(counts) - n_held]
+    cycles, angle, depth = [], [], []
+    for profile in data.profiles:
+        cycles.append(np.full(profile.angle_rad.size, float(profile.cycles)))
+        angle.append(profile.angle_rad)
+        depth.append(profile.depth_m)
+    if data.max_wear is not None:
+        cycles.append(np.asarray(data.max_wear[0], dtype=float))
+        angle.append(np.full(len(data.max_wear[0]), np.nan))
+        depth.append(np.asarray(data.max_wear[1], dtype=float))
+    cycles = np.concatenate(cycles)
+    keep = cycles > 0
+    cycles = cycles[keep]
+    return Observations(cycles, np.concatenate(angle)[keep], np.concatenate(depth)[keep],
+                        cycles < first_held)
+
+
+@dataclass(frozen=True, eq=False)
+class Candidate:
+    """A cause as runs of the wear loop: ``runs`` at the parameter values ``grid`` (one run:
+    no grid), and ``running_in`` for the time map of running-in."""
+
+    name: str
+    runs: tuple[WearHistory, ...]
+    grid: tuple[float, ...] = ()
+    running_in: bool = False
+
+    @property
+    def n_extra(self) -> int:
+        return 2 if self.running_in else (1 if len(self.runs) > 1 else 0)
+
+
+@dataclass(frozen=True, eq=False)
+class Fit:
+    """A model fitted on the training data: parameters x = (phi_deg[, ln s, extra...])."""
+
+    name: str
+    x: np.ndarray
+    n_params: int
+    sse_train: float
+    n_train: int
+    held_out_rms_m: float
+    train_rms_m: float
+    residuals_m: np.ndarray
+    params: dict = field(default_factory=dict)
+
+    @property
+    def aicc(self) -> float:
+        n, p = self.n_train, self.n_params
+        return n * math.log(self.sse_train / n) + 2 * p + 2 * p * (p + 1) / max(n - p - 1, 1)
+
+
+def _mixed_depth(candidate: Candidate, position: float, cycles: float) -> np.ndarray:
+    runs = candidate.runs
+    if len(runs) == 1:
+        return runs[0].nodal_depth_m(cycles)
+    position = float(np.clip(position, 0.0, len(runs) - 1))
+    k = min(int(position), len(runs) - 2)
+    w = position - k
+    return (1 - w) * runs[k].nodal_depth_m(cycles) + w * runs[k + 1].nodal_depth_m(cycles)
+
+
+def running_in_cycles(cycles: float, run: WearHistory, extra: float,
+                      distance_scale_m: float) -> np.ndarray:
+    """tau_a(N) per node (module docstring): N + (r - 1) N0_a (1 - exp(-N / N0_a))."""
+    sliding = np.maximum(run.sliding_m_per_cycle, 1e-300)
+    scale = distance_scale_m / sliding
+    return cycles + extra * scale * -np.expm1(-cycles / scale)
+
+
+def _nodal_prediction(candidate: Candidate, x: np.ndarray, cycles: float) -> np.ndarray:
+    """The cause's nodal depth after ``cycles`` at the parameters x (s tau(N) on the runs)."""
+    if x.size < 2:
+        return candidate.runs[0].nodal_depth_m(cycles)
+    scale = math.exp(x[1])
+    if candidate.running_in:
+        run = candidate.runs[0]
+        per_node = running_in_cycles(cycles, run, math.exp(x[2]), math.exp(x[3]))
+        return run.nodal_depth_each_m(scale * per_node)
+    position = x[2] if candidate.n_extra == 1 else 0.0
+    return _mixed_depth(candidate, position, scale * cycles)
+
+
+def predict(obs: Observations, x: np.ndarray, candidate: Candidate) -> np.ndarray:
+    """The model's depth at every observation for the parameters x."""
+    out = np.empty(obs.depth_m.size)
+    angles = candidate.runs[0].angle_rad
+    for cycles in np.unique(obs.cycles):
+        nodal = _nodal_prediction(candidate, x, cycles)
+        at = obs.cycles == cycles
+        profile = at & obs.is_profile
+        out[profile] = periodic_linear(angles, nodal)(obs.angle_rad[profile] + math.radians(x[0]))
+        out[at & ~obs.is_profile] = nodal.max()
+    return out
+
+
+def _sse(x, obs: Observations, candidate: Candidate, mask: np.ndarray, bounds) -> float:
+    clipped = np.clip(x, bounds[:, 0], bounds[:, 1])
+    r = obs.depth_m[mask] - predict(obs, clipped, candidate)[mask]
+    return float(r @ r) * (1.0 + float(np.sum((x - clipped) ** 2)))
+
+
+def fit(name: str, candidate: Candidate, obs: Observations, starts: list[np.ndarray],
+        bounds: np.ndarray) -> Fit:
+    """Least squares on the training observations from each start; scored on the held-out."""
+    best = None
+    for start in starts:
+        result = optimize.minimize(_sse, start, args=(obs, candidate, obs.train, bounds),
+                                   method="Nelder-Mead",
+                                   options={"xatol": 1e-4, "fatol": 1e-24, "maxiter": 2000})
+        if best is None or result.fun < best.fun:
+            best = result
+    x = np.clip(best.x, bounds[:, 0], bounds[:, 1])
+    residuals = obs.depth_m - predict(obs, x, candidate)
+    train, held = residuals[obs.train], residuals[~obs.train]
+    return Fit(name, x, x.size, float(train @ train), int(train.size),
+               float(np.sqrt(np.mean(held**2))), float(np.sqrt(np.mean(train**2))), residuals)
+
+
+def _offset_start(obs: Observations, base: Candidate, max_offset_deg: float) -> float:
+    """The offset (deg) that best aligns the training profiles with the believed model scaled to
+    the measured depth (a scan in 1 deg steps)."""
+    offsets = np.arange(-max_offset_deg, max_offset_deg + 0.5, 1.0)
+    profile = obs.train & obs.is_profile
+    if not profile.any():
+        return 0.0
+    errors = []
+    for offset in offsets:
+        model = predict(obs, np.array([offset]), base)[profile]
+        scale = float(model @ obs.depth_m[profile]) / max(float(model @ model), 1e-300)
+        errors.append(np.sum((obs.depth_m[profile] - scale * model) ** 2))
+    return float(offsets[int(np.argmin(errors))])
+
+
+def fit_candidate(candidate: Candidate, obs: Observations, offset_deg: float,
+                  settings: JointDiagnoseSettings) -> Fit:
+    """Fit a cause (s free, plus its own parameters) from a few starts."""
+    last_train = float(obs.cycles[obs.train].max())
+    ln_max = math.log(settings.max_k_scale)
+    phi = settings.max_offset_deg
+    bounds = [(-phi, phi), (-ln_max, ln_max)]
+    extra_starts: list[tuple[float, ...]] = [()]
+    if candidate.running_in:
+        sliding = candidate.runs[0].sliding_m_per_cycle
+        typical = float(np.median(sliding[sliding > 0.0])) * last_train  # metres slid
+        bounds += [(math.log(0.05), math.log(2.0 * RUNNING_IN_REACH - 1.0)),
+                   (math.log(1e-3 * typical), math.log(10.0 * typical))]
+        extra_starts = [(math.log(r), math.log(f * typical)) for r in (0.5, 3.0)
+                        for f in (0.03, 0.3)]
+    elif candidate.n_extra == 1:
+        top = len(candidate.runs) - 1.0
+        bounds += [(0.0, top)]
+        extra_starts = [(p,) for p in np.linspace(0.0, top, len(candidate.runs))]
+    starts = [np.array([offset_deg, ln_s, *extra]) for ln_s in (0.0, -0.5, 0.5)
+              for extra in extra_starts]
+    result = fit(candidate.name, candidate, obs, starts, np.array(bounds))
+    return _with_params(result, candidate)
+
+
+def _with_params(result: Fit, candidate: Candidate) -> Fit:
+    x = result.x
+    params = {"angle_offset_deg": float(x[0])}
+    if x.size > 1:
+        params["k_scale"] = float(math.exp(x[1]))
+    if candidate.running_in:
+        params["k_initial_over_steady"] = 1.0 + float(math.exp(x[2]))
+        params["distance_scale_m"] = float(math.exp(x[3]))
+    elif candidate.n_extra == 1:
+        params[candidate.name + "_parameter"] = float(
+            np.interp(x[2], np.arange(len(candidate.grid)), candidate.grid))
+    return Fit(result.name, x, result.n_params, result.sse_train, result.n_train,
+               result.held_out_rms_m, result.train_rms_m, result.residuals_m, params)
+
+
+def f_test_p(nested: Fit, fuller: Fit) -> float:
+    """Extra-sum-of-squares F-test of two nested least-squares fits (Seber & Wild 1989). A
+    cause without parameters of its own beside s (the flexible link against the level) counts
+    its switch of the model as one parameter."""
+    extra = max(fuller.n_params - nested.n_params, 1)
+    dof = fuller.n_train - fuller.n_params
+    if extra <= 0 or dof <= 0 or fuller.sse_train <= 0.0:
+        return 1.0
+    statistic = (nested.sse_train - fuller.sse_train) / extra / (fuller.sse_train / dof)
+    return float(stats.f.sf(max(statistic, 0.0), extra, dof))
+
+
+def verdict(fit_: Fit, reference: Fit, settings: JointDiagnoseSettings, tried: int) -> dict:
+    """The evidence for a cause against the reference model and whether it is accepted."""
+    p = f_test_p(reference, fit_)
+    gain = 1.0 - fit_.held_out_rms_m / reference.held_out_rms_m
+    d_aicc = reference.aicc - fit_.aicc
+    accepted = (p < settings.significance / tried and gain >= settings.min_held_out_gain
+                and d_aicc >= settings.min_aicc_improvement)
+    return {"cause": fit_.name, "against": reference.name, "p_value": p,
+            "held_out_rms_m": fit_.held_out_rms_m, "training_rms_m": fit_.train_rms_m,
+            "held_out_gain": gain, "aicc_improvement": d_aicc, "accepted": bool(accepted),
+            "params": fit_.params}
+
+
+# --- the candidates as runs of the wear loop ----------------------------------------------------
+def _scaled_wear(config: dict, k_scale: float) -> None:
+    """Scale the config's wear coefficient k(p, v) by ``k_scale`` in place."""
+    wear = config["wear"]
+    if wear["coefficient_model"] == "constant":
+        wear["constant_k_m2_N"] = wear["constant_k_m2_N"] * k_scale
+    else:  # the RBF network's ln k has the constant tail[0]
+        wear["rbf"]["tail"] = [wear["rbf"]["tail"][0] + math.log(k_scale),
+                               *wear["rbf"]["tail"][1:]]
+
+
+def cause_config(config: dict, cause: str, value: float | None) -> dict:
+    """The believed config with a run-based cause switched on at ``value``."""
+    changed = copy.deepcopy(config)
+    if cause == "flexible_link":
+        changed["wear_loop"]["rod_models"] = ["flexible"]
+    elif cause == "friction":
+        changed["joint"]["friction_coefficient"] = float(value)
+    elif cause == "impact_wear":
+        changed["wear"]["impact_wear_coefficient_m3_J"] = float(value)
+    return changed
+
+
+def candidate_runs(config: dict, cause: str, cycles: int, base: WearHistory,
+                   settings: JointDiagnoseSettings) -> Candidate:
+    """The runs a cause is fitted on (``base``: the believed model's run)."""
+    rod = config["wear_loop"]["rod_models"][0]
+
+    def run(changed: dict, label: str) -> WearHistory:
+        return simulate_wear(model_config(changed, changed["wear_loop"]["rod_models"][0],
+                                          cycles), label)
+
+    if cause in ("wear_coefficient", "running_in"):
+        return Candidate(cause, (base,), running_in=cause == "running_in")
+    if cause == "flexible_link":
+        return Candidate(cause, (run(cause_config(config, cause, None), "flexible rod"),))
+    if cause == "friction":
+        believed = config["joint"]["friction_coefficient"]
+        grid = sorted(set(settings.friction_grid) | {believed})
+        runs = [base if mu == believed else run(cause_config(config, cause, mu), f"mu = {mu:g}")
+                for mu in grid]
+        return Candidate(cause, tuple(runs), tuple(grid))
+    # impact wear: k_imp such that the impact volume is a set multiple of the sliding volume
+    believed = config["wear"].get("impact_wear_coefficient_m3_J", 0.0)
+    per_joule = worn_volume_per_cycle_m3(base, config) / max(
+        hysteresis_work_per_cycle_J(model_config(config, rod, cycles)), 1e-300)
+    grid = [believed] + [believed + ratio * per_joule for ratio in settings.impact_volume_ratios]
+    runs = [base] + [run(cause_config(config, cause, k), f"k_imp = {k:.3g} m^3/J")
+                     for k in grid[1:]]
+    return Candidate(cause, tuple(runs), tuple(grid))
+
+
+def testable(config: dict, settings: JointDiagnoseSettings) -> tuple[list[str], list[dict]]:
+    """The causes the believed model can be extended by, and why the others cannot."""
+    names, untestable = [], []
+    for cause in settings.candidates:
+        if cause == "flexible_link" and config["wear_loop"]["rod_models"][0] == "flexible":
+            untestable.append({"cause": cause, "why": "the believed model's rod is flexible"})
+        elif cause == "running_in" and config["wear"]["extension"] != "none":
+            untestable.append({"cause": cause, "why": "the believed model has a [wear] "
+                               f"extension ({config['wear']['extension']}) already"})
+        else:
+            names.append(cause)
+    return names, untestable
+
+
+# --- the diagnosis --------------------------------------------------------------------------------
+@dataclass(frozen=True, eq=False)
+class JointDiagnosis:
+    """A diagnosis: the summary (``diagnosis.json``), the extended config, and what the
+    figures need (observations, the believed and the extended predictions)."""
+
+    summary: dict[str, Any]
+    extended_config: dict
+    observations: Observations
+    baseline_depth_m: np.ndarray
+    extended_depth_m: np.ndarray
+
+
+def diagnose_joint(data: JointMeasurements, config: dict,
+                   settings: JointDiagnoseSettings | None = None) -> JointDiagnosis:
+    """The method of the module docstring on ``data`` against the believed ``config``."""
+    settings = settings or JointDiagnoseSettings()
+    obs = observations(data, settings.held_out_fraction)
+    rod = config["wear_loop"]["rod_models"][0]
+    horizon = int(math.ceil(settings.max_k_scale * obs.cycles.max()))
+    # the believed run goes further: running-in maps N to up to r N cycles of it
+    base = simulate_wear(model_config(config, rod, RUNNING_IN_REACH * horizon), "believed model")
+    believed = Candidate("baseline", (base,))
+    offset = _offset_start(obs, believed, settings.max_offset_deg)
+    phi = settings.max_offset_deg
+    baseline = fit("baseline", believed, obs, [np.array([offset])], np.array([(-phi, phi)]))
+    names, untestable = testable(config, settings)
+    candidates = {name: candidate_runs(config, name, horizon, base, settings) for name in names}
+    fits = {name: fit_candidate(c, obs, baseline.x[0], settings)
+            for name, c in candidates.items()}
+    causes, evidence, confounded = _select(baseline, fits, settings)
+    extended = _extended_config(config, causes, fits)
+    final_fit, extended_depth = _verify(extended, causes, baseline, obs, settings)
+    summary = _summary(data, obs, settings, baseline, fits, evidence, causes, confounded,
+                       untestable, final_fit, extended)
+    return JointDiagnosis(summary, extended, obs, obs.depth_m - baseline.residuals_m,
+                          extended_depth)
+
+
+def _select(baseline: Fit, fits: dict[str, Fit], settings):
+    tried = len(fits)
+    evidence = []
+    reference = baseline
+    chosen: list[str] = []
+    if "wear_coefficient" in fits:
+        entry = verdict(fits["wear_coefficient"], baseline, settings, tried)
+        evidence.append(entry)
+        if entry["accepted"]:
+            reference, chosen = fits["wear_coefficient"], ["wear_coefficient"]
+    richer = [verdict(f, reference, settings, tried) for name, f in fits.items()
+              if name != "wear_coefficient"]
+    evidence += richer
+    accepted = sorted((e for e in richer if e["accepted"]), key=lambda e: e["held_out_rms_m"])
+    confounded = []
+    if accepted:
+        chosen = [accepted[0]["cause"]]
+        confounded = [{"cause": e["cause"], "held_out_rms_m": e["held_out_rms_m"]}
+                      for e in accepted[1:]]
+    return chosen, evidence, confounded
+
+
+def _extended_config(config, causes, fits) -> dict:
+    """The believed config with the named cause at its fitted parameters."""
+    if not causes:
+        return copy.deepcopy(config)
+    cause = causes[0]
+    params = fits[cause].params
+    value = params.get(cause + "_parameter")
+    extended = cause_config(config, cause, value)
+    _scaled_wear(extended, params["k_scale"])
+    if cause == "running_in":
+        extended["wear"]["extension"] = "running_in"
+        extended["wear"]["extension_params"] = {
+            "k_initial_over_steady": params["k_initial_over_steady"],
+            "distance_scale_m": params["distance_scale_m"]}
+    return extended
+
+
+def _verify(extended: dict, causes, baseline: Fit, obs: Observations, settings):
+    """The extended model run in full, its offset fitted on the training data."""
+    if not causes:
+        return baseline, obs.depth_m - baseline.residuals_m
+    rod = extended["wear_loop"]["rod_models"][0]
+    run = simulate_wear(model_config(extended, rod, int(obs.cycles.max()) + 1), "extended model")
+    phi = settings.max_offset_deg
+    final = fit("extended", Candidate("extended", (run,)), obs, [np.array([baseline.x[0]])],
+                np.array([(-phi, phi)]))
+    return final, obs.depth_m - final.residuals_m
+
+
+def _prediction(obs: Observations, fit_: Fit) -> dict[str, float]:
+    """Measured and predicted maximum depth at the last cycle count."""
+    last = obs.cycles == obs.cycles.max()
+    predicted = obs.depth_m[last] - fit_.residuals_m[last]
+    return {"cycles": int(obs.cycles.max()), "measured_max_depth_m": float(obs.depth_m[last].max()),
+            "predicted_max_depth_m": float(predicted.max())}
+
+
+def residual_structure(obs: Observations, residuals: np.ndarray) -> list[dict[str, float]]:
+    """Per cycle count: mean and RMS residual, and where the largest one sits (deg)."""
+    rows = []
+    for cycles in np.unique(obs.cycles):
+        at = obs.cycles == cycles
+        r = residuals[at]
+        peak = int(np.argmax(np.abs(r)))
+        angle = obs.angle_rad[at][peak]
+        rows.append({"cycles": int(cycles), "held_out": bool(not obs.train[at][0]),
+                     "mean_m": float(r.mean()), "rms_m": float(np.sqrt(np.mean(r**2))),
+                     "largest_m": float(r[peak]),
+                     "largest_at_deg": float(np.degrees(angle)) if np.isfinite(angle) else None})
+    return rows
+
+
+def _summary(data, obs, settings, baseline, fits, evidence, causes, confounded, untestable,
+             final_fit, extended) -> dict[str, Any]:
+    base_error, ext_error = baseline.held_out_rms_m, final_fit.held_out_rms_m
+    return {
+        "source": ", ".join(data.sources),
+        "data_kind": "joint",
+        "notes": list(data.notes),
+        "cycle_counts": sorted(int(c) for c in np.unique(obs.cycles)),
+        "holdout": {"strategy": "later cycle counts",
+                    "held_out_cycles": sorted(int(c) for c in np.unique(obs.cycles[~obs.train])),
+                    "why": "life prediction: the model is fitted on the earlier measurements and "
+                           "judged on how it predicts the later ones"},
+        "criterion": (f"F-test p < {settings.significance:g} / causes tried, held-out RMS at "
+                      f"least {settings.min_held_out_gain:.0%} lower, AICc at least "
+                      f"{settings.min_aicc_improvement:g} lower"),
+        "baseline": {"model": "the believed config", "held_out_error": base_error,
+                     "training_error": baseline.train_rms_m,
+                     "angle_offset_deg": float(baseline.x[0])},
+        "candidates": evidence,
+        "untestable": untestable,
+        "causes": list(causes),
+        "cause": causes[0] if causes else "none",
+        "cause_meaning": MEANINGS[causes[0] if causes else "none"],
+        "confounded": confounded,
+        "gain": 1.0 - ext_error / base_error if causes else 0.0,
+        "held_out_error": {"baseline": base_error, "extended": ext_error if causes else base_error},
+        "prediction": {"baseline": _prediction(obs, baseline),
+                       "extended": _prediction(obs, final_fit)},
+        "residual_structure": residual_structure(obs, baseline.residuals_m),
+        "unexplained": [] if not causes or final_fit.held_out_rms_m < 0.5 * base_error else [
+            f"the extended model's held-out error {ext_error:.3g} m is still more than half the "
+            f"believed model's {base_error:.3g} m"],
+    }

@@ -1,0 +1,131 @@
+"""Forward runs of the wear loop for the joint diagnosis: the worn bore against cycles.
+
+A run is :func:`fewear.pipeline.predict_case` for one rod model of a complete config (a model the
+user believes, or one with a cause switched on), without checkpoint or outputs. Its result, a
+:class:`WearHistory`, holds the depth at the bore nodes after every block; between blocks the depth
+is interpolated linearly in cycles (the blocks bound the depth increment, so this is the loop's own
+resolution). Runs are memoised by their config: a diagnosis asks for the same candidate runs many
+times, and diagnoses of several data sets against one model share them.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+import sys
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from fewear.errors import FewearInputError
+from fewear.mesh.profile import periodic_linear
+
+_RUNS: dict[str, WearHistory] = {}
+
+
+@dataclass(frozen=True, eq=False)
+class WearHistory:
+    """The simulated worn bore after every block: ``cycles`` (m + 1,) from 0, ``depth_m``
+    (m + 1, n) at the node angles ``angle_rad`` (n,); ``sliding_m_per_cycle`` (n,): each node's
+    mean sliding distance per crank cycle; ``stopped``: why the run ended early ('' if not)."""
+
+    angle_rad: np.ndarray
+    cycles: np.ndarray
+    depth_m: np.ndarray
+    sliding_m_per_cycle: np.ndarray
+    stopped: str = ""
+    wall_time_s: float = 0.0
+
+    def nodal_depth_m(self, cycles: float) -> np.ndarray:
+        """Depth at the nodes after ``cycles`` (linear between blocks; beyond the last block
+        extrapolated with the last block's rate)."""
+        k = int(np.clip(np.searchsorted(self.cycles, cycles) - 1, 0, self.cycles.size - 2))
+        span = self.cycles[k + 1] - self.cycles[k]
+        weight = (cycles - self.cycles[k]) / span
+        return np.maximum((1.0 - weight) * self.depth_m[k] + weight * self.depth_m[k + 1], 0.0)
+
+    def nodal_depth_each_m(self, cycles: np.ndarray) -> np.ndarray:
+        """Depth at each node after its own cycle count ``cycles`` (n,) (as
+        :meth:`nodal_depth_m`, node by node)."""
+        k = np.clip(np.searchsorted(self.cycles, cycles) - 1, 0, self.cycles.size - 2)
+        weight = (cycles - self.cycles[k]) / (self.cycles[k + 1] - self.cycles[k])
+        nodes = np.arange(self.angle_rad.size)
+        return np.maximum((1.0 - weight) * self.depth_m[k, nodes]
+                          + weight * self.depth_m[k + 1, nodes], 0.0)
+
+    def depth_at(self, cycles: float, angle_rad: np.ndarray) -> np.ndarray:
+        """Depth at any angles (periodic linear between the nodes) after ``cycles``."""
+        return periodic_linear(self.angle_rad, self.nodal_depth_m(cycles))(angle_rad)
+
+
+def model_config(config: dict, rod: str, total_cycles: int) -> dict:
+    """``config`` set to run ``rod`` alone for ``total_cycles``."""
+    changed = copy.deepcopy(config)
+    changed["wear_loop"]["rod_models"] = [rod]
+    changed["wear_loop"]["total_cycles"] = int(total_cycles)
+    return changed
+
+
+def simulate_wear(config: dict, label: str = "", comm=None) -> WearHistory:
+    """The wear loop of the config's (single) rod model up to its ``total_cycles``. A run that
+    wears through the wall or whose contact fails ends there (``stopped`` says why)."""
+    key = json.dumps(config, sort_keys=True, default=str)
+    if key in _RUNS:
+        return _RUNS[key]
+    from mpi4py import MPI
+
+    from fewear.contact.worn_bushing import WornBushing
+    from fewear.pipeline import new_case, predict_case, run_inputs_from_config
+
+    comm = MPI.COMM_WORLD if comm is None else comm
+    inputs = run_inputs_from_config(config)
+    rod = inputs.loop.rod_models[0]
+    start = time.perf_counter()
+    bushing = WornBushing(inputs.contact, comm)
+    case = new_case(bushing)
+    stopped = ""
+    try:
+        predict_case(rod, inputs, bushing, case, lambda case: None)
+    except FewearInputError as exc:
+        stopped = str(exc)
+    if not case.records:
+        raise FewearInputError(f"forward run {label or rod}: no wear block completed ({stopped})")
+    state = case.state
+    history = WearHistory(
+        state.angle_rad.copy(), np.array([0] + [r.cycles for r in case.records], dtype=float),
+        np.vstack([np.zeros_like(state.depth_m)] + [r.depth_m for r in case.records]),
+        np.asarray(state.sliding.distance_m) / max(state.cycles, 1), stopped,
+        time.perf_counter() - start)
+    if comm.rank == 0:
+        print(f"fewear diagnose: forward run {label or rod}: {state.cycles:,} cycles, "
+              f"{state.blocks} blocks, {history.wall_time_s:.1f} s"
+              + (" (stopped early)" if stopped else ""), file=sys.stderr, flush=True)
+    _RUNS[key] = history
+    return history
+
+
+def hysteresis_work_per_cycle_J(config: dict) -> float:
+    """The contact law's hysteresis work of one crank cycle on the unworn joint (the energy the
+    impact-wear term wears with), from the steps that carry a force."""
+    from dataclasses import replace
+
+    from fewear.mbd.slider_crank import simulate
+    from fewear.pipeline import load_steps, run_inputs_from_config
+
+    inputs = run_inputs_from_config(config)
+    crank = replace(inputs.dynamics.crank, rod=inputs.loop.rod_models[0], joint="clearance",
+                    recorded_cycles=1)
+    history, _, _ = simulate(replace(inputs.dynamics, crank=crank))
+    steps = load_steps(history, inputs.loop.load_steps_per_cycle, inputs.dynamics.joint.law)
+    loaded = np.linalg.norm(steps.force_N, axis=1) > 0.0
+    return float(steps.hysteresis_work_J[loaded].sum())
+
+
+def worn_volume_per_cycle_m3(history: WearHistory, config: dict) -> float:
+    """The sliding wear volume of one cycle early in the run (first block), for scaling."""
+    inner = config["bushing"]["inner_radius_m"]
+    depth = history.depth_m[1]
+    area = float(np.sum(inner * depth) * 2.0 * math.pi / depth.size)
+    return config["bushing"]["width_m"] * area / history.cycles[1]

@@ -1,0 +1,87 @@
+"""Joint wear data with a hidden cause, as a profilometer would give them: the wear loop run with
+the effect switched on at random parameters (:mod:`fewear.calibrate.joint_forward`), measured by
+the independent instrument model of :mod:`tests.calibrate.profilometer` (random sampling step,
+unknown angular origin, 0.5 um noise, 0.01 um resolution, stylus filter)."""
+
+from __future__ import annotations
+
+import copy
+import math
+
+import numpy as np
+
+from fewear.calibrate.joint_forward import (
+    hysteresis_work_per_cycle_J,
+    model_config,
+    simulate_wear,
+    worn_volume_per_cycle_m3,
+)
+from fewear.calibrate.joint_measured import JointMeasurements
+from tests.calibrate.profilometer import max_wear_growth, measure_profile
+
+PROFILE_CYCLES = (4000, 8000, 12000, 16000)
+BELIEVED = """
+[mesh]
+bore_element_size_m = {size!r}
+radial_element_count = 4
+[wear_loop]
+rod_models = ["rigid"]
+load_steps_per_cycle = 40
+"""
+"""The believed model of the tests: the paper's joint with a rigid rod, on a coarse mesh."""
+
+
+def believed_text() -> str:
+    return BELIEVED.format(size=2 * math.pi * 0.010 / 48 * (1 + 1e-9))
+
+
+def truth_config(config: dict, cause: str, rng: np.random.Generator) -> tuple[dict, dict]:
+    """The believed config with ``cause`` switched on at random parameters (and which)."""
+    truth = copy.deepcopy(config)
+    if cause == "wear_coefficient":
+        scale = rng.uniform(1.5, 2.0) if rng.random() < 0.5 else rng.uniform(0.5, 0.67)
+        truth["wear"]["rbf"]["tail"][0] += math.log(scale)
+        return truth, {"k_scale": scale}
+    if cause == "flexible_link":
+        stiffness = rng.uniform(0.8, 1.25)
+        truth["wear_loop"]["rod_models"] = ["flexible"]
+        truth["mechanism"]["rod_youngs_modulus_Pa"] *= stiffness
+        return truth, {"youngs_modulus_factor": stiffness}
+    if cause == "friction":
+        mu = rng.uniform(0.25, 0.4)
+        truth["joint"]["friction_coefficient"] = mu
+        return truth, {"friction_coefficient": mu}
+    if cause == "impact_wear":
+        horizon = model_config(config, "rigid", 2 * PROFILE_CYCLES[-1])
+        per_joule = worn_volume_per_cycle_m3(simulate_wear(horizon), config) / (
+            hysteresis_work_per_cycle_J(horizon))
+        k_imp = rng.uniform(0.3, 1.0) * per_joule
+        truth["wear"]["impact_wear_coefficient_m3_J"] = k_imp
+        return truth, {"impact_wear_coefficient_m3_J": k_imp}
+    if cause == "running_in":
+        params = {"k_initial_over_steady": rng.uniform(3.0, 6.0),
+                  "distance_scale_m": rng.uniform(10.0, 30.0)}
+        truth["wear"]["extension"] = "running_in"
+        truth["wear"]["extension_params"] = params
+        return truth, params
+    return truth, {}
+
+
+def hidden_joint_case(config: dict, cause: str, seed: int, with_growth: bool = True):
+    """(measured data, truth parameters, true angular offset in deg) for ``cause`` ('none':
+    the believed model itself)."""
+    rng = np.random.default_rng(seed)
+    truth, params = truth_config(config, cause, rng)
+    rod = truth["wear_loop"]["rod_models"][0]
+    run = simulate_wear(model_config(truth, rod, PROFILE_CYCLES[-1]), f"truth: {cause}")
+    offset = rng.uniform(-20.0, 20.0)
+    profiles = tuple(measure_profile(run.angle_rad, run.nodal_depth_m(c), rng, cycles=c,
+                                     offset_deg=offset).profile for c in PROFILE_CYCLES)
+    growth = None
+    if with_growth:
+        cycles = np.arange(2000, PROFILE_CYCLES[-1] + 1, 2000)
+        growth = max_wear_growth(cycles, np.array([run.nodal_depth_m(c).max() for c in cycles]),
+                                 rng)
+    data = JointMeasurements(profiles=profiles, max_wear=growth,
+                             sources=(f"synthetic {cause} seed {seed}",))
+    return data, params, offset
