@@ -48,7 +48,9 @@ through the methods of :class:`ContactDiscretisation`; this module holds the alg
   path and from a turned state the retry does not pay: measured on the crank cycle). Should
   that not settle either, :func:`solve_by_contact_angle` takes over:
   the pin angle becomes an outer unknown found by bracketing, each inner problem (pin on a fixed
-  ray) being a well-posed Newton problem.
+  ray) being a well-posed Newton problem. On a deeply worn bore the pin's angle can lie 60
+  degrees and more from the load's (the pin at the end of a pocket); the bracketing stays on
+  rays along which the load presses the pin into the bore.
 
 At light loads the discrete problem can have more than one stable equilibrium (the pin resting
 in either corner next to a node whose normal is nearly along the load). Both discretisations
@@ -78,6 +80,12 @@ ROUNDING_FACTOR = 0.5
 COUPLED_ITERATIONS = 12
 # ... or as soon as its step cap against active-set alternation has fallen below this.
 CYCLE_CAP = 0.2
+
+# The fallback on the pin angle keeps the pin's ray this far from perpendicular to the load
+# (beyond, the load pulls the pin off the bore: no equilibrium on the ray), and stops on a
+# bracket of the angle this narrow (rad).
+RAY_MARGIN_RAD = math.radians(1.0)
+ANGLE_TOLERANCE_RAD = 1e-12
 
 # A corner closer than R_p (1 - this) to a node other than its two lies beyond the bore.
 CORNER_TOLERANCE = 1e-9
@@ -328,9 +336,13 @@ def solve_by_contact_angle(inner, pin_residual, direction: np.ndarray, load: np.
     solution. The tangential residual tau(psi) = (R - F/L) . a_perp is continuous and grows with
     psi overall (slope about |F|/L for a rigid pin), though only piecewise between the angles
     where nodes enter contact. So: step against tau, doubling the step until tau changes sign
-    (the first step is the rigid estimate -tau L/|F|, at least 1e-4 rad), then the Illinois
+    (the first step is the rigid estimate -tau L/|F|, at least 1e-4 rad), on the rays a with
+    a . F > 0 only (beyond, the load pulls the pin off the bore and the inner problem has no
+    solution): a step that would pass the ray ``RAY_MARGIN_RAD`` short of perpendicular to F
+    goes half way to it, and a step whose inner problem fails is halved. Then the Illinois
     variant of regula falsi on the bracket until it is 1e-12 rad wide (the pin centre to
-    ~1e-15 m) or |tau| <= 1e-9 |F|/L (about the rounding level of the penalty forces). The
+    ~1e-15 m) or |tau| <= 1e-9 |F|/L (about the rounding level of the penalty forces), bisecting
+    where the inner problem at the regula falsi's angle fails. The
     state is left at the last angle evaluated (inside the final bracket). Returns the inner
     iterations.
     """
@@ -345,25 +357,39 @@ def solve_by_contact_angle(inner, pin_residual, direction: np.ndarray, load: np.
     ψ0 = math.atan2(direction[1], direction[0])
     τ0 = tangential_residual(ψ0)
     step = -math.copysign(max(abs(τ0) / float(np.linalg.norm(load)), 1e-4), τ0)
+    # the rays that press the pin into the bore: a . F > 0, with a margin
+    φ = math.atan2(load[1], load[0])
+    reach = 0.5 * math.pi - RAY_MARGIN_RAD
+    bound = φ + math.copysign(reach, step) + 2.0 * math.pi * round((ψ0 - φ) / (2.0 * math.pi))
     iterations = 0
     while abs(τ0) > tolerance:
+        if abs(step) >= abs(bound - ψ0):
+            step = 0.5 * (bound - ψ0)  # half way to the last ray that presses the pin in
         ψ1 = ψ0 + step
-        τ1 = tangential_residual(ψ1)
         iterations += 1
+        if iterations > max_iterations or abs(step) < ANGLE_TOLERANCE_RAD:
+            raise ContactNotConverged(load, "found no contact angle in equilibrium")
+        try:
+            τ1 = tangential_residual(ψ1)
+        except ContactNotConverged:
+            step *= 0.5  # no equilibrium on that ray: a shorter step
+            continue
         if (τ1 > 0.0) != (τ0 > 0.0) or abs(τ1) <= tolerance:
             break
         ψ0, τ0, step = ψ1, τ1, 2.0 * step
-        if abs(step) > math.pi or iterations > max_iterations:
-            raise ContactNotConverged(load, "found no contact angle in equilibrium")
     else:
         return total
     ψ, τ, side = ψ1, τ1, 0
-    while abs(τ) > tolerance and abs(ψ1 - ψ0) > 1e-12:
+    while abs(τ) > tolerance and abs(ψ1 - ψ0) > ANGLE_TOLERANCE_RAD:
         iterations += 1
         if iterations > max_iterations:
             raise ContactNotConverged(load, "did not converge on the contact angle")
         ψ = (ψ0 * τ1 - ψ1 * τ0) / (τ1 - τ0)
-        τ = tangential_residual(ψ)
+        try:
+            τ = tangential_residual(ψ)
+        except ContactNotConverged:
+            ψ = 0.5 * (ψ0 + ψ1)  # bisect instead
+            τ = tangential_residual(ψ)
         if (τ > 0.0) == (τ1 > 0.0):
             ψ1, τ1 = ψ, τ
             τ0 = 0.5 * τ0 if side == 1 else τ0

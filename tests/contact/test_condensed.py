@@ -422,6 +422,8 @@ DEEP_LOADS = [  # (direction deg, |F| N, rotation increment rad, friction): refu
     (34.0, 40.0, 0.0, False),
     (42.0, 6000.0, 0.01, True),
     (230.0, 6000.0, 0.0, False),
+    (58.0, 6000.0, 0.0, False),     # through the fallback on the pin angle
+    (234.0, 6000.0, -0.01, True),   # through the fallback on the pin angle
 ]
 
 
@@ -432,7 +434,8 @@ def test_loads_on_a_bore_worn_a_millimetre_deep_as_the_full_solve(deep_paths, an
     (e.g. 5980 N at 58 degrees, 42 to 470 N at 54 to 58 degrees) on a bore worn 1 mm deep, from
     a cold start: in force balance and as the full solve to 1e-6. Refused before: the start
     pressed the pin along the load into one rim of the wedge only, whence the Newton slid it
-    along that rim."""
+    along that rim, and the fallback on the pin angle stepped onto rays along which the load
+    pulls the pin off the bore."""
     full, fast = deep_paths
     force = magnitude * np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
     fast.newton.forget()
