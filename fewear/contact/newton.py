@@ -13,7 +13,12 @@ through the methods of :class:`ContactDiscretisation`; this module holds the alg
   of two nodes carrying the load. On a worn bore with pockets that corner can lie beyond other
   nodes (the bottom of a pocket narrower than the pin's curvature: the pin rests on its flanks);
   then the vertex of the free region furthest along the direction is found by a walk along its
-  boundary (:func:`support_vertex`; two nodes, not necessarily neighbours).
+  boundary (:func:`support_vertex`; two nodes, not necessarily neighbours). Where these two
+  nodes' normals are far apart (the pin bridging a pocket rests on both rims: a wedge), the pin
+  is pressed in so that both carry the load together (the load split onto the two normals);
+  pressed along the direction alone it would leave one rim, and the Newton would slide it along
+  the other (a single contact on a convex rim is no stable equilibrium) instead of into the
+  wedge: on a bore worn 1 mm deep it did not settle within the iterations allowed.
   Afterwards the *warm start*: the last solution, turned with the load by whole bore elements
   where the discretisation can turn its state (the condensed path on a bore invariant under the
   turn, i.e. not worn; pin and indentation together), with the pin moved to the corner of the
@@ -43,7 +48,9 @@ through the methods of :class:`ContactDiscretisation`; this module holds the alg
   path and from a turned state the retry does not pay: measured on the crank cycle). Should
   that not settle either, :func:`solve_by_contact_angle` takes over:
   the pin angle becomes an outer unknown found by bracketing, each inner problem (pin on a fixed
-  ray) being a well-posed Newton problem.
+  ray) being a well-posed Newton problem. On a deeply worn bore the pin's angle can lie 60
+  degrees and more from the load's (the pin at the end of a pocket); the bracketing stays on
+  rays along which the load presses the pin into the bore.
 
 At light loads the discrete problem can have more than one stable equilibrium (the pin resting
 in either corner next to a node whose normal is nearly along the load). Both discretisations
@@ -74,8 +81,17 @@ COUPLED_ITERATIONS = 12
 # ... or as soon as its step cap against active-set alternation has fallen below this.
 CYCLE_CAP = 0.2
 
+# The fallback on the pin angle keeps the pin's ray this far from perpendicular to the load
+# (beyond, the load pulls the pin off the bore: no equilibrium on the ray), and stops on a
+# bracket of the angle this narrow (rad).
+RAY_MARGIN_RAD = math.radians(1.0)
+ANGLE_TOLERANCE_RAD = 1e-12
+
 # A corner closer than R_p (1 - this) to a node other than its two lies beyond the bore.
 CORNER_TOLERANCE = 1e-9
+
+# A vertex whose two normals are closer to parallel than this sine is pressed in along d.
+WEDGE_MIN_SINE = 0.05
 
 # Nodes within R_p (1 + this) of the pin centre touch it in the vertex walk (support_vertex).
 VERTEX_TOLERANCE = 1e-11
@@ -320,9 +336,13 @@ def solve_by_contact_angle(inner, pin_residual, direction: np.ndarray, load: np.
     solution. The tangential residual tau(psi) = (R - F/L) . a_perp is continuous and grows with
     psi overall (slope about |F|/L for a rigid pin), though only piecewise between the angles
     where nodes enter contact. So: step against tau, doubling the step until tau changes sign
-    (the first step is the rigid estimate -tau L/|F|, at least 1e-4 rad), then the Illinois
+    (the first step is the rigid estimate -tau L/|F|, at least 1e-4 rad), on the rays a with
+    a . F > 0 only (beyond, the load pulls the pin off the bore and the inner problem has no
+    solution): a step that would pass the ray ``RAY_MARGIN_RAD`` short of perpendicular to F
+    goes half way to it, and a step whose inner problem fails is halved. Then the Illinois
     variant of regula falsi on the bracket until it is 1e-12 rad wide (the pin centre to
-    ~1e-15 m) or |tau| <= 1e-9 |F|/L (about the rounding level of the penalty forces). The
+    ~1e-15 m) or |tau| <= 1e-9 |F|/L (about the rounding level of the penalty forces), bisecting
+    where the inner problem at the regula falsi's angle fails. The
     state is left at the last angle evaluated (inside the final bracket). Returns the inner
     iterations.
     """
@@ -337,25 +357,39 @@ def solve_by_contact_angle(inner, pin_residual, direction: np.ndarray, load: np.
     ψ0 = math.atan2(direction[1], direction[0])
     τ0 = tangential_residual(ψ0)
     step = -math.copysign(max(abs(τ0) / float(np.linalg.norm(load)), 1e-4), τ0)
+    # the rays that press the pin into the bore: a . F > 0, with a margin
+    φ = math.atan2(load[1], load[0])
+    reach = 0.5 * math.pi - RAY_MARGIN_RAD
+    bound = φ + math.copysign(reach, step) + 2.0 * math.pi * round((ψ0 - φ) / (2.0 * math.pi))
     iterations = 0
     while abs(τ0) > tolerance:
+        if abs(step) >= abs(bound - ψ0):
+            step = 0.5 * (bound - ψ0)  # half way to the last ray that presses the pin in
         ψ1 = ψ0 + step
-        τ1 = tangential_residual(ψ1)
         iterations += 1
+        if iterations > max_iterations or abs(step) < ANGLE_TOLERANCE_RAD:
+            raise ContactNotConverged(load, "found no contact angle in equilibrium")
+        try:
+            τ1 = tangential_residual(ψ1)
+        except ContactNotConverged:
+            step *= 0.5  # no equilibrium on that ray: a shorter step
+            continue
         if (τ1 > 0.0) != (τ0 > 0.0) or abs(τ1) <= tolerance:
             break
         ψ0, τ0, step = ψ1, τ1, 2.0 * step
-        if abs(step) > math.pi or iterations > max_iterations:
-            raise ContactNotConverged(load, "found no contact angle in equilibrium")
     else:
         return total
     ψ, τ, side = ψ1, τ1, 0
-    while abs(τ) > tolerance and abs(ψ1 - ψ0) > 1e-12:
+    while abs(τ) > tolerance and abs(ψ1 - ψ0) > ANGLE_TOLERANCE_RAD:
         iterations += 1
         if iterations > max_iterations:
             raise ContactNotConverged(load, "did not converge on the contact angle")
         ψ = (ψ0 * τ1 - ψ1 * τ0) / (τ1 - τ0)
-        τ = tangential_residual(ψ)
+        try:
+            τ = tangential_residual(ψ)
+        except ContactNotConverged:
+            ψ = 0.5 * (ψ0 + ψ1)  # bisect instead
+            τ = tangential_residual(ψ)
         if (τ > 0.0) == (τ1 > 0.0):
             ψ1, τ1 = ψ, τ
             τ0 = 0.5 * τ0 if side == 1 else τ0
@@ -479,7 +513,8 @@ class ContactNewton:
         region of the pin centre is the polygon of these corners), pressed in along d by the
         penetration |F/L| / (k (w_j + w_j+1)) that two nodes of weight w need to carry the load.
         Should c_j lie closer than R_p to another node (a non-convex, worn bore), the vertex of
-        the free region furthest along d (:func:`support_vertex`) and its two nodes instead."""
+        the free region furthest along d (:func:`support_vertex`) and its two nodes instead,
+        pressed into both where their normals are far apart (:meth:`_wedge_press`)."""
         path = self.path
         X = path.deformed_points()
         ahead = np.roll(X, -1, axis=0)
@@ -497,8 +532,31 @@ class ContactNewton:
         if np.hypot(d[:, 0], d[:, 1]).min() < R_p * (1.0 - CORNER_TOLERANCE):
             # a non-convex (worn) bore: the corner of the neighbours lies beyond other nodes
             corner, pair = support_vertex(X, direction, R_p)
+            press = self._wedge_press(X, corner, pair, direction, load)
+            if press is not None:
+                return corner + press
         weight = path.weights_m[pair[0]] + path.weights_m[pair[1]]
         return corner + self._load_penetration(load, weight) * direction
+
+    def _wedge_press(self, X: np.ndarray, corner: np.ndarray, pair: tuple[int, int],
+                     direction: np.ndarray, load: np.ndarray) -> np.ndarray | None:
+        """The pin's move (m) from a vertex ``corner`` of the free region into its two nodes
+        ``pair`` (at ``X``) that makes them carry the load together: |F/L| d =
+        a_1 n_1 + a_2 n_2 with a_q >= 0 on their normals n_q, penetrations
+        delta_q = a_q / (k w_q), and the move dc with n_q . dc = delta_q. A pin bridging a pocket
+        rests on rims whose normals are far apart (a wedge): pressed along d alone, it would
+        leave one rim and start on the other alone, whence the Newton slides it along that rim
+        (a single contact on a convex rim is no stable equilibrium) instead of into the wedge.
+        None where the normals are nearly parallel or d is not between them."""
+        chords = X[list(pair)] - corner
+        normals = chords / np.hypot(chords[:, 0], chords[:, 1])[:, None]
+        if abs(normals[0, 0] * normals[1, 1] - normals[0, 1] * normals[1, 0]) < WEDGE_MIN_SINE:
+            return None
+        shares = np.linalg.solve(normals.T, float(np.linalg.norm(load)) * direction)
+        if np.any(shares < 0.0):
+            return None
+        return np.linalg.solve(normals, shares / (
+            self.path.problem.penalty_stiffness_Pa_per_m() * self.path.weights_m[list(pair)]))
 
     def _coupled_newton(self, load, direction, basis, max_iterations) -> int | None:
         """Semi-smooth Newton on (displacement, c) with c moving in the span of ``basis``

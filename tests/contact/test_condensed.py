@@ -396,3 +396,70 @@ def test_the_state_is_not_turned_on_a_worn_bore(worn_paths):
     assert not fast.turn_state(3.0 * 2.0 * math.pi / N_THETA)
     np.testing.assert_array_equal(fast._g, g)
     np.testing.assert_array_equal(fast.pin_centre_m, centre)
+
+
+@pytest.fixture(scope="module")
+def deep_paths():
+    """Both paths on the coarse O-grid worn about 1 mm deep (ALE): pockets 0.8 and 1.0 mm deep,
+    +-45 degrees wide, flanks smoothed over ~8 degrees, twice the radial clearance of 0.5 mm (as
+    the default rigid case's bore at 210,940 cycles): the pin bridges a pocket on its rims."""
+    from fewear.contact.condensed import CondensedBushingContact
+    from fewear.contact.solver import BushingContactSolver
+    from fewear.mesh.ale import BoreMotion
+
+    full = BushingContactSolver(coarse_problem())
+    fast = CondensedBushingContact(full)
+    BoreMotion(full.mesh, full.facet_tags).move(
+        lambda angle: two_pockets(angle, (0.8e-3, 1.0e-3), half_width_deg=45.0,
+                                  smoothing_deg=8.0))
+    fast.update_geometry()
+    return full, fast
+
+
+DEEP_LOADS = [  # (direction deg, |F| N, rotation increment rad, friction): refused before
+    (58.0, 100.0, 0.0, False),
+    (238.0, 470.0, 0.01, True),
+    (34.0, 40.0, 0.0, False),
+    (42.0, 6000.0, 0.01, True),
+    (230.0, 6000.0, 0.0, False),
+    (58.0, 6000.0, 0.0, False),     # through the fallback on the pin angle
+    (234.0, 6000.0, -0.01, True),   # through the fallback on the pin angle
+]
+
+
+@pytest.mark.parametrize("angle, magnitude, rotation, friction", DEEP_LOADS)
+def test_loads_on_a_bore_worn_a_millimetre_deep_as_the_full_solve(deep_paths, angle, magnitude,
+                                                                   rotation, friction):
+    """Forces like those of the refused load steps of the default rigid run at 210,940 cycles
+    (e.g. 5980 N at 58 degrees, 42 to 470 N at 54 to 58 degrees) on a bore worn 1 mm deep, from
+    a cold start: in force balance and as the full solve to 1e-6. Refused before: the start
+    pressed the pin along the load into one rim of the wedge only, whence the Newton slid it
+    along that rim, and the fallback on the pin angle stepped onto rays along which the load
+    pulls the pin off the bore."""
+    full, fast = deep_paths
+    force = magnitude * np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
+    fast.newton.forget()
+    result = fast.solve(force, rotation, friction)
+    assert result.force_balance_rel_error < 1e-7
+    assert_same(full.solve(force, rotation, friction), result)
+
+
+def test_the_start_in_a_wedge_presses_the_pin_onto_both_rims(deep_paths):
+    """Where the pin bridges a pocket, its two rims' normals are far apart (a wedge): the start
+    presses the pin into both so that together they carry the load (not along the load, which
+    leaves one rim), and a light load converges from there in a few coupled Newton iterations,
+    without the fallback on the pin angle (before: 80 to 160 iterations, or refused)."""
+    from fewear.contact.newton import support_vertex
+
+    _, fast = deep_paths
+    R_p = fast.problem.geometry.pin_radius_m
+    for angle in (34.0, 58.0, 238.0):
+        direction = np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
+        _, pair = support_vertex(fast.points, direction, R_p)
+        fast.zero_displacement()
+        start = fast.newton._corner(direction, np.array([1e4, 0.0]))
+        assert np.all(np.hypot(*(fast.points[list(pair)] - start).T) < R_p)
+        fast.newton.forget()
+        result = fast.solve(100.0 * direction)
+        assert result.newton_iterations <= 10
+        assert result.force_balance_rel_error < 1e-7
