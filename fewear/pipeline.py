@@ -142,7 +142,7 @@ class LoadSteps:
     """The load steps of the recorded cycles (bushing frame).
 
     ``force_N`` (n, 2): joint force ON the pin pushing it into the bore (minus the bushing's
-    reaction on the pin) at the middle of each step; ``rotation_rad`` (n,): rotation of the pin
+    reaction on the pin), the mean over each step; ``rotation_rad`` (n,): rotation of the pin
     relative to the bushing over the step; ``duration_s``: the length of one step;
     ``hysteresis_work_J`` (n,): the work W_i the contact law's hysteresis dissipates over the step
     (:func:`fewear.wear.impact.hysteresis_work_J`).
@@ -179,24 +179,34 @@ class CycleWear:
 def load_steps(history: JointHistory, n_steps: int, law=None) -> LoadSteps:
     """Cut the recorded history into ``n_steps`` equal steps (stage 2).
 
-    The force is sampled at each step's middle (linear interpolation of the variable-step history);
-    the relative rotation is the trapezoidal integral of ``rel_omega_rad_s`` over the step, and
-    the hysteresis work W_i that of the dissipated power of ``law`` (the clearance joint's
-    :class:`fewear.mbd.contact.ContactLaw`; None: no work, as for the ideal joint), both
-    interpolated linearly in time at the step edges.
+    The force of a step is its mean over the step, the impulse over the step's length (the seed
+    samples it at one instant: an impact peak lasting microseconds is then hit or missed by the
+    sample, and the maximum depth after 10,000 cycles moved by 20 % between n = 200 and 400).
+    Archard's worn volume of a step, k |F| s, is linear in the force, so the mean keeps it for a
+    steady slip rate whatever n. The relative rotation is the integral of ``rel_omega_rad_s``
+    over the step and the hysteresis work W_i that of the dissipated power of ``law`` (the
+    clearance joint's :class:`fewear.mbd.contact.ContactLaw`; None: no work, as for the ideal
+    joint). All three integrals are trapezoidal on the history, interpolated linearly at the
+    step edges.
     """
     t = history.time_s
     edges = np.linspace(t[0], t[-1], n_steps + 1)
     middles = 0.5 * (edges[1:] + edges[:-1])
-    force_on_pin = -history.reaction_force_N
-    force = np.column_stack([np.interp(middles, t, force_on_pin[:, i]) for i in range(2)])
-    angle = np.concatenate(
-        [[0.0], np.cumsum(0.5 * (history.rel_omega_rad_s[1:] + history.rel_omega_rad_s[:-1])
-                          * np.diff(t))])
-    rotation = np.diff(np.interp(edges, t, angle))
+    duration = float(edges[1] - edges[0])
+    impulse = _cumulative(t, -history.reaction_force_N)  # force ON the pin, integrated
+    force = np.diff(np.column_stack([np.interp(edges, t, impulse[:, i]) for i in range(2)]),
+                    axis=0) / duration
+    rotation = np.diff(np.interp(edges, t, _cumulative(t, history.rel_omega_rad_s)))
     work = np.zeros(n_steps) if law is None else np.diff(np.interp(
         edges, t, hysteresis_work_J(law, history.penetration_m, history.normal_force_N)))
-    return LoadSteps(middles, force, rotation, float(edges[1] - edges[0]), work)
+    return LoadSteps(middles, force, rotation, duration, work)
+
+
+def _cumulative(t: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """The trapezoidal integral of ``values`` (first axis along ``t``) from t[0] to every t."""
+    increments = 0.5 * (values[1:] + values[:-1]) * np.diff(t).reshape((-1,) + (1,) * (
+        values.ndim - 1))
+    return np.concatenate([np.zeros_like(values[:1]), np.cumsum(increments, axis=0)])
 
 
 def cycle_wear(contact_model, steps: LoadSteps, wear_coefficient, friction: bool,

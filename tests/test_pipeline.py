@@ -21,15 +21,30 @@ def synthetic_history(n=401, period=0.05, omega=30.0):
                         omega * np.cos(angle), np.zeros(n, dtype=int))
 
 
-def test_load_steps_integrate_the_relative_rotation_and_sample_mid_step():
+def test_load_steps_integrate_the_relative_rotation_and_the_force_over_each_step():
     history = synthetic_history()
     steps = load_steps(history, 20)
     edges = np.linspace(0.0, 0.05, 21)
     exact = 30.0 * 0.05 / (2 * np.pi) * np.diff(np.sin(2 * np.pi * edges / 0.05))
     np.testing.assert_allclose(steps.rotation_rad, exact, atol=1e-4 * np.abs(exact).max())
-    middle = 2 * np.pi * steps.time_s / 0.05
-    np.testing.assert_allclose(steps.force_N[:, 0], 1000.0 * np.cos(middle), atol=0.2)
+    # the mean of 1000 cos(2 pi t / T) over each step (the impulse over the step's length)
+    mean = 1000.0 * np.diff(np.sin(2 * np.pi * edges / 0.05)) / (2 * np.pi / 20)
+    np.testing.assert_allclose(steps.force_N[:, 0], mean, atol=0.2)
     assert steps.duration_s == pytest.approx(0.05 / 20)
+
+
+def test_an_impact_between_step_middles_keeps_its_impulse():
+    """A 1 ms, 100 kN impact spike inside a step: a mid-step sample misses it or takes its peak;
+    the step's mean force carries its impulse (100 N s) at any number of steps."""
+    t = np.linspace(0.0, 0.05, 5001)
+    spike = np.where(np.abs(t - 0.0213) < 0.0005, 1.0e5, 0.0)
+    reaction = -np.column_stack([spike, np.zeros_like(t)])
+    zeros = np.zeros_like(t)
+    history = JointHistory(t, zeros, zeros, zeros, np.zeros((t.size, 2)), zeros, zeros, zeros,
+                           reaction, zeros, np.zeros(t.size, dtype=int))
+    for n in (20, 50, 200):
+        steps = load_steps(history, n)
+        assert np.sum(steps.force_N[:, 0]) * steps.duration_s == pytest.approx(100.0, rel=0.02)
 
 
 def test_worn_volume_is_archards_k_F_s(coarse_contact):
