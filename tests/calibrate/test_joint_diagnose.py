@@ -26,9 +26,12 @@ def believed(tmp_path_factory):
 SLOW = pytest.mark.slow  # each hidden-cause case costs its own forward runs (~20-60 s)
 
 
+# flexible_link is slow and not reliable: a rod a few per cent stiffer or softer than the one the
+# candidate runs with wears a profile that differs from it by about as much as the rigid rod's
+# (15 against 18 um RMS after 16,000 cycles for 3 %): the benchmark reports how often it is named.
 @pytest.mark.parametrize("cause, seed", [
-    ("flexible_link", 12),
-    pytest.param("wear_coefficient", 11, marks=SLOW), pytest.param("friction", 13, marks=SLOW),
+    ("friction", 13),
+    pytest.param("wear_coefficient", 11, marks=SLOW), pytest.param("flexible_link", 12, marks=SLOW),
     pytest.param("impact_wear", 14, marks=SLOW), pytest.param("running_in", 15, marks=SLOW)])
 def test_the_hidden_cause_is_named_and_the_prediction_improves(believed, cause, seed):
     data, truth, offset = hidden_joint_case(believed[1], cause, seed)
