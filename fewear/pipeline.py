@@ -36,6 +36,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 
 import numpy as np
+from scipy.integrate import cumulative_trapezoid
 
 from fewear.contact.admissible import ContactLoadError
 from fewear.errors import FewearInputError
@@ -161,7 +162,7 @@ class CycleWear:
 
     ``pressure_Pa``, ``slip_m``, ``k_m2_N``: (n_steps, n_nodes); ``depth_per_cycle_m`` (n_nodes,):
     plain Archard depth summed over all the steps; ``depth_sensitivity`` (n_nodes, n_nodes) its
-    derivative with respect to the bore's wear depth, or None; ``dropped_light_steps``: steps
+    derivative with respect to the bore's wear depth, or None; ``dropped_steps``: steps
     that found no contact equilibrium on the worn bore, dropped within ``DROPPABLE_SHARE``.
     """
 
@@ -173,7 +174,7 @@ class CycleWear:
     k_m2_N: np.ndarray
     depth_per_cycle_m: np.ndarray
     depth_sensitivity: np.ndarray | None = None
-    dropped_light_steps: int = 0
+    dropped_steps: int = 0
 
 
 def load_steps(history: JointHistory, n_steps: int, law=None) -> LoadSteps:
@@ -193,20 +194,14 @@ def load_steps(history: JointHistory, n_steps: int, law=None) -> LoadSteps:
     edges = np.linspace(t[0], t[-1], n_steps + 1)
     middles = 0.5 * (edges[1:] + edges[:-1])
     duration = float(edges[1] - edges[0])
-    impulse = _cumulative(t, -history.reaction_force_N)  # force ON the pin, integrated
+    impulse = cumulative_trapezoid(-history.reaction_force_N, t, axis=0, initial=0.0)  # ON pin
     force = np.diff(np.column_stack([np.interp(edges, t, impulse[:, i]) for i in range(2)]),
                     axis=0) / duration
-    rotation = np.diff(np.interp(edges, t, _cumulative(t, history.rel_omega_rad_s)))
+    rotation = np.diff(np.interp(edges, t, cumulative_trapezoid(history.rel_omega_rad_s, t,
+                                                                initial=0.0)))
     work = np.zeros(n_steps) if law is None else np.diff(np.interp(
         edges, t, hysteresis_work_J(law, history.penetration_m, history.normal_force_N)))
     return LoadSteps(middles, force, rotation, duration, work)
-
-
-def _cumulative(t: np.ndarray, values: np.ndarray) -> np.ndarray:
-    """The trapezoidal integral of ``values`` (first axis along ``t``) from t[0] to every t."""
-    increments = 0.5 * (values[1:] + values[:-1]) * np.diff(t).reshape((-1,) + (1,) * (
-        values.ndim - 1))
-    return np.concatenate([np.zeros_like(values[:1]), np.cumsum(increments, axis=0)])
 
 
 def cycle_wear(contact_model, steps: LoadSteps, wear_coefficient, friction: bool,
@@ -304,7 +299,7 @@ class CaseProgress:
     remeshes: int = 0
     contact_retries: int = 0  # load steps solved again from a cold start
     frictionless_steps: int = 0  # load steps solved without the Coulomb traction
-    dropped_light_steps: int = 0  # light load steps without equilibrium (no wear)
+    dropped_steps: int = 0  # load steps without contact equilibrium, dropped (no wear)
     stage_wall_time_s: dict = field(default_factory=lambda: dict.fromkeys(STAGES, 0.0))
 
     @property
@@ -394,7 +389,7 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress) -> None:
     case.ale_moves, case.remeshes = bushing.ale_moves, bushing.remeshes
     case.contact_retries += bushing.cold_retries
     case.frictionless_steps += bushing.frictionless_steps
-    case.dropped_light_steps += wear.dropped_light_steps
+    case.dropped_steps += wear.dropped_steps
     bushing.cold_retries = bushing.frictionless_steps = 0
     case.records.append(BlockRecord(
         worn.cycles, cycles, worn.depth_m.copy(), history.peak_contact_force_N, history.impacts,
@@ -433,7 +428,7 @@ def case_summary(case: CaseProgress, inputs: RunInputs) -> dict:
         "remeshes": int(case.remeshes),
         "contact_cold_retries": int(case.contact_retries),
         "contact_frictionless_steps": int(case.frictionless_steps),
-        "contact_dropped_light_steps": int(case.dropped_light_steps),
+        "contact_dropped_steps": int(case.dropped_steps),
         "first_block": {"cycles": first.block_cycles,
                         "max_wear_depth_per_cycle_m": first.max_depth_per_cycle_m,
                         "peak_contact_force_N": first.peak_contact_force_N,

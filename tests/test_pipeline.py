@@ -91,7 +91,7 @@ def test_a_light_step_without_equilibrium_wears_nothing_and_a_loaded_one_stops(c
     steps = LoadSteps(np.arange(3) * 1e-3, forces, np.full(3, 0.01), 1e-3, np.zeros(3))
     k = ConstantWearCoefficient(2e-13)
     wear = cycle_wear(Refusing(forces[1]), steps, k, friction=False)
-    assert wear.dropped_light_steps == 1
+    assert wear.dropped_steps == 1
     assert wear.pressure_Pa[1].max() == 0.0 and wear.slip_m[1].max() == 0.0
     assert wear.pressure_Pa[0].max() > 0.0 and wear.pressure_Pa[2].max() > 0.0
     with pytest.raises(ContactLoadError):

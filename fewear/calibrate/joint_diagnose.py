@@ -44,7 +44,7 @@ from __future__ import annotations
 
 import copy
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -305,8 +305,7 @@ def _with_params(result: Fit, candidate: Candidate) -> Fit:
     elif candidate.n_extra == 1:
         params[candidate.name + "_parameter"] = float(
             np.interp(x[2], np.arange(len(candidate.grid)), candidate.grid))
-    return Fit(result.name, x, result.n_params, result.sse_train, result.n_train,
-               result.held_out_rms_m, result.train_rms_m, result.residuals_m, params)
+    return replace(result, params=params)
 
 
 def f_test_p(nested: Fit, fuller: Fit) -> float:

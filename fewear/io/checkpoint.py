@@ -86,7 +86,7 @@ def _case_meta(case) -> dict:
             "ale_moves": int(case.ale_moves), "remeshes": int(case.remeshes),
             "contact_retries": int(case.contact_retries),
             "frictionless_steps": int(case.frictionless_steps),
-            "dropped_light_steps": int(case.dropped_light_steps),
+            "dropped_steps": int(case.dropped_steps),
             "stage_wall_time_s": dict(case.stage_wall_time_s),
             "time_s": float(case.mechanism.time_s)}
 
@@ -131,7 +131,7 @@ def _case_from(rod: str, meta: dict, data: dict):
         cells=array("cells"), meshed_xy_m=array("meshed_xy_m"),
         ale_moves=meta["ale_moves"], remeshes=meta["remeshes"],
         contact_retries=meta["contact_retries"], frictionless_steps=meta["frictionless_steps"],
-        dropped_light_steps=meta.get("dropped_light_steps", 0),
+        dropped_steps=meta["dropped_steps"],
         stage_wall_time_s=dict(meta["stage_wall_time_s"]))
 
 

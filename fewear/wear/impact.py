@@ -29,6 +29,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.integrate import cumulative_trapezoid
 
 from fewear.errors import FewearInputError
 
@@ -47,7 +48,7 @@ def hysteresis_work_J(law, penetration_m, normal_force_N) -> np.ndarray:
     delta = np.maximum(np.asarray(penetration_m, dtype=float), 0.0)
     elastic = np.array([law.elastic(d)[0] if d > 0.0 else 0.0 for d in delta])
     damping = np.asarray(normal_force_N, dtype=float) - elastic
-    return np.concatenate([[0.0], np.cumsum(0.5 * (damping[1:] + damping[:-1]) * np.diff(delta))])
+    return cumulative_trapezoid(damping, delta, initial=0.0)
 
 
 def impact_wear_depth_m(coefficient_m3_J: float, work_J, force_N, pressure_Pa) -> np.ndarray:
