@@ -9,11 +9,12 @@
 #
 # Here the "measured" data are made by the wear loop with a flexible rod and a profilometer's
 # noise (0.5 um, a trace every 3 deg, an angular origin 8 deg off the bushing's); the diagnosis
-# does not know. The real rod here has exactly the modulus the candidate model runs with: with a
-# rod a few per cent stiffer the coarse model's worn profile moves about as much as between rigid
-# and flexible, and the benchmark (tests/benchmarks/test_bench_joint_diagnose.py) shows the
-# diagnosis then often takes it for a wear-coefficient level. The model is the coarse one of the
-# tests (48 elements around the bore, 40 load steps per cycle).
+# does not know. Nor does it know the real rod's stiffness: its effective Young's modulus is 7 %
+# below the handbook value the config holds (pin compliance, a softer steel). The flexible
+# candidate is run at a grid of moduli around the config's and the best one is taken; the worn
+# bore does not follow the modulus smoothly (3 % moves the coarse model's profile about as far as
+# the rigid rod is from it), so the grid's runs are not interpolated. The model is the coarse one
+# of the tests (48 elements around the bore, 40 load steps per cycle).
 
 # +
 import json
@@ -47,7 +48,9 @@ config = load_config(believed, run_sections())
 
 # +
 rng = np.random.default_rng(2026)
-truth = simulate_wear(model_config(config, "flexible", CYCLES[-1]), "the real (flexible) rod")
+real = model_config(config, "flexible", CYCLES[-1])
+real["mechanism"]["rod_youngs_modulus_Pa"] *= 0.93
+truth = simulate_wear(real, "the real (flexible) rod")
 offset_deg = 8.0
 angles = np.radians(np.arange(0.0, 360.0, 3.0))
 profiles = []
@@ -68,6 +71,8 @@ print(f"cause: {summary['cause']} ({summary['cause_meaning']})")
 for entry in summary["candidates"]:
     print(f"  {entry['cause']:17s} vs {entry['against']:17s} p = {entry['p_value']:.2g}, "
           f"held-out RMS {entry['held_out_rms_m'] * 1e6:6.2f} um, accepted {entry['accepted']}")
+print("rod modulus factor fitted:", summary["candidates"][1]["params"]["rod_youngs_modulus_factor"],
+      "(true 0.93)")
 print(f"origin of the instrument found at {summary['baseline']['angle_offset_deg']:.1f} deg "
       f"(true {offset_deg} deg)")
 before, after = summary["prediction"]["baseline"], summary["prediction"]["extended"]

@@ -18,7 +18,11 @@ tau(N) = N except for running-in. The catalogue (every cause has s free, so each
 ``wear_coefficient``, the cheapest explanation):
 
 - ``wear_coefficient``: only the level s;
-- ``flexible_link``: the believed rigid rod is flexible (ANCF rod);
+- ``flexible_link``: the believed rigid rod is flexible (ANCF rod), its Young's modulus one of a
+  grid of factors on the believed one (the rod's effective stiffness is rarely known to a few per
+  cent, and the worn bore does not follow it smoothly: a 3 % stiffer rod moves the coarse model's
+  worn profile as far as the rigid rod is from it, so the runs are not interpolated; each is fitted
+  and the best on the training data is taken, a choice counted as one parameter);
 - ``friction``: the friction coefficient mu differs (runs on a grid of mu, the worn bore
   interpolated linearly between neighbouring runs);
 - ``impact_wear``: the impacts wear too, V = k_imp W_hysteresis (:mod:`fewear.wear.impact`; runs
@@ -64,6 +68,10 @@ from fewear.mesh.profile import periodic_linear
 RUNNING_IN_REACH = 3
 """The believed model runs this many times further than the other candidates (running-in)."""
 CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in")
+GRID_PARAMETERS = {"flexible_link": "rod_youngs_modulus_factor",
+                   "friction": "friction_coefficient",
+                   "impact_wear": "impact_wear_coefficient_m3_J"}
+"""The parameter each run-grid cause is fitted on, as named in its ``params``."""
 MEANINGS = {
     "wear_coefficient": "only the level of the wear coefficient k is off",
     "flexible_link": "the connecting rod modelled rigid is flexible: its compliance changes the "
@@ -88,6 +96,7 @@ class JointDiagnoseSettings:
     held_out_fraction: float = 0.34
     max_k_scale: float = 2.0
     friction_grid: tuple[float, ...] = (0.05, 0.3)
+    rod_modulus_factors: tuple[float, ...] = (0.8, 0.85, 0.9, 0.95, 1.0, 1.05, 1.1, 1.17, 1.25)
     impact_volume_ratios: tuple[float, ...] = (1.0,)
     max_offset_deg: float = 30.0
 
@@ -101,6 +110,10 @@ class JointDiagnoseSettings:
             raise FewearInputError(
                 f"[joint_diagnose] held_out_fraction = {self.held_out_fraction!r}: expected a "
                 "fraction in (0, 1)")
+        if not self.rod_modulus_factors or min(self.rod_modulus_factors) <= 0.0:
+            raise FewearInputError(
+                f"[joint_diagnose] rod_modulus_factors = {list(self.rod_modulus_factors)!r}: "
+                "expected a non-empty list of positive factors")
         if not self.max_k_scale > 1.0:
             raise FewearInputError(
                 f"[joint_diagnose] max_k_scale = {self.max_k_scale!r}: expected > 1")
@@ -155,12 +168,14 @@ def observations(data: JointMeasurements, held_out_fraction: float) -> Observati
 @dataclass(frozen=True, eq=False)
 class Candidate:
     """A cause as runs of the wear loop: ``runs`` at the parameter values ``grid`` (one run:
-    no grid), and ``running_in`` for the time map of running-in."""
+    no grid; ``discrete``: one of the runs is chosen, not interpolated between), and
+    ``running_in`` for the time map of running-in."""
 
     name: str
     runs: tuple[WearHistory, ...]
     grid: tuple[float, ...] = ()
     running_in: bool = False
+    discrete: bool = False
 
     @property
     def n_extra(self) -> int:
@@ -288,10 +303,26 @@ def fit_candidate(candidate: Candidate, obs: Observations, offset_deg: float,
         top = len(candidate.runs) - 1.0
         bounds += [(0.0, top)]
         extra_starts = [(p,) for p in np.linspace(0.0, top, len(candidate.runs))]
-    starts = [np.array([offset_deg, ln_s, *extra]) for ln_s in (0.0, -0.5, 0.5)
-              for extra in extra_starts]
-    result = fit(candidate.name, candidate, obs, starts, np.array(bounds))
+    levels = (0.0, -0.5, 0.5)
+    if candidate.discrete:
+        result = _best_run(candidate, obs, [np.array([offset_deg, s]) for s in levels], bounds)
+    else:
+        starts = [np.array([offset_deg, ln_s, *extra]) for ln_s in levels
+                  for extra in extra_starts]
+        result = fit(candidate.name, candidate, obs, starts, np.array(bounds))
     return _with_params(result, candidate)
+
+
+def _best_run(candidate: Candidate, obs: Observations, starts, bounds) -> Fit:
+    """The discrete choice: each run fitted alone (offset and level), the best on the training
+    data kept; its x gets the run's index, and the choice counts as one parameter."""
+    best, best_index = None, 0
+    for index, run in enumerate(candidate.runs):
+        alone = Candidate(candidate.name, (run,))
+        result = fit(candidate.name, alone, obs, starts, np.array(bounds[:2]))
+        if best is None or result.sse_train < best.sse_train:
+            best, best_index = result, index
+    return replace(best, x=np.append(best.x, float(best_index)), n_params=best.n_params + 1)
 
 
 def _with_params(result: Fit, candidate: Candidate) -> Fit:
@@ -303,15 +334,14 @@ def _with_params(result: Fit, candidate: Candidate) -> Fit:
         params["k_initial_over_steady"] = 1.0 + float(math.exp(x[2]))
         params["distance_scale_m"] = float(math.exp(x[3]))
     elif candidate.n_extra == 1:
-        params[candidate.name + "_parameter"] = float(
+        params[GRID_PARAMETERS[candidate.name]] = float(
             np.interp(x[2], np.arange(len(candidate.grid)), candidate.grid))
     return replace(result, params=params)
 
 
 def f_test_p(nested: Fit, fuller: Fit) -> float:
-    """Extra-sum-of-squares F-test of two nested least-squares fits (Seber & Wild 1989). A
-    cause without parameters of its own beside s (the flexible link against the level) counts
-    its switch of the model as one parameter."""
+    """Extra-sum-of-squares F-test of two nested least-squares fits (Seber & Wild 1989); a
+    fuller model with no more parameters (a switch of the model alone) counts one extra."""
     extra = max(fuller.n_params - nested.n_params, 1)
     dof = fuller.n_train - fuller.n_params
     if extra <= 0 or dof <= 0 or fuller.sse_train <= 0.0:
@@ -349,6 +379,7 @@ def cause_config(config: dict, cause: str, value: float | None) -> dict:
     changed = copy.deepcopy(config)
     if cause == "flexible_link":
         changed["wear_loop"]["rod_models"] = ["flexible"]
+        changed["mechanism"]["rod_youngs_modulus_Pa"] *= float(value)
     elif cause == "friction":
         changed["joint"]["friction_coefficient"] = float(value)
     elif cause == "impact_wear":
@@ -368,7 +399,9 @@ def candidate_runs(config: dict, cause: str, cycles: int, base: WearHistory,
     if cause in ("wear_coefficient", "running_in"):
         return Candidate(cause, (base,), running_in=cause == "running_in")
     if cause == "flexible_link":
-        return Candidate(cause, (run(cause_config(config, cause, None), "flexible rod"),))
+        grid = tuple(sorted(settings.rod_modulus_factors))
+        runs = [run(cause_config(config, cause, f), f"flexible rod, E x {f:g}") for f in grid]
+        return Candidate(cause, tuple(runs), grid, discrete=True)
     if cause == "friction":
         believed = config["joint"]["friction_coefficient"]
         grid = sorted(set(settings.friction_grid) | {believed})
@@ -466,7 +499,7 @@ def _extended_config(config, causes, fits) -> dict:
         return copy.deepcopy(config)
     cause = causes[0]
     params = fits[cause].params
-    value = params.get(cause + "_parameter")
+    value = params.get(GRID_PARAMETERS.get(cause, ""))
     extended = cause_config(config, cause, value)
     _scaled_wear(extended, params["k_scale"])
     if cause == "running_in":

@@ -26,9 +26,8 @@ def believed(tmp_path_factory):
 SLOW = pytest.mark.slow  # each hidden-cause case costs its own forward runs (~20-60 s)
 
 
-# flexible_link is slow and not reliable: a rod a few per cent stiffer or softer than the one the
-# candidate runs with wears a profile that differs from it by about as much as the rigid rod's
-# (15 against 18 um RMS after 16,000 cycles for 3 %): the benchmark reports how often it is named.
+# The default suite hides friction; the demo (demos/diagnose_joint.py) hides a flexible rod whose
+# modulus lies between the candidate's grid points; the other causes are slow.
 @pytest.mark.parametrize("cause, seed", [
     ("friction", 13),
     pytest.param("wear_coefficient", 11, marks=SLOW), pytest.param("flexible_link", 12, marks=SLOW),
