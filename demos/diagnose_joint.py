@@ -83,12 +83,22 @@ print(f"max depth at {before['cycles']:,} cycles: measured {before['measured_max
       f" m (gain {summary['gain']:.0%})")
 # -
 
-# The residual pattern the rigid model leaves (per cycle count: mean, RMS, where the largest
-# miss sits) and the figure `joint_fits.png` show where the rigid rod goes wrong: the flexible
-# rod's softer impacts and longer continuous contact move and deepen the worn pockets.
+# The residual pattern the rigid model leaves: per cycle count (mean, RMS, where the largest miss
+# sits), then read through the rigid model's own dynamics on its worn bore against the crank cycle
+# (which part of the cycle wears the missing depth) and its impacts; `joint_fits.png` shows the
+# profiles. The flexible rod's softer impacts and longer continuous contact move and deepen the
+# worn pockets.
 
 # +
-for row in summary["residual_structure"]:
-    print(row)
+structure = summary["residual_structure"]
+for row in structure["by_cycle_count"]:
+    print({key: round(value, 8) if isinstance(value, float) else value
+           for key, value in row.items()})
+for row in structure["crank_cycle"]["by_crank_angle"]:
+    if row["residual_m"] is not None:
+        print(f"crank {row['crank_from_deg']:3.0f}-{row['crank_to_deg']:3.0f} deg: in contact "
+              f"{row['contact_share']:4.0%}, presses {row['pressed_angle_deg']:5.1f} deg, "
+              f"residual {row['residual_m'] * 1e6:6.2f} um")
+print("\n".join(structure["sentences"]))
 assert summary["cause"] == "flexible_link"
 # -

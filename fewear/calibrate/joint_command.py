@@ -76,7 +76,8 @@ def report_markdown(s: dict) -> str:
     lines += ["", f"Maximum depth at {b['cycles']:,} cycles: measured "
               f"{b['measured_max_depth_m']:.3g} m, believed model {b['predicted_max_depth_m']:.3g}"
               f" m, extended {x['predicted_max_depth_m']:.3g} m.", "",
-              "![fits](joint_fits.png)", ""]
+              "## Where the believed model misses", "",
+              *s["residual_structure"]["sentences"], "", "![fits](joint_fits.png)", ""]
     return "\n".join(lines)
 
 

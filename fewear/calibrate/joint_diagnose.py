@@ -54,8 +54,10 @@ from typing import Any
 import numpy as np
 from scipy import optimize, stats
 
+from fewear.calibrate import joint_structure as structure
 from fewear.calibrate.joint_forward import (
     WearHistory,
+    cycle_on_worn_bore,
     hysteresis_work_per_cycle_J,
     model_config,
     simulate_wear,
@@ -465,8 +467,8 @@ def diagnose_joint(data: JointMeasurements, config: dict,
     causes, evidence, confounded = _select(baseline, fits, settings)
     extended = _extended_config(config, causes, fits)
     final_fit, extended_depth = _verify(extended, causes, baseline, obs, settings)
-    summary = _summary(data, obs, settings, baseline, fits, evidence, causes, confounded,
-                       untestable, final_fit, extended)
+    summary = _summary(data, config, base, obs, settings, baseline, fits, evidence, causes,
+                       confounded, untestable, final_fit)
     return JointDiagnosis(summary, extended, obs, obs.depth_m - baseline.residuals_m,
                           extended_depth)
 
@@ -530,8 +532,10 @@ def _prediction(obs: Observations, fit_: Fit) -> dict[str, float]:
             "predicted_max_depth_m": float(predicted.max())}
 
 
-def residual_structure(obs: Observations, residuals: np.ndarray) -> list[dict[str, float]]:
-    """Per cycle count: mean and RMS residual, and where the largest one sits (deg)."""
+def residual_structure(obs: Observations, residuals: np.ndarray,
+                       offset_deg: float) -> list[dict[str, float]]:
+    """Per cycle count: mean and RMS residual, and where the largest one sits (deg, bushing
+    frame: measured angle + the fitted offset)."""
     rows = []
     for cycles in np.unique(obs.cycles):
         at = obs.cycles == cycles
@@ -541,12 +545,49 @@ def residual_structure(obs: Observations, residuals: np.ndarray) -> list[dict[st
         rows.append({"cycles": int(cycles), "held_out": bool(not obs.train[at][0]),
                      "mean_m": float(r.mean()), "rms_m": float(np.sqrt(np.mean(r**2))),
                      "largest_m": float(r[peak]),
-                     "largest_at_deg": float(np.degrees(angle)) if np.isfinite(angle) else None})
+                     "largest_at_deg": (float((np.degrees(angle) + offset_deg) % 360.0)
+                                        if np.isfinite(angle) else None)})
     return rows
 
 
-def _summary(data, obs, settings, baseline, fits, evidence, causes, confounded, untestable,
-             final_fit, extended) -> dict[str, Any]:
+def cycle_structure(data: JointMeasurements, config: dict, obs: Observations, baseline: Fit,
+                    base: WearHistory) -> dict[str, Any]:
+    """The believed model's misses against cycle count and bore angle, against the crank cycle
+    and the impacts (the last profile, read through the believed model's dynamics on its own
+    worn bore at that count), and its measured traces against the simulated ones
+    (:mod:`fewear.calibrate.joint_structure`)."""
+    def worn_cycle(cycles: float):
+        return cycle_on_worn_bore(config, base.angle_rad, base.nodal_depth_m(cycles))
+
+    by_count = residual_structure(obs, baseline.residuals_m, float(baseline.x[0]))
+    crank = None
+    profile_counts = np.unique(obs.cycles[obs.is_profile])
+    if profile_counts.size:
+        at = (obs.cycles == profile_counts[-1]) & obs.is_profile
+        angle = (obs.angle_rad[at] + math.radians(baseline.x[0])) % (2.0 * math.pi)
+        order = np.argsort(angle)
+        residual_at = periodic_linear(angle[order], baseline.residuals_m[at][order])
+        history = worn_cycle(profile_counts[-1])
+        rms = float(np.sqrt(np.mean(baseline.residuals_m[at] ** 2)))
+        crank = {"cycles": int(profile_counts[-1]),
+                 "by_crank_angle": structure.crank_angle_table(history, residual_at),
+                 "impacts": structure.impact_table(history, residual_at, rms)}
+    omega = config["mechanism"]["crank_speed_rpm"] * 2.0 * math.pi / 60.0
+    traces = []
+    for trace in data.force or ():
+        row = structure.trace_table(trace.time_s, np.hypot(trace.fx_N, trace.fy_N),
+                                    worn_cycle(trace.cycles), omega, "force")
+        traces.append({"cycles": trace.cycles, **row})
+    for trace in data.acceleration or ():
+        row = structure.trace_table(trace.time_s, trace.slider_acceleration_m_s2,
+                                    worn_cycle(trace.cycles), omega, "acceleration")
+        traces.append({"cycles": trace.cycles, **row})
+    return {"by_cycle_count": by_count, "crank_cycle": crank, "traces": traces,
+            "sentences": structure.structure_sentences(by_count, crank, traces)}
+
+
+def _summary(data, config, base, obs, settings, baseline, fits, evidence, causes, confounded,
+             untestable, final_fit) -> dict[str, Any]:
     base_error, ext_error = baseline.held_out_rms_m, final_fit.held_out_rms_m
     return {
         "source": ", ".join(data.sources),
@@ -573,7 +614,7 @@ def _summary(data, obs, settings, baseline, fits, evidence, causes, confounded, 
         "held_out_error": {"baseline": base_error, "extended": ext_error if causes else base_error},
         "prediction": {"baseline": _prediction(obs, baseline),
                        "extended": _prediction(obs, final_fit)},
-        "residual_structure": residual_structure(obs, baseline.residuals_m),
+        "residual_structure": cycle_structure(data, config, obs, baseline, base),
         "unexplained": [] if not causes or final_fit.held_out_rms_m < 0.5 * base_error else [
             f"the extended model's held-out error {ext_error:.3g} m is still more than half the "
             f"believed model's {base_error:.3g} m"],

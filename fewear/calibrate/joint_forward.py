@@ -106,19 +106,38 @@ def simulate_wear(config: dict, label: str = "", comm=None) -> WearHistory:
     return history
 
 
-def hysteresis_work_per_cycle_J(config: dict) -> float:
-    """The contact law's hysteresis work of one crank cycle on the unworn joint (the energy the
-    impact-wear term wears with), from the steps that carry a force."""
+def cycle_on_worn_bore(config: dict, angle_rad: np.ndarray | None = None,
+                       depth_m: np.ndarray | None = None):
+    """One recorded crank cycle of the config's rod model (after its settling cycles) on the
+    bore worn by ``depth_m`` at the node angles ``angle_rad`` (None: the unworn bore): the
+    :class:`fewear.mbd.history.JointHistory` the wear stage would see."""
     from dataclasses import replace
 
     from fewear.mbd.slider_crank import simulate
-    from fewear.pipeline import load_steps, run_inputs_from_config
+    from fewear.pipeline import run_inputs_from_config
+    from fewear.wear.state import WearState
 
     inputs = run_inputs_from_config(config)
     crank = replace(inputs.dynamics.crank, rod=inputs.loop.rod_models[0], joint="clearance",
                     recorded_cycles=1)
-    history, _, _ = simulate(replace(inputs.dynamics, crank=crank))
-    steps = load_steps(history, inputs.loop.load_steps_per_cycle, inputs.dynamics.joint.law)
+    joint = inputs.dynamics.joint
+    if depth_m is not None:
+        state = replace(WearState.unworn(angle_rad), depth_m=np.asarray(depth_m, dtype=float))
+        geometry = inputs.contact.geometry
+        joint = replace(joint, profile=state.clearance_profile(geometry.inner_radius_m,
+                                                               geometry.pin_radius_m))
+    history, _, _ = simulate(replace(inputs.dynamics, crank=crank, joint=joint))
+    return history
+
+
+def hysteresis_work_per_cycle_J(config: dict) -> float:
+    """The contact law's hysteresis work of one crank cycle on the unworn joint (the energy the
+    impact-wear term wears with), from the steps that carry a force."""
+    from fewear.pipeline import load_steps, run_inputs_from_config
+
+    inputs = run_inputs_from_config(config)
+    steps = load_steps(cycle_on_worn_bore(config), inputs.loop.load_steps_per_cycle,
+                       inputs.dynamics.joint.law)
     loaded = np.linalg.norm(steps.force_N, axis=1) > 0.0
     return float(steps.hysteresis_work_J[loaded].sum())
 

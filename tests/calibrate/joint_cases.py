@@ -11,12 +11,13 @@ import math
 import numpy as np
 
 from fewear.calibrate.joint_forward import (
+    cycle_on_worn_bore,
     hysteresis_work_per_cycle_J,
     model_config,
     simulate_wear,
     worn_volume_per_cycle_m3,
 )
-from fewear.calibrate.joint_measured import JointMeasurements
+from fewear.calibrate.joint_measured import ForceTrace, JointMeasurements
 from tests.calibrate.profilometer import max_wear_growth, measure_profile
 
 PROFILE_CYCLES = (4000, 8000, 12000, 16000)
@@ -67,9 +68,26 @@ def truth_config(config: dict, cause: str, rng: np.random.Generator) -> tuple[di
     return truth, {}
 
 
-def hidden_joint_case(config: dict, cause: str, seed: int, with_growth: bool = True):
+def force_trace(truth: dict, run, cycles: int, start_deg: float,
+                rng: np.random.Generator) -> ForceTrace:
+    """The joint force of the truth's mechanism after ``cycles`` as a load cell records it: one
+    crank cycle sampled at 20 kHz from the crank angle ``start_deg`` on, 1 % noise."""
+    history = cycle_on_worn_bore(truth, run.angle_rad, run.nodal_depth_m(cycles))
+    omega = truth["mechanism"]["crank_speed_rpm"] * 2.0 * math.pi / 60.0
+    time_s = np.arange(0.0, 2.0 * math.pi / omega, 5e-5)
+    crank = (math.radians(start_deg) + omega * time_s) % (2.0 * math.pi)
+    simulated = history.crank_angle_rad - history.crank_angle_rad[0]
+    force = [np.interp(crank, simulated, -history.reaction_force_N[:, i], period=2.0 * math.pi)
+             for i in range(2)]
+    scale = 0.01 * float(np.max(np.hypot(*force)))
+    return ForceTrace(cycles, time_s, *(f + rng.normal(0.0, scale, f.size) for f in force))
+
+
+def hidden_joint_case(config: dict, cause: str, seed: int, with_growth: bool = True,
+                      force_start_deg: float | None = None):
     """(measured data, truth parameters, true angular offset in deg) for ``cause`` ('none':
-    the believed model itself)."""
+    the believed model itself); with a force trace at the last count recorded from the crank
+    angle ``force_start_deg`` on, if given."""
     rng = np.random.default_rng(seed)
     truth, params = truth_config(config, cause, rng)
     rod = truth["wear_loop"]["rod_models"][0]
@@ -82,6 +100,9 @@ def hidden_joint_case(config: dict, cause: str, seed: int, with_growth: bool = T
         cycles = np.arange(2000, PROFILE_CYCLES[-1] + 1, 2000)
         growth = max_wear_growth(cycles, np.array([run.nodal_depth_m(c).max() for c in cycles]),
                                  rng)
-    data = JointMeasurements(profiles=profiles, max_wear=growth,
+    force = None if force_start_deg is None else (
+        force_trace(model_config(truth, rod, PROFILE_CYCLES[-1]), run, PROFILE_CYCLES[-1],
+                    force_start_deg, rng),)
+    data = JointMeasurements(profiles=profiles, max_wear=growth, force=force,
                              sources=(f"synthetic {cause} seed {seed}",))
     return data, params, offset

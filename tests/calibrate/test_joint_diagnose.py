@@ -42,13 +42,17 @@ def test_the_hidden_cause_is_named_and_the_prediction_improves(believed, cause, 
 
 @pytest.mark.parametrize("seed", [21, pytest.param(22, marks=SLOW)])
 def test_the_believed_models_own_data_give_no_cause_and_the_origin_is_found(believed, seed):
-    data, _, offset = hidden_joint_case(believed[1], "none", seed)
+    data, _, offset = hidden_joint_case(believed[1], "none", seed, force_start_deg=117.0)
     summary = diagnose_joint(data, believed[1]).summary
     assert summary["causes"] == [] and summary["cause"] == "none"
     # the instrument's origin: measured angle + offset = bushing angle
     assert summary["baseline"]["angle_offset_deg"] == pytest.approx(offset, abs=1.0)
     # the held-out error is the profilometer's noise (0.5 um), not a model error
     assert summary["held_out_error"]["baseline"] < 1.5e-6
+    # the load cell's trace is the believed model's own: its crank phase is found
+    trace, = summary["residual_structure"]["traces"]
+    assert trace["phase_deg"] == pytest.approx(117.0, abs=1.0)
+    assert summary["residual_structure"]["crank_cycle"]["impacts"]["impacts_per_cycle"] > 0
 
 
 def test_fewear_diagnose_reads_joint_files_and_writes_its_outputs(believed, tmp_path):
