@@ -83,6 +83,7 @@ class BoreMotion:
                  for dofs in (self.bore_dofs, self.outer_dofs)],
             petsc_options=LU_OPTIONS,
         )
+        forget_options(self.problem.solver.getOptionsPrefix())
         self.quality_meter = QualityMeter(mesh, facet_tags)
 
     def bore_displacement(self, increment_m: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
@@ -116,6 +117,21 @@ class BoreMotion:
             max_displacement_m=comm.allreduce(_max_norm(node_displacement), op=MPI.MAX),
             quality=self.quality_meter.measure(),
         )
+
+
+def forget_options(prefix: str) -> None:
+    """Delete the options under ``prefix`` from PETSc's global options database.
+
+    DOLFINx 0.5's ``LinearProblem`` writes its solver options there under a prefix of its own,
+    reads them when it is made and never removes them; the database holds at most 512 options, so
+    a process that re-meshes a few hundred times (one ``BoreMotion`` per mesh: a diagnosis's many
+    forward runs) failed with PETSc's "Number of options 512" error."""
+    from petsc4py import PETSc
+
+    options = PETSc.Options()
+    for name in options.getAll():
+        if name.startswith(prefix):
+            options.delValue(name)
 
 
 def elastic_extension_form(space, poisson_ratio: float):

@@ -104,3 +104,17 @@ def test_increment_of_the_wrong_shape_is_refused():
         motion.move(lambda angle: np.zeros(3))
     with pytest.raises(ValueError, match="finite"):
         motion.move(lambda angle: np.full_like(angle, np.nan))
+
+
+def test_many_motions_leave_petsc_options_database_as_it_was():
+    """DOLFINx 0.5's LinearProblem leaves its options in PETSc's database (512 at most): a
+    diagnosis makes hundreds of motions in one process, and the 171st one failed."""
+    from petsc4py import PETSc
+
+    before = len(PETSc.Options().getAll())
+    motions = [coarse_motion(n_theta=16, radial_count=2) for _ in range(3)]
+    assert len(PETSc.Options().getAll()) == before
+    solver = motions[-1].problem.solver  # the options were read when it was made
+    assert (solver.getType(), solver.getPC().getType()) == ("preonly", "lu")
+    moved = motions[-1].move(lambda angle: np.full_like(angle, 1e-6))
+    assert moved.max_bore_increment_m == pytest.approx(1e-6)
