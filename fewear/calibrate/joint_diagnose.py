@@ -99,7 +99,7 @@ class JointDiagnoseSettings:
     max_k_scale: float = 2.0
     friction_grid: tuple[float, ...] = (0.05, 0.3)
     rod_modulus_factors: tuple[float, ...] = (0.8, 0.85, 0.9, 0.95, 1.0, 1.05, 1.1, 1.17, 1.25)
-    impact_volume_ratios: tuple[float, ...] = (1.0,)
+    impact_volume_ratios: tuple[float, ...] = (0.5, 1.0, 2.0)
     max_offset_deg: float = 30.0
 
     def __post_init__(self):
