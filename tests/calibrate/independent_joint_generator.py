@@ -364,3 +364,8 @@ def write_data_set(cause: str, seed: int, folder: Path) -> DataSet:
     write_measurements(history, lab, rng, profiles_csv, max_wear_csv)
     return DataSet(profiles_csv, max_wear_csv, believed_toml, truth, lab,
                    {**truth.params, **extra})
+
+
+def data_set_seed(cause: str, index: int) -> int:
+    """The seed of the ``index``-th data set of ``cause`` (distinct labs across causes)."""
+    return 100 * CAUSES.index(cause) + index
