@@ -1,0 +1,388 @@
+"""Measured joint-wear data with a hidden cause, written without seeing the joint diagnosis.
+
+For a cause of the catalogue and a seed, :func:`hidden_truth` draws the real joint (a config
+changed from the believed one, or the believed run plus our own post-processing) and
+:func:`write_data_set` measures it with :class:`LabInstruments` into the CSV schemas of
+``fewear/calibrate/joint_measured.py``. Nothing here comes from ``fewear/calibrate/
+joint_diagnose.py`` or the project's own hidden-cause generator; the forward model is the wear loop
+(:func:`fewear.calibrate.joint_forward.simulate_wear`).
+
+The hidden causes (numpy ``default_rng(seed)``; ranges chosen here):
+
+- ``wear_coefficient``: ln k shifted by ln f, f log-uniform in [0.45, 0.7] or [1.45, 2.2]
+  (either direction): the constant term ``[wear] rbf tail[0]`` of the RBF network, so k(p, v)
+  keeps its shape and only its level moves.
+- ``flexible_link``: the real rod is the ANCF beam (``rod_models = ["flexible"]``) whose Young's
+  modulus is the nominal one times U(0.85, 1.15) and whose in-plane height (5 mm) is off by
+  U(-8, +8) % (material and machining scatter of a real rod; the height also changes its mass).
+- ``friction``: joint friction coefficient log-uniform in [0.03, 0.06] (lubricated) or
+  [0.16, 0.26] (dry brass on steel), the believed one being 0.1.
+- ``impact_wear``: our own post-processing of the believed run, *not* the forward model's energy
+  term. Every impact episode of the joint (a contact episode the dynamics classes as an impact)
+  whose peak normal force exceeds a threshold F_th (a random 10-30 % of the cycle's largest
+  impact peak) removes a volume proportional to its normal impulse, V_i = c_J J_i (J_i = integral
+  of F_n dt over the episode), spread around the bore as a Gaussian of standard deviation
+  U(3, 7) degrees about the direction of the pin's eccentricity at the episode's peak force. The
+  impacts are taken from three recorded crank cycles of the dynamics on the bore worn so far, at
+  the start of each block of the believed run, and the extra depth grows linearly over the block.
+  c_J (m^3 per N s) is chosen so that the impacts remove U(15, 35) % of the sliding wear volume at
+  the last measured count. Neglected: the extra wear's feedback on the sliding wear (the sliding
+  part is the believed run unchanged; the impact depth only enters the clearance of the dynamics
+  that locates the next block's impacts) and any wear by the impacts' tangential impulse.
+- ``running_in``: the break-in with a power-law tail, ``[wear] extension =
+  "running_in_power_law"``, m(s) = 1 + (r - 1) / (1 + s / s0) (Blau 2005), r ~ U(2, 4) and
+  s0 = N0 times the largest sliding distance per cycle of the believed run, N0 log-uniform in
+  [600, 3000] cycles (the wear rate is still well above its steady value at the first profile).
+- ``none``: the believed model itself.
+
+The instrument (:class:`LabInstruments`, drawn per data set): a roundness tester traces the bore
+at mid-width after each of 3-5 cycle counts (the first in 3,000-5,000, the last in
+16,000-20,000, the others evenly between, rounded to 100 cycles):
+
+- sampling every 1-5 degrees (one of the tester's settings, the same for all traces);
+- an unknown angular origin, U(-25, 25) degrees, shared by the traces (the bushing goes back on the
+  spindle against the same key), plus a re-clamping scatter of 0.3 degree per trace;
+- the Gaussian profile filter of the tester (ISO 16610-21, 50 % transmission at 50 or 150
+  undulations per revolution);
+- Gaussian noise of standard deviation U(0.4, 0.6) um, a slow thermal drift linear over the
+  revolution (U(-0.4, 0.4) um end to end), dust on the bore (Poisson(0.7) spikes per trace, one
+  sample each, reading 1-3 um *less* depth: the stylus rides over the particle), and the
+  tester's 0.02 um resolution;
+- on half the data sets partial coverage: an arc of U(290, 330) degrees (the clamp hides the
+  rest), the missing arc at a random place in the instrument's frame.
+
+Depths are relative to the unworn bore (the lab subtracts a reference trace of the new bushing,
+which removes the set-up eccentricity and the form error). A bore gauge reads the deepest point
+of the wear at 5 further cycle counts between 2,000 and 20,000 (not the profile counts): the
+largest nodal depth plus N(0, 1 um), at 0.1 um resolution.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+
+from fewear.calibrate.joint_forward import WearHistory, model_config, simulate_wear
+
+CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in", "none")
+BELIEVED_TOML = """\
+[mesh]
+bore_element_size_m = 0.0013089969389957472   # 2*pi*0.010/48*(1+1e-9)
+radial_element_count = 4
+[wear_loop]
+rod_models = ["rigid"]
+load_steps_per_cycle = 40
+"""
+"""The model the user believes: the coarse rigid-rod wear loop (defaults otherwise)."""
+IMPACT_RECORDED_CYCLES = 3
+
+
+@dataclass(frozen=True)
+class HiddenTruth:
+    """The real joint of one data set: ``cause``, its drawn ``params`` (for the report), the
+    ``config`` of its forward run and, for ``impact_wear``, the impact rule of the
+    post-processing (``impact`` = None otherwise)."""
+
+    cause: str
+    params: dict
+    config: dict
+    impact: ImpactRule | None = None
+
+
+@dataclass(frozen=True)
+class ImpactRule:
+    """Impact wear by normal impulse (module doc): the impacts with peak normal force above
+    ``threshold_fraction`` of the largest one wear V_i = c_J J_i, spread as a Gaussian of
+    ``spread_deg``; c_J makes the impact volume ``volume_fraction`` of the sliding volume at
+    ``last_cycles``."""
+
+    threshold_fraction: float
+    spread_deg: float
+    volume_fraction: float
+    last_cycles: int
+
+
+@dataclass(frozen=True)
+class LabInstruments:
+    """One lab's instruments for one data set (module doc); angles in degrees, depths in m."""
+
+    profile_cycles: tuple[int, ...]
+    gauge_cycles: tuple[int, ...]
+    step_deg: float
+    origin_deg: float
+    filter_upr: float
+    noise_m: float
+    drift_m: float
+    arc_deg: float
+    arc_start_deg: float
+    clamp_scatter_deg: float = 0.3
+    dust_per_trace: float = 0.7
+    resolution_m: float = 2e-8
+    gauge_noise_m: float = 1e-6
+    gauge_resolution_m: float = 1e-7
+
+    @property
+    def last_cycles(self) -> int:
+        return max(self.profile_cycles + self.gauge_cycles)
+
+
+@dataclass(frozen=True)
+class DataSet:
+    """The files of one data set and what was hidden in them."""
+
+    profiles_csv: Path
+    max_wear_csv: Path
+    believed_toml: Path
+    truth: HiddenTruth
+    lab: LabInstruments
+    params: dict = field(default_factory=dict)
+
+
+def believed_config(path: Path) -> dict:
+    """Write :data:`BELIEVED_TOML` to ``path`` and return its complete config."""
+    from fewear.io.config import load_config
+    from fewear.pipeline import run_sections
+
+    path.write_text(BELIEVED_TOML)
+    return load_config(path, run_sections())
+
+
+# --- the instruments ----------------------------------------------------------------------
+
+def draw_lab(rng: np.random.Generator) -> LabInstruments:
+    """A lab's instruments and measurement schedule (module doc)."""
+    count = int(rng.integers(3, 6))
+    first, last = rng.uniform(3000, 5000), rng.uniform(16000, 20000)
+    profile_cycles = tuple(int(round(c, -2)) for c in np.linspace(first, last, count))
+    gauge_cycles = []
+    while len(gauge_cycles) < 5:
+        cycles = int(round(rng.uniform(2000, 20000), -2))
+        if all(abs(cycles - other) >= 300 for other in (*profile_cycles, *gauge_cycles)):
+            gauge_cycles.append(cycles)
+    partial = rng.random() < 0.5
+    return LabInstruments(
+        profile_cycles, tuple(sorted(gauge_cycles)),
+        step_deg=float(rng.choice([1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0])),
+        origin_deg=float(rng.uniform(-25.0, 25.0)), filter_upr=float(rng.choice([50.0, 150.0])),
+        noise_m=float(rng.uniform(0.4e-6, 0.6e-6)), drift_m=float(rng.uniform(-0.4e-6, 0.4e-6)),
+        arc_deg=float(rng.uniform(290.0, 330.0)) if partial else 360.0,
+        arc_start_deg=float(rng.uniform(0.0, 360.0)))
+
+
+def gaussian_filtered(depth_m: np.ndarray, cutoff_upr: float) -> np.ndarray:
+    """The periodic profile ``depth_m`` (uniform over the circle) through the ISO 16610-21
+    Gaussian filter: transmission exp(-pi (a n / n_c)^2), a = sqrt(ln 2 / pi), 50 % at n_c."""
+    harmonics = np.fft.rfftfreq(depth_m.size, 1.0 / depth_m.size)
+    alpha = math.sqrt(math.log(2.0) / math.pi)
+    transmission = np.exp(-math.pi * (alpha * harmonics / cutoff_upr) ** 2)
+    return np.fft.irfft(np.fft.rfft(depth_m) * transmission, depth_m.size)
+
+
+def trace(history: WearHistory, cycles: int, lab: LabInstruments,
+          rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+    """One roundness trace after ``cycles``: instrument angles (deg, in [0, 360)) and depths (m)."""
+    fine_deg = np.arange(0.0, 360.0, 0.25)
+    bushing_deg = fine_deg + lab.origin_deg + rng.normal(0.0, lab.clamp_scatter_deg)
+    filtered = gaussian_filtered(history.depth_at(cycles, np.deg2rad(bushing_deg)),
+                                 lab.filter_upr)
+    start = lab.arc_start_deg if lab.arc_deg < 360.0 else 0.0
+    along_deg = np.arange(0.0, lab.arc_deg - 1e-9, lab.step_deg)
+    angle_deg = np.mod(start + along_deg, 360.0)
+    depth = np.interp(angle_deg, fine_deg, filtered, period=360.0)
+    depth += rng.normal(0.0, lab.noise_m, angle_deg.size) + lab.drift_m * along_deg / 360.0
+    dusty = rng.choice(angle_deg.size, size=min(rng.poisson(lab.dust_per_trace), 3),
+                       replace=False)
+    depth[dusty] -= rng.uniform(1e-6, 3e-6, dusty.size)
+    return angle_deg, np.round(depth / lab.resolution_m) * lab.resolution_m
+
+
+def gauge_readings(history: WearHistory, lab: LabInstruments,
+                   rng: np.random.Generator) -> np.ndarray:
+    """The bore gauge's deepest wear at ``lab.gauge_cycles`` (m)."""
+    deepest = np.array([history.nodal_depth_m(c).max() for c in lab.gauge_cycles])
+    noisy = deepest + rng.normal(0.0, lab.gauge_noise_m, deepest.size)
+    return np.round(noisy / lab.gauge_resolution_m) * lab.gauge_resolution_m
+
+
+def write_measurements(history: WearHistory, lab: LabInstruments, rng: np.random.Generator,
+                       profiles_csv: Path, max_wear_csv: Path) -> None:
+    """Both CSV files of a data set (schemas of ``fewear/calibrate/joint_measured.py``)."""
+    lines = ["# roundness tester, depth relative to the unworn reference trace",
+             "cycles,angle_deg,wear_depth_m"]
+    for cycles in lab.profile_cycles:
+        angle_deg, depth = trace(history, cycles, lab, rng)
+        lines += [f"{cycles},{a:.3f},{d:.4e}" for a, d in zip(angle_deg, depth)]
+    profiles_csv.write_text("\n".join(lines) + "\n")
+    depth = gauge_readings(history, lab, rng)
+    lines = ["# bore gauge, deepest point of the wear", "cycles,max_wear_depth_m"]
+    lines += [f"{c},{d:.4e}" for c, d in zip(lab.gauge_cycles, depth)]
+    max_wear_csv.write_text("\n".join(lines) + "\n")
+
+
+# --- the hidden causes --------------------------------------------------------------------
+
+def _two_sided_log_uniform(rng: np.random.Generator, low: tuple[float, float],
+                           high: tuple[float, float]) -> float:
+    """Log-uniform in the ``low`` or the ``high`` interval, each with probability 1/2."""
+    bounds = low if rng.random() < 0.5 else high
+    return float(math.exp(rng.uniform(math.log(bounds[0]), math.log(bounds[1]))))
+
+
+def hidden_truth(cause: str, believed: dict, last_cycles: int,
+                 rng: np.random.Generator) -> HiddenTruth:
+    """The real joint for ``cause`` (module doc), its run to ``last_cycles``."""
+    rod = believed["wear_loop"]["rod_models"][0]
+    config = model_config(believed, rod, last_cycles)
+    if cause == "wear_coefficient":
+        factor = _two_sided_log_uniform(rng, (0.45, 0.7), (1.45, 2.2))
+        config["wear"]["rbf"]["tail"][0] += math.log(factor)
+        return HiddenTruth(cause, {"k_factor": factor}, config)
+    if cause == "flexible_link":
+        modulus, height = rng.uniform(0.85, 1.15), rng.uniform(0.92, 1.08)
+        config = model_config(believed, "flexible", last_cycles)
+        config["mechanism"]["rod_youngs_modulus_Pa"] *= modulus
+        config["mechanism"]["rod_height_m"] *= height
+        return HiddenTruth(cause, {"modulus_factor": modulus, "height_factor": height}, config)
+    if cause == "friction":
+        mu = _two_sided_log_uniform(rng, (0.03, 0.06), (0.16, 0.26))
+        config["joint"]["friction_coefficient"] = mu
+        return HiddenTruth(cause, {"friction_coefficient": mu}, config)
+    if cause == "impact_wear":
+        rule = ImpactRule(rng.uniform(0.1, 0.3), rng.uniform(3.0, 7.0), rng.uniform(0.15, 0.35),
+                          last_cycles)
+        return HiddenTruth(cause, {"threshold_fraction": rule.threshold_fraction,
+                                   "spread_deg": rule.spread_deg,
+                                   "volume_fraction": rule.volume_fraction}, config, rule)
+    if cause == "running_in":
+        ratio, scale_cycles = rng.uniform(2.0, 4.0), math.exp(rng.uniform(math.log(600),
+                                                                           math.log(3000)))
+        sliding = simulate_wear(config, "believed").sliding_m_per_cycle.max()
+        config["wear"]["extension"] = "running_in_power_law"
+        config["wear"]["extension_params"] = {"k_initial_over_steady": ratio,
+                                              "distance_scale_m": scale_cycles * sliding}
+        return HiddenTruth(cause, {"k_initial_over_steady": ratio,
+                                   "distance_scale_cycles": scale_cycles,
+                                   "distance_scale_m": scale_cycles * sliding}, config)
+    if cause == "none":
+        return HiddenTruth(cause, {}, config)
+    raise ValueError(f"unknown cause {cause!r}; expected one of {CAUSES}")
+
+
+def true_history(truth: HiddenTruth) -> tuple[WearHistory, dict]:
+    """The real joint's worn bore against cycles: the forward run of ``truth.config``, plus the
+    impact wear of our own rule for ``impact_wear``; and what the run adds to the truth's
+    parameters (c_J, an early stop)."""
+    history = simulate_wear(truth.config, f"hidden {truth.cause}")
+    extra = {"stopped": history.stopped} if history.stopped else {}
+    if truth.impact is None:
+        return history, extra
+    history, coefficient = with_impact_wear(history, truth.config, truth.impact)
+    return history, {**extra, "impact_coefficient_m3_Ns": coefficient}
+
+
+# --- impact wear by normal impulse (our post-processing) ------------------------------------
+
+def impact_episodes(config: dict, depth_m: np.ndarray, angle_rad: np.ndarray):
+    """Peak normal force (N), normal impulse (N s) and angle (rad, bushing frame) of every impact
+    episode in :data:`IMPACT_RECORDED_CYCLES` crank cycles of the dynamics on the bore worn to
+    ``depth_m`` at the nodes ``angle_rad``."""
+    from fewear.mbd.slider_crank import simulate
+    from fewear.pipeline import run_inputs_from_config
+    from fewear.wear.state import WearState
+
+    inputs = run_inputs_from_config(config)
+    state = replace(WearState.unworn(angle_rad), depth_m=depth_m)
+    geometry = inputs.contact.geometry
+    joint = replace(inputs.dynamics.joint,
+                    profile=state.clearance_profile(geometry.inner_radius_m,
+                                                    geometry.pin_radius_m))
+    crank = replace(inputs.dynamics.crank, rod=config["wear_loop"]["rod_models"][0],
+                    joint="clearance", recorded_cycles=IMPACT_RECORDED_CYCLES)
+    history, _, _ = simulate(replace(inputs.dynamics, crank=crank, joint=joint))
+    edges = np.diff(np.concatenate([[0], (history.mode == 1).astype(int), [0]]))
+    peaks, impulses, angles = [], [], []
+    for start, end in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)):
+        window = slice(max(start - 1, 0), end + 1)
+        force = history.normal_force_N[window]
+        peak = int(np.argmax(force))
+        eccentricity = history.eccentricity_m[window][peak]
+        peaks.append(force[peak])
+        impulses.append(np.trapz(force, history.time_s[window]))
+        angles.append(math.atan2(eccentricity[1], eccentricity[0]))
+    return np.array(peaks), np.array(impulses), np.array(angles)
+
+
+def impulse_depth_per_cycle_m(config: dict, depth_m: np.ndarray, angle_rad: np.ndarray,
+                              rule: ImpactRule, coefficient_m3_Ns: float = 1.0) -> np.ndarray:
+    """Depth per crank cycle at the nodes removed by the impacts, V_i = c_J J_i spread as a
+    periodic Gaussian of ``rule.spread_deg`` (volume kept: width x R x integral of h)."""
+    peaks, impulses, angles = impact_episodes(config, depth_m, angle_rad)
+    counted = peaks >= rule.threshold_fraction * peaks.max(initial=0.0)
+    spread = math.radians(rule.spread_deg)
+    offset = np.angle(np.exp(1j * (angle_rad[:, None] - angles[None, counted])))
+    shape = np.exp(-0.5 * (offset / spread) ** 2) / (math.sqrt(2.0 * math.pi) * spread)
+    area_m = config["bushing"]["width_m"] * config["bushing"]["inner_radius_m"]
+    volume = coefficient_m3_Ns * impulses[counted]
+    return shape @ volume / area_m / IMPACT_RECORDED_CYCLES
+
+
+def with_impact_wear(history: WearHistory, config: dict,
+                     rule: ImpactRule) -> tuple[WearHistory, float]:
+    """``history`` plus the impacts' depth, block by block (module doc), and c_J (m^3/(N s)).
+
+    The impacts of a block are those of the dynamics on the bore the sliding wear has worn at
+    the block's start (the believed run's state: the impact depth does not feed back); c_J scales
+    them to the drawn share of the sliding volume at ``rule.last_cycles``."""
+    angle = history.angle_rad
+    unit = np.zeros_like(history.depth_m)  # impact depth for c_J = 1 m^3/(N s)
+    for block in range(history.cycles.size - 1):
+        rate = impulse_depth_per_cycle_m(config, history.depth_m[block], angle, rule)
+        unit[block + 1] = unit[block] + rate * np.diff(history.cycles)[block]
+    unit_history = replace(history, depth_m=unit)
+    coefficient = (rule.volume_fraction * history.nodal_depth_m(rule.last_cycles).sum()
+                   / unit_history.nodal_depth_m(rule.last_cycles).sum())
+    return replace(history, depth_m=history.depth_m + coefficient * unit), coefficient
+
+
+# --- a whole data set ---------------------------------------------------------------------
+
+def write_data_set(cause: str, seed: int, folder: Path) -> DataSet:
+    """Draw the truth and the lab for ``cause`` and ``seed``, measure, and write the two CSV
+    files and the believed model's TOML into ``folder``."""
+    rng = np.random.default_rng(seed)
+    folder.mkdir(parents=True, exist_ok=True)
+    believed_toml = folder / "believed.toml"
+    believed = believed_config(believed_toml)
+    lab = draw_lab(rng)
+    truth = hidden_truth(cause, copy.deepcopy(believed), lab.last_cycles, rng)
+    history, extra = true_history(truth)
+    profiles_csv, max_wear_csv = folder / "profiles.csv", folder / "max_wear.csv"
+    write_measurements(history, lab, rng, profiles_csv, max_wear_csv)
+    return DataSet(profiles_csv, max_wear_csv, believed_toml, truth, lab,
+                   {**truth.params, **extra})
+
+
+def data_set_seed(cause: str, index: int) -> int:
+    """The seed of the ``index``-th data set of ``cause`` (distinct labs across causes)."""
+    return 100 * CAUSES.index(cause) + index
+
+
+def forget_solver_options() -> None:
+    """Delete the PETSc options that dolfinx's ``LinearProblem`` leaves behind.
+
+    Every ``fewear.mesh.ale.BoreMotion`` (one per re-mesh) makes a ``LinearProblem`` that puts its
+    three solver options under a prefix ``dolfinx_solve_<id>`` into PETSc's global options
+    database and never removes them; after about 170 re-meshes in one process (7 diagnoses here)
+    the database is full (PETSc's 512 options) and the next one fails with "Out of memory ...
+    Number of options 512". The options are read once, when the problem is made, so deleting
+    them between diagnoses changes nothing else."""
+    from petsc4py import PETSc
+
+    options = PETSc.Options()
+    for name in options.getAll():
+        if name.startswith("dolfinx_solve_"):
+            options.delValue(name)
