@@ -33,6 +33,8 @@ def main(args) -> int:
           f"(gain {s['gain']:.0%}); outputs in {args.out}")
     for group in s["confounded"]:
         print(f"fewear diagnose: also accepted (confounded): {group['cause']}")
+    for sentence in s["unexplained"]:
+        print(f"fewear diagnose: unexplained: {sentence}")
     return 0
 
 
@@ -76,6 +78,7 @@ def report_markdown(s: dict) -> str:
     lines += ["", f"Maximum depth at {b['cycles']:,} cycles: measured "
               f"{b['measured_max_depth_m']:.3g} m, believed model {b['predicted_max_depth_m']:.3g}"
               f" m, extended {x['predicted_max_depth_m']:.3g} m.", "",
+              *[f"**Unexplained:** {sentence}." for sentence in s["unexplained"]], "",
               "## Where the believed model misses", "",
               *s["residual_structure"]["sentences"], "", "![fits](joint_fits.png)", ""]
     return "\n".join(lines)

@@ -175,3 +175,20 @@ def structure_sentences(by_count: list[dict], crank: dict | None, traces: list[d
             f"model's by {row['relative_rms_difference']:.0%} RMS (peaks {row['measured_peak']:.3g}"
             f" measured, {row['simulated_peak']:.3g} simulated).")
     return sentences
+
+
+def scatter_estimate_m(angle_rad: np.ndarray, residual_m: np.ndarray,
+                       cycles: np.ndarray) -> float | None:
+    """The instrument's scatter (m) from the residuals of each profile: the second difference of
+    neighbouring points, r[i-1] - 2 r[i] + r[i+1], has variance 6 sigma^2 for white noise and
+    removes what varies smoothly along the bore; its median absolute value / 0.6745 (a robust
+    standard deviation, deaf to dust spikes) / sqrt 6. None without a profile of >= 5 points."""
+    second = []
+    for count in np.unique(cycles):
+        at = (cycles == count) & np.isfinite(angle_rad)
+        if at.sum() >= 5:
+            r = residual_m[at][np.argsort(angle_rad[at])]
+            second.append(r[:-2] - 2.0 * r[1:-1] + r[2:])
+    if not second:
+        return None
+    return float(np.median(np.abs(np.concatenate(second))) / 0.6745 / math.sqrt(6.0))

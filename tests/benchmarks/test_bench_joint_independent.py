@@ -25,12 +25,7 @@ from collections import Counter
 
 import pytest
 
-from tests.calibrate.independent_joint_generator import (
-    CAUSES,
-    data_set_seed,
-    forget_solver_options,
-    write_data_set,
-)
+from tests.calibrate.independent_joint_generator import CAUSES, data_set_seed, write_data_set
 
 pytestmark = pytest.mark.benchmark
 SEEDS = int(os.environ.get("FEWEAR_BENCH_JOINT_INDEPENDENT_SEEDS", "3"))
@@ -53,7 +48,6 @@ def test_independent_joint_diagnosis(tmp_path):
     for cause in CAUSES:
         for index in range(SEEDS):
             seed = data_set_seed(cause, index)
-            forget_solver_options()
             start = time.perf_counter()
             data = write_data_set(cause, seed, tmp_path / f"{cause}_{seed}")
             config = config or load_config(data.believed_toml, run_sections())

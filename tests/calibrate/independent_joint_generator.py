@@ -370,19 +370,3 @@ def data_set_seed(cause: str, index: int) -> int:
     """The seed of the ``index``-th data set of ``cause`` (distinct labs across causes)."""
     return 100 * CAUSES.index(cause) + index
 
-
-def forget_solver_options() -> None:
-    """Delete the PETSc options that dolfinx's ``LinearProblem`` leaves behind.
-
-    Every ``fewear.mesh.ale.BoreMotion`` (one per re-mesh) makes a ``LinearProblem`` that puts its
-    three solver options under a prefix ``dolfinx_solve_<id>`` into PETSc's global options
-    database and never removes them; after about 170 re-meshes in one process (7 diagnoses here)
-    the database is full (PETSc's 512 options) and the next one fails with "Out of memory ...
-    Number of options 512". The options are read once, when the problem is made, so deleting
-    them between diagnoses changes nothing else."""
-    from petsc4py import PETSc
-
-    options = PETSc.Options()
-    for name in options.getAll():
-        if name.startswith("dolfinx_solve_"):
-            options.delValue(name)

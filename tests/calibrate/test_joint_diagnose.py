@@ -45,6 +45,7 @@ def test_the_believed_models_own_data_give_no_cause_and_the_origin_is_found(beli
     data, _, offset = hidden_joint_case(believed[1], "none", seed, force_start_deg=117.0)
     summary = diagnose_joint(data, believed[1]).summary
     assert summary["causes"] == [] and summary["cause"] == "none"
+    assert summary["unexplained"] == []  # the misfit is the instrument's scatter
     # the instrument's origin: measured angle + offset = bushing angle
     assert summary["baseline"]["angle_offset_deg"] == pytest.approx(offset, abs=1.0)
     # the held-out error is the profilometer's noise (0.5 um), not a model error

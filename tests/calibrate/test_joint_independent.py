@@ -9,19 +9,9 @@ import json
 
 import pytest
 
-from tests.calibrate.independent_joint_generator import (
-    data_set_seed,
-    forget_solver_options,
-    write_data_set,
-)
+from tests.calibrate.independent_joint_generator import data_set_seed, write_data_set
 
 pytestmark = pytest.mark.slow
-
-
-@pytest.fixture(autouse=True)
-def _fresh_solver_options():
-    """Each diagnosis re-meshes many times: keep PETSc's options database from filling up."""
-    forget_solver_options()
 
 
 def _diagnose(data) -> dict:

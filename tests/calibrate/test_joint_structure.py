@@ -7,7 +7,12 @@ import math
 import numpy as np
 import pytest
 
-from fewear.calibrate.joint_structure import crank_angle_table, impact_table, trace_table
+from fewear.calibrate.joint_structure import (
+    crank_angle_table,
+    impact_table,
+    scatter_estimate_m,
+    trace_table,
+)
 from fewear.mbd.history import JointHistory
 
 OMEGA = 2.0 * math.pi * 20.0  # rad/s: 1200 rpm
@@ -76,3 +81,31 @@ def test_a_trace_from_another_time_origin_is_aligned_and_matches():
     off = trace_table(t, 1.2 * measured, simulated, OMEGA, "force")
     assert off["relative_rms_difference"] == pytest.approx(0.2, rel=0.02)
     assert np.mean(off["difference_by_sector"]) > 0.0
+
+
+def profiles_with(shape_m, noise_m, seed=0):
+    """Residuals at three cycle counts, every 3 deg: a smooth shape plus white noise."""
+    rng = np.random.default_rng(seed)
+    angle = np.tile(np.radians(np.arange(0.0, 360.0, 3.0)), 3)
+    cycles = np.repeat([4000.0, 8000.0, 12000.0], 120)
+    residual = shape_m * np.sin(2.0 * angle) + rng.normal(0.0, noise_m, angle.size)
+    return angle, residual, cycles
+
+
+@pytest.mark.parametrize("shape_m", [0.0, 20e-6])
+def test_the_instruments_scatter_is_found_under_a_smooth_misfit(shape_m):
+    angle, residual, cycles = profiles_with(shape_m, 0.5e-6)
+    residual[::37] -= 3e-6  # dust spikes
+    assert scatter_estimate_m(angle, residual, cycles) == pytest.approx(0.5e-6, rel=0.15)
+
+
+def test_a_large_misfit_without_a_cause_is_reported_unexplained():
+    from fewear.calibrate.joint_diagnose import Fit, Observations, _unexplained
+
+    for shape_m, expected in ((0.0, 0), (20e-6, 1)):
+        angle, residual, cycles = profiles_with(shape_m, 0.5e-6)
+        obs = Observations(cycles, angle, residual, cycles < 12000.0)
+        r = residual[obs.train]
+        fit = Fit("baseline", np.zeros(1), 1, float(r @ r), r.size, 1.0,
+                  float(np.sqrt(np.mean(r**2))), residual)
+        assert len(_unexplained(obs, fit, fit, [])) == expected
