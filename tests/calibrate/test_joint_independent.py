@@ -49,7 +49,7 @@ def _missed(cause: str, reason: str):
     _missed("friction", "measured: mu = 0.033 (believed 0.1) is named 'none', no cause accepted, "
                         "reported unexplained (misfit 12 x the scatter); mu = 0.18 is named"),
     _missed("impact_wear", "measured: impulse-proportional impact wear removing 17 % of the "
-                           "sliding volume is named 'none' (seed 300; seed 301: wear_coefficient)"),
+                           "sliding volume is named 'none', reported unexplained (10 x scatter)"),
     _missed("flexible_link", "measured: a flexible rod of modulus x1.03, height x1.01 is named "
                              "wear_coefficient (gain 0.36; seed 101 too, seed 102 friction)"),
 ])
