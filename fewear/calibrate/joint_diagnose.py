@@ -345,9 +345,8 @@ def _with_params(result: Fit, candidate: Candidate) -> Fit:
 
 
 def f_test_p(nested: Fit, fuller: Fit) -> float:
-    """Extra-sum-of-squares F-test of two nested least-squares fits (Seber & Wild 1989); a
-    fuller model with no more parameters (a switch of the model alone) counts one extra."""
-    extra = max(fuller.n_params - nested.n_params, 1)
+    """Extra-sum-of-squares F-test of two nested least-squares fits (Seber & Wild 1989)."""
+    extra = fuller.n_params - nested.n_params
     dof = fuller.n_train - fuller.n_params
     if extra <= 0 or dof <= 0 or fuller.sse_train <= 0.0:
         return 1.0
@@ -567,23 +566,21 @@ def cycle_structure(data: JointMeasurements, config: dict, obs: Observations, ba
     profile_counts = np.unique(obs.cycles[obs.is_profile])
     if profile_counts.size:
         at = (obs.cycles == profile_counts[-1]) & obs.is_profile
-        angle = (obs.angle_rad[at] + math.radians(baseline.x[0])) % (2.0 * math.pi)
-        order = np.argsort(angle)
-        residual_at = periodic_linear(angle[order], baseline.residuals_m[at][order])
+        residual_at = periodic_linear(obs.angle_rad[at] + math.radians(baseline.x[0]),
+                                      baseline.residuals_m[at])
         history = worn_cycle(profile_counts[-1])
         rms = float(np.sqrt(np.mean(baseline.residuals_m[at] ** 2)))
         crank = {"cycles": int(profile_counts[-1]),
                  "by_crank_angle": structure.crank_angle_table(history, residual_at),
                  "impacts": structure.impact_table(history, residual_at, rms)}
-    omega = config["mechanism"]["crank_speed_rpm"] * 2.0 * math.pi / 60.0
     traces = []
     for trace in data.force or ():
         row = structure.trace_table(trace.time_s, np.hypot(trace.fx_N, trace.fy_N),
-                                    worn_cycle(trace.cycles), omega, "force")
+                                    worn_cycle(trace.cycles), "force")
         traces.append({"cycles": trace.cycles, **row})
     for trace in data.acceleration or ():
         row = structure.trace_table(trace.time_s, trace.slider_acceleration_m_s2,
-                                    worn_cycle(trace.cycles), omega, "acceleration")
+                                    worn_cycle(trace.cycles), "acceleration")
         traces.append({"cycles": trace.cycles, **row})
     return {"by_cycle_count": by_count, "crank_cycle": crank, "traces": traces,
             "sentences": structure.structure_sentences(by_count, crank, traces)}

@@ -27,6 +27,7 @@ import math
 import numpy as np
 
 from fewear.mbd.history import JointHistory
+from fewear.mesh.profile import polar_angle
 
 SECTORS = 12
 """Sectors of the crank cycle in the tables (30 deg each)."""
@@ -49,8 +50,7 @@ def _step_weights_s(history: JointHistory) -> np.ndarray:
 
 def contact_angle_rad(history: JointHistory) -> np.ndarray:
     """The bore angle the pin presses on (direction of the eccentricity), in [0, 2 pi)."""
-    e = history.eccentricity_m
-    return np.arctan2(e[:, 1], e[:, 0]) % (2.0 * math.pi)
+    return polar_angle(history.eccentricity_m)
 
 
 def crank_angle_table(history: JointHistory, residual_at) -> list[dict[str, float | None]]:
@@ -79,20 +79,12 @@ def crank_angle_table(history: JointHistory, residual_at) -> list[dict[str, floa
     return rows
 
 
-def impact_episodes(history: JointHistory) -> list[tuple[int, int]]:
-    """(first, last) rows of each impact episode (a maximal run of impact-mode rows)."""
-    impact = np.concatenate([[False], history.mode == 1, [False]])
-    starts = np.flatnonzero(impact[1:] & ~impact[:-1])
-    ends = np.flatnonzero(~impact[1:] & impact[:-1]) - 1
-    return list(zip(starts.tolist(), ends.tolist()))
-
-
 def impact_table(history: JointHistory, residual_at, bore_rms_m: float) -> dict:
     """The believed model's impacts in the cycle and the residual at their bore angles."""
     force = np.linalg.norm(history.reaction_force_N, axis=1)
     theta, crank = contact_angle_rad(history), _crank_deg(history)
     events = []
-    for first, last in impact_episodes(history):
+    for first, last in history.impact_episodes():
         peak = first + int(np.argmax(force[first:last + 1]))
         events.append({"crank_angle_deg": float(crank[first]),
                        "bore_angle_deg": float(math.degrees(theta[peak])),
@@ -122,12 +114,16 @@ def _on_crank_grid(crank_deg: np.ndarray, values: np.ndarray, grid_deg: np.ndarr
 
 
 def trace_table(time_s: np.ndarray, measured: np.ndarray, history: JointHistory,
-                omega_rad_s: float, quantity: str) -> dict:
+                quantity: str) -> dict:
     """A measured trace (|F| or slider acceleration) against the simulated one: the crank
-    phase of the trace's time origin fitted by circular cross-correlation, RMS difference,
-    peaks, and the mean difference per crank sector."""
+    phase of the trace's time origin fitted by circular cross-correlation (the crank turns at
+    the history's constant speed), RMS difference, peaks, and the mean difference per crank
+    sector."""
     grid = np.arange(360.0)
-    simulated = _on_crank_grid(_crank_deg(history), simulated_signal(history, quantity), grid)
+    signal = simulated_signal(history, quantity)
+    simulated = _on_crank_grid(_crank_deg(history), signal, grid)
+    omega_rad_s = ((history.crank_angle_rad[-1] - history.crank_angle_rad[0])
+                   / (history.time_s[-1] - history.time_s[0]))
     raw = _on_crank_grid(np.degrees(omega_rad_s * (time_s - time_s[0])), measured, grid)
     errors = [np.mean((np.roll(raw, shift) - simulated) ** 2) for shift in range(360)]
     shift = int(np.argmin(errors))
@@ -140,7 +136,7 @@ def trace_table(time_s: np.ndarray, measured: np.ndarray, history: JointHistory,
             "phase_deg": float(shift), "rms_difference": float(np.sqrt(errors[shift])),
             "relative_rms_difference": float(np.sqrt(errors[shift])) / max(sim_rms, 1e-300),
             "measured_peak": float(np.max(np.abs(measured))),
-            "simulated_peak": float(np.max(np.abs(simulated_signal(history, quantity)))),
+            "simulated_peak": float(np.max(np.abs(signal))),
             "difference_by_sector": [float(v) for v in sectors]}
 
 

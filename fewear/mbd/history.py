@@ -55,8 +55,14 @@ class JointHistory:
     @property
     def impacts(self) -> int:
         """The number of contact episodes classified as impacts."""
-        impact = self.mode == 1
-        return int(np.count_nonzero(impact[1:] & ~impact[:-1]) + (1 if impact[:1].any() else 0))
+        return len(self.impact_episodes())
+
+    def impact_episodes(self) -> list[tuple[int, int]]:
+        """(first, last) rows of each impact episode (a maximal run of impact-mode rows)."""
+        impact = np.concatenate([[False], self.mode == 1, [False]])
+        starts = np.flatnonzero(impact[1:] & ~impact[:-1])
+        ends = np.flatnonzero(~impact[1:] & impact[:-1]) - 1
+        return list(zip(starts.tolist(), ends.tolist()))
 
     @property
     def peak_contact_force_N(self) -> float:

@@ -74,11 +74,11 @@ def test_a_trace_from_another_time_origin_is_aligned_and_matches():
     t = np.linspace(0.0, 2.0 * math.pi / OMEGA, 2000, endpoint=False)
     phi = OMEGA * t + math.radians(73.0)
     measured = 100.0 + 50.0 * np.cos(phi) ** 3
-    row = trace_table(t, measured, simulated, OMEGA, "force")
+    row = trace_table(t, measured, simulated, "force")
     assert row["phase_deg"] == 73.0
     assert row["relative_rms_difference"] < 0.01
     assert row["measured_peak"] == pytest.approx(150.0, rel=1e-3)
-    off = trace_table(t, 1.2 * measured, simulated, OMEGA, "force")
+    off = trace_table(t, 1.2 * measured, simulated, "force")
     assert off["relative_rms_difference"] == pytest.approx(0.2, rel=0.02)
     assert np.mean(off["difference_by_sector"]) > 0.0
 
