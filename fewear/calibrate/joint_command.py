@@ -62,6 +62,15 @@ def write_joint_outputs(diagnosis, folder: Path) -> None:
     plot_joint_fits(diagnosis, folder / "joint_fits.png")
 
 
+def _resolution_line(resolution: dict) -> str:
+    scatter = resolution["instrument_scatter_m"]
+    return ("Resolution: the instrument's scatter "
+            + (f"{scatter:.2g} m" if scatter is not None else "(no profiles to estimate it)")
+            + "; halving the believed model's wear blocks moves its worn bore by "
+            f"{resolution['halved_blocks_rms_m']:.2g} m RMS at the measured cycle counts (causes "
+            "that move it less cannot be told from the block size).")
+
+
 def report_markdown(s: dict) -> str:
     lines = [f"# Joint wear diagnosis: {s['source']}", "",
              f"**Cause: {s['cause']}** ({s['cause_meaning']}).", "",
@@ -69,6 +78,7 @@ def report_markdown(s: dict) -> str:
              f"{s['held_out_error']['baseline']:.3g} m, extended "
              f"{s['held_out_error']['extended']:.3g} m (gain {s['gain']:.0%}). "
              f"Criterion: {s['criterion']}.", "",
+             _resolution_line(s["resolution"]), "",
              "| cause | against | p | held-out RMS (m) | gain | dAICc | accepted |",
              "|---|---|---|---|---|---|---|"]
     lines += [f"| {e['cause']} | {e['against']} | {e['p_value']:.2g} | {e['held_out_rms_m']:.3g} "

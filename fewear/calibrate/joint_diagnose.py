@@ -62,6 +62,7 @@ from fewear.calibrate.joint_forward import (
     hysteresis_work_per_cycle_J,
     model_config,
     simulate_wear,
+    with_halved_blocks,
     worn_volume_per_cycle_m3,
 )
 from fewear.calibrate.joint_measured import JointMeasurements
@@ -70,6 +71,8 @@ from fewear.mesh.profile import periodic_linear
 
 RUNNING_IN_REACH = 3
 """The believed model runs this many times further than the other candidates (running-in)."""
+DEPTH_REACH = 3.0
+"""A candidate run stops once it is this many times deeper than the deepest measured wear."""
 CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in")
 GRID_PARAMETERS = {"flexible_link": "rod_youngs_modulus_factor",
                    "friction": "friction_coefficient",
@@ -98,9 +101,9 @@ class JointDiagnoseSettings:
     min_held_out_gain: float = 0.1
     held_out_fraction: float = 0.34
     max_k_scale: float = 2.0
-    friction_grid: tuple[float, ...] = (0.05, 0.3)
+    friction_grid: tuple[float, ...] = (0.02, 0.05, 0.2, 0.3, 0.4)
     rod_modulus_factors: tuple[float, ...] = (0.8, 0.85, 0.9, 0.95, 1.0, 1.05, 1.1, 1.17, 1.25)
-    impact_volume_ratios: tuple[float, ...] = (0.5, 1.0, 2.0)
+    impact_volume_ratios: tuple[float, ...] = (0.1, 0.3, 1.0)
     max_offset_deg: float = 30.0
 
     def __post_init__(self):
@@ -113,10 +116,11 @@ class JointDiagnoseSettings:
             raise FewearInputError(
                 f"[joint_diagnose] held_out_fraction = {self.held_out_fraction!r}: expected a "
                 "fraction in (0, 1)")
-        if not self.rod_modulus_factors or min(self.rod_modulus_factors) <= 0.0:
-            raise FewearInputError(
-                f"[joint_diagnose] rod_modulus_factors = {list(self.rod_modulus_factors)!r}: "
-                "expected a non-empty list of positive factors")
+        for name in ("rod_modulus_factors", "friction_grid", "impact_volume_ratios"):
+            values = getattr(self, name)
+            if not values or min(values) <= 0.0:
+                raise FewearInputError(f"[joint_diagnose] {name} = {list(values)!r}: expected a "
+                                       "non-empty list of positive numbers")
         if not self.max_k_scale > 1.0:
             raise FewearInputError(
                 f"[joint_diagnose] max_k_scale = {self.max_k_scale!r}: expected > 1")
@@ -392,34 +396,57 @@ def cause_config(config: dict, cause: str, value: float | None) -> dict:
 
 
 def candidate_runs(config: dict, cause: str, cycles: int, base: WearHistory,
-                   settings: JointDiagnoseSettings) -> Candidate:
-    """The runs a cause is fitted on (``base``: the believed model's run)."""
+                   settings: JointDiagnoseSettings, obs: Observations) -> Candidate | None:
+    """The runs a cause is fitted on (``base``: the believed model's run). A run stops once it
+    wears :data:`DEPTH_REACH` to twice that times deeper than the deepest measured wear: it
+    explains nothing beyond, and an impact-worn pocket that draws ever more impacts would
+    otherwise run on in ever shorter blocks. A run that stops (so, or worn through, contact
+    lost) before the fit's shortest time axis needs it (the last count / max_k_scale) is left
+    out. None if no run with the cause switched on is left."""
     rod = config["wear_loop"]["rod_models"][0]
+    wall = config["bushing"]["outer_radius_m"] - config["bushing"]["inner_radius_m"]
+    # rounded up to a power of 2: data sets of about the same depth share the runs
+    reach = min(config["wear_loop"]["max_wall_fraction"],
+                2.0 ** math.ceil(math.log2(DEPTH_REACH * float(obs.depth_m.max()) / wall)))
 
     def run(changed: dict, label: str) -> WearHistory:
-        return simulate_wear(model_config(changed, changed["wear_loop"]["rod_models"][0],
-                                          cycles), label)
+        changed = model_config(changed, changed["wear_loop"]["rod_models"][0], cycles)
+        changed["wear_loop"]["max_wall_fraction"] = reach
+        return simulate_wear(changed, label)
 
+    needed = float(obs.cycles.max()) / settings.max_k_scale
     if cause in ("wear_coefficient", "running_in"):
         return Candidate(cause, (base,), running_in=cause == "running_in")
     if cause == "flexible_link":
-        grid = tuple(sorted(settings.rod_modulus_factors))
+        grid = sorted(settings.rod_modulus_factors)
         runs = [run(cause_config(config, cause, f), f"flexible rod, E x {f:g}") for f in grid]
-        return Candidate(cause, tuple(runs), grid, discrete=True)
+        return _lasting(Candidate(cause, tuple(runs), tuple(grid), discrete=True), needed)
     if cause == "friction":
         believed = config["joint"]["friction_coefficient"]
         grid = sorted(set(settings.friction_grid) | {believed})
         runs = [base if mu == believed else run(cause_config(config, cause, mu), f"mu = {mu:g}")
                 for mu in grid]
-        return Candidate(cause, tuple(runs), tuple(grid))
+        return _lasting(Candidate(cause, tuple(runs), tuple(grid)), needed)
     # impact wear: k_imp such that the impact volume is a set multiple of the sliding volume
     believed = config["wear"].get("impact_wear_coefficient_m3_J", 0.0)
     per_joule = worn_volume_per_cycle_m3(base, config) / max(
         hysteresis_work_per_cycle_J(model_config(config, rod, cycles)), 1e-300)
-    grid = [believed] + [believed + ratio * per_joule for ratio in settings.impact_volume_ratios]
+    grid = [believed] + [believed + ratio * per_joule
+                         for ratio in sorted(settings.impact_volume_ratios)]
     runs = [base] + [run(cause_config(config, cause, k), f"k_imp = {k:.3g} m^3/J")
                      for k in grid[1:]]
-    return Candidate(cause, tuple(runs), tuple(grid))
+    return _lasting(Candidate(cause, tuple(runs), tuple(grid)), needed)
+
+
+def _lasting(candidate: Candidate, needed_cycles: float) -> Candidate | None:
+    """``candidate`` without the runs that stopped before ``needed_cycles`` (None if no more
+    than the believed run is left)."""
+    keep = [i for i, run in enumerate(candidate.runs)
+            if not run.stopped or run.cycles[-1] >= needed_cycles]
+    if not keep or (len(keep) < 2 and not candidate.discrete):
+        return None
+    return replace(candidate, runs=tuple(candidate.runs[i] for i in keep),
+                   grid=tuple(candidate.grid[i] for i in keep))
 
 
 def testable(config: dict, settings: JointDiagnoseSettings) -> tuple[list[str], list[dict]]:
@@ -463,14 +490,20 @@ def diagnose_joint(data: JointMeasurements, config: dict,
     phi = settings.max_offset_deg
     baseline = fit("baseline", believed, obs, [np.array([offset])], np.array([(-phi, phi)]))
     names, untestable = testable(config, settings)
-    candidates = {name: candidate_runs(config, name, horizon, base, settings) for name in names}
+    candidates = {name: candidate_runs(config, name, horizon, base, settings, obs)
+                  for name in names}
+    untestable += [{"cause": name, "why": "every run with it switched on stops (worn through or "
+                    "contact lost) before the measured cycle counts"}
+                   for name, c in candidates.items() if c is None]
+    candidates = {name: c for name, c in candidates.items() if c is not None}
     fits = {name: fit_candidate(c, obs, baseline.x[0], settings)
             for name, c in candidates.items()}
     causes, evidence, confounded = _select(baseline, fits, settings)
     extended = _extended_config(config, causes, fits)
     final_fit, extended_depth = _verify(extended, causes, baseline, obs, settings)
+    resolution = forward_resolution(config, base, obs, baseline)
     summary = _summary(data, config, base, obs, settings, baseline, fits, evidence, causes,
-                       confounded, untestable, final_fit)
+                       confounded, untestable, final_fit, resolution)
     return JointDiagnosis(summary, extended, obs, obs.depth_m - baseline.residuals_m,
                           extended_depth)
 
@@ -586,28 +619,52 @@ def cycle_structure(data: JointMeasurements, config: dict, obs: Observations, ba
             "sentences": structure.structure_sentences(by_count, crank, traces)}
 
 
+def forward_resolution(config: dict, base: WearHistory, obs: Observations,
+                       baseline: Fit) -> dict[str, Any]:
+    """What the measurements and the believed model can resolve: the instrument's scatter
+    (robust, from neighbouring profile points of the baseline's residuals) and how far the
+    believed model's worn bore moves when its wear blocks are halved (RMS over the bore nodes
+    at the measured cycle counts; the loop's discretisation error, roughly). A cause that moves
+    the bore by less than the latter cannot be told from the block size."""
+    rod = config["wear_loop"]["rod_models"][0]
+    finer = simulate_wear(with_halved_blocks(model_config(config, rod, int(obs.cycles.max()) + 1)),
+                          "believed model, blocks halved")
+    moved = np.array([finer.nodal_depth_m(c) - base.nodal_depth_m(c)
+                      for c in np.unique(obs.cycles)])
+    return {"instrument_scatter_m": structure.scatter_estimate_m(obs.angle_rad,
+                                                                 baseline.residuals_m, obs.cycles),
+            "halved_blocks_rms_m": float(np.sqrt(np.mean(moved**2)))}
+
+
 UNEXPLAINED_SCATTERS = 3.0
 """With no cause named, a believed model missing the training data by more than this many times
 the instrument's scatter is reported as unexplained, not as right."""
 
 
-def _unexplained(obs: Observations, baseline: Fit, final_fit: Fit, causes) -> list[str]:
+def _unexplained(baseline: Fit, final_fit: Fit, causes, resolution: dict) -> list[str]:
     """What the named causes (or none) leave unexplained, in sentences."""
     base_error, ext_error = baseline.held_out_rms_m, final_fit.held_out_rms_m
     if causes:
         return [] if ext_error < 0.5 * base_error else [
             f"the extended model's held-out error {ext_error:.3g} m is still more than half the "
             f"believed model's {base_error:.3g} m"]
-    scatter = structure.scatter_estimate_m(obs.angle_rad, baseline.residuals_m, obs.cycles)
+    scatter = resolution["instrument_scatter_m"]
     if scatter is None or baseline.train_rms_m <= UNEXPLAINED_SCATTERS * scatter:
         return []
-    return [f"no cause of the catalogue explains it, but the believed model misses the training "
-            f"data by {baseline.train_rms_m:.3g} m RMS, {baseline.train_rms_m / scatter:.0f} "
-            f"times the instrument's scatter ({scatter:.2g} m, from neighbouring profile points)"]
+    sentence = (f"no cause of the catalogue explains it, but the believed model misses the "
+                f"training data by {baseline.train_rms_m:.3g} m RMS, "
+                f"{baseline.train_rms_m / scatter:.0f} times the instrument's scatter "
+                f"({scatter:.2g} m, from neighbouring profile points)")
+    blocks = resolution["halved_blocks_rms_m"]
+    if baseline.train_rms_m <= UNEXPLAINED_SCATTERS * blocks:
+        sentence += (f"; the model's own block size moves its bore by {blocks:.2g} m (blocks "
+                     "halved), so smaller wear blocks ([wear_loop] max_extrapolation_factor, "
+                     "max_depth_increment_fraction) are needed to tell the causes apart")
+    return [sentence]
 
 
 def _summary(data, config, base, obs, settings, baseline, fits, evidence, causes, confounded,
-             untestable, final_fit) -> dict[str, Any]:
+             untestable, final_fit, resolution) -> dict[str, Any]:
     base_error, ext_error = baseline.held_out_rms_m, final_fit.held_out_rms_m
     return {
         "source": ", ".join(data.sources),
@@ -635,5 +692,6 @@ def _summary(data, config, base, obs, settings, baseline, fits, evidence, causes
         "prediction": {"baseline": _prediction(obs, baseline),
                        "extended": _prediction(obs, final_fit)},
         "residual_structure": cycle_structure(data, config, obs, baseline, base),
-        "unexplained": _unexplained(obs, baseline, final_fit, causes),
+        "resolution": resolution,
+        "unexplained": _unexplained(baseline, final_fit, causes, resolution),
     }

@@ -68,6 +68,19 @@ def model_config(config: dict, rod: str, total_cycles: int) -> dict:
     return changed
 
 
+def with_halved_blocks(config: dict) -> dict:
+    """``config`` with its wear blocks halved: the fixed extrapolation factor A, or the adaptive
+    A_max and depth-increment fraction f (:mod:`fewear.wear.extrapolation`)."""
+    changed = copy.deepcopy(config)
+    loop = changed["wear_loop"]
+    if loop["extrapolation"] == "fixed":
+        loop["extrapolation_factor"] = max(loop["extrapolation_factor"] / 2.0, 1.0)
+    else:
+        loop["max_extrapolation_factor"] = max(loop["max_extrapolation_factor"] / 2.0, 1.0)
+        loop["max_depth_increment_fraction"] /= 2.0
+    return changed
+
+
 def simulate_wear(config: dict, label: str = "", comm=None) -> WearHistory:
     """The wear loop of the config's (single) rod model up to its ``total_cycles``. A run that
     wears through the wall or whose contact fails ends there (``stopped`` says why)."""

@@ -46,6 +46,8 @@ def test_the_believed_models_own_data_give_no_cause_and_the_origin_is_found(beli
     summary = diagnose_joint(data, believed[1]).summary
     assert summary["causes"] == [] and summary["cause"] == "none"
     assert summary["unexplained"] == []  # the misfit is the instrument's scatter
+    # which the diagnosis estimates from neighbouring points: the profilometer's 0.5 um
+    assert 0.35e-6 < summary["resolution"]["instrument_scatter_m"] < 0.7e-6
     # the instrument's origin: measured angle + offset = bushing angle
     assert summary["baseline"]["angle_offset_deg"] == pytest.approx(offset, abs=1.0)
     # the held-out error is the profilometer's noise (0.5 um), not a model error

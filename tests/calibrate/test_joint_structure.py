@@ -100,12 +100,13 @@ def test_the_instruments_scatter_is_found_under_a_smooth_misfit(shape_m):
 
 
 def test_a_large_misfit_without_a_cause_is_reported_unexplained():
-    from fewear.calibrate.joint_diagnose import Fit, Observations, _unexplained
+    from fewear.calibrate.joint_diagnose import Fit, _unexplained
 
     for shape_m, expected in ((0.0, 0), (20e-6, 1)):
         angle, residual, cycles = profiles_with(shape_m, 0.5e-6)
-        obs = Observations(cycles, angle, residual, cycles < 12000.0)
-        r = residual[obs.train]
+        r = residual[cycles < 12000.0]
         fit = Fit("baseline", np.zeros(1), 1, float(r @ r), r.size, 1.0,
                   float(np.sqrt(np.mean(r**2))), residual)
-        assert len(_unexplained(obs, fit, fit, [])) == expected
+        resolution = {"instrument_scatter_m": scatter_estimate_m(angle, residual, cycles),
+                      "halved_blocks_rms_m": 0.0}
+        assert len(_unexplained(fit, fit, [], resolution)) == expected
