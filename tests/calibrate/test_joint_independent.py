@@ -44,14 +44,20 @@ def _missed(cause: str, reason: str):
 
 @pytest.mark.parametrize("cause", [
     "wear_coefficient",
+    "flexible_link",  # modulus x1.03, height x1.01: named, gain 0.58 (a k level before the grid)
     _missed("running_in", "measured: power-law running-in (r = 2.7, s0 = 2,900 cycles of "
-                          "sliding) is named wear_coefficient (gain 0.70; seed 401 too)"),
-    _missed("friction", "measured: mu = 0.033 (believed 0.1) is named 'none', no cause accepted, "
-                        "reported unexplained (misfit 12 x the scatter); mu = 0.18 is named"),
+                          "sliding) is named wear_coefficient (gain 0.70; seed 401 too): the "
+                          "catalogue's exponential running-in fits the training counts better "
+                          "but does not predict the power law's later counts better than a k "
+                          "level (also with blocks of <= 500 cycles: held-out gain 0.00)"),
+    _missed("friction", "measured: mu = 0.033 (believed 0.1) is fitted at 0.046 but predicts the "
+                        "held-out count worse; the believed config's blocks move its bore by "
+                        "9.5 um when halved, as far as the misfit: named 'none', reported "
+                        "unexplained and block-limited (with blocks of <= 500 cycles in truth "
+                        "and model it is named friction, mu = 0.030, gain 0.61)"),
     _missed("impact_wear", "measured: impulse-proportional impact wear removing 17 % of the "
-                           "sliding volume is named 'none', reported unexplained (10 x scatter)"),
-    _missed("flexible_link", "measured: a flexible rod of modulus x1.03, height x1.01 is named "
-                             "wear_coefficient (gain 0.36; seed 101 too, seed 102 friction)"),
+                           "sliding volume is named 'none', reported unexplained (seed 301: "
+                           "wear_coefficient)"),
 ])
 def test_names_the_hidden_cause(tmp_path, cause):
     """The hidden cause is the one named, and its extended run predicts the held-out profiles
