@@ -445,8 +445,8 @@ def candidate_runs(config: dict, cause: str, cycles: int, base: WearHistory,
 
 
 def _lasting(candidate: Candidate, needed_cycles: float) -> Candidate | None:
-    """``candidate`` without the runs that stopped before ``needed_cycles`` (None if no more
-    than the believed run is left)."""
+    """``candidate`` without the runs that stopped before ``needed_cycles``; None if none is
+    left or, for a grid interpolated between runs, only one."""
     keep = [i for i, run in enumerate(candidate.runs)
             if not run.stopped or run.cycles[-1] >= needed_cycles]
     if not keep or (len(keep) < 2 and not candidate.discrete):
