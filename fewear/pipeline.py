@@ -48,7 +48,7 @@ from fewear.wear.archard import (
     smoothed_periodic,
 )
 from fewear.wear.extrapolation import ExtrapolationSettings, extrapolate_block
-from fewear.wear.impact import hysteresis_work_J, impact_wear_depth_m
+from fewear.wear.impact import hysteresis_work_J, impact_impulse_N_s, impact_wear_depth_m
 from fewear.wear.state import WearState
 
 RUN_SECTIONS = ["wear_loop", "wear"]
@@ -115,6 +115,7 @@ class RunInputs:
     extension: object  # the wear law's history multiplier, fewear.wear.extensions
     loop: WearLoopSettings
     impact_wear_coefficient_m3_J: float = 0.0  # k_imp, fewear.wear.impact
+    impact_impulse_wear_coefficient_m3_Ns: float = 0.0  # c_J, fewear.wear.impact
 
 
 def run_sections() -> list[str]:
@@ -129,13 +130,17 @@ def run_inputs_from_config(config: dict) -> RunInputs:
     from fewear.mbd.slider_crank import dynamics_inputs_from_config
     from fewear.wear.coefficient import wear_coefficient_from_config
     from fewear.wear.extensions import wear_extension_from_config
-    from fewear.wear.impact import impact_wear_coefficient_from_config
+    from fewear.wear.impact import (
+        impact_impulse_wear_coefficient_from_config,
+        impact_wear_coefficient_from_config,
+    )
 
     return RunInputs(dynamics_inputs_from_config(config), contact_problem_from_config(config),
                      wear_coefficient_from_config(config["wear"]),
                      wear_extension_from_config(config["wear"]),
                      WearLoopSettings.from_config(config["wear_loop"]),
-                     impact_wear_coefficient_from_config(config["wear"]))
+                     impact_wear_coefficient_from_config(config["wear"]),
+                     impact_impulse_wear_coefficient_from_config(config["wear"]))
 
 
 @dataclass(frozen=True)
@@ -146,7 +151,8 @@ class LoadSteps:
     reaction on the pin), the mean over each step; ``rotation_rad`` (n,): rotation of the pin
     relative to the bushing over the step; ``duration_s``: the length of one step;
     ``hysteresis_work_J`` (n,): the work W_i the contact law's hysteresis dissipates over the step
-    (:func:`fewear.wear.impact.hysteresis_work_J`).
+    (:func:`fewear.wear.impact.hysteresis_work_J`); ``impact_impulse_N_s`` (n,): the normal
+    impulse J_i of the impacts within the step (:func:`fewear.wear.impact.impact_impulse_N_s`).
     """
 
     time_s: np.ndarray
@@ -154,6 +160,7 @@ class LoadSteps:
     rotation_rad: np.ndarray
     duration_s: float
     hysteresis_work_J: np.ndarray
+    impact_impulse_N_s: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -185,10 +192,10 @@ def load_steps(history: JointHistory, n_steps: int, law=None) -> LoadSteps:
     sample, and the maximum depth after 10,000 cycles moved by 20 % between n = 200 and 400).
     Archard's worn volume of a step, k |F| s, is linear in the force, so the mean keeps it for a
     steady slip rate whatever n. The relative rotation is the integral of ``rel_omega_rad_s``
-    over the step and the hysteresis work W_i that of the dissipated power of ``law`` (the
-    clearance joint's :class:`fewear.mbd.contact.ContactLaw`; None: no work, as for the ideal
-    joint). All three integrals are trapezoidal on the history, interpolated linearly at the
-    step edges.
+    over the step, the hysteresis work W_i that of the dissipated power of ``law`` (the
+    clearance joint's :class:`fewear.mbd.contact.ContactLaw`; None: no work and no impacts, as
+    for the ideal joint) and the impact impulse J_i that of F_n over the impacts. All four
+    integrals are trapezoidal on the history, interpolated linearly at the step edges.
     """
     t = history.time_s
     edges = np.linspace(t[0], t[-1], n_steps + 1)
@@ -199,9 +206,13 @@ def load_steps(history: JointHistory, n_steps: int, law=None) -> LoadSteps:
                     axis=0) / duration
     rotation = np.diff(np.interp(edges, t, cumulative_trapezoid(history.rel_omega_rad_s, t,
                                                                 initial=0.0)))
-    work = np.zeros(n_steps) if law is None else np.diff(np.interp(
-        edges, t, hysteresis_work_J(law, history.penetration_m, history.normal_force_N)))
-    return LoadSteps(middles, force, rotation, duration, work)
+    work = impulse = np.zeros(n_steps)
+    if law is not None:
+        work = np.diff(np.interp(
+            edges, t, hysteresis_work_J(law, history.penetration_m, history.normal_force_N)))
+        impulse = np.diff(np.interp(
+            edges, t, impact_impulse_N_s(t, history.normal_force_N, history.mode)))
+    return LoadSteps(middles, force, rotation, duration, work, impulse)
 
 
 def cycle_wear(contact_model, steps: LoadSteps, wear_coefficient, friction: bool,
@@ -252,11 +263,14 @@ def _solve_steps(contact_model, steps: LoadSteps, friction: bool) -> list:
 
 
 def cycle_sliding(wear: CycleWear, steps: LoadSteps, cycles: int, friction_coefficient: float,
-                  impact_wear_coefficient_m3_J: float = 0.0) -> CycleSliding:
+                  impact_wear_coefficient_m3_J: float = 0.0,
+                  impact_impulse_wear_coefficient_m3_Ns: float = 0.0) -> CycleSliding:
     """What one crank cycle does at each node, averaged over the ``cycles`` recorded cycles:
     Archard depth, sliding distance, time in sliding contact, mean frictional power mu p v, the
     depth's sensitivity to the wear, and the impact wear depth of k_imp =
-    ``impact_wear_coefficient_m3_J`` (:func:`fewear.wear.impact.impact_wear_depth_m`)."""
+    ``impact_wear_coefficient_m3_J`` on the hysteresis work plus c_J =
+    ``impact_impulse_wear_coefficient_m3_Ns`` on the impact impulse
+    (:func:`fewear.wear.impact.impact_wear_depth_m`)."""
     sliding = wear.slip_m > 0.0
     distance = wear.slip_m.sum(axis=0) / cycles
     time_s = steps.duration_s * sliding.sum(axis=0) / cycles
@@ -265,6 +279,10 @@ def cycle_sliding(wear: CycleWear, steps: LoadSteps, cycles: int, friction_coeff
     sensitivity = None if wear.depth_sensitivity is None else wear.depth_sensitivity / cycles
     impact = impact_wear_depth_m(impact_wear_coefficient_m3_J, steps.hysteresis_work_J,
                                  steps.force_N, wear.pressure_Pa) / cycles
+    if impact_impulse_wear_coefficient_m3_Ns > 0.0:
+        impact = impact + impact_wear_depth_m(impact_impulse_wear_coefficient_m3_Ns,
+                                              steps.impact_impulse_N_s, steps.force_N,
+                                              wear.pressure_Pa) / cycles
     return CycleSliding(wear.depth_per_cycle_m / cycles, distance, time_s, power, sensitivity,
                         impact)
 
@@ -368,7 +386,8 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress) -> None:
     with timed(times, "wear"):
         per_cycle = cycle_sliding(wear, steps, loop.recorded_cycles_per_block,
                                   inputs.contact.contact.friction_coefficient,
-                                  inputs.impact_wear_coefficient_m3_J)
+                                  inputs.impact_wear_coefficient_m3_J,
+                                  inputs.impact_impulse_wear_coefficient_m3_Ns)
         cycles, increment, sliding = extrapolate_block(
             loop.extrapolation,
             lambda cycles: smoothed_block_wear(per_cycle, state, inputs.extension, cycles,
