@@ -81,7 +81,8 @@ def report_markdown(s: dict) -> str:
              _resolution_line(s["resolution"]), "",
              "| cause | against | p | held-out RMS (m) | gain | dAICc | accepted |",
              "|---|---|---|---|---|---|---|"]
-    lines += [f"| {e['cause']} | {e['against']} | {e['p_value']:.2g} | {e['held_out_rms_m']:.3g} "
+    lines += [f"| {_cause_label(e)} | {e['against']} | {e['p_value']:.2g} | "
+              f"{e['held_out_rms_m']:.3g} "
               f"| {e['held_out_gain']:.0%} | {e['aicc_improvement']:.1f} | {e['accepted']} |"
               for e in s["candidates"]]
     b, x = s["prediction"]["baseline"], s["prediction"]["extended"]
@@ -92,6 +93,11 @@ def report_markdown(s: dict) -> str:
               "## Where the believed model misses", "",
               *s["residual_structure"]["sentences"], "", "![fits](joint_fits.png)", ""]
     return "\n".join(lines)
+
+
+def _cause_label(entry: dict) -> str:
+    """A candidate's name, with its form where it has several (running-in)."""
+    return f"{entry['cause']} ({entry['form']})" if entry["form"] else entry["cause"]
 
 
 def plot_joint_fits(diagnosis, path: Path) -> None:

@@ -25,19 +25,27 @@ tau(N) = N except for running-in. The catalogue (every cause has s free, so each
   and the best on the training data is taken, a choice counted as one parameter);
 - ``friction``: the friction coefficient mu differs (runs on a grid of mu, the worn bore
   interpolated linearly between neighbouring runs);
-- ``impact_wear``: the impacts wear too, V = k_imp W_hysteresis (:mod:`fewear.wear.impact`; runs
-  on a grid of k_imp, interpolated; the level s scales both wear rates, so the coefficient
-  reported and written to the extended config is s times the grid's);
-- ``running_in``: k falls from r k to k over each node's first metres of sliding, the [wear]
-  extension ``running_in`` (m = 1 + (r - 1) exp(-S / s0)): node a, sliding d_a per cycle in the
-  believed run, has worn after N cycles what the believed run wore after tau_a(N) = N + (r - 1)
-  N0_a (1 - exp(-N / N0_a)), N0_a = s0 / d_a (exact where the wear of a node follows its own
-  sliding, approximate where the worn geometry couples the nodes).
+- ``impact_wear``: the impacts wear too (:mod:`fewear.wear.impact`), in two forms: by energy,
+  V = k_imp W_hysteresis, and by impulse, V = c_J J_impacts (runs on a grid of the coefficient,
+  interpolated; the level s scales both wear rates, so the coefficient reported and written to
+  the extended config is s times the grid's);
+- ``running_in``: k falls from r k to k over each node's first metres of sliding S, in one of two
+  forms, the [wear] extensions of :mod:`fewear.wear.extensions` (Blau, Tribol. Int. 38 (2005)
+  1007-1012, names both): ``running_in``, m = 1 + (r - 1) exp(-S / s0), whose extra wear levels
+  off, and ``running_in_power_law``, m = 1 + (r - 1) / (1 + S / s0), whose extra wear keeps
+  growing as ln(1 + S / s0). Node a, sliding d_a per cycle in the believed run, has worn after N
+  cycles what the believed run wore after tau_a(N) = S_eff(N d_a) / d_a, S_eff the extension's
+  effective distance: N + (r - 1) N0_a (1 - exp(-N / N0_a)) or N + (r - 1) N0_a ln(1 + N / N0_a),
+  N0_a = s0 / d_a (exact where the wear of a node follows its own sliding, approximate where the
+  worn geometry couples the nodes).
+
+A cause with two forms is fitted in both and the better on the training data is taken (as for the
+tribometer catalogue; each form counts as a cause tried in the Bonferroni threshold).
 
 Selection: each cause is fitted by least squares on the training data (Nelder-Mead from several
 starts). ``wear_coefficient`` is compared with the believed model, a richer cause with the
 believed model or, if it was accepted, with ``wear_coefficient``. A cause is accepted when (1) the
-extra-sum-of-squares F-test of the nested training fits gives p < ``significance`` / (causes
+extra-sum-of-squares F-test of the nested training fits gives p < ``significance`` / (forms
 tried) (Bonferroni), (2) its held-out RMS error is at least ``min_held_out_gain`` below the
 reference's and (3) its AICc is at least ``min_aicc_improvement`` lower (Burnham & Anderson 2002).
 Of the richer causes accepted the one with the smallest held-out error is named; the others are
@@ -64,7 +72,7 @@ from fewear.calibrate import joint_structure as structure
 from fewear.calibrate.joint_forward import (
     WearHistory,
     cycle_on_worn_bore,
-    hysteresis_work_per_cycle_J,
+    impact_measures_per_cycle,
     model_config,
     simulate_wear,
     with_halved_blocks,
@@ -73,23 +81,29 @@ from fewear.calibrate.joint_forward import (
 from fewear.calibrate.joint_measured import JointMeasurements
 from fewear.errors import FewearInputError
 from fewear.mesh.profile import periodic_linear
+from fewear.wear.extensions import RunningIn, RunningInPowerLaw
 
 RUNNING_IN_REACH = 3
 """The believed model runs this many times further than the other candidates (running-in)."""
 DEPTH_REACH = 3.0
 """A candidate run stops once it is this many times deeper than the deepest measured wear."""
 CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in")
+RUNNING_IN_FORMS = {"exponential": RunningIn, "power_law": RunningInPowerLaw}
+"""The forms of ``running_in``: the [wear] extension of each (its ``name``)."""
+IMPACT_FORMS = {"energy": "impact_wear_coefficient_m3_J",
+                "impulse": "impact_impulse_wear_coefficient_m3_Ns"}
+"""The forms of ``impact_wear``: the [wear] key of each (:mod:`fewear.wear.impact`)."""
 GRID_PARAMETERS = {"flexible_link": "rod_youngs_modulus_factor",
-                   "friction": "friction_coefficient",
-                   "impact_wear": "impact_wear_coefficient_m3_J"}
-"""The parameter each run-grid cause is fitted on, as named in its ``params``."""
+                   "friction": "friction_coefficient"}
+"""The parameter each run-grid cause is fitted on, as named in its ``params`` (impact wear: its
+form's key in :data:`IMPACT_FORMS`)."""
 MEANINGS = {
     "wear_coefficient": "only the level of the wear coefficient k is off",
     "flexible_link": "the connecting rod modelled rigid is flexible: its compliance changes the "
                      "impacts and the continuous-contact sliding in the joint",
     "friction": "the friction coefficient in the joint differs from the assumed one",
     "impact_wear": "the impacts remove material too (wear in proportion to the energy the "
-                   "contact dissipates), not only the sliding",
+                   "contact dissipates or to the impacts' impulse), not only the sliding",
     "running_in": "the joint runs in: k is higher over the first cycles and falls to its steady "
                   "value",
     "none": "the believed model predicts the held-out measurements within their scatter",
@@ -179,15 +193,20 @@ def observations(data: JointMeasurements, held_out_fraction: float) -> Observati
 
 @dataclass(frozen=True, eq=False)
 class Candidate:
-    """A cause as runs of the wear loop: ``runs`` at the parameter values ``grid`` (one run:
-    no grid; ``discrete``: one of the runs is chosen, not interpolated between), and
-    ``running_in`` for the time map of running-in."""
+    """One form of a cause as runs of the wear loop: ``runs`` at the parameter values ``grid``
+    (one run: no grid; ``discrete``: one of the runs is chosen, not interpolated between);
+    ``form``: a key of :data:`RUNNING_IN_FORMS` (the time map of running-in) or
+    :data:`IMPACT_FORMS`, '' for a cause with one form."""
 
     name: str
     runs: tuple[WearHistory, ...]
     grid: tuple[float, ...] = ()
-    running_in: bool = False
+    form: str = ""
     discrete: bool = False
+
+    @property
+    def running_in(self) -> bool:
+        return self.name == "running_in"
 
     @property
     def n_extra(self) -> int:
@@ -207,6 +226,8 @@ class Fit:
     train_rms_m: float
     residuals_m: np.ndarray
     params: dict = field(default_factory=dict)
+    form: str | None = None
+    forms_tried: int = 1
 
     @property
     def aicc(self) -> float:
@@ -224,12 +245,13 @@ def _mixed_depth(candidate: Candidate, position: float, cycles: float) -> np.nda
     return (1 - w) * runs[k].nodal_depth_m(cycles) + w * runs[k + 1].nodal_depth_m(cycles)
 
 
-def running_in_cycles(cycles: float, run: WearHistory, extra: float,
+def running_in_cycles(cycles: float, run: WearHistory, form: str, extra: float,
                       distance_scale_m: float) -> np.ndarray:
-    """tau_a(N) per node (module docstring): N + (r - 1) N0_a (1 - exp(-N / N0_a))."""
+    """tau_a(N) = S_eff(N d_a) / d_a per node (module docstring) for the running-in ``form``
+    with r - 1 = ``extra`` and s0 = ``distance_scale_m``."""
     sliding = np.maximum(run.sliding_m_per_cycle, 1e-300)
-    scale = distance_scale_m / sliding
-    return cycles + extra * scale * -np.expm1(-cycles / scale)
+    extension = RUNNING_IN_FORMS[form](1.0 + extra, distance_scale_m)
+    return extension.effective_distance_m(cycles * sliding) / sliding
 
 
 def _nodal_prediction(candidate: Candidate, x: np.ndarray, cycles: float) -> np.ndarray:
@@ -239,7 +261,8 @@ def _nodal_prediction(candidate: Candidate, x: np.ndarray, cycles: float) -> np.
     scale = math.exp(x[1])
     if candidate.running_in:
         run = candidate.runs[0]
-        per_node = running_in_cycles(cycles, run, math.exp(x[2]), math.exp(x[3]))
+        per_node = running_in_cycles(cycles, run, candidate.form, math.exp(x[2]),
+                                     math.exp(x[3]))
         return run.nodal_depth_each_m(scale * per_node)
     position = x[2] if candidate.n_extra == 1 else 0.0
     return _mixed_depth(candidate, position, scale * cycles)
@@ -296,9 +319,17 @@ def _offset_start(obs: Observations, base: Candidate, max_offset_deg: float) -> 
     return float(offsets[int(np.argmin(errors))])
 
 
-def fit_candidate(candidate: Candidate, obs: Observations, offset_deg: float,
+def fit_candidate(forms: tuple[Candidate, ...], obs: Observations, offset_deg: float,
                   settings: JointDiagnoseSettings) -> Fit:
-    """Fit a cause (s free, plus its own parameters) from a few starts."""
+    """Fit a cause (s free, plus its own parameters) from a few starts, in each of its
+    ``forms``; the best on the training data is kept."""
+    fits = [_fit_form(form, obs, offset_deg, settings) for form in forms]
+    return replace(min(fits, key=lambda f: f.sse_train), forms_tried=len(fits))
+
+
+def _fit_form(candidate: Candidate, obs: Observations, offset_deg: float,
+              settings: JointDiagnoseSettings) -> Fit:
+    """:func:`fit_candidate` for one form."""
     last_train = float(obs.cycles[obs.train].max())
     ln_max = math.log(settings.max_k_scale)
     phi = settings.max_offset_deg
@@ -349,8 +380,13 @@ def _with_params(result: Fit, candidate: Candidate) -> Fit:
         value = float(np.interp(x[2], np.arange(len(candidate.grid)), candidate.grid))
         if candidate.name == "impact_wear":  # s rescales the cycle axis: all wear, impacts too
             value *= params["k_scale"]
-        params[GRID_PARAMETERS[candidate.name]] = value
-    return replace(result, params=params)
+        params[_grid_parameter(candidate.name, candidate.form)] = value
+    return replace(result, params=params, form=candidate.form or None)
+
+
+def _grid_parameter(cause: str, form: str) -> str | None:
+    """The name of the parameter a cause's runs are on (None: not a run-grid cause)."""
+    return IMPACT_FORMS[form] if cause == "impact_wear" else GRID_PARAMETERS.get(cause)
 
 
 def f_test_p(nested: Fit, fuller: Fit) -> float:
@@ -370,7 +406,7 @@ def verdict(fit_: Fit, reference: Fit, settings: JointDiagnoseSettings, tried: i
     d_aicc = reference.aicc - fit_.aicc
     accepted = (p < settings.significance / tried and gain >= settings.min_held_out_gain
                 and d_aicc >= settings.min_aicc_improvement)
-    return {"cause": fit_.name, "against": reference.name, "p_value": p,
+    return {"cause": fit_.name, "form": fit_.form, "against": reference.name, "p_value": p,
             "held_out_rms_m": fit_.held_out_rms_m, "training_rms_m": fit_.train_rms_m,
             "held_out_gain": gain, "aicc_improvement": d_aicc, "accepted": bool(accepted),
             "params": fit_.params}
@@ -387,8 +423,9 @@ def _scaled_wear(config: dict, k_scale: float) -> None:
                                *wear["rbf"]["tail"][1:]]
 
 
-def cause_config(config: dict, cause: str, value: float | None) -> dict:
-    """The believed config with a run-based cause switched on at ``value``."""
+def cause_config(config: dict, cause: str, value: float | None, form: str = "") -> dict:
+    """The believed config with a run-based cause switched on at ``value`` (impact wear: in its
+    ``form``)."""
     changed = copy.deepcopy(config)
     if cause == "flexible_link":
         changed["wear_loop"]["rod_models"] = ["flexible"]
@@ -396,18 +433,19 @@ def cause_config(config: dict, cause: str, value: float | None) -> dict:
     elif cause == "friction":
         changed["joint"]["friction_coefficient"] = float(value)
     elif cause == "impact_wear":
-        changed["wear"]["impact_wear_coefficient_m3_J"] = float(value)
+        changed["wear"][IMPACT_FORMS[form]] = float(value)
     return changed
 
 
 def candidate_runs(config: dict, cause: str, cycles: int, base: WearHistory,
-                   settings: JointDiagnoseSettings, obs: Observations) -> Candidate | None:
-    """The runs a cause is fitted on (``base``: the believed model's run). A run stops once it
+                   settings: JointDiagnoseSettings, obs: Observations) -> tuple[Candidate, ...]:
+    """The runs a cause is fitted on, per form (``base``: the believed model's run). A run stops
+    once it
     wears :data:`DEPTH_REACH` to twice that times deeper than the deepest measured wear: it
     explains nothing beyond, and an impact-worn pocket that draws ever more impacts would
     otherwise run on in ever shorter blocks. A run that stops for this reason, or wears through,
     or loses contact before the fit's shortest time axis needs it (the last count /
-    max_k_scale) is left out. None if no run with the cause switched on is left."""
+    max_k_scale) is left out; so is a form with no run with the cause switched on left."""
     rod = config["wear_loop"]["rod_models"][0]
     wall = config["bushing"]["outer_radius_m"] - config["bushing"]["inner_radius_m"]
     reach = config["wear_loop"]["max_wall_fraction"]
@@ -421,8 +459,10 @@ def candidate_runs(config: dict, cause: str, cycles: int, base: WearHistory,
         return simulate_wear(changed, label)
 
     needed = float(obs.cycles.max()) / settings.max_k_scale
-    if cause in ("wear_coefficient", "running_in"):
-        return Candidate(cause, (base,), running_in=cause == "running_in")
+    if cause == "wear_coefficient":
+        return (Candidate(cause, (base,)),)
+    if cause == "running_in":
+        return tuple(Candidate(cause, (base,), form=form) for form in RUNNING_IN_FORMS)
     if cause == "flexible_link":
         grid = sorted(settings.rod_modulus_factors)
         runs = [run(cause_config(config, cause, f), f"flexible rod, E x {f:g}") for f in grid]
@@ -433,26 +473,31 @@ def candidate_runs(config: dict, cause: str, cycles: int, base: WearHistory,
         runs = [base if mu == believed else run(cause_config(config, cause, mu), f"mu = {mu:g}")
                 for mu in grid]
         return _lasting(Candidate(cause, tuple(runs), tuple(grid)), needed)
-    # impact wear: k_imp such that the impact volume is a set multiple of the sliding volume
-    believed = config["wear"].get("impact_wear_coefficient_m3_J", 0.0)
-    per_joule = worn_volume_per_cycle_m3(base, config) / max(
-        hysteresis_work_per_cycle_J(model_config(config, rod, cycles)), 1e-300)
-    grid = [believed] + [believed + ratio * per_joule
-                         for ratio in sorted(settings.impact_volume_ratios)]
-    runs = [base] + [run(cause_config(config, cause, k), f"k_imp = {k:.3g} m^3/J")
-                     for k in grid[1:]]
-    return _lasting(Candidate(cause, tuple(runs), tuple(grid)), needed)
+    # impact wear, each form at coefficients such that the impact volume is a set multiple of
+    # the sliding volume on the unworn joint
+    volume = worn_volume_per_cycle_m3(base, config)
+    measures = impact_measures_per_cycle(model_config(config, rod, cycles))
+    forms = []
+    for form, key in IMPACT_FORMS.items():
+        believed = config["wear"].get(key, 0.0)
+        per_unit = volume / max(measures[form], 1e-300)
+        grid = [believed] + [believed + ratio * per_unit
+                             for ratio in sorted(settings.impact_volume_ratios)]
+        runs = [base] + [run(cause_config(config, cause, c, form), f"{key} = {c:.3g}")
+                         for c in grid[1:]]
+        forms += _lasting(Candidate(cause, tuple(runs), tuple(grid), form), needed)
+    return tuple(forms)
 
 
-def _lasting(candidate: Candidate, needed_cycles: float) -> Candidate | None:
-    """``candidate`` without the runs that stopped before ``needed_cycles``; None if none is
-    left or, for a grid interpolated between runs, only one."""
+def _lasting(candidate: Candidate, needed_cycles: float) -> tuple[Candidate, ...]:
+    """``candidate`` without the runs that stopped before ``needed_cycles``, as a tuple of one
+    form; empty if no run is left or, for a grid interpolated between runs, only one."""
     keep = [i for i, run in enumerate(candidate.runs)
             if not run.stopped or run.cycles[-1] >= needed_cycles]
     if not keep or (len(keep) < 2 and not candidate.discrete):
-        return None
-    return replace(candidate, runs=tuple(candidate.runs[i] for i in keep),
-                   grid=tuple(candidate.grid[i] for i in keep))
+        return ()
+    return (replace(candidate, runs=tuple(candidate.runs[i] for i in keep),
+                    grid=tuple(candidate.grid[i] for i in keep)),)
 
 
 def testable(config: dict, settings: JointDiagnoseSettings) -> tuple[list[str], list[dict]]:
@@ -500,10 +545,10 @@ def diagnose_joint(data: JointMeasurements, config: dict,
                   for name in names}
     untestable += [{"cause": name, "why": "every run with it switched on stops (far deeper than "
                     "the data, worn through or contact lost) before the cycles the fit needs"}
-                   for name, c in candidates.items() if c is None]
-    candidates = {name: c for name, c in candidates.items() if c is not None}
-    fits = {name: fit_candidate(c, obs, baseline.x[0], settings)
-            for name, c in candidates.items()}
+                   for name, forms in candidates.items() if not forms]
+    candidates = {name: forms for name, forms in candidates.items() if forms}
+    fits = {name: fit_candidate(forms, obs, baseline.x[0], settings)
+            for name, forms in candidates.items()}
     causes, evidence, confounded = _select(baseline, fits, settings)
     extended = _extended_config(config, causes, fits)
     final_fit, extended_depth = _verify(extended, causes, baseline, obs, settings)
@@ -515,7 +560,7 @@ def diagnose_joint(data: JointMeasurements, config: dict,
 
 
 def _select(baseline: Fit, fits: dict[str, Fit], settings):
-    tried = len(fits)
+    tried = sum(f.forms_tried for f in fits.values())
     evidence = []
     reference = baseline
     chosen: list[str] = []
@@ -542,11 +587,12 @@ def _extended_config(config, causes, fits) -> dict:
         return copy.deepcopy(config)
     cause = causes[0]
     params = fits[cause].params
-    value = params.get(GRID_PARAMETERS.get(cause, ""))
-    extended = cause_config(config, cause, value)
+    form = fits[cause].form or ""
+    value = params.get(_grid_parameter(cause, form))
+    extended = cause_config(config, cause, value, form)
     _scaled_wear(extended, params["k_scale"])
     if cause == "running_in":
-        extended["wear"]["extension"] = "running_in"
+        extended["wear"]["extension"] = RUNNING_IN_FORMS[form].name
         extended["wear"]["extension_params"] = {
             "k_initial_over_steady": params["k_initial_over_steady"],
             "distance_scale_m": params["distance_scale_m"]}
@@ -681,7 +727,7 @@ def _summary(data, config, base, obs, settings, baseline, fits, evidence, causes
                     "held_out_cycles": sorted(int(c) for c in np.unique(obs.cycles[~obs.train])),
                     "why": "life prediction: the model is fitted on the earlier measurements and "
                            "judged on how it predicts the later ones"},
-        "criterion": (f"F-test p < {settings.significance:g} / causes tried, held-out RMS at "
+        "criterion": (f"F-test p < {settings.significance:g} / forms tried, held-out RMS at "
                       f"least {settings.min_held_out_gain:.0%} lower, AICc at least "
                       f"{settings.min_aicc_improvement:g} lower"),
         "baseline": {"model": "the believed config", "held_out_error": base_error,

@@ -143,16 +143,18 @@ def cycle_on_worn_bore(config: dict, angle_rad: np.ndarray | None = None,
     return history
 
 
-def hysteresis_work_per_cycle_J(config: dict) -> float:
-    """The contact law's hysteresis work of one crank cycle on the unworn joint (the energy the
-    impact-wear term wears with), from the steps that carry a force."""
+def impact_measures_per_cycle(config: dict) -> dict[str, float]:
+    """What the impacts of one crank cycle on the unworn joint wear by
+    (:mod:`fewear.wear.impact`), from the steps that carry a force: ``energy``, the contact
+    law's hysteresis work (J), and ``impulse``, the impacts' normal impulse (N s)."""
     from fewear.pipeline import load_steps, run_inputs_from_config
 
     inputs = run_inputs_from_config(config)
     steps = load_steps(cycle_on_worn_bore(config), inputs.loop.load_steps_per_cycle,
                        inputs.dynamics.joint.law)
     loaded = np.linalg.norm(steps.force_N, axis=1) > 0.0
-    return float(steps.hysteresis_work_J[loaded].sum())
+    return {"energy": float(steps.hysteresis_work_J[loaded].sum()),
+            "impulse": float(steps.impact_impulse_N_s[loaded].sum())}
 
 
 def worn_volume_per_cycle_m3(history: WearHistory, config: dict) -> float:

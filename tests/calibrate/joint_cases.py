@@ -12,7 +12,7 @@ import numpy as np
 
 from fewear.calibrate.joint_forward import (
     cycle_on_worn_bore,
-    hysteresis_work_per_cycle_J,
+    impact_measures_per_cycle,
     model_config,
     simulate_wear,
     worn_volume_per_cycle_m3,
@@ -55,7 +55,7 @@ def truth_config(config: dict, cause: str, rng: np.random.Generator) -> tuple[di
     if cause == "impact_wear":
         horizon = model_config(config, "rigid", 2 * PROFILE_CYCLES[-1])
         per_joule = worn_volume_per_cycle_m3(simulate_wear(horizon), config) / (
-            hysteresis_work_per_cycle_J(horizon))
+            impact_measures_per_cycle(horizon)["energy"])
         # the impacts wear 10-30 % of the sliding volume on the unworn joint; at 30-100 % (this
         # generator's first range) the impact-worn pocket drew ever more impacts and some truths
         # wore through half the wall before the last measured count: a failed joint, not data

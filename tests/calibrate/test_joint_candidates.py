@@ -1,7 +1,7 @@
 """The joint diagnosis's candidate runs and resolution (fewear.calibrate.joint_diagnose), on
 constructed wear histories: runs that stop before the data are left out, halving the blocks
-halves what the extrapolation settings allow, and a 'none' whose misfit lies within what the
-model's blocks resolve says so."""
+halves what the extrapolation settings allow, a 'none' whose misfit lies within what the
+model's blocks resolve says so, and running-in's time map and form are those of the data."""
 
 import math
 
@@ -9,11 +9,15 @@ import numpy as np
 import pytest
 
 from fewear.calibrate.joint_diagnose import (
+    RUNNING_IN_FORMS,
     Candidate,
     Fit,
     JointDiagnoseSettings,
+    Observations,
     _lasting,
     _unexplained,
+    fit_candidate,
+    running_in_cycles,
 )
 from fewear.calibrate.joint_forward import WearHistory, with_halved_blocks
 from fewear.errors import FewearInputError
@@ -28,17 +32,17 @@ def _run(last_cycles: float, stopped: str = "") -> WearHistory:
 
 def test_runs_that_stop_before_the_needed_cycles_are_left_out():
     runs = (_run(20000), _run(20000), _run(3000, "worn through"), _run(12000, "worn through"))
-    kept = _lasting(Candidate("impact_wear", runs, (0.0, 1.0, 2.0, 3.0)), needed_cycles=8000)
+    kept, = _lasting(Candidate("impact_wear", runs, (0.0, 1.0, 2.0, 3.0)), needed_cycles=8000)
     assert kept.grid == (0.0, 1.0, 3.0)  # the one stopped at 3,000 < 8,000 cycles is out
     assert kept.runs == (runs[0], runs[1], runs[3])
 
 
 def test_a_grid_cause_with_only_the_believed_run_left_is_untestable():
     runs = (_run(20000), _run(3000, "worn through"))
-    assert _lasting(Candidate("friction", runs, (0.1, 0.3)), needed_cycles=8000) is None
+    assert _lasting(Candidate("friction", runs, (0.1, 0.3)), needed_cycles=8000) == ()
     # a discrete choice keeps a single lasting run: it is still a different model
-    assert _lasting(Candidate("flexible_link", runs, (1.0, 1.1), discrete=True), 8000).runs == (
-        runs[0],)
+    kept, = _lasting(Candidate("flexible_link", runs, (1.0, 1.1), discrete=True), 8000)
+    assert kept.runs == (runs[0],)
 
 
 def test_halving_the_blocks_halves_the_extrapolation_limits():
@@ -75,3 +79,63 @@ def test_none_with_a_large_misfit_names_the_block_size_when_that_is_what_limits(
 def test_a_grid_with_a_non_positive_value_is_a_clear_error():
     with pytest.raises(FewearInputError, match=r"friction_grid = \[0.0, 0.3\]: expected a non"):
         JointDiagnoseSettings(friction_grid=(0.0, 0.3))
+
+
+# --- running-in: the time map of each form, and the form told from the data ---------------------
+MULTIPLIERS = {  # m(S) of each form, written out here (Blau 2005), not taken from the extensions
+    "exponential": lambda s, r, s0: 1.0 + (r - 1.0) * np.exp(-s / s0),
+    "power_law": lambda s, r, s0: 1.0 + (r - 1.0) / (1.0 + s / s0),
+}
+
+
+@pytest.mark.parametrize("form", sorted(RUNNING_IN_FORMS))
+def test_running_in_time_map_is_the_integral_of_the_multiplier(form):
+    """tau_a(N) = integral_0^N m(n d_a) dn, by the trapezoid rule on 200,001 points."""
+    sliding = np.array([0.0, 2e-3, 1e-2, 5e-2])  # m per cycle; a node that never slides too
+    run = WearHistory(np.zeros(4), np.array([0.0, 1.0]), np.zeros((2, 4)), sliding)
+    r, s0 = 3.5, 4.0
+    cycles = 20000.0
+    n = np.linspace(0.0, cycles, 200001)
+    for node, d in enumerate(sliding):
+        m = MULTIPLIERS[form](n * d, r, s0)
+        expected = float(np.sum(0.5 * (m[1:] + m[:-1]) * np.diff(n)))
+        tau = running_in_cycles(cycles, run, form, r - 1.0, s0)[node]
+        assert tau == pytest.approx(expected, rel=1e-7)
+
+
+def _linear_run(angle: np.ndarray, sliding: np.ndarray) -> WearHistory:
+    """Plain Archard wear at a constant rate per node (depth ~ N) up to 10^6 cycles."""
+    rate = 1e-9 * (1.2 + np.cos(angle))  # m per cycle
+    cycles = np.linspace(0.0, 1e6, 11)
+    return WearHistory(angle, cycles, cycles[:, None] * rate[None, :], sliding)
+
+
+def _running_in_observations(run: WearHistory, form: str, r: float, s0: float,
+                             offset_deg: float) -> Observations:
+    counts = (2000.0, 3000.0, 4500.0, 6000.0, 8000.0, 10000.0, 14000.0, 20000.0)
+    measured_angle = np.radians(np.arange(0.0, 360.0, 3.0))
+    bushing_angle = measured_angle + math.radians(offset_deg)
+    rate = np.interp(bushing_angle, run.angle_rad, run.depth_m[1] / run.cycles[1], period=2 * np.pi)
+    cycles, angle, depth = [], [], []
+    for count in counts:
+        tau = running_in_cycles(count, run, form, r - 1.0, s0)[0]  # the sliding is uniform
+        cycles.append(np.full(measured_angle.size, count))
+        angle.append(measured_angle)
+        depth.append(rate * tau)
+    cycles = np.concatenate(cycles)
+    return Observations(cycles, np.concatenate(angle), np.concatenate(depth), cycles < 12000.0)
+
+
+@pytest.mark.parametrize("form", sorted(RUNNING_IN_FORMS))
+def test_running_in_fit_names_the_form_of_the_data_and_its_parameters(form):
+    angle = np.linspace(0.0, 2.0 * math.pi, 96, endpoint=False)
+    run = _linear_run(angle, np.full(96, 0.01))
+    r, s0 = 3.0, 20.0  # k three times its steady value, over 2,000 cycles of 0.01 m
+    obs = _running_in_observations(run, form, r, s0, offset_deg=7.0)
+    forms = tuple(Candidate("running_in", (run,), form=name) for name in RUNNING_IN_FORMS)
+    result = fit_candidate(forms, obs, 5.0, JointDiagnoseSettings())
+    assert result.form == form and result.forms_tried == len(RUNNING_IN_FORMS)
+    assert result.params["angle_offset_deg"] == pytest.approx(7.0, abs=0.05)
+    assert result.params["k_initial_over_steady"] == pytest.approx(r, rel=0.02)
+    assert result.params["distance_scale_m"] == pytest.approx(s0, rel=0.03)
+    assert result.held_out_rms_m < 1e-3 * obs.depth_m.max()
