@@ -1,7 +1,8 @@
 """The joint diagnosis's candidate runs and resolution (fewear.calibrate.joint_diagnose), on
 constructed wear histories: runs that stop before the data are left out, halving the blocks
 halves what the extrapolation settings allow, a 'none' whose misfit lies within what the
-model's blocks resolve says so, and running-in's time map and form are those of the data."""
+model's blocks resolve says so, running-in's time map and form are those of the data, and a
+cause is named only if its full run holds up on the held-out data."""
 
 import math
 
@@ -14,8 +15,10 @@ from fewear.calibrate.joint_diagnose import (
     Fit,
     JointDiagnoseSettings,
     Observations,
+    _confirm,
     _lasting,
     _unexplained,
+    fit,
     fit_candidate,
     running_in_cycles,
 )
@@ -65,15 +68,16 @@ def test_none_with_a_large_misfit_names_the_block_size_when_that_is_what_limits(
     baseline = _fit(10e-6)
     # 20 x the instrument's 0.5 um scatter, and the blocks move the bore by 8 um: not resolved
     sentence, = _unexplained(baseline, baseline, [], {"instrument_scatter_m": 0.5e-6,
-                                                      "halved_blocks_rms_m": 8e-6})
+                                                      "halved_blocks_rms_m": 8e-6}, [])
     assert "20 times the instrument's scatter" in sentence and "smaller wear blocks" in sentence
     # the same misfit with well-resolved blocks: unexplained, without the block-size remark
     sentence, = _unexplained(baseline, baseline, [], {"instrument_scatter_m": 0.5e-6,
-                                                      "halved_blocks_rms_m": 0.2e-6})
+                                                      "halved_blocks_rms_m": 0.2e-6}, [])
     assert "smaller wear blocks" not in sentence
     # within 3 x the scatter: nothing is unexplained
     assert _unexplained(_fit(1.2e-6), _fit(1.2e-6), [], {"instrument_scatter_m": 0.5e-6,
-                                                         "halved_blocks_rms_m": 8e-6}) == []
+                                                         "halved_blocks_rms_m": 8e-6},
+                        []) == []
 
 
 def test_a_grid_with_a_non_positive_value_is_a_clear_error():
@@ -139,3 +143,76 @@ def test_running_in_fit_names_the_form_of_the_data_and_its_parameters(form):
     assert result.params["k_initial_over_steady"] == pytest.approx(r, rel=0.02)
     assert result.params["distance_scale_m"] == pytest.approx(s0, rel=0.03)
     assert result.held_out_rms_m < 1e-3 * obs.depth_m.max()
+
+
+# --- a cause is named only if its extended model, run in full, holds up --------------------------
+def _k_level_world(monkeypatch, truth_k_scale: float, friction_rate_factor: float):
+    """Forward runs as linear wear whose rate scales with the config's constant k; a run with
+    the friction changed wears at ``friction_rate_factor`` times the believed rate (whatever its
+    k). Returns the believed config, the believed run and data from a k level ``truth_k_scale``."""
+    from fewear.calibrate import joint_diagnose
+
+    angle = np.linspace(0.0, 2.0 * math.pi, 48, endpoint=False)
+    base = _linear_run(angle, np.full(48, 0.01))
+    config = {"joint": {"friction_coefficient": 0.1},
+              "wear": {"coefficient_model": "constant", "constant_k_m2_N": 1e-15},
+              "wear_loop": {"rod_models": ["rigid"], "total_cycles": 1}}
+
+    def simulate(changed, label=""):
+        factor = changed["wear"]["constant_k_m2_N"] / 1e-15
+        if changed["joint"]["friction_coefficient"] != 0.1:
+            factor = friction_rate_factor
+        return WearHistory(angle, base.cycles, factor * base.depth_m, base.sliding_m_per_cycle)
+
+    monkeypatch.setattr(joint_diagnose, "simulate_wear", simulate)
+    counts = np.repeat([4000.0, 8000.0, 12000.0, 16000.0], angle.size)
+    measured = np.tile(angle, 4)
+    depth = truth_k_scale * np.concatenate([base.nodal_depth_m(c) for c in (4e3, 8e3, 12e3, 16e3)])
+    return config, base, Observations(counts, measured, depth, counts < 14000.0)
+
+
+def _fitted(name: str, k_scale: float, **params) -> Fit:
+    return Fit(name, np.zeros(2), 2, 0.0, 10, 0.0, 0.0, np.zeros(1),
+               {"angle_offset_deg": 0.0, "k_scale": k_scale, **params})
+
+
+@pytest.mark.parametrize("friction_rate_factor, named", [(0.9, ["wear_coefficient"]),
+                                                         (1.5, ["friction"])])
+def test_the_first_accepted_cause_whose_full_run_holds_up_is_named(monkeypatch,
+                                                                  friction_rate_factor, named):
+    """The data are a k level x1.5. Friction was accepted first on its fitted runs; its full
+    run wears at 0.9 x the believed rate (worse than the believed model: not named, the k level
+    is) or at 1.5 x (the data: named)."""
+    config, base, obs = _k_level_world(monkeypatch, 1.5, friction_rate_factor)
+    settings = JointDiagnoseSettings()
+    baseline = fit("baseline", Candidate("baseline", (base,)), obs, [np.zeros(1)],
+                   np.array([(-30.0, 30.0)]))
+    fits = {"friction": _fitted("friction", 1.0, friction_coefficient=0.3),
+            "wear_coefficient": _fitted("wear_coefficient", 1.5)}
+    causes, extended, final, depth, not_confirmed = _confirm(
+        config, ["friction", "wear_coefficient"], fits, baseline, obs, settings)
+    assert causes == named
+    assert final.held_out_rms_m < 1e-6 * obs.depth_m.max()
+    np.testing.assert_allclose(depth, obs.depth_m, rtol=1e-9, atol=1e-15)
+    if named == ["wear_coefficient"]:
+        assert extended["wear"]["constant_k_m2_N"] == pytest.approx(1.5e-15)
+        assert extended["joint"]["friction_coefficient"] == 0.1
+        assert [e["cause"] for e in not_confirmed] == ["friction"]
+        assert not_confirmed[0]["full_run_held_out_gain"] < 0.0
+        sentence, = _unexplained(baseline, final, causes, {"instrument_scatter_m": None,
+                                                           "halved_blocks_rms_m": 0.0},
+                                 not_confirmed)
+        assert sentence.startswith("friction was accepted on its fitted runs")
+    else:
+        assert extended["joint"]["friction_coefficient"] == 0.3 and not not_confirmed
+
+
+def test_no_cause_is_named_when_no_full_run_holds_up(monkeypatch):
+    config, base, obs = _k_level_world(monkeypatch, 1.5, 0.9)
+    baseline = fit("baseline", Candidate("baseline", (base,)), obs, [np.zeros(1)],
+                   np.array([(-30.0, 30.0)]))
+    fits = {"friction": _fitted("friction", 1.0, friction_coefficient=0.3)}
+    causes, extended, final, depth, not_confirmed = _confirm(
+        config, ["friction"], fits, baseline, obs, JointDiagnoseSettings())
+    assert causes == [] and final is baseline and extended == config
+    assert [e["cause"] for e in not_confirmed] == ["friction"]
