@@ -109,4 +109,4 @@ def test_a_large_misfit_without_a_cause_is_reported_unexplained():
                   float(np.sqrt(np.mean(r**2))), residual)
         resolution = {"instrument_scatter_m": scatter_estimate_m(angle, residual, cycles),
                       "halved_blocks_rms_m": 0.0}
-        assert len(_unexplained(fit, fit, [], resolution)) == expected
+        assert len(_unexplained(fit, fit, [], resolution, [])) == expected
