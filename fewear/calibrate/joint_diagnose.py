@@ -25,8 +25,9 @@ tau(N) = N except for running-in. The catalogue (every cause has s free, so each
   and the best on the training data is taken, a choice counted as one parameter);
 - ``friction``: the friction coefficient mu differs (runs on a grid of mu, the worn bore
   interpolated linearly between neighbouring runs);
-- ``impact_wear``: the impacts wear too (:mod:`fewear.wear.impact`), in two forms: by energy,
-  V = k_imp W_hysteresis, and by impulse, V = c_J J_impacts (runs on a grid of the coefficient,
+- ``impact_wear``: the impacts wear too (:mod:`fewear.wear.impact`), by energy, V = k_imp
+  W_hysteresis, and (``impact_forms``, off by default: three more runs, and it changed no
+  benchmark result) by impulse, V = c_J J_impacts (runs on a grid of the coefficient,
   interpolated; the level s scales both wear rates, so the coefficient reported and written to
   the extended config is s times the grid's);
 - ``running_in``: k falls from r k to k over each node's first metres of sliding S, in one of two
@@ -126,6 +127,7 @@ class JointDiagnoseSettings:
     friction_grid: tuple[float, ...] = (0.02, 0.05, 0.2, 0.3, 0.4)
     rod_modulus_factors: tuple[float, ...] = (0.8, 0.85, 0.9, 0.95, 1.0, 1.05, 1.1, 1.17, 1.25)
     impact_volume_ratios: tuple[float, ...] = (0.1, 0.3, 1.0)
+    impact_forms: tuple[str, ...] = ("energy",)
     max_offset_deg: float = 30.0
 
     def __post_init__(self):
@@ -143,6 +145,10 @@ class JointDiagnoseSettings:
             if not values or min(values) <= 0.0:
                 raise FewearInputError(f"[joint_diagnose] {name} = {list(values)!r}: expected a "
                                        "non-empty list of positive numbers")
+        if not self.impact_forms or not set(self.impact_forms) <= set(IMPACT_FORMS):
+            raise FewearInputError(
+                f"[joint_diagnose] impact_forms = {list(self.impact_forms)!r}: expected a "
+                f"non-empty list of {', '.join(map(repr, IMPACT_FORMS))}")
         if not self.max_k_scale > 1.0:
             raise FewearInputError(
                 f"[joint_diagnose] max_k_scale = {self.max_k_scale!r}: expected > 1")
@@ -481,7 +487,8 @@ def candidate_runs(config: dict, cause: str, cycles: int, base: WearHistory,
     volume = worn_volume_per_cycle_m3(base, config)
     measures = impact_measures_per_cycle(model_config(config, rod, cycles))
     forms = []
-    for form, key in IMPACT_FORMS.items():
+    for form in settings.impact_forms:
+        key = IMPACT_FORMS[form]
         believed = config["wear"].get(key, 0.0)
         per_unit = volume / max(measures[form], 1e-300)
         grid = [believed] + [believed + ratio * per_unit

@@ -85,6 +85,12 @@ def test_a_grid_with_a_non_positive_value_is_a_clear_error():
         JointDiagnoseSettings(friction_grid=(0.0, 0.3))
 
 
+def test_an_unknown_impact_form_is_a_clear_error():
+    with pytest.raises(FewearInputError, match=r"impact_forms = \['momentum'\]: expected"):
+        JointDiagnoseSettings(impact_forms=("momentum",))
+    assert JointDiagnoseSettings(impact_forms=["energy", "impulse"]).impact_forms
+
+
 # --- running-in: the time map of each form, and the form told from the data ---------------------
 MULTIPLIERS = {  # m(S) of each form, written out here (Blau 2005), not taken from the extensions
     "exponential": lambda s, r, s0: 1.0 + (r - 1.0) * np.exp(-s / s0),
