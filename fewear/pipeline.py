@@ -277,12 +277,9 @@ def cycle_sliding(wear: CycleWear, steps: LoadSteps, cycles: int, friction_coeff
     energy = friction_coefficient * (wear.pressure_Pa * wear.slip_m).sum(axis=0) / cycles
     power = np.divide(energy, time_s, out=np.zeros_like(energy), where=time_s > 0.0)
     sensitivity = None if wear.depth_sensitivity is None else wear.depth_sensitivity / cycles
-    impact = impact_wear_depth_m(impact_wear_coefficient_m3_J, steps.hysteresis_work_J,
-                                 steps.force_N, wear.pressure_Pa) / cycles
-    if impact_impulse_wear_coefficient_m3_Ns > 0.0:
-        impact = impact + impact_wear_depth_m(impact_impulse_wear_coefficient_m3_Ns,
-                                              steps.impact_impulse_N_s, steps.force_N,
-                                              wear.pressure_Pa) / cycles
+    impact_volume_m3 = (impact_wear_coefficient_m3_J * steps.hysteresis_work_J
+                        + impact_impulse_wear_coefficient_m3_Ns * steps.impact_impulse_N_s)
+    impact = impact_wear_depth_m(1.0, impact_volume_m3, steps.force_N, wear.pressure_Pa) / cycles
     return CycleSliding(wear.depth_per_cycle_m / cycles, distance, time_s, power, sensitivity,
                         impact)
 

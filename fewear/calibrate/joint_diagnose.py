@@ -448,12 +448,11 @@ def cause_config(config: dict, cause: str, value: float | None, form: str = "") 
 
 def candidate_runs(config: dict, cause: str, cycles: int, base: WearHistory,
                    settings: JointDiagnoseSettings, obs: Observations) -> tuple[Candidate, ...]:
-    """The runs a cause is fitted on, per form (``base``: the believed model's run). A run stops
-    once it
-    wears :data:`DEPTH_REACH` to twice that times deeper than the deepest measured wear: it
-    explains nothing beyond, and an impact-worn pocket that draws ever more impacts would
-    otherwise run on in ever shorter blocks. A run that stops for this reason, or wears through,
-    or loses contact before the fit's shortest time axis needs it (the last count /
+    """The runs a cause is fitted on, per form (``base``: the believed model's run). A run
+    stops once it wears :data:`DEPTH_REACH` to twice that times deeper than the deepest measured
+    wear: it explains nothing beyond, and an impact-worn pocket that draws ever more impacts
+    would otherwise run on in ever shorter blocks. A run that stops for this reason, or wears
+    through, or loses contact before the fit's shortest time axis needs it (the last count /
     max_k_scale) is left out; so is a form with no run with the cause switched on left."""
     rod = config["wear_loop"]["rod_models"][0]
     wall = config["bushing"]["outer_radius_m"] - config["bushing"]["inner_radius_m"]
@@ -598,8 +597,8 @@ def _confirm(config: dict, accepted: list[str], fits: dict[str, Fit], baseline: 
     its depths at the observations; the causes whose full run did not hold up, with its gain)."""
     not_confirmed = []
     for cause in accepted:
-        extended = _extended_config(config, [cause], fits)
-        final, depth = _verify(extended, [cause], baseline, obs, settings)
+        extended = _extended_config(config, cause, fits[cause])
+        final, depth = _verify(extended, baseline, obs, settings)
         gain = 1.0 - final.held_out_rms_m / baseline.held_out_rms_m
         if gain >= settings.min_held_out_gain:
             return [cause], extended, final, depth, not_confirmed
@@ -615,13 +614,10 @@ def _confounded(evidence: list[dict], accepted: list[str], causes: list[str]) ->
             if e["cause"] in later and e["cause"] != "wear_coefficient"]
 
 
-def _extended_config(config, causes, fits) -> dict:
-    """The believed config with the named cause at its fitted parameters."""
-    if not causes:
-        return copy.deepcopy(config)
-    cause = causes[0]
-    params = fits[cause].params
-    form = fits[cause].form or ""
+def _extended_config(config: dict, cause: str, fitted: Fit) -> dict:
+    """The believed config with ``cause`` at its ``fitted`` parameters."""
+    params = fitted.params
+    form = fitted.form or ""
     value = params.get(_grid_parameter(cause, form))
     extended = cause_config(config, cause, value, form)
     _scaled_wear(extended, params["k_scale"])
@@ -633,10 +629,8 @@ def _extended_config(config, causes, fits) -> dict:
     return extended
 
 
-def _verify(extended: dict, causes, baseline: Fit, obs: Observations, settings):
+def _verify(extended: dict, baseline: Fit, obs: Observations, settings):
     """The extended model run in full, its offset fitted on the training data."""
-    if not causes:
-        return baseline, obs.depth_m - baseline.residuals_m
     rod = extended["wear_loop"]["rod_models"][0]
     run = simulate_wear(model_config(extended, rod, int(obs.cycles.max()) + 1), "extended model")
     phi = settings.max_offset_deg
