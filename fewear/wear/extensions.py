@@ -305,3 +305,22 @@ def wear_extension_from_config(section: dict[str, Any]) -> WearExtension:
 def extension_to_config(extension: WearExtension) -> dict[str, Any]:
     """The ``[wear]`` keys ``extension`` and ``extension_params`` that rebuild ``extension``."""
     return {"extension": extension.name, "extension_params": extension.params()}
+
+
+def distance_at_effective_m(extension: NoExtension | RunningIn | RunningInPowerLaw,
+                            effective_m) -> np.ndarray:
+    """The sliding distance s at which a distance-driven extension's S_eff(s) reaches
+    ``effective_m`` (the inverse of :meth:`effective_distance_m`). S_eff is increasing and
+    concave for these (m >= 1, non-increasing), so Newton's iteration s <- s - (S_eff(s) - y) /
+    m(s) from s = y lands left of the root after one step and then rises to it monotonically."""
+    target = np.asarray(effective_m, dtype=float)
+    if extension.name == "none":
+        return target.copy()
+    s = target.copy()
+    for _ in range(100):
+        step = (extension.effective_distance_m(s) - target) / extension.multiplier(
+            SlidingState(distance_m=s))
+        s = np.maximum(s - step, 0.0)
+        if np.all(np.abs(step) <= 1e-13 * np.maximum(target, 1e-300)):
+            break
+    return s

@@ -1,5 +1,6 @@
 """The wear extensions: closed-form effective distances against a step-by-step integration of the
-multiplier, the running_in / time_transient equivalence at one speed, and the config round trip."""
+multiplier, their inverse, the running_in / time_transient equivalence at one speed, and the
+config round trip."""
 
 import numpy as np
 import pytest
@@ -13,6 +14,7 @@ from fewear.wear.extensions import (
     SlidingState,
     Thermal,
     TimeTransient,
+    distance_at_effective_m,
     extension_to_config,
     make_extension,
     wear_extension_from_config,
@@ -52,6 +54,18 @@ def test_closed_form_matches_stepwise_integration_at_second_order(extension):
     rate = np.polyfit(np.log(distance / steps), np.log(errors), 1)[0]
     assert abs(rate - 2.0) < 0.1
     assert errors[-1] < 1e-4 * closed
+
+
+@pytest.mark.parametrize("extension", [NoExtension(), RunningIn(4.0, 150.0),
+                                       RunningInPowerLaw(4.0, 80.0), RunningIn(40.0, 1e-3),
+                                       RunningInPowerLaw(1.0, 5.0)], ids=repr)
+def test_the_distance_at_an_effective_distance_inverts_it(extension):
+    """From 1e-12 m (where S_eff = r s) to 1e6 m (where the running-in is long over), through the
+    knee at s0; zero stays zero."""
+    distance = np.concatenate([[0.0], np.geomspace(1e-12, 1e6, 400)])
+    back = distance_at_effective_m(extension, extension.effective_distance_m(distance))
+    assert back[0] == 0.0
+    np.testing.assert_allclose(back[1:], distance[1:], rtol=1e-11)
 
 
 def test_running_in_equals_time_transient_at_one_speed():
