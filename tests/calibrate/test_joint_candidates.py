@@ -22,7 +22,6 @@ from fewear.calibrate.joint_diagnose import (
     fit,
     fit_candidate,
     fit_cause,
-    grid_value,
     running_in_cycles,
 )
 from fewear.calibrate.joint_forward import WearHistory, with_halved_blocks
@@ -235,9 +234,9 @@ def _widening_world(angle: np.ndarray):
     is not the bore of any mu."""
     cycles = np.linspace(0.0, 40000.0, 9)
 
-    def run_at(mu: float) -> WearHistory:
+    def run_at(mu: float, k_scale: float = 1.0) -> WearHistory:
         width = 0.1 + 10.0 * mu
-        rate = 1e-9 * (0.3 + np.exp(-((angle - math.pi) ** 2) / (2.0 * width**2)))
+        rate = 1e-9 * k_scale * (0.3 + np.exp(-((angle - math.pi) ** 2) / (2.0 * width**2)))
         return WearHistory(angle, cycles, cycles[:, None] * rate[None, :],
                            np.full(angle.size, 0.01))
 
@@ -259,8 +258,8 @@ def test_a_grid_fit_refined_with_the_run_at_its_value_lands_on_the_truth():
     asked = []
 
     def run_of(candidate: Candidate, fitted: Fit) -> WearHistory:
-        asked.append(grid_value(candidate, float(fitted.x[2])))
-        return run_at(asked[-1])
+        asked.append(fitted.params["friction_coefficient"])
+        return run_at(asked[-1], fitted.params["k_scale"])
 
     interpolated = fit_candidate((friction,), obs, 0.0, settings)
     refined = fit_cause((friction,), obs, baseline, settings, run_of)
@@ -269,6 +268,44 @@ def test_a_grid_fit_refined_with_the_run_at_its_value_lands_on_the_truth():
     assert refined.params["friction_coefficient"] == pytest.approx(0.14, rel=0.005)
     assert refined.params["k_scale"] == pytest.approx(1.0, rel=0.002)
     assert refined.held_out_rms_m < 0.05 * interpolated.held_out_rms_m
+
+
+def _blocky_world(angle: np.ndarray):
+    """Forward runs whose wear blocks end every 5,000 cycles whatever k (as a loop's A_max
+    does), the depth growing as sqrt(k N) at the block ends and linearly between: the believed
+    run with its cycles scaled by s is not the run with k x s."""
+    cycles = np.arange(0.0, 40001.0, 5000.0)
+    shape = 1.2 + np.cos(angle)
+
+    def run_at(k_scale: float) -> WearHistory:
+        depth = 2e-6 * np.sqrt(k_scale * cycles / 1000.0)[:, None] * shape[None, :]
+        return WearHistory(angle, cycles, depth, np.full(angle.size, 0.01))
+
+    return run_at
+
+
+def test_a_k_level_refined_on_the_run_at_its_level_fits_as_that_run():
+    angle = np.linspace(0.0, 2.0 * math.pi, 36, endpoint=False)
+    run_at = _blocky_world(angle)
+    counts = np.array([3000.0, 6000.0, 9000.0, 12000.0, 16000.0, 20000.0])
+    cycles = np.repeat(counts, angle.size)
+    depth = np.concatenate([run_at(1.6).nodal_depth_m(c) for c in counts])
+    obs = Observations(cycles, np.tile(angle, counts.size), depth, cycles < 14000.0)
+    believed = Candidate("wear_coefficient", (run_at(1.0),))
+    baseline = fit("baseline", believed, obs, [np.zeros(1)], np.array([(-30.0, 30.0)]))
+    settings = JointDiagnoseSettings()
+    asked = []
+
+    def run_of(candidate: Candidate, fitted: Fit) -> WearHistory:
+        asked.append(fitted.params["k_scale"])
+        return run_at(asked[-1])
+
+    scaled = fit_candidate((believed,), obs, 0.0, settings)
+    refined = fit_cause((believed,), obs, baseline, settings, run_of)
+    assert 1 <= len(asked) <= REFINEMENTS
+    assert refined.params["k_scale"] == pytest.approx(1.6, rel=0.01)
+    assert refined.held_out_rms_m < 0.1 * scaled.held_out_rms_m
+    assert refined.n_params == scaled.n_params  # the level is still the one parameter
 
 
 # --- a cause is named only if its extended model, run in full, holds up --------------------------
