@@ -169,6 +169,17 @@ def test_the_time_map_from_a_run_at_the_models_own_parameters_is_the_identity(fo
     assert half[0] == pytest.approx(3500.0 / r * r, rel=1e-9)
 
 
+COUNTS = np.array([3000.0, 6000.0, 9000.0, 12000.0, 16000.0, 20000.0])
+
+
+def _observed(truth: WearHistory, counts: np.ndarray = COUNTS,
+              held_from: float = 14000.0) -> Observations:
+    """The noiseless bore of ``truth`` at its nodes after each count, the later ones held out."""
+    cycles = np.repeat(counts, truth.angle_rad.size)
+    depth = np.concatenate([truth.nodal_depth_m(c) for c in counts])
+    return Observations(cycles, np.tile(truth.angle_rad, counts.size), depth, cycles < held_from)
+
+
 def _young_bore_world(angle: np.ndarray):
     """Forward runs where a joint's running-in wears another shape than its steady wear: the
     extra wear (S_eff(N d) - N d) k goes into a narrow pocket (the young bore's contact), the
@@ -199,10 +210,7 @@ def test_running_in_refined_on_runs_at_its_fitted_parameters_fits_better_when_ru
     angle = np.linspace(0.0, 2.0 * math.pi, 36, endpoint=False)
     run_at = _young_bore_world(angle)
     counts = np.array([2000.0, 3000.0, 4500.0, 6000.0, 8000.0, 10000.0, 14000.0, 20000.0])
-    cycles = np.repeat(counts, angle.size)
-    truth = run_at(1.3, "exponential", 4.0, 30.0)
-    depth = np.concatenate([truth.nodal_depth_m(c) for c in counts])
-    obs = Observations(cycles, np.tile(angle, counts.size), depth, cycles < 12000.0)
+    obs = _observed(run_at(1.3, "exponential", 4.0, 30.0), counts, held_from=12000.0)
     settings = JointDiagnoseSettings()
     believed = Candidate("baseline", (run_at(1.0),))
     baseline = fit("baseline", believed, obs, [np.zeros(1)], np.array([(-30.0, 30.0)]))
@@ -246,10 +254,7 @@ def _widening_world(angle: np.ndarray):
 def test_a_grid_fit_refined_with_the_run_at_its_value_lands_on_the_truth():
     angle = np.linspace(0.0, 2.0 * math.pi, 36, endpoint=False)
     run_at = _widening_world(angle)
-    counts = np.array([3000.0, 6000.0, 9000.0, 12000.0, 16000.0, 20000.0])
-    cycles = np.repeat(counts, angle.size)
-    depth = np.concatenate([run_at(0.14).nodal_depth_m(c) for c in counts])
-    obs = Observations(cycles, np.tile(angle, counts.size), depth, cycles < 14000.0)
+    obs = _observed(run_at(0.14))
     settings = JointDiagnoseSettings()
     baseline = fit("baseline", Candidate("baseline", (run_at(0.1),)), obs, [np.zeros(1)],
                    np.array([(-30.0, 30.0)]))
@@ -287,10 +292,7 @@ def _blocky_world(angle: np.ndarray):
 def test_a_k_level_refined_on_the_run_at_its_level_fits_as_that_run():
     angle = np.linspace(0.0, 2.0 * math.pi, 36, endpoint=False)
     run_at = _blocky_world(angle)
-    counts = np.array([3000.0, 6000.0, 9000.0, 12000.0, 16000.0, 20000.0])
-    cycles = np.repeat(counts, angle.size)
-    depth = np.concatenate([run_at(1.6).nodal_depth_m(c) for c in counts])
-    obs = Observations(cycles, np.tile(angle, counts.size), depth, cycles < 14000.0)
+    obs = _observed(run_at(1.6))
     believed = Candidate("wear_coefficient", (run_at(1.0),))
     baseline = fit("baseline", believed, obs, [np.zeros(1)], np.array([(-30.0, 30.0)]))
     settings = JointDiagnoseSettings()
