@@ -275,6 +275,38 @@ def test_a_grid_fit_refined_with_the_run_at_its_value_lands_on_the_truth():
     assert refined.held_out_rms_m < 0.05 * interpolated.held_out_rms_m
 
 
+def test_a_grid_fit_the_runs_leave_between_them_is_taken_on_the_best_run_made():
+    """A world whose pocket width jumps with mu (a ripple of period 0.004 on top of the widening):
+    no refinement settles between the runs, so the fit is the best run made, exactly."""
+    angle = np.linspace(0.0, 2.0 * math.pi, 36, endpoint=False)
+    smooth = _widening_world(angle)
+
+    def run_at(mu: float, k_scale: float = 1.0) -> WearHistory:
+        return smooth(mu + 0.01 * math.sin(2.0 * math.pi * mu / 0.004), k_scale)
+
+    obs = _observed(run_at(0.14))
+    baseline = fit("baseline", Candidate("baseline", (run_at(0.1),)), obs, [np.zeros(1)],
+                   np.array([(-30.0, 30.0)]))
+    grid = (0.02, 0.05, 0.1, 0.2, 0.3, 0.4)
+    friction = Candidate("friction", tuple(run_at(mu) for mu in grid), grid)
+    made = []
+
+    def run_of(candidate: Candidate, fitted: Fit) -> WearHistory:
+        made.append((fitted.params["friction_coefficient"], fitted.params["k_scale"]))
+        return run_at(*made[-1])
+
+    refined = fit_cause((friction,), obs, baseline, JointDiagnoseSettings(), run_of)
+    assert len(made) == REFINEMENTS
+    on = [i for i, (mu, k) in enumerate(made)
+          if mu == pytest.approx(refined.params["friction_coefficient"], rel=1e-12)
+          and k == pytest.approx(refined.params["k_scale"], rel=1e-12)]
+    assert len(on) == 1  # the fit sits exactly on one of the runs made
+    run = run_at(*made[on[0]])
+    held = ~obs.train
+    real = obs.depth_m - np.concatenate([run.nodal_depth_m(c) for c in COUNTS])
+    assert refined.held_out_rms_m == pytest.approx(np.sqrt(np.mean(real[held] ** 2)), rel=1e-6)
+
+
 def _blocky_world(angle: np.ndarray):
     """Forward runs whose wear blocks end every 5,000 cycles whatever k (as a loop's A_max
     does), the depth growing as sqrt(k N) at the block ends and linearly between: the believed
