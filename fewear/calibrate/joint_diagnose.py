@@ -365,7 +365,11 @@ def fit_candidate(forms: tuple[Candidate, ...], obs: Observations, offset_deg: f
                   settings: JointDiagnoseSettings) -> Fit:
     """Fit a cause (s free, plus its own parameters) from a few starts, in each of its
     ``forms``; the best on the training data is kept."""
-    fits = [_fit_form(form, obs, offset_deg, settings) for form in forms]
+    return _best_form([_fit_form(form, obs, offset_deg, settings) for form in forms])
+
+
+def _best_form(fits: list[Fit]) -> Fit:
+    """The form's fit best on the training data, counting the forms tried."""
     return replace(min(fits, key=lambda f: f.sse_train), forms_tried=len(fits))
 
 
@@ -424,10 +428,10 @@ def fit_cause(forms: tuple[Candidate, ...], obs: Observations, baseline: Fit,
     (:func:`refine_running_in`, :func:`refine_on_runs`; ``run_at`` makes them). The best on the
     training data is kept."""
     fits = [_fit_form(form, obs, float(baseline.x[0]), settings) for form in forms]
-    best = min(fits, key=lambda f: f.sse_train)
+    best = _best_form(fits)
     if 1.0 - best.held_out_rms_m / baseline.held_out_rms_m >= settings.min_held_out_gain:
         fits = [_refined(form, f, obs, settings, run_at) for form, f in zip(forms, fits)]
-    return replace(min(fits, key=lambda f: f.sse_train), forms_tried=len(fits))
+    return _best_form(fits)
 
 
 def _refined(candidate: Candidate, fitted: Fit, obs: Observations,
@@ -482,8 +486,9 @@ def refine_on_runs(candidate: Candidate, fitted: Fit, obs: Observations,
     :data:`SETTLED` in ln s) or after :data:`REFINEMENTS` runs. A run that stops
     before the shortest time axis the fit needs ends the refinement. If the runs leave the fit
     between them (the coarse loop's worn bore need not follow a parameter smoothly: mu = 0.060,
-    0.067, 0.063 on one data set), the fit is taken as the best of the runs made, each exactly
-    at its own parameters (:func:`_on_best_run`): a fit the full run reproduces."""
+    0.067, 0.063 on one data set), the fit is taken as the best of the runs made that are still
+    among the cause's, each exactly at its own parameters (:func:`_on_best_run`): a fit the
+    full run reproduces."""
     made: list[WearHistory] = []
     while True:
         at, between = _run_under_fit(candidate, fitted)
@@ -514,7 +519,8 @@ def refine_on_runs(candidate: Candidate, fitted: Fit, obs: Observations,
 def _on_best_run(candidate: Candidate, fitted: Fit, made: list[WearHistory],
                  obs: Observations, settings: JointDiagnoseSettings) -> Fit:
     """The fit on the run of ``made`` that fits the training data best, exactly at that run's
-    parameters (its level and grid value; only the angle offset fitted)."""
+    parameters (its level and grid value; only the angle offset fitted). Only the runs still
+    among the cause's count: one the fit sat on was replaced by the next."""
     best = None
     for index, run in enumerate(candidate.runs):
         if not any(run is other for other in made):
@@ -554,9 +560,18 @@ def _refit(candidate: Candidate, fitted: Fit, at: int, obs: Observations,
 
 
 def _stops_short(run: WearHistory, obs: Observations, settings: JointDiagnoseSettings) -> bool:
-    """Whether ``run`` stopped before the shortest time axis a fit needs (the last count /
-    max_k_scale)."""
-    return bool(run.stopped) and run.cycles[-1] < float(obs.cycles.max()) / settings.max_k_scale
+    """Whether ``run`` stopped before the shortest time axis a fit needs."""
+    return not _lasts(run, _needed_cycles(obs, settings))
+
+
+def _needed_cycles(obs: Observations, settings: JointDiagnoseSettings) -> float:
+    """The shortest time axis a fit needs: the last count / max_k_scale."""
+    return float(obs.cycles.max()) / settings.max_k_scale
+
+
+def _lasts(run: WearHistory, needed_cycles: float) -> bool:
+    """Whether ``run`` ran on (or stopped no earlier than ``needed_cycles``)."""
+    return not run.stopped or run.cycles[-1] >= needed_cycles
 
 
 def grid_value(candidate: Candidate, position: float) -> float:
@@ -673,7 +688,7 @@ def candidate_runs(config: dict, cause: str, cycles: int, base: WearHistory,
     max_k_scale) is left out; so is a form with no run with the cause switched on left."""
     rod = config["wear_loop"]["rod_models"][0]
     run = candidate_runner(cycles, obs)
-    needed = float(obs.cycles.max()) / settings.max_k_scale
+    needed = _needed_cycles(obs, settings)
     if cause == "wear_coefficient":
         return (Candidate(cause, (base,)),)
     if cause == "running_in":
@@ -708,8 +723,7 @@ def candidate_runs(config: dict, cause: str, cycles: int, base: WearHistory,
 def _lasting(candidate: Candidate, needed_cycles: float) -> tuple[Candidate, ...]:
     """``candidate`` without the runs that stopped before ``needed_cycles``, as a tuple of one
     form; empty if no run is left or, for a grid interpolated between runs, only one."""
-    keep = [i for i, run in enumerate(candidate.runs)
-            if not run.stopped or run.cycles[-1] >= needed_cycles]
+    keep = [i for i, run in enumerate(candidate.runs) if _lasts(run, needed_cycles)]
     if not keep or (len(keep) < 2 and not candidate.discrete):
         return ()
     return (replace(candidate, runs=tuple(candidate.runs[i] for i in keep),

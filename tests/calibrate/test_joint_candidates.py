@@ -212,8 +212,7 @@ def test_running_in_refined_on_runs_at_its_fitted_parameters_fits_better_when_ru
     counts = np.array([2000.0, 3000.0, 4500.0, 6000.0, 8000.0, 10000.0, 14000.0, 20000.0])
     obs = _observed(run_at(1.3, "exponential", 4.0, 30.0), counts, held_from=12000.0)
     settings = JointDiagnoseSettings()
-    believed = Candidate("baseline", (run_at(1.0),))
-    baseline = fit("baseline", believed, obs, [np.zeros(1)], np.array([(-30.0, 30.0)]))
+    baseline = _baseline(run_at(1.0), obs)
     forms = tuple(Candidate("running_in", (run_at(1.0),), form=name) for name in RUNNING_IN_FORMS)
     runs = []  # (form, params) of every run asked for, the first of a form at its mapped fit
 
@@ -251,15 +250,24 @@ def _widening_world(angle: np.ndarray):
     return run_at
 
 
+def _baseline(believed: WearHistory, obs: Observations) -> Fit:
+    """The believed run fitted with its angle offset alone."""
+    return fit("baseline", Candidate("baseline", (believed,)), obs, [np.zeros(1)],
+               np.array([(-30.0, 30.0)]))
+
+
+def _friction_grid(run_at, obs: Observations) -> tuple[Fit, Candidate]:
+    """The believed model at mu = 0.1 fitted to ``obs``, and friction's runs on its grid."""
+    grid = (0.02, 0.05, 0.1, 0.2, 0.3, 0.4)
+    return _baseline(run_at(0.1), obs), Candidate("friction", tuple(map(run_at, grid)), grid)
+
+
 def test_a_grid_fit_refined_with_the_run_at_its_value_lands_on_the_truth():
     angle = np.linspace(0.0, 2.0 * math.pi, 36, endpoint=False)
     run_at = _widening_world(angle)
     obs = _observed(run_at(0.14))
     settings = JointDiagnoseSettings()
-    baseline = fit("baseline", Candidate("baseline", (run_at(0.1),)), obs, [np.zeros(1)],
-                   np.array([(-30.0, 30.0)]))
-    grid = (0.02, 0.05, 0.1, 0.2, 0.3, 0.4)
-    friction = Candidate("friction", tuple(run_at(mu) for mu in grid), grid)
+    baseline, friction = _friction_grid(run_at, obs)
     asked = []
 
     def run_of(candidate: Candidate, fitted: Fit) -> WearHistory:
@@ -285,10 +293,7 @@ def test_a_grid_fit_the_runs_leave_between_them_is_taken_on_the_best_run_made():
         return smooth(mu + 0.01 * math.sin(2.0 * math.pi * mu / 0.004), k_scale)
 
     obs = _observed(run_at(0.14))
-    baseline = fit("baseline", Candidate("baseline", (run_at(0.1),)), obs, [np.zeros(1)],
-                   np.array([(-30.0, 30.0)]))
-    grid = (0.02, 0.05, 0.1, 0.2, 0.3, 0.4)
-    friction = Candidate("friction", tuple(run_at(mu) for mu in grid), grid)
+    baseline, friction = _friction_grid(run_at, obs)
     made = []
 
     def run_of(candidate: Candidate, fitted: Fit) -> WearHistory:
@@ -326,7 +331,7 @@ def test_a_k_level_refined_on_the_run_at_its_level_fits_as_that_run():
     run_at = _blocky_world(angle)
     obs = _observed(run_at(1.6))
     believed = Candidate("wear_coefficient", (run_at(1.0),))
-    baseline = fit("baseline", believed, obs, [np.zeros(1)], np.array([(-30.0, 30.0)]))
+    baseline = _baseline(believed.runs[0], obs)
     settings = JointDiagnoseSettings()
     asked = []
 
@@ -382,8 +387,7 @@ def test_the_first_accepted_cause_whose_full_run_holds_up_is_named(monkeypatch,
     is) or at 1.5 x (the data: named)."""
     config, base, obs = _k_level_world(monkeypatch, 1.5, friction_rate_factor)
     settings = JointDiagnoseSettings()
-    baseline = fit("baseline", Candidate("baseline", (base,)), obs, [np.zeros(1)],
-                   np.array([(-30.0, 30.0)]))
+    baseline = _baseline(base, obs)
     fits = {"friction": _fitted("friction", 1.0, friction_coefficient=0.3),
             "wear_coefficient": _fitted("wear_coefficient", 1.5)}
     causes, extended, final, depth, not_confirmed = _confirm(
@@ -406,8 +410,7 @@ def test_the_first_accepted_cause_whose_full_run_holds_up_is_named(monkeypatch,
 
 def test_no_cause_is_named_when_no_full_run_holds_up(monkeypatch):
     config, base, obs = _k_level_world(monkeypatch, 1.5, 0.9)
-    baseline = fit("baseline", Candidate("baseline", (base,)), obs, [np.zeros(1)],
-                   np.array([(-30.0, 30.0)]))
+    baseline = _baseline(base, obs)
     fits = {"friction": _fitted("friction", 1.0, friction_coefficient=0.3)}
     causes, extended, final, depth, not_confirmed = _confirm(
         config, ["friction"], fits, baseline, obs, JointDiagnoseSettings())
