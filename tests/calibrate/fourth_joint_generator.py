@@ -1,0 +1,721 @@
+"""A fourth, separately designed generator of "measured" joint-wear data with a hidden cause.
+
+Each data set is the wear of the rod-slider clearance joint of the seed paper's slider-crank as a
+lab would measure it, made by this workbench's own forward model (:mod:`fewear.calibrate.
+joint_forward`, :mod:`fewear.pipeline`) with one hidden departure from the model the user
+believes, then passed through a model of the lab's instrument. The generator was written without
+reading the diagnosis it is meant to test; its laws, ranges and instrument differ on purpose from
+those of the earlier generators (see "Not used here" below).
+
+Believed model (``believed.toml``, merged onto the embedded defaults)
+--------------------------------------------------------------------
+Slider-crank: crank 0.1 m at 1200 rpm, rigid connecting rod 0.34 m (steel, 18 mm x 5 mm),
+slider 0.5 kg; revolute clearance joint between rod and slider, bore radius 10 mm, pin radius
+9.5 mm (radial clearance c = 0.5 mm), joint width 18 mm, bronze bushing (E = 90 GPa, nu = 0.32)
+on a 42CrMo pin, Lankarani-Nikravesh contact (c_e = 0.9), Coulomb friction mu = 0.1 (Ambrosio's
+regularisation) in the dynamics and in the FE contact; FE bushing on a coarse O-grid (48
+elements round the bore, nodes every 3.75 deg, 4 across the wall); Archard wear with the default
+RBF wear coefficient k(p, v); 40 load steps per cycle, adaptive extrapolation of the blocks.
+The believed run is ``simulate_wear(model_config(config, "rigid", N))``.
+
+Hidden causes (``CAUSES``; one per data set; ``params`` of :class:`DataSet` holds the drawn values)
+--------------------------------------------------------------------------------------------
+``none``
+    The believed model itself.
+``wear_coefficient``
+    The bushing's bronze is off its specified hardness (a casting or heat-treatment scatter):
+    its Brinell hardness H is drawn uniform in ``SOFT_HB`` = [150, 195] HB (probability 1/2) or
+    in ``HARD_HB`` = [285, 370] HB, against the believed 235 HB. Archard's dimensionless
+    coefficient K is a property of the pair and unchanged, so k = K / H scales everywhere by
+    ``k_factor`` = 235 / H (1.205-1.567 soft, 0.635-0.825 hard): the RBF network's bias
+    (``[wear] rbf.tail[0]``, ln k) is shifted by ln(k_factor) (a config change; the pressure and
+    speed dependence of k is kept).
+``flexible_link``
+    The real rod is an elastic steel continuum, not a rigid body: the ANCF rod
+    (``rod_models = ["flexible"]``) with ``rod_elements`` = 6 (finer than the workbench's
+    default 4: the continuum), its structural damping unknown, ``rod_damping_s`` log-uniform in
+    [1.0e-5, 1.2e-4] s (0.3 % to 4 % of critical on the first bending mode, 102 Hz), and the
+    steel's modulus at the scatter of steel grades, ``rod_youngs_modulus_Pa`` uniform in
+    [195, 215] GPa. Section (18 mm x 5 mm), density and length as believed.
+``friction``
+    The joint's grease is lost over the run and it turns to dry bronze on steel: the friction
+    coefficient rises with the crank cycles N as
+
+        mu(N) = mu_dry - (mu_dry - mu_0) exp(-N / N_g),
+
+    ``mu_0`` uniform in [0.085, 0.115] (greased at assembly, about the believed 0.1),
+    ``mu_dry`` uniform in [0.24, 0.38] (dry bronze on steel), ``N_g`` log-uniform in
+    [4000, 15000] cycles. The wear loop evaluates the joint's state at the start of every
+    block (its dynamics and contact stand for the whole block), so every block runs at mu(N_j)
+    of its first cycle N_j, in the dynamics and in the FE contact; the blocks are chosen by the
+    believed loop's own adaptive rule (no extra block ends: cutting the blocks alone moves this
+    coarse model's bore by about 20 um RMS at 25,000 cycles). At each block the bushing's FE
+    model is rebuilt with the new mu and restored onto the worn mesh, as ``fewear run
+    --resume`` does (with mu held constant this reproduces the believed run exactly); the
+    mechanism continues from its last state (warm start).
+``impact_wear``
+    Every impact of the pin on the bore removes material by the cube of its impact speed, the
+    velocity exponent of erosion by impacts that fatigue the surface into platelets (Hutchings,
+    Wear 70 (1981) 269-281): impact i (a contact episode the dynamics classifies as ``impact``)
+    of normal approach speed v_i removes
+
+        V_i = V_ref (v_i / v_ref)^3,     v_ref = 0.2 m/s,
+
+    ``V_ref`` log-uniform in [3.0e-15, 1.0e-14] m^3 (the loop's impacts have speeds of 0.03 to
+    1.3 m/s; on the unworn bore the impacts of a cycle wear 0.7 % to 2.4 % of its sliding wear,
+    on the pocketed bores of later blocks, where impacts at up to 1.3 m/s come every cycle, as
+    much as the sliding). v_i is the largest rate of penetration
+    over the episode (its start; finite differences on the history), the impact's place the
+    direction of the eccentricity at its deepest penetration. V_i is spread across the joint
+    width w and round the bore like the Hertz pressure of the episode's peak force F_i on the
+    conformal pin-bore pair: a semi-ellipse in angle of half-width a_i = b_i / R_b,
+    b_i = sqrt(4 F_i R* / (pi w E*)), 1/R* = 1/R_p - 1/R_b, 1/E* = (1 - nu_p^2)/E_p +
+    (1 - nu_b^2)/E_b (Johnson, Contact Mechanics, 1985, sec. 5.2); each bore node gets the mean
+    of the semi-ellipse over its 3.75 deg cell, so the depth per cycle carries the volume exactly:
+    h(theta) = sum_i V_i g_i(theta) / (w R_b). This depth per cycle is computed from each
+    block's recorded cycle on the current worn bore and added to the block's sliding wear (the
+    loop's block step carries it as a given source, smoothed like the sliding wear): the pockets
+    the impacts dig change the later impacts (a strong feedback: the effect's size is far from
+    proportional to V_ref). The loop is :func:`layered_run`, which repeats
+    :func:`fewear.pipeline.run_block` step by step with this source added.
+``running_in``
+    The pin's grinding marks run in: the harder counterface's asperities abrade the bronze
+    (two-body abrasion, k grows with the square of the counterface's excess roughness), and the
+    excess roughness is blunted by second-order kinetics, rho(N) = rho_0 / (1 + N / N_r). The
+    whole pin turns against the bore every cycle, so the wear multiplier is one for the whole
+    bore, a function of the crank cycles:
+
+        m(N) = 1 + (r - 1) / (1 + N / N_r)^2,
+
+    ``r`` (the initial multiplier) log-uniform in [2.5, 6], ``N_r`` log-uniform in [500, 1600]
+    cycles; m -> 1 (the believed rate). With a bore-wide multiplier the worn bore follows the
+    believed model's path at the warped cycle count N_eff(N) = integral_0^N m dN' =
+    N + (r - 1) N_r N / (N + N_r) (the rate of the believed loop depends only on the worn bore:
+    dh/dN = m(N) f(h)), so the truth is the believed run read at N_eff(N); the extra wear
+    saturates at (r - 1) N_r equivalent cycles (750 to 8000).
+
+Instrument (:class:`LabPlan`, :func:`measure_profiles`, :func:`measure_max_depths`)
+--------------------------------------------------------------------------------
+At each profile count the joint is stopped and a silicone replica of the bore is cast as a split
+sleeve keyed to a mark on the slider; the replica is scanned with a confocal line sensor along 7
+lines across the width, every 1.5 deg (in the instrument's angle phi, from the replica's key),
+and the lines are averaged; the software subtracts the scan of the unworn bore taken at assembly
+and applies the ISO 16610-21 Gaussian profile filter with the cutoff lambda_c = 0.8 mm of arc
+(4.58 deg) to remove the roughness. The model of one profile:
+
+    y(phi_k) = (1 - s) h_f(phi_k + theta_0 + j) + b(phi_k) + c cos(phi_k - psi)
+               + d (u_k - 1/2) + e_k   (+ bubbles), quantised to 0.05 um,
+
+- h_f: the true wear depth (periodic linear between the bore nodes) filtered by the Gaussian
+  weight function s(x) = exp(-pi (x / (alpha lambda_c))^2) / (alpha lambda_c),
+  alpha = sqrt(ln 2 / pi) (50 % transmission at lambda_c), computed on a 0.25 deg grid;
+- theta_0: the bushing-frame angle of the instrument's origin (the key), uniform in
+  [-12, 12] deg, the same for every replica; j: each replica's seating error on its key,
+  normal with 0.2 deg standard deviation (35 um of arc: on the steep flanks of a worn pocket
+  this is the largest error, 1-3 um RMS over a late profile);
+- s: the replica's linear shrinkage, uniform in [0.2 %, 0.6 %], the same for every replica;
+- b(phi_k): the unworn reference scan's own noise, white with 0.2 um standard deviation, the
+  SAME in every profile (each is the difference to that one scan);
+- c cos(phi_k - psi): the centring residual of re-mounting the replica, c normal with 0.5 um
+  standard deviation, psi uniform; d (u_k - 1/2): the sensor's thermal drift along the scan
+  (u_k in [0, 1] the scan position), d normal with 0.5 um standard deviation;
+- e_k: white noise of the averaged lines, 0.3 um standard deviation; bubbles: a Poisson number
+  (mean 1) of single readings lowered by uniform [1, 4] um (an air bubble on the replica's
+  surface reads as a bump of the bore);
+- coverage: the scan starts 5 deg past the replica's parting line (at instrument angle
+  ``parting_deg``, uniform, the same for every replica) and ends 5 deg before it (a 10 deg gap);
+  each replica is torn over a sector of uniform [4, 12] deg with probability 0.35 (no data).
+
+Profile counts: ``n`` uniform in {4, 5, 6}; first count uniform in [1500, 2600], last in
+[19000, 25000], the others evenly spaced in log between them with a log-jitter of +-0.08 of the
+spacing, rounded to 10 cycles. Maximum depths: 3 readings at the geometric means of randomly
+chosen consecutive profile counts plus one at the last profile count, where only the deepest
+point of a quick replica is read with a focus-variation microscope:
+y = (1 - s) max h_f + N(0, 0.6 um), quantised to 0.1 um. ``noise=False`` drops the seating
+error, b, c, d, e, the bubbles and the quantisation, and keeps everything else (theta_0, s, the
+filter, the coverage and the counts): the same data set without the instrument's noise.
+
+Neglected
+---------
+The replica's compliance and the confocal spot's footprint (40 um, 0.23 deg, far below the
+filter's cutoff); wear along the width (the plane-strain FE model is uniform along it, so the
+seven lines see one profile); any change of the impact speed distribution within a block beyond
+the block's recorded cycle; the pin's wear; the hardness' effect on anything but k; in the
+friction cause the rise of mu within a block (each block runs at mu of its first cycle); in the
+impact law any threshold speed (every impact wears) and the worn bore's wider Hertz contact
+(nominal radii).
+
+Not used here (earlier generators): running-in exp(-S/s0) or 1/(1 + S/s0) in sliding distance or
+a smoothstep in cycles; impact wear on the hysteresis energy, the normal impulse or the squared
+Hertz-pressure excess; a flexible rod with only its modulus scaled or of another section; a
+constant friction uniform in [0.02, 0.07] or [0.15, 0.28]; a k level log-uniform in about
+x0.45-0.72 or x1.4-2.2; a roundness tester, a CMM with bore gauge, a stylus profilometer. The
+workbench's own ``[wear]`` extension and impact-wear keys are not used to make the truth.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+
+from fewear.calibrate.joint_forward import WearHistory, model_config, simulate_wear
+from fewear.calibrate.joint_measured import write_max_wear
+
+CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in", "none")
+BELIEVED_TOML = """\
+# The model the user believes (merged onto fewear's embedded defaults).
+[mesh]
+bore_element_size_m = 0.0013089969389957472   # 2*pi*0.010/48*(1+1e-9)
+radial_element_count = 4
+[wear_loop]
+rod_models = ["rigid"]
+load_steps_per_cycle = 40
+"""
+BELIEVED_HB = 235.0
+"""The bushing's specified Brinell hardness (CuZn25Al6Fe3Mn3, seed Table 1)."""
+SOFT_HB = (150.0, 195.0)
+HARD_HB = (285.0, 370.0)
+ROD_ELEMENTS = 6
+ROD_DAMPING_S = (1.0e-5, 1.2e-4)
+ROD_MODULUS_PA = (195.0e9, 215.0e9)
+FRICTION_START = (0.085, 0.115)
+FRICTION_DRY = (0.24, 0.38)
+FRICTION_CYCLES = (4000.0, 15000.0)
+IMPACT_REFERENCE_SPEED_M_S = 0.2
+IMPACT_VOLUME_M3 = (3.0e-15, 1.0e-14)
+RUNNING_IN_RATIO = (2.5, 6.0)
+RUNNING_IN_CYCLES = (500.0, 1600.0)
+
+ANGLE_STEP_DEG = 1.5
+FILTER_CUTOFF_M = 0.8e-3
+"""ISO 16610-21 Gaussian filter cutoff lambda_c, as arc length on the bore (m)."""
+FINE_GRID_DEG = 0.25
+ORIGIN_DEG = 12.0
+SEATING_DEG = 0.2
+SHRINKAGE = (0.002, 0.006)
+REFERENCE_NOISE_M = 0.2e-6
+CENTRING_M = 0.5e-6
+DRIFT_M = 0.5e-6
+WHITE_NOISE_M = 0.3e-6
+BUBBLES_PER_PROFILE = 1.0
+BUBBLE_DEPTH_M = (1.0e-6, 4.0e-6)
+PROFILE_QUANTUM_M = 0.05e-6
+PARTING_GAP_DEG = 10.0
+TEAR_PROBABILITY = 0.35
+TEAR_DEG = (4.0, 12.0)
+MAX_DEPTH_NOISE_M = 0.6e-6
+MAX_DEPTH_QUANTUM_M = 0.1e-6
+PROFILE_COUNTS = (4, 5, 6)
+FIRST_COUNT = (1500, 2600)
+LAST_COUNT = (19000, 25000)
+MAX_DEPTH_READINGS = 3
+
+
+@dataclass(frozen=True)
+class LabPlan:
+    """The lab's measurement plan and the instrument's fixed (per data set) unknowns.
+
+    ``profile_cycles``: the replica counts (increasing); ``max_wear_cycles``: the counts of the
+    maximum-depth readings (increasing); ``origin_deg``: theta_0, the bushing-frame angle of the
+    instrument's origin (deg); ``shrinkage``: the replica's linear shrinkage s (-);
+    ``parting_deg``: the instrument angle of the replica's parting line (deg); ``tears``: per
+    profile, ``(start_deg, width_deg)`` of the torn sector or None."""
+
+    profile_cycles: tuple[int, ...]
+    max_wear_cycles: tuple[int, ...]
+    origin_deg: float
+    shrinkage: float
+    parting_deg: float
+    tears: tuple[tuple[float, float] | None, ...]
+
+    @property
+    def last_cycles(self) -> int:
+        return max(self.profile_cycles[-1], self.max_wear_cycles[-1])
+
+
+@dataclass(frozen=True)
+class DataSet:
+    """One written data set: its hidden ``cause`` and ``params`` (the truth), the files, and the
+    ``lab`` plan (:class:`LabPlan`)."""
+
+    cause: str
+    seed: int
+    believed_toml: Path
+    profiles_csv: Path
+    max_wear_csv: Path
+    params: dict
+    lab: LabPlan
+
+
+def data_set_seed(cause: str, index: int) -> int:
+    """The seed of data set ``index`` (0-99) of ``cause``: 9000 + 100 * position + index."""
+    if cause not in CAUSES:
+        raise ValueError(f"unknown cause {cause!r}; expected one of {', '.join(CAUSES)}")
+    if not (isinstance(index, (int, np.integer)) and 0 <= index <= 99):
+        raise ValueError(f"data set index {index!r}: expected a whole number in 0-99")
+    return 9000 + 100 * CAUSES.index(cause) + int(index)
+
+
+def _streams(seed: int) -> tuple[np.random.Generator, ...]:
+    """Independent random streams of a seed: the truth, the lab plan, the instrument's noise."""
+    return tuple(np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(3))
+
+
+def _log_uniform(rng: np.random.Generator, bounds: tuple[float, float]) -> float:
+    return float(math.exp(rng.uniform(math.log(bounds[0]), math.log(bounds[1]))))
+
+
+# --- the hidden causes' laws ------------------------------------------------------------------
+
+def draw_truth(cause: str, rng: np.random.Generator) -> dict:
+    """The hidden truth's parameters of ``cause`` (module doc), drawn from ``rng``."""
+    if cause == "none":
+        return {"law": "believed model"}
+    if cause == "wear_coefficient":
+        soft = bool(rng.uniform() < 0.5)
+        hardness = float(rng.uniform(*(SOFT_HB if soft else HARD_HB)))
+        return {"law": "k = K / H, bronze off its hardness", "hardness_HB": hardness,
+                "k_factor": BELIEVED_HB / hardness}
+    if cause == "flexible_link":
+        return {"law": "ANCF steel rod", "rod_elements": float(ROD_ELEMENTS),
+                "rod_damping_s": _log_uniform(rng, ROD_DAMPING_S),
+                "rod_youngs_modulus_Pa": float(rng.uniform(*ROD_MODULUS_PA))}
+    if cause == "friction":
+        return {"law": "mu(N) = mu_dry - (mu_dry - mu_0) exp(-N/N_g)",
+                "mu_0": float(rng.uniform(*FRICTION_START)),
+                "mu_dry": float(rng.uniform(*FRICTION_DRY)),
+                "n_g_cycles": _log_uniform(rng, FRICTION_CYCLES)}
+    if cause == "impact_wear":
+        return {"law": "V_i = V_ref (v_i / v_ref)^3 per impact, Hertz-spread",
+                "v_ref_m_s": IMPACT_REFERENCE_SPEED_M_S,
+                "volume_at_v_ref_m3": _log_uniform(rng, IMPACT_VOLUME_M3)}
+    if cause == "running_in":
+        return {"law": "m(N) = 1 + (r - 1) / (1 + N/N_r)^2",
+                "ratio": _log_uniform(rng, RUNNING_IN_RATIO),
+                "n_r_cycles": _log_uniform(rng, RUNNING_IN_CYCLES)}
+    raise ValueError(f"unknown cause {cause!r}; expected one of {', '.join(CAUSES)}")
+
+
+def running_in_multiplier(cycles, ratio: float, n_r_cycles: float):
+    """m(N) = 1 + (r - 1) / (1 + N / N_r)^2 (-): the bore-wide wear multiplier of running in."""
+    return 1.0 + (ratio - 1.0) / (1.0 + np.asarray(cycles, dtype=float) / n_r_cycles) ** 2
+
+
+def running_in_cycles(cycles, ratio: float, n_r_cycles: float):
+    """N_eff(N) = integral_0^N m dN' = N + (r - 1) N_r N / (N + N_r): the believed model's cycle
+    count at which its bore equals the running-in truth's after N cycles."""
+    n = np.asarray(cycles, dtype=float)
+    return n + (ratio - 1.0) * n_r_cycles * n / (n + n_r_cycles)
+
+
+def friction_coefficient(cycles, mu_0: float, mu_dry: float, n_g_cycles: float):
+    """mu(N) = mu_dry - (mu_dry - mu_0) exp(-N / N_g) (-)."""
+    return mu_dry - (mu_dry - mu_0) * np.exp(-np.asarray(cycles, dtype=float) / n_g_cycles)
+
+
+def hertz_half_width_m(force_N: float, config: dict) -> float:
+    """b = sqrt(4 F R* / (pi w E*)) (m): the half-width of the Hertz line contact of the pin in
+    the bore under ``force_N`` (1/R* = 1/R_p - 1/R_b, conformal; Johnson 1985, sec. 5.2)."""
+    pin, bushing = config["pin"], config["bushing"]
+    r_star = 1.0 / (1.0 / pin["radius_m"] - 1.0 / bushing["inner_radius_m"])
+    e_star = 1.0 / ((1.0 - pin["poisson_ratio"] ** 2) / pin["youngs_modulus_Pa"]
+                    + (1.0 - bushing["poisson_ratio"] ** 2) / bushing["youngs_modulus_Pa"])
+    return math.sqrt(4.0 * max(force_N, 0.0) * r_star / (math.pi * bushing["width_m"] * e_star))
+
+
+def semi_ellipse_cell_means(angle_rad: np.ndarray, centre_rad: float,
+                            half_width_rad: float) -> np.ndarray:
+    """The mean over each node's cell (width 2 pi / n, nodes equally spaced) of the unit-area
+    semi-ellipse g(x) = 2 sqrt(a^2 - x^2) / (pi a^2) centred at ``centre_rad`` (1/rad): the
+    density that spreads a volume round the bore like a Hertz pressure; sum * cell = 1."""
+    n = angle_rad.size
+    cell = 2.0 * math.pi / n
+    offset = np.mod(angle_rad - centre_rad + math.pi, 2.0 * math.pi) - math.pi
+    a = max(half_width_rad, 1e-12)
+
+    def area_below(x):  # G(x): integral of g from -inf to x
+        t = np.clip(x / a, -1.0, 1.0)
+        return 0.5 + (t * np.sqrt(1.0 - t * t) + np.arcsin(t)) / math.pi
+
+    return (area_below(offset + 0.5 * cell) - area_below(offset - 0.5 * cell)) / cell
+
+
+@dataclass(frozen=True)
+class Impact:
+    """One impact of a recorded cycle: approach speed (m/s), bore angle (rad), peak force (N)."""
+
+    speed_m_s: float
+    angle_rad: float
+    peak_force_N: float
+
+
+def impacts_of(history) -> list[Impact]:
+    """The impacts (``impact`` mode episodes) of a :class:`fewear.mbd.history.JointHistory`:
+    speed = the largest rate of penetration from the step before the episode to its end (finite
+    differences), place = the eccentricity's direction at the deepest penetration."""
+    t, penetration = history.time_s, history.penetration_m
+    found = []
+    for first, last in history.impact_episodes():
+        rows = slice(max(first - 1, 0), last + 1)
+        rate = np.diff(penetration[rows]) / np.diff(t[rows])
+        deepest = first + int(np.argmax(penetration[first:last + 1]))
+        e = history.eccentricity_m[deepest]
+        found.append(Impact(float(max(rate.max(initial=0.0), 0.0)),
+                            float(math.atan2(e[1], e[0])),
+                            float(history.normal_force_N[first:last + 1].max())))
+    return found
+
+
+def impact_depth_per_cycle_m(impacts: list[Impact], angle_rad: np.ndarray, config: dict,
+                             volume_at_v_ref_m3: float,
+                             v_ref_m_s: float = IMPACT_REFERENCE_SPEED_M_S) -> np.ndarray:
+    """h(theta) = sum_i V_ref (v_i / v_ref)^3 g_i(theta) / (w R_b) at the nodes (m per recorded
+    set of impacts): each impact's volume spread like its Hertz pressure (module doc)."""
+    bushing = config["bushing"]
+    depth = np.zeros(angle_rad.size)
+    for impact in impacts:
+        volume = volume_at_v_ref_m3 * (impact.speed_m_s / v_ref_m_s) ** 3
+        half_width = hertz_half_width_m(impact.peak_force_N, config) / bushing["inner_radius_m"]
+        depth += volume * semi_ellipse_cell_means(angle_rad, impact.angle_rad, half_width)
+    return depth / (bushing["width_m"] * bushing["inner_radius_m"])
+
+
+# --- forward runs -------------------------------------------------------------------------------
+
+_LAYERED: dict[str, WearHistory] = {}
+
+
+def layered_run(config: dict, last_cycles: int, friction: dict | None = None,
+                impact_volume_m3: float = 0.0) -> WearHistory:
+    """The wear loop of the config's rod model up to ``last_cycles``, block by block as
+    :func:`fewear.pipeline.run_block`, with a hidden effect layered on it:
+
+    - ``friction`` (``mu_0``, ``mu_dry``, ``n_g_cycles``): every block runs at the friction
+      coefficient mu(N_j) of :func:`friction_coefficient` at its first cycle N_j, in the dynamics
+      and in the FE contact (the bushing's FE model is rebuilt with it and restored onto the worn
+      mesh, as ``fewear run --resume`` does; the mechanism continues from its last state);
+    - ``impact_volume_m3`` > 0: V_ref of the impact wear of :func:`impact_depth_per_cycle_m`,
+      added to every block's depth per cycle.
+
+    With neither, it is the believed loop (:func:`fewear.calibrate.joint_forward.simulate_wear`)
+    block for block. Memoised."""
+    key = json.dumps([config, last_cycles, friction, impact_volume_m3], sort_keys=True,
+                     default=str)
+    if key in _LAYERED:
+        return _LAYERED[key]
+    from mpi4py import MPI
+
+    from fewear.contact.worn_bushing import WornBushing
+    from fewear.mesh.snapshot import MeshSnapshot
+    from fewear.pipeline import new_case, run_block, run_inputs_from_config
+
+    comm = MPI.COMM_WORLD
+    start = time.perf_counter()
+    rod = config["wear_loop"]["rod_models"][0]
+    block_config = model_config(config, rod, last_cycles)
+    inputs = run_inputs_from_config(block_config)
+    bushing = WornBushing(inputs.contact, comm)
+    case = new_case(bushing)
+    while case.state.cycles < last_cycles:
+        if friction is not None:
+            block_config["joint"]["friction_coefficient"] = float(friction_coefficient(
+                case.state.cycles, friction["mu_0"], friction["mu_dry"], friction["n_g_cycles"]))
+            inputs = run_inputs_from_config(block_config)
+            if case.records:
+                bushing = WornBushing(inputs.contact, comm)
+                bushing.restore(case.meshed_xy_m,
+                                MeshSnapshot(case.node_ids, case.snapshots[-1], case.cells),
+                                case.ale_moves, case.remeshes)
+        if impact_volume_m3 > 0.0:
+            _impact_block(rod, inputs, bushing, case, block_config, impact_volume_m3)
+        else:
+            run_block(rod, inputs, bushing, case)
+    state = case.state
+    history = WearHistory(
+        state.angle_rad.copy(), np.array([0.0] + [float(r.cycles) for r in case.records]),
+        np.vstack([np.zeros_like(state.depth_m)] + [r.depth_m for r in case.records]),
+        np.zeros_like(state.depth_m), "", time.perf_counter() - start)
+    _LAYERED[key] = history
+    return history
+
+
+def _impact_block(rod: str, inputs, bushing, case, config: dict, volume_m3: float) -> None:
+    """One block of :func:`fewear.pipeline.run_block` (dynamics, load steps, contact, Archard,
+    block step, geometry update) with the impact wear of the block's recorded cycles added to
+    the block's depth per cycle."""
+    from fewear.mbd.slider_crank import simulate
+    from fewear.pipeline import (
+        BlockRecord,
+        cycle_sliding,
+        cycle_wear,
+        load_steps,
+        smoothed_block_wear,
+    )
+    from fewear.wear.extrapolation import extrapolate_block
+    from fewear.wear.state import WearState
+
+    loop, state, geometry = inputs.loop, case.state, inputs.contact.geometry
+    crank = replace(inputs.dynamics.crank, rod=rod, joint="clearance",
+                    recorded_cycles=loop.recorded_cycles_per_block,
+                    settling_cycles=(inputs.dynamics.crank.settling_cycles
+                                     if case.mechanism is None else loop.warm_settling_cycles))
+    joint = replace(inputs.dynamics.joint,
+                    profile=state.clearance_profile(geometry.inner_radius_m,
+                                                    geometry.pin_radius_m))
+    history, _, case.mechanism = simulate(replace(inputs.dynamics, crank=crank, joint=joint),
+                                          start=case.mechanism)
+    steps = load_steps(history, loop.load_steps_per_cycle * loop.recorded_cycles_per_block,
+                       inputs.dynamics.joint.law)
+    wear = cycle_wear(bushing, steps, inputs.wear_coefficient, loop.friction_in_contact,
+                      implicit=loop.implicit_wear_step)
+    per_cycle = cycle_sliding(wear, steps, loop.recorded_cycles_per_block,
+                              inputs.contact.contact.friction_coefficient)
+    impact = impact_depth_per_cycle_m(impacts_of(history), state.angle_rad, config, volume_m3)
+    per_cycle = replace(per_cycle, impact_depth_m=impact / loop.recorded_cycles_per_block)
+    cycles, increment, sliding = extrapolate_block(
+        loop.extrapolation,
+        lambda cycles: smoothed_block_wear(per_cycle, state, inputs.extension, cycles,
+                                           math.radians(loop.wear_smoothing_width_deg)),
+        bushing.element_height_m, loop.total_cycles - state.cycles)
+    worn = WearState(state.angle_rad, state.depth_m + increment, sliding,
+                     state.cycles + cycles, state.blocks + 1)
+    worn.checked_against_wall(geometry.inner_radius_m, geometry.outer_radius_m,
+                              loop.max_wall_fraction)
+    bushing.apply_wear(worn, increment)
+    snapshot = bushing.snapshot()
+    case.state = worn
+    case.node_ids, case.cells, case.meshed_xy_m = (snapshot.node_ids, snapshot.cells,
+                                                   bushing.meshed_xy_m)
+    case.snapshots.append(snapshot.xy_m)
+    case.records.append(BlockRecord(
+        worn.cycles, cycles, worn.depth_m.copy(), history.peak_contact_force_N, history.impacts,
+        float(wear.pressure_Pa.max()), float((per_cycle.depth_m + impact).max())))
+
+
+def truth_config(cause: str, params: dict, believed: dict) -> dict:
+    """The believed config with the config-level part of the hidden cause (the wear
+    coefficient's level, the flexible rod); the other causes keep it as believed."""
+    config = copy.deepcopy(believed)
+    if cause == "wear_coefficient":
+        wear = config["wear"]
+        if wear["coefficient_model"] == "rbf":
+            wear["rbf"]["tail"][0] += math.log(params["k_factor"])
+        else:
+            wear["constant_k_m2_N"] *= params["k_factor"]
+    elif cause == "flexible_link":
+        config["wear_loop"]["rod_models"] = ["flexible"]
+        mechanism = config["mechanism"]
+        mechanism["rod_elements"] = int(params["rod_elements"])
+        mechanism["rod_damping_s"] = float(params["rod_damping_s"])
+        mechanism["rod_youngs_modulus_Pa"] = float(params["rod_youngs_modulus_Pa"])
+    return config
+
+
+def believed_depth(believed: dict,
+                   last_cycles: int) -> Callable[[float], tuple[np.ndarray, np.ndarray]]:
+    """The believed model's bore up to ``last_cycles``: a function cycles -> (node angles (rad),
+    nodal depth (m))."""
+    run = simulate_wear(model_config(believed, believed["wear_loop"]["rod_models"][0],
+                                     int(last_cycles)))
+    return lambda cycles: (run.angle_rad, run.nodal_depth_m(cycles))
+
+
+def true_depth(cause: str, params: dict, believed: dict,
+               last_cycles: int) -> Callable[[float], tuple[np.ndarray, np.ndarray]]:
+    """The hidden truth's worn bore up to ``last_cycles``: a function cycles -> (node angles
+    (rad), nodal depth (m)). Runs the forward model once (memoised)."""
+    rod = believed["wear_loop"]["rod_models"][0]
+    if cause == "running_in":
+        ratio, n_r = params["ratio"], params["n_r_cycles"]
+        total = int(math.ceil(float(running_in_cycles(last_cycles, ratio, n_r))))
+        run = simulate_wear(model_config(believed, rod, total))
+        return lambda cycles: (run.angle_rad,
+                               run.nodal_depth_m(float(running_in_cycles(cycles, ratio, n_r))))
+    if cause == "friction":
+        run = layered_run(believed, int(last_cycles), {
+            key: params[key] for key in ("mu_0", "mu_dry", "n_g_cycles")})
+    elif cause == "impact_wear":
+        run = layered_run(believed, int(last_cycles),
+                          impact_volume_m3=params["volume_at_v_ref_m3"])
+    else:
+        config = truth_config(cause, params, believed)
+        run = simulate_wear(model_config(config, config["wear_loop"]["rod_models"][0],
+                                         int(last_cycles)))
+    return lambda cycles: (run.angle_rad, run.nodal_depth_m(cycles))
+
+
+# --- the lab ----------------------------------------------------------------------------------
+
+def draw_lab(rng: np.random.Generator) -> LabPlan:
+    """The measurement plan and the instrument's fixed unknowns (module doc)."""
+    n = int(rng.choice(PROFILE_COUNTS))
+    first = float(rng.uniform(*FIRST_COUNT))
+    last = float(rng.uniform(*LAST_COUNT))
+    spacing = (math.log(last) - math.log(first)) / (n - 1)
+    logs = math.log(first) + spacing * np.arange(n)
+    logs[1:-1] += rng.uniform(-0.08, 0.08, n - 2) * spacing
+    profile = tuple(int(10 * round(math.exp(value) / 10)) for value in logs)
+    pairs = rng.choice(n - 1, size=min(MAX_DEPTH_READINGS, n - 1), replace=False)
+    extra = sorted({int(10 * round(math.sqrt(profile[i] * profile[i + 1]) / 10)) for i in pairs})
+    tears = tuple((float(rng.uniform(0.0, 360.0)), float(rng.uniform(*TEAR_DEG)))
+                  if rng.uniform() < TEAR_PROBABILITY else None for _ in range(n))
+    return LabPlan(profile, tuple(extra) + (profile[-1],),
+                   float(rng.uniform(-ORIGIN_DEG, ORIGIN_DEG)), float(rng.uniform(*SHRINKAGE)),
+                   float(rng.uniform(0.0, 360.0)), tears)
+
+
+SCAN_POINTS = int(math.floor((360.0 - PARTING_GAP_DEG) / ANGLE_STEP_DEG + 1e-9)) + 1
+"""Readings of a scan without tears (every ``ANGLE_STEP_DEG`` over 360 deg less the gap)."""
+
+
+def scan_positions(lab: LabPlan, profile: int) -> np.ndarray:
+    """The scan positions k (0 .. ``SCAN_POINTS`` - 1) read in profile ``profile``: all but those
+    in its torn sector."""
+    positions = np.arange(SCAN_POINTS)
+    tear = lab.tears[profile]
+    if tear is not None:
+        angles = lab.parting_deg + 0.5 * PARTING_GAP_DEG + ANGLE_STEP_DEG * positions
+        positions = positions[np.mod(angles - tear[0], 360.0) >= tear[1]]
+    return positions
+
+
+def scan_angles_deg(lab: LabPlan, positions: np.ndarray) -> np.ndarray:
+    """The instrument angles (deg, in [0, 360)) of scan positions k: 5 deg past the parting line
+    plus k ``ANGLE_STEP_DEG``."""
+    angles = np.round(np.mod(lab.parting_deg + 0.5 * PARTING_GAP_DEG
+                             + ANGLE_STEP_DEG * np.asarray(positions), 360.0), 6)
+    return np.where(angles >= 360.0, 0.0, angles)
+
+
+def gaussian_filter_weights(step_m: float, count: int, cutoff_m: float) -> np.ndarray:
+    """The ISO 16610-21 Gaussian weights s(x) = exp(-pi (x / (alpha lambda_c))^2) / (alpha
+    lambda_c), alpha = sqrt(ln 2 / pi), at the periodic offsets of ``count`` points ``step_m``
+    apart, normalised to sum 1 (the mean line passes a constant unchanged)."""
+    alpha = math.sqrt(math.log(2.0) / math.pi)
+    offset = step_m * np.minimum(np.arange(count), count - np.arange(count))
+    weights = np.exp(-math.pi * (offset / (alpha * cutoff_m)) ** 2)
+    return weights / weights.sum()
+
+
+def filtered_profile(angle_rad: np.ndarray, depth_m: np.ndarray,
+                     inner_radius_m: float) -> Callable[[np.ndarray], np.ndarray]:
+    """h_f: the nodal depth (periodic linear) filtered by the Gaussian profile filter (cutoff
+    ``FILTER_CUTOFF_M`` of arc) on a ``FINE_GRID_DEG`` grid; returns a function of the
+    bushing-frame angle (rad), periodic linear on that grid."""
+    count = int(round(360.0 / FINE_GRID_DEG))
+    grid = np.arange(count) * (2.0 * math.pi / count)
+    order = np.argsort(angle_rad)
+    nodes = np.append(angle_rad[order], angle_rad[order][0] + 2.0 * math.pi)
+    values = np.append(depth_m[order], depth_m[order][0])
+    fine = np.interp(np.mod(grid - nodes[0], 2.0 * math.pi) + nodes[0], nodes, values)
+    weights = gaussian_filter_weights(inner_radius_m * 2.0 * math.pi / count, count,
+                                      FILTER_CUTOFF_M)
+    smooth = np.real(np.fft.ifft(np.fft.fft(fine) * np.fft.fft(weights)))
+    closed = np.append(grid, 2.0 * math.pi)
+    smooth = np.append(smooth, smooth[0])
+    return lambda theta: np.interp(np.mod(theta, 2.0 * math.pi), closed, smooth)
+
+
+def measure_profiles(lab: LabPlan, truth: Callable[[float], tuple[np.ndarray, np.ndarray]],
+                     inner_radius_m: float, rng: np.random.Generator | None
+                     ) -> list[tuple[int, np.ndarray, np.ndarray]]:
+    """The replica profiles (module doc): per profile count, (cycles, instrument angles (deg),
+    measured depth (m)). ``rng`` None: without the instrument's noise."""
+    reference = (np.zeros(SCAN_POINTS) if rng is None  # the unworn scan, one for all
+                 else rng.normal(0.0, REFERENCE_NOISE_M, SCAN_POINTS))
+    profiles = []
+    for index, cycles in enumerate(lab.profile_cycles):
+        position = scan_positions(lab, index)
+        angle_deg = scan_angles_deg(lab, position)
+        h_f = filtered_profile(*truth(cycles), inner_radius_m)
+        seating = 0.0 if rng is None else rng.normal(0.0, SEATING_DEG)
+        depth = (1.0 - lab.shrinkage) * h_f(np.radians(angle_deg + lab.origin_deg + seating))
+        if rng is not None:
+            scan = position / (SCAN_POINTS - 1)
+            phase = rng.uniform(0.0, 2.0 * math.pi)
+            depth = (depth + reference[position]
+                     + rng.normal(0.0, CENTRING_M) * np.cos(np.radians(angle_deg) - phase)
+                     + rng.normal(0.0, DRIFT_M) * (scan - 0.5)
+                     + rng.normal(0.0, WHITE_NOISE_M, depth.size))
+            bubbles = min(int(rng.poisson(BUBBLES_PER_PROFILE)), depth.size)
+            where = rng.choice(depth.size, size=bubbles, replace=False)
+            depth[where] -= rng.uniform(*BUBBLE_DEPTH_M, size=bubbles)
+            depth = np.round(depth / PROFILE_QUANTUM_M) * PROFILE_QUANTUM_M
+        profiles.append((int(cycles), angle_deg, depth))
+    return profiles
+
+
+def measure_max_depths(lab: LabPlan, truth: Callable[[float], tuple[np.ndarray, np.ndarray]],
+                       inner_radius_m: float, rng: np.random.Generator | None) -> np.ndarray:
+    """The maximum depths (m) at ``lab.max_wear_cycles``: (1 - s) max h_f (+ the microscope's
+    noise and quantisation unless ``rng`` is None)."""
+    grid = np.radians(np.arange(0.0, 360.0, FINE_GRID_DEG))
+    depth = np.array([(1.0 - lab.shrinkage)
+                      * filtered_profile(*truth(cycles), inner_radius_m)(grid).max()
+                      for cycles in lab.max_wear_cycles])
+    if rng is not None:
+        depth = depth + rng.normal(0.0, MAX_DEPTH_NOISE_M, depth.size)
+        depth = np.round(depth / MAX_DEPTH_QUANTUM_M) * MAX_DEPTH_QUANTUM_M
+    return depth
+
+
+PROFILE_COMMENT = (
+    "Bore wear from silicone replicas, confocal line scans (7 lines across the width, averaged),\n"
+    "unworn reference scan subtracted, Gaussian profile filter lambda_c = 0.8 mm.\n"
+    "Angle from the replica's key (instrument frame), counter-clockwise; depth > 0: worn.")
+
+
+def write_measurements(directory: Path, lab: LabPlan, truth, inner_radius_m: float,
+                       rng: np.random.Generator | None) -> tuple[Path, Path]:
+    """Measure ``truth`` with the lab's instrument and write profiles.csv (rows in scan order,
+    angles to 1e-6 deg, depths to 10 significant digits) and max_wear.csv."""
+    profiles = measure_profiles(lab, truth, inner_radius_m, rng)
+    max_depth = measure_max_depths(lab, truth, inner_radius_m, rng)
+    profiles_csv, max_wear_csv = directory / "profiles.csv", directory / "max_wear.csv"
+    lines = [f"# {line}" for line in PROFILE_COMMENT.splitlines()]
+    lines.append("cycles,angle_deg,wear_depth_m")
+    for cycles, angle_deg, depth in profiles:
+        lines += [f"{cycles},{angle:.6f},{value:.10g}" for angle, value in zip(angle_deg, depth)]
+    profiles_csv.write_text("\n".join(lines) + "\n")
+    write_max_wear(max_wear_csv, np.array(lab.max_wear_cycles),
+                   np.array([float(f"{value:.10g}") for value in max_depth]),
+                   "Deepest point of the bore's replica (focus-variation microscope).")
+    return profiles_csv, max_wear_csv
+
+
+def write_data_set(cause: str, seed: int, directory: str | Path, noise: bool = True) -> DataSet:
+    """Write one data set of ``cause`` (deterministic per ``seed``) into ``directory``:
+    believed.toml, profiles.csv, max_wear.csv (module doc). ``noise=False``: the same data set
+    without the instrument's noise."""
+    from fewear.io.config import load_config
+    from fewear.pipeline import run_sections
+
+    if cause not in CAUSES:
+        raise ValueError(f"unknown cause {cause!r}; expected one of {', '.join(CAUSES)}")
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    truth_rng, lab_rng, noise_rng = _streams(seed)
+    params = draw_truth(cause, truth_rng)
+    lab = draw_lab(lab_rng)
+    believed_toml = directory / "believed.toml"
+    believed_toml.write_text(BELIEVED_TOML)
+    believed = load_config(believed_toml, run_sections())
+    truth = true_depth(cause, params, believed, lab.last_cycles)
+    profiles_csv, max_wear_csv = write_measurements(
+        directory, lab, truth, believed["bushing"]["inner_radius_m"],
+        noise_rng if noise else None)
+    return DataSet(cause, int(seed), believed_toml, profiles_csv, max_wear_csv, params, lab)
+
+
+def truth_text(data: DataSet) -> str:
+    """A short text of the hidden truth for tables."""
+    values = [f"{key}={value:.4g}" for key, value in data.params.items()
+              if isinstance(value, float)]
+    return f"{data.cause}: " + (", ".join(values) if values else data.params.get("law", ""))

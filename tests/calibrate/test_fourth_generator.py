@@ -1,0 +1,407 @@
+"""The fourth joint-wear generator (tests/calibrate/fourth_joint_generator.py): each piece against
+closed forms or independent computations, the instrument on known shapes, and (slow) the forward
+runs it layers its hidden causes on."""
+
+import math
+import time
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from fewear.calibrate.joint_measured import read_joint_measurements
+from fewear.io.config import load_config
+from fewear.mbd.history import JointHistory, classify_modes
+from fewear.pipeline import run_sections
+from tests.calibrate import fourth_joint_generator as gen
+
+R_BORE = 0.010  # m, the believed bore radius
+NODES = np.arange(96) * (2.0 * math.pi / 96)  # the believed bore nodes (rad)
+ALPHA = math.sqrt(math.log(2.0) / math.pi)
+
+
+@pytest.fixture(scope="module")
+def believed():
+    """The believed config (defaults + believed.toml), no forward run."""
+    return _believed_config()
+
+
+def _believed_config() -> dict:
+    import tempfile
+    from pathlib import Path
+
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "believed.toml"
+        path.write_text(gen.BELIEVED_TOML)
+        return load_config(path, run_sections())
+
+
+def synthetic_truth(cycles: float) -> tuple[np.ndarray, np.ndarray]:
+    """A smooth known bore: depth (m) = 2e-9 m per cycle times (1.2 + cos(theta - 0.7))."""
+    return NODES, 2e-9 * cycles * (1.2 + np.cos(NODES - 0.7))
+
+
+def plan(profiles=(2000, 6000, 20000), max_wear=(4000, 20000), origin=7.0, shrinkage=0.004,
+         parting=100.0, tears=None) -> gen.LabPlan:
+    tears = (None,) * len(profiles) if tears is None else tears
+    return gen.LabPlan(tuple(profiles), tuple(max_wear), origin, shrinkage, parting, tears)
+
+
+# --- seeds, draws -----------------------------------------------------------------------------
+
+def test_seeds_follow_the_numbering_and_refuse_bad_input():
+    assert gen.data_set_seed("wear_coefficient", 0) == 9000
+    assert gen.data_set_seed("none", 99) == 9599
+    assert gen.data_set_seed("running_in", 7) == 9407
+    seeds = {gen.data_set_seed(c, i) for c in gen.CAUSES for i in range(100)}
+    assert len(seeds) == 600
+    for cause, index in (("wear", 0), ("none", 100), ("none", -1), ("none", 1.5)):
+        with pytest.raises(ValueError):
+            gen.data_set_seed(cause, index)
+    with pytest.raises(ValueError):
+        gen.draw_truth("thermal", np.random.default_rng(0))
+
+
+def test_truth_parameters_keep_to_their_stated_ranges():
+    soft = hard = 0
+    for seed in range(300):
+        rng = np.random.default_rng(seed)
+        k = gen.draw_truth("wear_coefficient", rng)
+        assert k["k_factor"] == pytest.approx(235.0 / k["hardness_HB"], rel=1e-14)
+        if 150.0 <= k["hardness_HB"] <= 195.0:
+            soft += 1
+            assert 1.205 <= k["k_factor"] <= 1.567
+        else:
+            hard += 1
+            assert 285.0 <= k["hardness_HB"] <= 370.0 and 0.635 <= k["k_factor"] <= 0.825
+        rod = gen.draw_truth("flexible_link", rng)
+        assert rod["rod_elements"] == 6.0
+        assert 1.0e-5 <= rod["rod_damping_s"] <= 1.2e-4
+        assert 195e9 <= rod["rod_youngs_modulus_Pa"] <= 215e9
+        mu = gen.draw_truth("friction", rng)
+        assert 0.085 <= mu["mu_0"] <= 0.115 and 0.24 <= mu["mu_dry"] <= 0.38
+        assert 4000.0 <= mu["n_g_cycles"] <= 15000.0
+        impact = gen.draw_truth("impact_wear", rng)
+        assert 3e-15 <= impact["volume_at_v_ref_m3"] <= 1e-14 and impact["v_ref_m_s"] == 0.2
+        run_in = gen.draw_truth("running_in", rng)
+        assert 2.5 <= run_in["ratio"] <= 6.0 and 500.0 <= run_in["n_r_cycles"] <= 1600.0
+        assert all(isinstance(v, (float, str)) for v in {**k, **rod, **mu, **impact}.values())
+    assert 110 < soft < 190 and 110 < hard < 190  # each side with probability 1/2
+
+
+def test_log_uniform_draws_are_uniform_in_the_logarithm():
+    rng = np.random.default_rng(3)
+    values = np.array([gen._log_uniform(rng, (10.0, 1000.0)) for _ in range(4000)])
+    # median of a log-uniform on [10, 1000] is the geometric mean 100; quartiles at 10^1.5, 10^2.5
+    assert np.median(values) == pytest.approx(100.0, rel=0.08)
+    assert np.mean(values < 10**1.5) == pytest.approx(0.25, abs=0.03)
+
+
+def test_draws_are_deterministic_per_seed_and_differ_between_seeds():
+    def draws(seed):
+        truth, lab, noise = gen._streams(seed)
+        return gen.draw_truth("friction", truth), gen.draw_lab(lab), noise.normal(size=3)
+
+    first, again, other = draws(9200), draws(9200), draws(9201)
+    assert first[0] == again[0] and first[1] == again[1]
+    np.testing.assert_array_equal(first[2], again[2])
+    assert first[0] != other[0] and first[1] != other[1]
+
+
+def test_lab_plans_keep_to_the_stated_schedule():
+    counts = set()
+    for seed in range(300):
+        lab = gen.draw_lab(np.random.default_rng(seed))
+        n = len(lab.profile_cycles)
+        counts.add(n)
+        assert 4 <= n <= 6 and len(lab.tears) == n
+        assert 1500 <= lab.profile_cycles[0] <= 2600 and 19000 <= lab.profile_cycles[-1] <= 25000
+        assert np.all(np.diff(lab.profile_cycles) > 0)
+        assert all(count % 10 == 0 for count in lab.profile_cycles)
+        assert np.all(np.diff(lab.max_wear_cycles) > 0)
+        assert len(lab.max_wear_cycles) == 4 and lab.max_wear_cycles[-1] == lab.profile_cycles[-1]
+        assert lab.last_cycles == lab.profile_cycles[-1]
+        assert -12.0 <= lab.origin_deg <= 12.0 and 0.002 <= lab.shrinkage <= 0.006
+    assert counts == {4, 5, 6}
+
+
+# --- the causes' laws ---------------------------------------------------------------------------
+
+def test_running_in_cycles_are_the_integral_of_the_multiplier():
+    ratio, n_r = 4.2, 900.0
+    assert gen.running_in_multiplier(0.0, ratio, n_r) == pytest.approx(ratio)
+    assert gen.running_in_multiplier(1e9, ratio, n_r) == pytest.approx(1.0, abs=1e-9)
+    assert gen.running_in_multiplier(n_r, ratio, n_r) == pytest.approx(1.0 + (ratio - 1.0) / 4)
+    for cycles in (300.0, 2500.0, 24000.0):
+        integral, _ = quad(gen.running_in_multiplier, 0.0, cycles, args=(ratio, n_r))
+        assert float(gen.running_in_cycles(cycles, ratio, n_r)) == pytest.approx(integral,
+                                                                                 rel=1e-10)
+    # the extra wear saturates at (r - 1) N_r equivalent cycles
+    extra = float(gen.running_in_cycles(1e10, ratio, n_r)) - 1e10
+    assert extra == pytest.approx((ratio - 1.0) * n_r, rel=1e-5)
+    assert float(gen.running_in_cycles(0.0, ratio, n_r)) == 0.0
+
+
+def test_friction_rises_from_its_start_to_the_dry_value():
+    mu_0, dry, n_g = 0.1, 0.3, 5000.0
+    assert float(gen.friction_coefficient(0.0, mu_0, dry, n_g)) == pytest.approx(mu_0)
+    assert float(gen.friction_coefficient(n_g, mu_0, dry, n_g)) == pytest.approx(
+        dry - (dry - mu_0) / math.e)
+    assert float(gen.friction_coefficient(1e7, mu_0, dry, n_g)) == pytest.approx(dry)
+    assert np.all(np.diff(gen.friction_coefficient(np.linspace(0, 3e4, 50), mu_0, dry, n_g)) > 0)
+
+
+def test_hertz_half_width_matches_the_hand_calculation(believed):
+    # R* = 9.5 mm x 10 mm / 0.5 mm = 0.19 m; 1/E* = (1 - 0.27^2)/207 GPa + (1 - 0.32^2)/90 GPa
+    e_star = 1.0 / ((1 - 0.27**2) / 207e9 + (1 - 0.32**2) / 90e9)
+    b = gen.hertz_half_width_m(1000.0, believed)
+    assert b == pytest.approx(math.sqrt(4 * 1000.0 * 0.19 / (math.pi * 0.018 * e_star)), rel=1e-9)
+    assert b == pytest.approx(4.4e-4, rel=0.02, abs=0.0)
+    # Johnson: the peak pressure 2F/(pi b w) equals E* b / (2 R*)
+    assert 2 * 1000.0 / (math.pi * b * 0.018) == pytest.approx(e_star * b / (2 * 0.19), rel=1e-9)
+    assert gen.hertz_half_width_m(4000.0, believed) == pytest.approx(2 * b, rel=1e-12)
+
+
+@pytest.mark.parametrize("centre_deg,width_deg", [(0.0, 2.5), (359.0, 10.0), (181.9, 0.4),
+                                                  (45.0, 60.0)])
+def test_semi_ellipse_cells_keep_the_volume(centre_deg, width_deg):
+    density = gen.semi_ellipse_cell_means(NODES, math.radians(centre_deg), math.radians(width_deg))
+    assert np.all(density >= 0.0)
+    assert density.sum() * (2 * math.pi / NODES.size) == pytest.approx(1.0, rel=1e-12)
+    nearest = np.argmin(np.abs(np.mod(NODES - math.radians(centre_deg) + math.pi, 2 * math.pi)
+                               - math.pi))
+    assert np.argmax(density) == nearest
+
+
+def test_semi_ellipse_cells_follow_the_hertz_shape_on_a_fine_grid():
+    nodes = np.arange(3600) * (2 * math.pi / 3600)
+    a = math.radians(20.0)
+    density = gen.semi_ellipse_cell_means(nodes, math.pi, a)
+    x = nodes - math.pi
+    analytic = 2.0 * np.sqrt(np.maximum(a * a - x * x, 0.0)) / (math.pi * a * a)
+    inside = np.abs(x) < 0.95 * a
+    np.testing.assert_allclose(density[inside], analytic[inside], rtol=2e-4)
+    assert np.all(density[np.abs(x) > a + 2 * math.pi / 3600] == 0.0)
+
+
+def test_impact_depth_carries_the_cubic_volume(believed):
+    impacts = [gen.Impact(0.2, 0.3, 800.0), gen.Impact(0.5, 3.5, 2500.0)]
+    v_ref = 5e-15
+    depth = gen.impact_depth_per_cycle_m(impacts, NODES, believed, v_ref)
+    volume = 0.018 * R_BORE * depth.sum() * (2 * math.pi / NODES.size)
+    assert volume == pytest.approx(v_ref * (1.0 + 2.5**3), rel=1e-10, abs=0.0)
+    # doubling the speed wears 8 times the volume
+    slow = gen.impact_depth_per_cycle_m([gen.Impact(0.1, 1.0, 500.0)], NODES, believed, v_ref)
+    fast = gen.impact_depth_per_cycle_m([gen.Impact(0.2, 1.0, 500.0)], NODES, believed, v_ref)
+    np.testing.assert_allclose(fast, 8.0 * slow, rtol=1e-12)
+    assert gen.impact_depth_per_cycle_m([], NODES, believed, v_ref).max() == 0.0
+
+
+def test_impacts_are_found_with_their_speed_place_and_force():
+    """A synthetic history: one impact at 0.35 m/s approach (penetration rising linearly, then
+    falling) in the direction 100 deg, a long contact later (not an impact)."""
+    t = np.arange(0.0, 0.01, 1e-5)
+    penetration = np.full(t.size, -1e-6)
+    rise = (t >= 0.002) & (t < 0.0022)
+    penetration[rise] = 0.35 * (t[rise] - 0.002) + 1e-9
+    fall = (t >= 0.0022) & (t < 0.0024)
+    penetration[fall] = 0.35 * 0.0002 - 0.2 * (t[fall] - 0.0022)
+    long = (t >= 0.005) & (t < 0.008)
+    penetration[long] = 1e-6
+    force = 1e9 * np.maximum(penetration, 0.0) ** 1.5
+    angle = np.where(t < 0.004, math.radians(100.0), math.radians(-30.0))
+    radius = 5e-4 + penetration
+    eccentricity = np.column_stack([radius * np.cos(angle), radius * np.sin(angle)])
+    zeros = np.zeros(t.size)
+    history = JointHistory(t, t * 125.0, zeros, zeros, eccentricity, penetration, force, zeros,
+                           np.zeros((t.size, 2)), zeros, classify_modes(t, force, 1e-3))
+    impacts = gen.impacts_of(history)
+    assert len(impacts) == 1
+    assert impacts[0].speed_m_s == pytest.approx(0.35, rel=1e-6)
+    assert impacts[0].angle_rad == pytest.approx(math.radians(100.0), rel=1e-9)
+    assert impacts[0].peak_force_N == pytest.approx(force.max(), rel=1e-12)
+
+
+def test_truth_config_scales_k_everywhere_and_builds_the_flexible_rod(believed):
+    from fewear.wear.coefficient import wear_coefficient_from_config
+
+    params = {"k_factor": 0.7}
+    changed = gen.truth_config("wear_coefficient", params, believed)
+    k_believed = wear_coefficient_from_config(believed["wear"])
+    k_true = wear_coefficient_from_config(changed["wear"])
+    p, v = np.array([1e6, 5e6, 3e7, 1e5]), np.array([0.1, 0.6, 3.0, 0.01])
+    np.testing.assert_allclose(k_true(p, v) / k_believed(p, v), 0.7, rtol=1e-12)
+    assert believed["wear"]["rbf"]["tail"][0] != changed["wear"]["rbf"]["tail"][0]  # no aliasing
+    constant = {**believed, "wear": {**believed["wear"], "coefficient_model": "constant"}}
+    assert gen.truth_config("wear_coefficient", params, constant)["wear"][
+        "constant_k_m2_N"] == pytest.approx(0.7 * believed["wear"]["constant_k_m2_N"], abs=0.0)
+    rod = gen.truth_config("flexible_link", {"rod_elements": 6.0, "rod_damping_s": 5e-5,
+                                             "rod_youngs_modulus_Pa": 2.0e11}, believed)
+    assert rod["wear_loop"]["rod_models"] == ["flexible"]
+    assert rod["mechanism"]["rod_elements"] == 6 and rod["mechanism"]["rod_damping_s"] == 5e-5
+    assert rod["mechanism"]["rod_youngs_modulus_Pa"] == 2.0e11
+    assert believed["wear_loop"]["rod_models"] == ["rigid"]
+
+
+def test_believed_toml_gives_the_believed_model(believed):
+    # the brief's value (its comment says 2*pi*0.010/48*(1+1e-9); the number is 2*pi*0.010/48
+    # to the last digit): 48 elements round the bore
+    assert believed["mesh"]["bore_element_size_m"] == 0.0013089969389957472
+    assert 2 * math.pi * 0.010 / believed["mesh"]["bore_element_size_m"] == pytest.approx(48.0)
+    assert believed["mesh"]["radial_element_count"] == 4
+    assert believed["wear_loop"]["rod_models"] == ["rigid"]
+    assert believed["wear_loop"]["load_steps_per_cycle"] == 40
+    assert believed["joint"]["friction_coefficient"] == 0.1
+    assert believed["wear"]["coefficient_model"] == "rbf"
+
+
+# --- the instrument -----------------------------------------------------------------------------
+
+@pytest.mark.parametrize("wavelength_deg", [3.0, 4.5837, 10.0, 45.0])
+def test_profile_filter_transmits_a_sine_as_iso_16610_21(wavelength_deg):
+    """The Gaussian filter's transmission of a sine of wavelength lambda (arc) is
+    exp(-pi (alpha lambda_c / lambda)^2): 50 % at the cutoff (0.8 mm = 4.5837 deg here). Read
+    on the filter's own 0.25 deg grid (between its points the filtered profile is linear)."""
+    nodes = np.arange(1440) * (2 * math.pi / 1440)
+    waves = round(360.0 / wavelength_deg)
+    wavelength_m = 2 * math.pi * R_BORE / waves
+    profile = 1e-5 + 1e-6 * np.sin(waves * nodes)
+    filtered = gen.filtered_profile(nodes, profile, R_BORE)(nodes)
+    expected = math.exp(-math.pi * (ALPHA * 0.8e-3 / wavelength_m) ** 2)
+    amplitude = 2 * np.abs(np.fft.rfft(filtered - filtered.mean())[waves]) / nodes.size
+    assert amplitude / 1e-6 == pytest.approx(expected, rel=0.01, abs=2e-4)
+    assert filtered.mean() == pytest.approx(1e-5, rel=1e-9, abs=0.0)
+    if abs(wavelength_deg - 4.5837) < 0.01:
+        assert expected == pytest.approx(0.5, abs=0.01)
+
+
+def test_noiseless_profile_is_the_shrunk_filtered_truth_in_the_instrument_frame():
+    lab = plan(origin=-8.5, shrinkage=0.005)
+    profiles = gen.measure_profiles(lab, synthetic_truth, R_BORE, None)
+    one_turn = 2 * math.pi * R_BORE
+    transmission = math.exp(-math.pi * (ALPHA * 0.8e-3 / one_turn) ** 2)
+    for (cycles, angle_deg, depth), expected_cycles in zip(profiles, lab.profile_cycles):
+        assert cycles == expected_cycles
+        theta = np.radians(angle_deg - 8.5)  # bushing frame = instrument + origin
+        exact = 0.995 * 2e-9 * cycles * (1.2 + transmission * np.cos(theta - 0.7))
+        # periodic-linear nodes (3.75 deg) and 0.25 deg grid: within 0.1 % of the amplitude
+        np.testing.assert_allclose(depth, exact, atol=1e-3 * 2e-9 * cycles)
+
+
+def test_coverage_has_the_parting_gap_and_the_tear():
+    lab = plan(parting=355.0, tears=(None, (100.0, 9.0), None))
+    profiles = gen.measure_profiles(lab, synthetic_truth, R_BORE, None)
+    full, torn = profiles[0][1], profiles[1][1]
+    assert full.size == gen.SCAN_POINTS == 234
+    assert np.unique(full).size == full.size and np.all((full >= 0) & (full < 360))
+    gap = np.mod(full - 355.0 + 180.0, 360.0) - 180.0
+    assert np.all(np.abs(gap) >= 5.0 - 1e-9)
+    assert np.min(np.abs(gap)) == pytest.approx(5.0, abs=1e-6)
+    assert not np.any(np.mod(torn - 100.0, 360.0) < 9.0)
+    assert torn.size == full.size - 6  # 1.5 deg spacing: 6 readings in a 9 deg sector
+    np.testing.assert_allclose(np.diff(np.sort(full))[np.diff(np.sort(full)) < 5], 1.5, atol=1e-6)
+
+
+def test_noise_has_the_stated_levels_and_a_shared_reference_pattern():
+    """Differences along the scan remove the smooth centring and drift terms: what is left of
+    two profiles' residuals has the white noise and reference noise variances, the reference
+    part shared, so the residual differences of two profiles correlate by
+    sigma_b^2 / (sigma_b^2 + sigma_w^2)."""
+    counts = tuple(range(1000, 61000, 1000))
+    lab = plan(profiles=counts, max_wear=(counts[-1],))
+    noisy = gen.measure_profiles(lab, synthetic_truth, R_BORE, np.random.default_rng(5))
+    clean = gen.measure_profiles(lab, synthetic_truth, R_BORE, None)
+    residual = np.array([n[2] - c[2] for n, c in zip(noisy, clean)])
+    steps = np.diff(residual, axis=1)
+    robust_sd = 1.4826 * np.median(np.abs(steps - np.median(steps)))
+    sigma = math.hypot(gen.WHITE_NOISE_M, gen.REFERENCE_NOISE_M)
+    quantum = gen.PROFILE_QUANTUM_M**2 / 12.0
+    assert robust_sd == pytest.approx(math.sqrt(2 * (sigma**2 + quantum)), rel=0.1, abs=0.0)
+    mild = np.where(np.abs(steps) < 5 * robust_sd, steps, np.nan)
+    pairs = [np.ma.corrcoef(np.ma.masked_invalid(mild[i]), np.ma.masked_invalid(mild[i + 1]))[0, 1]
+             for i in range(len(counts) - 1)]
+    share = gen.REFERENCE_NOISE_M**2 / sigma**2
+    assert float(np.mean(pairs)) == pytest.approx(share, abs=0.07)
+    # bubbles: about one reading per profile lowered by 1-4 um
+    lowered = np.sum(residual < -2.5e-6)
+    assert 0.3 * len(counts) < lowered < 1.2 * len(counts)
+    # quantised to 0.05 um
+    values = np.concatenate([n[2] for n in noisy]) / gen.PROFILE_QUANTUM_M
+    np.testing.assert_allclose(values, np.round(values), atol=1e-6)
+
+
+def test_max_depth_readings_are_the_deepest_filtered_point():
+    lab = plan(max_wear=(3000, 10000, 20000), shrinkage=0.003)
+    transmission = math.exp(-math.pi * (ALPHA * 0.8e-3 / (2 * math.pi * R_BORE)) ** 2)
+    clean = gen.measure_max_depths(lab, synthetic_truth, R_BORE, None)
+    exact = 0.997 * 2e-9 * np.array(lab.max_wear_cycles) * (1.2 + transmission)
+    np.testing.assert_allclose(clean, exact, rtol=1e-3)
+    noisy = np.array([gen.measure_max_depths(lab, synthetic_truth, R_BORE,
+                                             np.random.default_rng(s)) for s in range(400)])
+    assert np.std(noisy - clean) == pytest.approx(0.6e-6, rel=0.1, abs=0.0)
+    np.testing.assert_allclose(noisy / 1e-7, np.round(noisy / 1e-7), atol=1e-6)
+
+
+def test_written_files_parse_with_the_workbench_reader(tmp_path):
+    lab = plan(tears=(None, (30.0, 8.0), None))
+    profiles_csv, max_wear_csv = gen.write_measurements(tmp_path, lab, synthetic_truth, R_BORE,
+                                                        np.random.default_rng(1))
+    assert profiles_csv.read_text().startswith("# ")
+    measured = read_joint_measurements([profiles_csv, max_wear_csv])
+    assert measured.profile_cycles == lab.profile_cycles
+    assert tuple(int(c) for c in measured.max_wear[0]) == lab.max_wear_cycles
+    assert [p.angle_rad.size for p in measured.profiles] == [234, 234 - 6, 234]
+    written = gen.measure_profiles(lab, synthetic_truth, R_BORE, np.random.default_rng(1))
+    for profile, (_, angle_deg, depth) in zip(measured.profiles, written):
+        order = np.argsort(angle_deg)
+        np.testing.assert_allclose(np.degrees(profile.angle_rad), angle_deg[order], atol=1e-6)
+        np.testing.assert_allclose(profile.depth_m, depth[order], rtol=1e-9, atol=1e-15)
+    again = tmp_path / "again"
+    again.mkdir()
+    gen.write_measurements(again, lab, synthetic_truth, R_BORE, np.random.default_rng(1))
+    assert (again / "profiles.csv").read_text() == profiles_csv.read_text()
+
+
+# --- forward runs (slow) ------------------------------------------------------------------------
+
+@pytest.mark.slow
+def test_layered_run_without_effect_is_the_believed_run(believed):
+    """The layered loop, with no effect and with a friction held at the believed 0.1 (the FE
+    bushing rebuilt and restored at every block), reproduces simulate_wear block for block."""
+    from fewear.calibrate.joint_forward import model_config, simulate_wear
+
+    run = simulate_wear(model_config(believed, "rigid", 12000))
+    plain = gen.layered_run(believed, 12000)
+    held = gen.layered_run(believed, 12000, {"mu_0": 0.1, "mu_dry": 0.1, "n_g_cycles": 5000.0})
+    for layered in (plain, held):
+        np.testing.assert_array_equal(layered.cycles, run.cycles)
+        np.testing.assert_allclose(layered.depth_m, run.depth_m, rtol=0, atol=1e-15)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("cause", gen.CAUSES)
+def test_one_data_set_of_each_cause_is_written_with_a_measurable_effect(cause, tmp_path):
+    seed = gen.data_set_seed(cause, 0)
+    start = time.perf_counter()
+    data = gen.write_data_set(cause, seed, tmp_path / "noisy")
+    wall = time.perf_counter() - start
+    assert wall < 120.0
+    clean = gen.write_data_set(cause, seed, tmp_path / "clean", noise=False)
+    assert clean.params == data.params and clean.lab == data.lab
+    assert data.lab.profile_cycles == tuple(sorted(data.lab.profile_cycles))
+    measured = read_joint_measurements([data.profiles_csv, data.max_wear_csv])
+    noiseless = read_joint_measurements([clean.profiles_csv, clean.max_wear_csv])
+    assert measured.profile_cycles == data.lab.profile_cycles
+    config = load_config(data.believed_toml, run_sections())
+    last = data.lab.profile_cycles[-1]
+    truth = gen.true_depth(cause, data.params, config, data.lab.last_cycles)(last)[1]
+    belief = gen.believed_depth(config, data.lab.last_cycles)(last)[1]
+    effect = float(np.sqrt(np.mean((truth - belief) ** 2)))
+    noise = float(np.sqrt(np.mean((measured.profiles[-1].depth_m
+                                   - noiseless.profiles[-1].depth_m) ** 2)))
+    assert noise < 4e-6  # mostly the replica's seating error on the pocket's flanks
+    assert 1e-5 < belief.max() < 3e-4  # the believed model wears tens to hundreds of um
+    if cause == "none":
+        assert effect == 0.0
+    else:
+        assert 3e-6 < effect < 1e-4 and effect > 4 * noise
