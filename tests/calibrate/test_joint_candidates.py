@@ -82,6 +82,18 @@ def test_none_with_a_large_misfit_names_the_block_size_when_that_is_what_limits(
                         []) == []
 
 
+def test_none_with_a_late_misfit_says_the_effect_shows_only_after_the_training_counts():
+    resolution = {"instrument_scatter_m": 0.5e-6, "halved_blocks_rms_m": 0.2e-6}
+    # fits the training data at the scatter, misses the held-out count by 30 x the scatter
+    late = Fit("baseline", np.zeros(1), 1, 0.0, 10, 15e-6, 0.6e-6, np.zeros(10))
+    sentence, = _unexplained(late, late, [], resolution, [])
+    assert "misses the held-out data by 1.5e-05 m RMS, 30 times" in sentence
+    # a held-out misfit within 5 x the training misfit (e.g. the instrument's shrinkage growing
+    # with the depth) is not an effect of its own
+    steady = Fit("baseline", np.zeros(1), 1, 0.0, 10, 4.5e-6, 1.0e-6, np.zeros(10))
+    assert _unexplained(steady, steady, [], resolution, []) == []
+
+
 def test_a_grid_with_a_non_positive_value_is_a_clear_error():
     with pytest.raises(FewearInputError, match=r"friction_grid = \[0.0, 0.3\]: expected a non"):
         JointDiagnoseSettings(friction_grid=(0.0, 0.3))

@@ -105,8 +105,8 @@ def test_a_large_misfit_without_a_cause_is_reported_unexplained():
     for shape_m, expected in ((0.0, 0), (20e-6, 1)):
         angle, residual, cycles = profiles_with(shape_m, 0.5e-6)
         r = residual[cycles < 12000.0]
-        fit = Fit("baseline", np.zeros(1), 1, float(r @ r), r.size, 1.0,
-                  float(np.sqrt(np.mean(r**2))), residual)
+        rms = float(np.sqrt(np.mean(r**2)))
+        fit = Fit("baseline", np.zeros(1), 1, float(r @ r), r.size, rms, rms, residual)
         resolution = {"instrument_scatter_m": scatter_estimate_m(angle, residual, cycles),
                       "halved_blocks_rms_m": 0.0}
         assert len(_unexplained(fit, fit, [], resolution, [])) == expected
