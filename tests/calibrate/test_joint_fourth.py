@@ -10,20 +10,10 @@ import json
 
 import pytest
 
+from tests.calibrate.diagnose_files import diagnose_data_set
 from tests.calibrate.fourth_joint_generator import data_set_seed, write_data_set
 
 pytestmark = pytest.mark.slow
-
-
-def _diagnose(data) -> dict:
-    from fewear.calibrate.joint_diagnose import diagnose_joint
-    from fewear.calibrate.joint_measured import read_joint_measurements
-    from fewear.io.config import load_config
-    from fewear.pipeline import run_sections
-
-    config = load_config(data.believed_toml, run_sections())
-    measured = read_joint_measurements([data.profiles_csv, data.max_wear_csv])
-    return diagnose_joint(measured, config).summary
 
 
 def test_cli_names_no_cause_on_the_believed_model(tmp_path):
@@ -62,7 +52,7 @@ def test_names_the_hidden_cause(tmp_path, cause):
     """The hidden cause is the one named, and its extended run predicts the held-out profiles
     better than the believed model."""
     data = write_data_set(cause, data_set_seed(cause, 0), tmp_path)
-    summary = _diagnose(data)
+    summary = diagnose_data_set(data)
     print(f"{cause}: truth {data.params}; named {summary['causes'] or ['none']}, gain "
           f"{summary['gain']:+.2f}, unexplained {summary['unexplained']}")
     assert summary["cause"] == cause, (data.params, summary["causes"])
