@@ -344,8 +344,11 @@ def smoothed_block_wear(per_cycle: CycleSliding, state: WearState, extension, cy
     return np.maximum(smoothed_periodic(increment, step, width_rad), 0.0), sliding
 
 
-def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress) -> None:
-    """One wear block of ``case`` (stages 1-5), updating it in place."""
+def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
+              added_depth_per_cycle=None) -> None:
+    """One wear block of ``case`` (stages 1-5), updating it in place. ``added_depth_per_cycle``
+    (history, state) -> depth per cycle (m, per bore node), optional: a wear source of another
+    law added to the block's impact wear (a given source of the block step, like it)."""
     from fewear.mbd.slider_crank import simulate
 
     loop, times = inputs.loop, case.stage_wall_time_s
@@ -385,6 +388,9 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress) -> None:
                                   inputs.contact.contact.friction_coefficient,
                                   inputs.impact_wear_coefficient_m3_J,
                                   inputs.impact_impulse_wear_coefficient_m3_Ns)
+        if added_depth_per_cycle is not None:
+            per_cycle = replace(per_cycle, impact_depth_m=per_cycle.impact_depth_m
+                                + added_depth_per_cycle(history, state))
         cycles, increment, sliding = extrapolate_block(
             loop.extrapolation,
             lambda cycles: smoothed_block_wear(per_cycle, state, inputs.extension, cycles,

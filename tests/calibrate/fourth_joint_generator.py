@@ -76,8 +76,8 @@ Hidden causes (``CAUSES``; one per data set; ``params`` of :class:`DataSet` hold
     block's recorded cycle on the current worn bore and added to the block's sliding wear (the
     loop's block step carries it as a given source, smoothed like the sliding wear): the pockets
     the impacts dig change the later impacts (a strong feedback: the effect's size is far from
-    proportional to V_ref). The loop is :func:`layered_run`, which repeats
-    :func:`fewear.pipeline.run_block` step by step with this source added.
+    proportional to V_ref). The loop is :func:`layered_run`, which runs
+    :func:`fewear.pipeline.run_block` block by block with this source added.
 ``running_in``
     The pin's grinding marks run in: the harder counterface's asperities abrade the bronze
     (two-body abrasion, k grows with the square of the counterface's excess roughness), and the
@@ -160,7 +160,7 @@ import json
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -433,10 +433,10 @@ def layered_run(config: dict, last_cycles: int, friction: dict | None = None,
                 bushing.restore(case.meshed_xy_m,
                                 MeshSnapshot(case.node_ids, case.snapshots[-1], case.cells),
                                 case.ale_moves, case.remeshes)
-        if impact_volume_m3 > 0.0:
-            _impact_block(rod, inputs, bushing, case, block_config, impact_volume_m3)
-        else:
-            run_block(rod, inputs, bushing, case)
+        source = (_impact_depth_source(block_config, impact_volume_m3,
+                                       inputs.loop.recorded_cycles_per_block)
+                  if impact_volume_m3 > 0.0 else None)
+        run_block(rod, inputs, bushing, case, source)
     state = case.state
     history = WearHistory(
         state.angle_rad.copy(), np.array([0.0] + [float(r.cycles) for r in case.records]),
@@ -446,57 +446,13 @@ def layered_run(config: dict, last_cycles: int, friction: dict | None = None,
     return history
 
 
-def _impact_block(rod: str, inputs, bushing, case, config: dict, volume_m3: float) -> None:
-    """One block of :func:`fewear.pipeline.run_block` (dynamics, load steps, contact, Archard,
-    block step, geometry update) with the impact wear of the block's recorded cycles added to
-    the block's depth per cycle."""
-    from fewear.mbd.slider_crank import simulate
-    from fewear.pipeline import (
-        BlockRecord,
-        cycle_sliding,
-        cycle_wear,
-        load_steps,
-        smoothed_block_wear,
-    )
-    from fewear.wear.extrapolation import extrapolate_block
-    from fewear.wear.state import WearState
-
-    loop, state, geometry = inputs.loop, case.state, inputs.contact.geometry
-    crank = replace(inputs.dynamics.crank, rod=rod, joint="clearance",
-                    recorded_cycles=loop.recorded_cycles_per_block,
-                    settling_cycles=(inputs.dynamics.crank.settling_cycles
-                                     if case.mechanism is None else loop.warm_settling_cycles))
-    joint = replace(inputs.dynamics.joint,
-                    profile=state.clearance_profile(geometry.inner_radius_m,
-                                                    geometry.pin_radius_m))
-    history, _, case.mechanism = simulate(replace(inputs.dynamics, crank=crank, joint=joint),
-                                          start=case.mechanism)
-    steps = load_steps(history, loop.load_steps_per_cycle * loop.recorded_cycles_per_block,
-                       inputs.dynamics.joint.law)
-    wear = cycle_wear(bushing, steps, inputs.wear_coefficient, loop.friction_in_contact,
-                      implicit=loop.implicit_wear_step)
-    per_cycle = cycle_sliding(wear, steps, loop.recorded_cycles_per_block,
-                              inputs.contact.contact.friction_coefficient)
-    impact = impact_depth_per_cycle_m(impacts_of(history), state.angle_rad, config, volume_m3)
-    per_cycle = replace(per_cycle, impact_depth_m=impact / loop.recorded_cycles_per_block)
-    cycles, increment, sliding = extrapolate_block(
-        loop.extrapolation,
-        lambda cycles: smoothed_block_wear(per_cycle, state, inputs.extension, cycles,
-                                           math.radians(loop.wear_smoothing_width_deg)),
-        bushing.element_height_m, loop.total_cycles - state.cycles)
-    worn = WearState(state.angle_rad, state.depth_m + increment, sliding,
-                     state.cycles + cycles, state.blocks + 1)
-    worn.checked_against_wall(geometry.inner_radius_m, geometry.outer_radius_m,
-                              loop.max_wall_fraction)
-    bushing.apply_wear(worn, increment)
-    snapshot = bushing.snapshot()
-    case.state = worn
-    case.node_ids, case.cells, case.meshed_xy_m = (snapshot.node_ids, snapshot.cells,
-                                                   bushing.meshed_xy_m)
-    case.snapshots.append(snapshot.xy_m)
-    case.records.append(BlockRecord(
-        worn.cycles, cycles, worn.depth_m.copy(), history.peak_contact_force_N, history.impacts,
-        float(wear.pressure_Pa.max()), float((per_cycle.depth_m + impact).max())))
+def _impact_depth_source(config: dict, volume_m3: float, recorded_cycles: int):
+    """The impact wear of a block's recorded cycles as a depth per cycle on its current bore:
+    the source :func:`fewear.pipeline.run_block` adds to the block's wear."""
+    def depth_per_cycle_m(history, state) -> np.ndarray:
+        return impact_depth_per_cycle_m(impacts_of(history), state.angle_rad, config,
+                                        volume_m3) / recorded_cycles
+    return depth_per_cycle_m
 
 
 def truth_config(cause: str, params: dict, believed: dict) -> dict:
