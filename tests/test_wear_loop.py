@@ -16,6 +16,7 @@ bore_element_size_m = {size}
 radial_element_count = 4
 [wear]
 coefficient_model = "constant"
+{extension}
 [wear_loop]
 rod_models = ["rigid"]
 load_steps_per_cycle = 40
@@ -25,12 +26,15 @@ extrapolation_factor = 2000.0
 implicit_wear_step = {implicit}
 wear_smoothing_width_deg = {smoothing}
 """.format(size=2 * math.pi * R_B / 48 * (1 + 1e-9), implicit="{implicit}",
-           smoothing="{smoothing}")
+           smoothing="{smoothing}", extension="{extension}")
+RUNNING_IN_BY_CYCLES = ('extension = "running_in_cycles"\n'
+                        'extension_params = {k_initial_over_steady = 4.0, scale_cycles = 1500.0}')
 
 
-def write_config(tmp_path, implicit=True, smoothing=5.0, name="case.toml"):
+def write_config(tmp_path, implicit=True, smoothing=5.0, name="case.toml", extension=""):
     path = tmp_path / name
-    path.write_text(SMALL.format(implicit=str(implicit).lower(), smoothing=smoothing))
+    path.write_text(SMALL.format(implicit=str(implicit).lower(), smoothing=smoothing,
+                                 extension=extension))
     return path
 
 
@@ -95,10 +99,10 @@ def test_ale_moved_the_bore_nodes_exactly_to_the_worn_radius(explicit_run):
     np.testing.assert_allclose(moved[on_bore], unworn[on_bore] * radial[:, None], atol=1e-15)
 
 
-def test_resumed_run_equals_the_uninterrupted_one(tmp_path, monkeypatch, explicit_run):
+def _interrupted_and_resumed(config, out, monkeypatch) -> np.ndarray:
+    """Stop ``config``'s run after its first block, resume it; the final wear depths."""
     import fewear.pipeline
 
-    config = write_config(tmp_path, implicit=False, smoothing=0.0)
     original = fewear.pipeline.Progress.block
 
     def interrupt(self, *args):
@@ -107,15 +111,36 @@ def test_resumed_run_equals_the_uninterrupted_one(tmp_path, monkeypatch, explici
 
     monkeypatch.setattr(fewear.pipeline.Progress, "block", interrupt)
     with pytest.raises(KeyboardInterrupt):
-        run(config, tmp_path / "out")
-    assert not (tmp_path / "out" / "summary.json").exists()  # all or nothing
+        run(config, out)
+    assert not (out / "summary.json").exists()  # all or nothing
     monkeypatch.setattr(fewear.pipeline.Progress, "block", original)
-    assert run(config, tmp_path / "out", "--resume") == 0
-    resumed = np.genfromtxt(tmp_path / "out" / "wear_profile.csv", delimiter=",", names=True,
-                            dtype=None, encoding=None)
-    whole = np.genfromtxt(explicit_run / "wear_profile.csv", delimiter=",", names=True,
-                          dtype=None, encoding=None)
-    np.testing.assert_array_equal(resumed["wear_depth_m"], whole["wear_depth_m"])
+    assert run(config, out, "--resume") == 0
+    return _final_depth_m(out)
+
+
+def _final_depth_m(out) -> np.ndarray:
+    return np.genfromtxt(out / "wear_profile.csv", delimiter=",", names=True, dtype=None,
+                         encoding=None)["wear_depth_m"]
+
+
+def test_resumed_run_equals_the_uninterrupted_one(tmp_path, monkeypatch, explicit_run):
+    config = write_config(tmp_path, implicit=False, smoothing=0.0)
+    resumed = _interrupted_and_resumed(config, tmp_path / "out", monkeypatch)
+    np.testing.assert_array_equal(resumed, _final_depth_m(explicit_run))
+
+
+def test_a_running_in_by_cycles_resumes_at_the_cycles_it_had_run(tmp_path, monkeypatch,
+                                                                 explicit_run):
+    """k falls with the crank cycles run: a resumed run must carry them over (a restart at N = 0
+    would wear the second block at the initial 4 k again)."""
+    config = write_config(tmp_path, implicit=False, smoothing=0.0, extension=RUNNING_IN_BY_CYCLES)
+    assert run(config, tmp_path / "whole") == 0
+    whole = _final_depth_m(tmp_path / "whole")
+    resumed = _interrupted_and_resumed(config, tmp_path / "resumed", monkeypatch)
+    np.testing.assert_array_equal(resumed, whole)
+    # and it ran in: worn deeper than plain Archard, by less than the initial 4 k would give
+    assert np.max(_final_depth_m(explicit_run)) < np.max(whole) < 4.0 * np.max(
+        _final_depth_m(explicit_run))
 
 
 def test_resume_with_another_config_or_a_corrupt_checkpoint_is_an_input_error(

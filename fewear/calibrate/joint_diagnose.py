@@ -38,7 +38,11 @@ tau(N) = N except for running-in. The catalogue (every cause has s free, so each
   cycles what the believed run wore after tau_a(N) = S_eff(N d_a) / d_a, S_eff the extension's
   effective distance: N + (r - 1) N0_a (1 - exp(-N / N0_a)) or N + (r - 1) N0_a ln(1 + N / N0_a),
   N0_a = s0 / d_a (exact where the wear of a node follows its own sliding, approximate where the
-  worn geometry couples the nodes).
+  worn geometry couples the nodes). The third form, ``running_in_cycles``, m = 1 + (r - 1)
+  exp(-N / N0), falls with the crank cycles N at every node alike (the pin or the lubricant runs
+  in, not the bore's own surface): tau(N) = N + (r - 1) N0 (1 - exp(-N / N0)) at every node, the
+  exponential form on an axis where every node advances one unit per cycle; exact, the geometry
+  feedback included (k scaled alike everywhere scales the cycle axis).
 
 A cause with two forms is fitted in both and the better on the training data is taken (as for the
 tribometer catalogue; each form counts as a cause tried in the Bonferroni threshold).
@@ -75,7 +79,7 @@ from __future__ import annotations
 import copy
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
 import numpy as np
@@ -97,8 +101,10 @@ from fewear.mesh.profile import periodic_linear
 from fewear.wear.extensions import (
     NoExtension,
     RunningIn,
+    RunningInCycles,
     RunningInPowerLaw,
     distance_at_effective_m,
+    extension_to_config,
 )
 
 RUNNING_IN_REACH = 3
@@ -106,8 +112,10 @@ RUNNING_IN_REACH = 3
 DEPTH_REACH = 3.0
 """A candidate run stops once it is this many times deeper than the deepest measured wear."""
 CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in")
-RUNNING_IN_FORMS = {"exponential": RunningIn, "power_law": RunningInPowerLaw}
-"""The forms of ``running_in``: the [wear] extension of each (its ``name``)."""
+RUNNING_IN_FORMS = {"exponential": RunningIn, "power_law": RunningInPowerLaw,
+                    "cycles": RunningInCycles}
+"""The forms of ``running_in``: the [wear] extension of each (its ``name``); the first two are
+driven by each node's sliding distance, ``cycles`` by the crank cycles."""
 IMPACT_FORMS = {"energy": "impact_wear_coefficient_m3_J",
                 "impulse": "impact_impulse_wear_coefficient_m3_Ns"}
 """The forms of ``impact_wear``: the [wear] key of each (:mod:`fewear.wear.impact`)."""
@@ -228,7 +236,7 @@ class Candidate:
     grid: tuple[float, ...] = ()
     form: str = ""
     discrete: bool = False
-    run_extension: RunningIn | RunningInPowerLaw | None = None
+    run_extension: RunningIn | RunningInPowerLaw | RunningInCycles | None = None
     k_scales: tuple[float, ...] = ()
 
     def k_scale(self, run: int) -> float:
@@ -282,18 +290,42 @@ def _mixed_depth(candidate: Candidate, position: float, scale: float,
 
 
 def running_in_cycles(cycles: float, run: WearHistory, form: str, extra: float,
-                      distance_scale_m: float, k_scale: float = 1.0,
+                      scale: float, k_scale: float = 1.0,
                       run_extension=None, run_k_scale: float = 1.0) -> np.ndarray:
     """Per node a, the cycles of ``run`` after which the node has worn what the model with the
-    running-in ``form`` (r - 1 = ``extra``, s0 = ``distance_scale_m``) and the wear coefficient's
+    running-in ``form`` (r - 1 = ``extra``, s0 or N0 = ``scale``) and the wear coefficient's
     level s = ``k_scale`` wears after ``cycles`` N: s S_eff(N d_a) = s_run S_eff,run(N' d_a),
-    N' = S_eff,run^-1(s S_eff(N d_a) / s_run) / d_a, with d_a the node's sliding per cycle and
-    the run made with level s_run = ``run_k_scale`` and running-in ``run_extension`` (None: the
-    believed run, N' = s tau_a(N), tau_a of the module docstring)."""
-    sliding = np.maximum(run.sliding_m_per_cycle, 1e-300)
-    extension = RUNNING_IN_FORMS[form](1.0 + extra, distance_scale_m)
-    effective = k_scale / run_k_scale * extension.effective_distance_m(cycles * sliding)
-    return distance_at_effective_m(run_extension or NoExtension(), effective) / sliding
+    N' = S_eff,run^-1(s S_eff(N d_a) / s_run) / d_a, with d_a the node's advance per cycle on the
+    form's axis (:func:`_advance_per_cycle`) and the run made with level s_run = ``run_k_scale``
+    and running-in ``run_extension`` of the same form (None: the believed run, N' = s tau_a(N),
+    tau_a of the module docstring)."""
+    per_cycle = _advance_per_cycle(run, form)
+    extension = _on_node_axis(RUNNING_IN_FORMS[form](1.0 + extra, scale))
+    effective = k_scale / run_k_scale * extension.effective_distance_m(cycles * per_cycle)
+    return distance_at_effective_m(_on_node_axis(run_extension or NoExtension()),
+                                   effective) / per_cycle
+
+
+def _advance_per_cycle(run: WearHistory, form: str) -> np.ndarray:
+    """How far each node moves per crank cycle along the axis the running-in ``form`` falls on:
+    its sliding distance (m), or one cycle for ``running_in_cycles``."""
+    if RUNNING_IN_FORMS[form] is RunningInCycles:
+        return np.ones_like(run.sliding_m_per_cycle)
+    return np.maximum(run.sliding_m_per_cycle, 1e-300)
+
+
+def _on_node_axis(extension):
+    """The extension as a law of the node's advance along its axis: ``running_in_cycles`` is
+    the exponential law of :class:`RunningIn` with the cycles for the sliding distance."""
+    if isinstance(extension, RunningInCycles):
+        return RunningIn(extension.k_initial_over_steady, extension.scale_cycles)
+    return extension
+
+
+def running_in_extension(form: str, params: dict):
+    """The [wear] extension of running-in ``form`` at a fit's ``params``."""
+    extension = RUNNING_IN_FORMS[form]
+    return extension(**{law.name: params[law.name] for law in fields(extension)})
 
 
 def _nodal_prediction(candidate: Candidate, x: np.ndarray, cycles: float) -> np.ndarray:
@@ -396,8 +428,8 @@ def _bounds_and_starts(candidate: Candidate, obs: Observations,
     bounds = [(-phi, phi), (-ln_max, ln_max)]
     extra_starts: list[tuple[float, ...]] = [()]
     if candidate.running_in:
-        sliding = candidate.runs[0].sliding_m_per_cycle
-        typical = float(np.median(sliding[sliding > 0.0])) * last_train  # metres slid
+        advance = _advance_per_cycle(candidate.runs[0], candidate.form)
+        typical = float(np.median(advance[advance > 1e-300])) * last_train  # m slid or cycles
         bounds += [(math.log(0.05), math.log(2.0 * RUNNING_IN_REACH - 1.0)),
                    (math.log(1e-3 * typical), math.log(10.0 * typical))]
         extra_starts = [(math.log(r), math.log(f * typical)) for r in (0.5, 3.0)
@@ -460,8 +492,7 @@ def refine_running_in(candidate: Candidate, fitted: Fit, obs: Observations,
         if _stops_short(run, obs, settings):
             break
         params = fitted.params
-        extension = RUNNING_IN_FORMS[candidate.form](params["k_initial_over_steady"],
-                                                     params["distance_scale_m"])
+        extension = running_in_extension(candidate.form, params)
         on_run = replace(candidate, runs=(run,), run_extension=extension,
                          k_scales=(params["k_scale"],))
         refitted = _with_params(fit(candidate.name, on_run, obs, [fitted.x], bounds), on_run)
@@ -597,8 +628,8 @@ def _with_params(result: Fit, candidate: Candidate) -> Fit:
     if x.size > 1:
         params["k_scale"] = float(math.exp(x[1]))
     if candidate.running_in:
-        params["k_initial_over_steady"] = 1.0 + float(math.exp(x[2]))
-        params["distance_scale_m"] = float(math.exp(x[3]))
+        params.update(RUNNING_IN_FORMS[candidate.form](1.0 + float(math.exp(x[2])),
+                                                       float(math.exp(x[3]))).params())
     elif candidate.n_extra == 1:
         value = grid_value(candidate, float(x[2]))
         if candidate.name == "impact_wear":  # s rescales the cycle axis: all wear, impacts too
@@ -797,9 +828,11 @@ def _refinement_runs(config: dict, run: Callable[[dict, str], WearHistory]) -> R
     def run_at(candidate: Candidate, fitted: Fit) -> WearHistory:
         params = fitted.params
         if candidate.running_in:
+            law = running_in_extension(fitted.form, params).params()
             return run(_extended_config(config, "running_in", fitted),
-                       f"running-in ({fitted.form}), r = {params['k_initial_over_steady']:.3g}, "
-                       f"s0 = {params['distance_scale_m']:.3g} m, k x {params['k_scale']:.3g}")
+                       f"running-in ({fitted.form}), "
+                       + ", ".join(f"{key} = {value:.3g}" for key, value in law.items())
+                       + f", k x {params['k_scale']:.3g}")
         key = _grid_parameter(candidate.name, candidate.form)
         value = f", {key} = {params[key]:.3g}" if key else ""
         return run(_extended_config(config, candidate.name, fitted),
@@ -861,10 +894,7 @@ def _extended_config(config: dict, cause: str, fitted: Fit) -> dict:
     extended = cause_config(config, cause, value, form)
     _scaled_wear(extended, params["k_scale"])
     if cause == "running_in":
-        extended["wear"]["extension"] = RUNNING_IN_FORMS[form].name
-        extended["wear"]["extension_params"] = {
-            "k_initial_over_steady": params["k_initial_over_steady"],
-            "distance_scale_m": params["distance_scale_m"]}
+        extended["wear"].update(extension_to_config(running_in_extension(form, params)))
     return extended
 
 

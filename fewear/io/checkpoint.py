@@ -120,7 +120,8 @@ def _case_from(rod: str, meta: dict, data: dict):
 
     state = WearState(array("angle_rad"), array("depth_m"),
                       SlidingState(array("sliding_distance_m"), array("sliding_time_s"),
-                                   array("lagged_power_W_m2")), meta["cycles"], meta["blocks"])
+                                   array("lagged_power_W_m2"), float(meta["cycles"])),
+                      meta["cycles"], meta["blocks"])
     records = [BlockRecord(int(c), int(a), d, float(v[0]), int(i), float(v[1]), float(v[2]))
                for c, a, d, i, v in zip(array("record_cycles"), array("record_block_cycles"),
                                         array("record_depth_m"), array("record_impacts"),

@@ -60,7 +60,8 @@ def block_wear(cycle: CycleSliding, sliding: SlidingState, extension, cycles: in
         Delta h = integral over the block of m(state) dh_cycle
                ~= (A_j / N) sum_{i<N} m(state at the middle of sub-block i) h_cycle,
 
-    each node's state advancing by A_j times the cycle's sliding distance, time and power. The
+    each node's state advancing by A_j times the cycle's sliding distance, time and power
+    (and its crank cycles by A_j). The
     midpoint rule over N = ``substeps`` sub-blocks is exact for plain Archard (m = 1: Delta h =
     A_j h_cycle, seed eq. 10) and second-order accurate in 1/N otherwise.
 
@@ -88,12 +89,13 @@ def block_wear(cycle: CycleSliding, sliding: SlidingState, extension, cycles: in
     multiplier_sum = np.zeros_like(cycle.depth_m)
     for i in range(substeps):
         middle = extension.advance(sliding, (i + 0.5) * share * cycle.distance_m,
-                                   (i + 0.5) * share * cycle.time_s, cycle.power_W_m2)
+                                   (i + 0.5) * share * cycle.time_s, cycle.power_W_m2,
+                                   (i + 0.5) * share)
         multiplier_sum += extension.multiplier(middle)
     mean_multiplier = multiplier_sum / substeps
     increment = cycles * mean_multiplier * cycle.depth_m + cycles * cycle.impact_depth_m
     after = extension.advance(sliding, cycles * cycle.distance_m, cycles * cycle.time_s,
-                              cycle.power_W_m2)
+                              cycle.power_W_m2, cycles)
     if cycle.depth_sensitivity is not None:
         system = np.eye(increment.size) - cycles * mean_multiplier[:, None] * (
             cycle.depth_sensitivity)

@@ -7,8 +7,8 @@ current (p, v). An extension writes the local wear coefficient as
 .. math::  k = k(p, v)\\, m(\\text{state}),
 
 with ``m`` a dimensionless multiplier and the state the history of one contact point: its
-accumulated sliding distance ``s`` [m], time in contact ``t`` [s] and a first-order-lagged
-frictional power ``theta`` [W/m^2]. The catalogue:
+accumulated sliding distance ``s`` [m], time in contact ``t`` [s], a first-order-lagged
+frictional power ``theta`` [W/m^2] and the crank cycles ``N`` the joint has run. The catalogue:
 
 - ``none``: m = 1 (plain Archard, the seed).
 - ``running_in``: m(s) = 1 + (r - 1) exp(-s / s0). k falls from an initial value r k_ss to the
@@ -19,6 +19,11 @@ frictional power ``theta`` [W/m^2]. The catalogue:
   (hyperbolic) tail, the other break-in curve shape of Blau (2005): the wear rate approaches its
   steady value as 1/s instead of exponentially, so the extra wear (r - 1) s0 ln(1 + s / s0) keeps
   growing slowly.
+- ``running_in_cycles``: m(N) = 1 + (r - 1) exp(-N / N0). The same fall driven by the crank
+  cycles the joint has run, the same at every point of the bore: the running-in of the *pin*
+  (its asperities are flattened every cycle, whichever bore point they meet) or of the lubricant
+  film, the break-in curve plotted against time or cycles as tribometer and bench tests record it
+  (Blau 2005). Only a mechanism has cycles: a pin-on-disc test has no closed form for it.
 - ``time_transient``: m(t) = 1 + (r - 1) exp(-t / tau). The same fall driven by time, as when a
   protective oxide or tribofilm grows at a rate set by time at temperature rather than by distance
   (T. F. J. Quinn, "Review of oxidational wear", Tribology International 16 (1983) 257-271 and
@@ -60,12 +65,14 @@ class SlidingState:
 
     ``distance_m``: accumulated sliding distance; ``time_s``: time in sliding contact;
     ``lagged_power_W_m2``: frictional power mu p v through the thermal lag of :class:`Thermal`
-    (zero for the other extensions).
+    (zero for the other extensions); ``cycles``: the crank cycles the joint has run (the same at
+    every point; :class:`RunningInCycles`).
     """
 
     distance_m: np.ndarray | float = 0.0
     time_s: np.ndarray | float = 0.0
     lagged_power_W_m2: np.ndarray | float = 0.0
+    cycles: float = 0.0
 
 
 def _check_positive(name: str, value: float, allowed: str) -> None:
@@ -84,9 +91,9 @@ def _check_ratio(value: float) -> None:
         )
 
 
-def _advance_common(state: SlidingState, ds_m, dt_s) -> SlidingState:
+def _advance_common(state: SlidingState, ds_m, dt_s, cycles: float) -> SlidingState:
     return replace(state, distance_m=state.distance_m + np.asarray(ds_m),
-                   time_s=state.time_s + np.asarray(dt_s))
+                   time_s=state.time_s + np.asarray(dt_s), cycles=state.cycles + float(cycles))
 
 
 @dataclass(frozen=True)
@@ -99,8 +106,9 @@ class NoExtension:
     def multiplier(self, state: SlidingState) -> np.ndarray:
         return np.ones_like(np.asarray(state.distance_m, dtype=float))
 
-    def advance(self, state: SlidingState, ds_m, dt_s, power_W_m2) -> SlidingState:
-        return _advance_common(state, ds_m, dt_s)
+    def advance(self, state: SlidingState, ds_m, dt_s, power_W_m2,
+                cycles: float = 0.0) -> SlidingState:
+        return _advance_common(state, ds_m, dt_s, cycles)
 
     def effective_distance_m(self, distance_m, time_s=None, power_W_m2=None) -> np.ndarray:
         return np.asarray(distance_m, dtype=float)
@@ -129,8 +137,9 @@ class RunningIn:
         s = np.asarray(state.distance_m, dtype=float)
         return 1.0 + (self.k_initial_over_steady - 1.0) * np.exp(-s / self.distance_scale_m)
 
-    def advance(self, state: SlidingState, ds_m, dt_s, power_W_m2) -> SlidingState:
-        return _advance_common(state, ds_m, dt_s)
+    def advance(self, state: SlidingState, ds_m, dt_s, power_W_m2,
+                cycles: float = 0.0) -> SlidingState:
+        return _advance_common(state, ds_m, dt_s, cycles)
 
     def effective_distance_m(self, distance_m, time_s=None, power_W_m2=None) -> np.ndarray:
         s = np.asarray(distance_m, dtype=float)
@@ -163,8 +172,9 @@ class RunningInPowerLaw:
         s = np.asarray(state.distance_m, dtype=float)
         return 1.0 + (self.k_initial_over_steady - 1.0) / (1.0 + s / self.distance_scale_m)
 
-    def advance(self, state: SlidingState, ds_m, dt_s, power_W_m2) -> SlidingState:
-        return _advance_common(state, ds_m, dt_s)
+    def advance(self, state: SlidingState, ds_m, dt_s, power_W_m2,
+                cycles: float = 0.0) -> SlidingState:
+        return _advance_common(state, ds_m, dt_s, cycles)
 
     def effective_distance_m(self, distance_m, time_s=None, power_W_m2=None) -> np.ndarray:
         s = np.asarray(distance_m, dtype=float)
@@ -174,6 +184,48 @@ class RunningInPowerLaw:
     def params(self) -> dict[str, float]:
         return {"k_initial_over_steady": float(self.k_initial_over_steady),
                 "distance_scale_m": float(self.distance_scale_m)}
+
+
+@dataclass(frozen=True)
+class RunningInCycles:
+    """m(N) = 1 + (r - 1) exp(-N / N0), N the crank cycles run (Blau 2005), at every bore point
+    alike; the wear after N cycles is that of plain Archard after the effective cycles
+    N_eff = N + (r - 1) N0 (1 - exp(-N / N0)) (:meth:`effective_cycles`).
+
+    ``k_initial_over_steady`` r >= 1; ``scale_cycles`` N0 > 0.
+    """
+
+    k_initial_over_steady: float
+    scale_cycles: float
+    name = "running_in_cycles"
+    required_variables = ("cycles",)
+
+    def __post_init__(self):
+        _check_ratio(self.k_initial_over_steady)
+        _check_positive("scale_cycles", self.scale_cycles, "a positive number of crank cycles")
+
+    def multiplier(self, state: SlidingState) -> np.ndarray:
+        shape = np.shape(state.distance_m)
+        fall = math.exp(-float(state.cycles) / self.scale_cycles)
+        return np.full(shape, 1.0 + (self.k_initial_over_steady - 1.0) * fall)
+
+    def advance(self, state: SlidingState, ds_m, dt_s, power_W_m2,
+                cycles: float = 0.0) -> SlidingState:
+        return _advance_common(state, ds_m, dt_s, cycles)
+
+    def effective_cycles(self, cycles) -> np.ndarray:
+        n = np.asarray(cycles, dtype=float)
+        n0 = self.scale_cycles
+        return n + (self.k_initial_over_steady - 1.0) * n0 * -np.expm1(-n / n0)
+
+    def effective_distance_m(self, distance_m, time_s=None, power_W_m2=None) -> np.ndarray:
+        raise FewearInputError(
+            "running_in_cycles extension: driven by a mechanism's crank cycles; a test at one "
+            "sliding speed has none (use running_in or time_transient)")
+
+    def params(self) -> dict[str, float]:
+        return {"k_initial_over_steady": float(self.k_initial_over_steady),
+                "scale_cycles": float(self.scale_cycles)}
 
 
 @dataclass(frozen=True)
@@ -197,8 +249,9 @@ class TimeTransient:
         t = np.asarray(state.time_s, dtype=float)
         return 1.0 + (self.k_initial_over_steady - 1.0) * np.exp(-t / self.time_scale_s)
 
-    def advance(self, state: SlidingState, ds_m, dt_s, power_W_m2) -> SlidingState:
-        return _advance_common(state, ds_m, dt_s)
+    def advance(self, state: SlidingState, ds_m, dt_s, power_W_m2,
+                cycles: float = 0.0) -> SlidingState:
+        return _advance_common(state, ds_m, dt_s, cycles)
 
     def effective_distance_m(self, distance_m, time_s=None, power_W_m2=None) -> np.ndarray:
         s, t = _distance_and_time(distance_m, time_s, self.name)
@@ -239,12 +292,13 @@ class Thermal:
     def multiplier(self, state: SlidingState) -> np.ndarray:
         return 1.0 + self.beta_m2_W * np.asarray(state.lagged_power_W_m2, dtype=float)
 
-    def advance(self, state: SlidingState, ds_m, dt_s, power_W_m2) -> SlidingState:
+    def advance(self, state: SlidingState, ds_m, dt_s, power_W_m2,
+                cycles: float = 0.0) -> SlidingState:
         """Exact update of the lag for power held constant over the step."""
         decay = np.exp(-np.asarray(dt_s, dtype=float) / self.time_scale_s)
         power = np.asarray(power_W_m2, dtype=float)
         lagged = power + (np.asarray(state.lagged_power_W_m2) - power) * decay
-        return replace(_advance_common(state, ds_m, dt_s), lagged_power_W_m2=lagged)
+        return replace(_advance_common(state, ds_m, dt_s, cycles), lagged_power_W_m2=lagged)
 
     def effective_distance_m(self, distance_m, time_s=None, power_W_m2=None) -> np.ndarray:
         s, t = _distance_and_time(distance_m, time_s, self.name)
@@ -259,12 +313,14 @@ class Thermal:
         return {"beta_m2_W": float(self.beta_m2_W), "time_scale_s": float(self.time_scale_s)}
 
 
-WearExtension = NoExtension | RunningIn | RunningInPowerLaw | TimeTransient | Thermal
+WearExtension = (NoExtension | RunningIn | RunningInPowerLaw | RunningInCycles | TimeTransient
+                 | Thermal)
 
 EXTENSIONS: dict[str, type] = {
     "none": NoExtension,
     "running_in": RunningIn,
     "running_in_power_law": RunningInPowerLaw,
+    "running_in_cycles": RunningInCycles,
     "time_transient": TimeTransient,
     "thermal": Thermal,
 }

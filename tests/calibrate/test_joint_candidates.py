@@ -106,22 +106,29 @@ def test_an_unknown_impact_form_is_a_clear_error():
 
 
 # --- running-in: the time map of each form, and the form told from the data ---------------------
-MULTIPLIERS = {  # m(S) of each form, written out here (Blau 2005), not taken from the extensions
-    "exponential": lambda s, r, s0: 1.0 + (r - 1.0) * np.exp(-s / s0),
-    "power_law": lambda s, r, s0: 1.0 + (r - 1.0) / (1.0 + s / s0),
+MULTIPLIERS = {  # m(n) after n cycles of sliding d per cycle for each form, written out here
+    # (Blau 2005), not taken from the extensions; scale: s0 in m, or N0 in cycles
+    "exponential": lambda n, d, r, s0: 1.0 + (r - 1.0) * np.exp(-n * d / s0),
+    "power_law": lambda n, d, r, s0: 1.0 + (r - 1.0) / (1.0 + n * d / s0),
+    "cycles": lambda n, d, r, n0: 1.0 + (r - 1.0) * np.exp(-n / n0),
 }
+SCALES = {"exponential": 4.0, "power_law": 4.0, "cycles": 900.0}  # s0 (m) or N0 (cycles)
+
+
+def test_every_running_in_form_has_its_multiplier_written_out_here():
+    assert set(MULTIPLIERS) == set(RUNNING_IN_FORMS) == set(SCALES)
 
 
 @pytest.mark.parametrize("form", sorted(RUNNING_IN_FORMS))
 def test_running_in_time_map_is_the_integral_of_the_multiplier(form):
-    """tau_a(N) = integral_0^N m(n d_a) dn, by the trapezoid rule on 200,001 points."""
+    """tau_a(N) = integral_0^N m(n, d_a) dn, by the trapezoid rule on 200,001 points."""
     sliding = np.array([0.0, 2e-3, 1e-2, 5e-2])  # m per cycle; a node that never slides too
     run = WearHistory(np.zeros(4), np.array([0.0, 1.0]), np.zeros((2, 4)), sliding)
-    r, s0 = 3.5, 4.0
+    r, s0 = 3.5, SCALES[form]
     cycles = 20000.0
     n = np.linspace(0.0, cycles, 200001)
     for node, d in enumerate(sliding):
-        m = MULTIPLIERS[form](n * d, r, s0)
+        m = MULTIPLIERS[form](n, d, r, s0)
         expected = float(np.sum(0.5 * (m[1:] + m[:-1]) * np.diff(n)))
         tau = running_in_cycles(cycles, run, form, r - 1.0, s0)[node]
         assert tau == pytest.approx(expected, rel=1e-7)
@@ -139,29 +146,33 @@ def _running_in_observations(run: WearHistory, form: str, r: float, s0: float,
     counts = (2000.0, 3000.0, 4500.0, 6000.0, 8000.0, 10000.0, 14000.0, 20000.0)
     measured_angle = np.radians(np.arange(0.0, 360.0, 3.0))
     bushing_angle = measured_angle + math.radians(offset_deg)
-    rate = np.interp(bushing_angle, run.angle_rad, run.depth_m[1] / run.cycles[1], period=2 * np.pi)
+    rate = run.depth_m[1] / run.cycles[1]  # m per cycle at each node
     cycles, angle, depth = [], [], []
     for count in counts:
-        tau = running_in_cycles(count, run, form, r - 1.0, s0)[0]  # the sliding is uniform
+        nodal = rate * running_in_cycles(count, run, form, r - 1.0, s0)
         cycles.append(np.full(measured_angle.size, count))
         angle.append(measured_angle)
-        depth.append(rate * tau)
+        depth.append(np.interp(bushing_angle, run.angle_rad, nodal, period=2 * np.pi))
     cycles = np.concatenate(cycles)
     return Observations(cycles, np.concatenate(angle), np.concatenate(depth), cycles < 12000.0)
 
 
 @pytest.mark.parametrize("form", sorted(RUNNING_IN_FORMS))
 def test_running_in_fit_names_the_form_of_the_data_and_its_parameters(form):
+    """The nodes slide 0.005-0.015 m per cycle, so a running-in by sliding distance falls at
+    each node after its own number of cycles and one by cycles at all alike."""
     angle = np.linspace(0.0, 2.0 * math.pi, 96, endpoint=False)
-    run = _linear_run(angle, np.full(96, 0.01))
-    r, s0 = 3.0, 20.0  # k three times its steady value, over 2,000 cycles of 0.01 m
-    obs = _running_in_observations(run, form, r, s0, offset_deg=7.0)
+    run = _linear_run(angle, 0.01 * (1.0 + 0.5 * np.sin(angle)))
+    # k three times its steady value, over 2,000 cycles of 0.01 m (or 2,000 cycles)
+    r, scale, key = ((3.0, 2000.0, "scale_cycles") if form == "cycles"
+                     else (3.0, 20.0, "distance_scale_m"))
+    obs = _running_in_observations(run, form, r, scale, offset_deg=7.0)
     forms = tuple(Candidate("running_in", (run,), form=name) for name in RUNNING_IN_FORMS)
     result = fit_candidate(forms, obs, 5.0, JointDiagnoseSettings())
     assert result.form == form and result.forms_tried == len(RUNNING_IN_FORMS)
     assert result.params["angle_offset_deg"] == pytest.approx(7.0, abs=0.05)
     assert result.params["k_initial_over_steady"] == pytest.approx(r, rel=0.02)
-    assert result.params["distance_scale_m"] == pytest.approx(s0, rel=0.03)
+    assert result.params[key] == pytest.approx(scale, rel=0.03)
     assert result.held_out_rms_m < 1e-3 * obs.depth_m.max()
 
 
@@ -169,13 +180,18 @@ def test_running_in_fit_names_the_form_of_the_data_and_its_parameters(form):
 def test_the_time_map_from_a_run_at_the_models_own_parameters_is_the_identity(form):
     sliding = np.array([0.0, 2e-3, 1e-2, 5e-2])
     run = WearHistory(np.zeros(4), np.array([0.0, 1.0]), np.zeros((2, 4)), sliding)
-    r, s0, k_scale = 3.5, 4.0, 1.3
+    r, s0, k_scale = 3.5, SCALES[form], 1.3
     own = RUNNING_IN_FORMS[form](r, s0)
     cycles = running_in_cycles(7000.0, run, form, r - 1.0, s0, k_scale, own, k_scale)
     np.testing.assert_allclose(cycles, 7000.0, rtol=1e-12)
     # a run with twice the level: the same wear after half as many of its cycles, where
-    # s S_eff(N d) = 2 s S_eff(N' d) (the node that never slides: N' = N / 2)
+    # s S_eff(N d) = 2 s S_eff(N' d) (the node that never slides: N' = N / 2), or for the
+    # running-in by cycles s N_eff(N) = 2 s N_eff(N') at every node
     half = running_in_cycles(7000.0, run, form, r - 1.0, s0, k_scale, own, 2.0 * k_scale)
+    if form == "cycles":
+        np.testing.assert_allclose(own.effective_cycles(half),
+                                   0.5 * own.effective_cycles(7000.0), rtol=1e-11)
+        return
     np.testing.assert_allclose(own.effective_distance_m(half * sliding)[1:],
                                0.5 * own.effective_distance_m(7000.0 * sliding)[1:], rtol=1e-11)
     assert half[0] == pytest.approx(3500.0 / r * r, rel=1e-9)
@@ -204,7 +220,9 @@ def _young_bore_world(angle: np.ndarray):
 
     def run_at(k_scale: float, form: str | None = None, r: float = 1.0, s0: float = 1.0):
         extra = np.zeros_like(cycles)
-        if form is not None:
+        if form == "cycles":  # s0: N0 in cycles
+            extra = RUNNING_IN_FORMS[form](r, s0).effective_cycles(cycles) - cycles
+        elif form is not None:
             extension = RUNNING_IN_FORMS[form](r, s0)
             extra = extension.effective_distance_m(cycles * 0.01) / 0.01 - cycles
         depth = k_scale * (cycles[:, None] * wide + extra[:, None] * narrow)
@@ -233,7 +251,8 @@ def test_running_in_refined_on_runs_at_its_fitted_parameters_fits_better_when_ru
         return run_with(fitted.form, fitted.params)
 
     def run_with(form: str, p: dict) -> WearHistory:
-        return run_at(p["k_scale"], form, p["k_initial_over_steady"], p["distance_scale_m"])
+        scale = p["scale_cycles"] if form == "cycles" else p["distance_scale_m"]
+        return run_at(p["k_scale"], form, p["k_initial_over_steady"], scale)
 
     def real_rms(run: WearHistory) -> np.ndarray:
         r = obs.depth_m - np.concatenate([run.nodal_depth_m(c) for c in counts])

@@ -7,7 +7,7 @@ import pytest
 
 from fewear.errors import FewearInputError
 from fewear.wear.archard import CycleSliding, block_wear, cycle_wear_depth_m, smoothed_periodic
-from fewear.wear.extensions import NoExtension, RunningIn, SlidingState
+from fewear.wear.extensions import NoExtension, RunningIn, RunningInCycles, SlidingState
 
 
 def test_uniform_sliding_gives_k_p_s_times_steps():
@@ -59,6 +59,22 @@ def test_running_in_block_matches_the_closed_form_effective_distance():
     exact = per_cycle / ds * (law.effective_distance_m(5.0) - law.effective_distance_m(0.0))
     assert increment[0] == pytest.approx(exact, rel=(5000 * ds / 4.0) ** 2 / (24 * 32**2) * 5)
     assert after.distance_m[0] == pytest.approx(5.0)
+
+
+def test_running_in_by_cycles_over_blocks_is_the_effective_cycles():
+    """Blocks of 300, 700 and 4000 cycles, each point sliding differently: every point wears
+    h_cycle times N_eff(5000) = N + (r - 1) N0 (1 - exp(-N / N0)) (the block's own crank cycles
+    carry the state from block to block), within the midpoint rule's error."""
+    law = RunningInCycles(k_initial_over_steady=3.0, scale_cycles=600.0)
+    one_cycle = np.array([1e-12, 4e-12])
+    depth, sliding = np.zeros(2), unworn(2)
+    for cycles in (300, 700, 4000):
+        step = CycleSliding(one_cycle, np.array([1e-4, 5e-2]), np.full(2, 0.01), np.zeros(2))
+        increment, sliding = block_wear(step, sliding, law, cycles)
+        depth = depth + increment
+    exact = 5000.0 + 2.0 * 600.0 * -math.expm1(-5000.0 / 600.0)
+    np.testing.assert_allclose(depth, one_cycle * exact, rtol=(4000 / 32 / 600) ** 2 / 24)
+    assert sliding.cycles == 5000.0
 
 
 def test_implicit_step_is_backward_euler_and_damps_a_ripple():
