@@ -337,8 +337,11 @@ def smoothed_block_wear(per_cycle: CycleSliding, state: WearState, extension, cy
     """:func:`block_wear` with the depth increment smoothed around the bore by a Gaussian of
     standard deviation ``width_rad`` (volume kept; :func:`smoothed_periodic`): the dwell points of
     the few recorded cycles stand for an orbit that varies from cycle to cycle over the A_j cycles
-    of the block, and the bore's contact does not resolve ripples shorter than a few elements."""
-    increment, sliding = block_wear(per_cycle, state.sliding, extension, cycles)
+    of the block, and the bore's contact does not resolve ripples shorter than a few elements.
+    The wear law's history starts from the crank cycles the wear state has run (their one
+    owner)."""
+    increment, sliding = block_wear(per_cycle, replace(state.sliding, cycles=float(state.cycles)),
+                                    extension, cycles)
     step = 2.0 * math.pi / state.angle_rad.size
     # the FFT convolution leaves rounding noise (~1e-21 m) where nothing wears: clip it
     return np.maximum(smoothed_periodic(increment, step, width_rad), 0.0), sliding

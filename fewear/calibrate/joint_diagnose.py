@@ -30,9 +30,10 @@ tau(N) = N except for running-in. The catalogue (every cause has s free, so each
   benchmark result) by impulse, V = c_J J_impacts (runs on a grid of the coefficient,
   interpolated; the level s scales both wear rates, so the coefficient reported and written to
   the extended config is s times the grid's);
-- ``running_in``: k falls from r k to k over each node's first metres of sliding S, in one of two
-  forms, the [wear] extensions of :mod:`fewear.wear.extensions` (Blau, Tribol. Int. 38 (2005)
-  1007-1012, names both): ``running_in``, m = 1 + (r - 1) exp(-S / s0), whose extra wear levels
+- ``running_in``: k falls from r k to k over each node's first metres of sliding S or over the
+  first crank cycles, in one of three forms, the [wear] extensions of
+  :mod:`fewear.wear.extensions` (Blau, Tribol. Int. 38 (2005) 1007-1012, names the shapes):
+  ``running_in``, m = 1 + (r - 1) exp(-S / s0), whose extra wear levels
   off, and ``running_in_power_law``, m = 1 + (r - 1) / (1 + S / s0), whose extra wear keeps
   growing as ln(1 + S / s0). Node a, sliding d_a per cycle in the believed run, has worn after N
   cycles what the believed run wore after tau_a(N) = S_eff(N d_a) / d_a, S_eff the extension's
@@ -41,11 +42,12 @@ tau(N) = N except for running-in. The catalogue (every cause has s free, so each
   worn geometry couples the nodes). The third form, ``running_in_cycles``, m = 1 + (r - 1)
   exp(-N / N0), falls with the crank cycles N at every node alike (the pin or the lubricant runs
   in, not the bore's own surface): tau(N) = N + (r - 1) N0 (1 - exp(-N / N0)) at every node, the
-  exponential form on an axis where every node advances one unit per cycle; exact, the geometry
-  feedback included (k scaled alike everywhere scales the cycle axis).
+  exponential form on an axis where every node advances one unit per cycle; exact for sliding
+  wear in the limit of small blocks, the geometry feedback included (k scaled alike everywhere
+  scales the cycle axis; impact wear, which running-in does not scale, breaks it).
 
-A cause with two forms is fitted in both and the better on the training data is taken (as for the
-tribometer catalogue; each form counts as a cause tried in the Bonferroni threshold).
+A cause with several forms is fitted in each and the best on the training data is taken (as for
+the tribometer catalogue; each form counts as a cause tried in the Bonferroni threshold).
 
 Refinement: a fit that scales the cycles of runs made with the believed k, interpolates between
 grid runs or maps the cycles of the believed run is not the wear loop's run at its parameters (the
@@ -289,7 +291,7 @@ def _mixed_depth(candidate: Candidate, position: float, scale: float,
             + w * runs[k + 1].nodal_depth_m(scale / candidate.k_scale(k + 1) * cycles))
 
 
-def running_in_cycles(cycles: float, run: WearHistory, form: str, extra: float,
+def running_in_time_map(cycles: float, run: WearHistory, form: str, extra: float,
                       scale: float, k_scale: float = 1.0,
                       run_extension=None, run_k_scale: float = 1.0) -> np.ndarray:
     """Per node a, the cycles of ``run`` after which the node has worn what the model with the
@@ -335,7 +337,7 @@ def _nodal_prediction(candidate: Candidate, x: np.ndarray, cycles: float) -> np.
     scale = math.exp(x[1])
     if candidate.running_in:
         run = candidate.runs[0]
-        return run.nodal_depth_each_m(running_in_cycles(
+        return run.nodal_depth_each_m(running_in_time_map(
             cycles, run, candidate.form, math.exp(x[2]), math.exp(x[3]), scale,
             candidate.run_extension, candidate.k_scale(0)))
     position = x[2] if candidate.n_extra == 1 else 0.0
@@ -444,8 +446,8 @@ def _bounds_and_starts(candidate: Candidate, obs: Observations,
 REFINEMENTS = 3
 """At most this many runs refine a fit (:func:`refine_running_in`, :func:`refine_on_runs`)."""
 SETTLED = 0.05
-"""A refinement ends once the fit's parameters (s, r - 1, s0: in ln) are this close to those of
-the run it sits on."""
+"""A refinement ends once the fit's parameters (s, r - 1, s0 or N0: in ln) are this close to those
+of the run it sits on."""
 GRID_SETTLED = 0.05
 """A grid refinement ends once the fit lands within this fraction of a grid step of a run."""
 RunAt = Callable[[Candidate, Fit], WearHistory]
@@ -480,7 +482,7 @@ def refine_running_in(candidate: Candidate, fitted: Fit, obs: Observations,
     running-in over a short distance wears the young bore's shape deeper than any run without
     it does (on one third-generator data set the map's fit gained 50 % where its full run lost
     73 %). So the model is run at the fitted parameters (``run_at``), refitted on the map from
-    that run (:func:`running_in_cycles`, near the identity), and so on, until no parameter moves
+    that run (:func:`running_in_time_map`, near the identity), and so on, until no parameter moves
     by more than :data:`SETTLED` or after :data:`REFINEMENTS` runs. At a fixed point
     the fit is that of the real run at its own parameters; the iteration is not sure to reach
     one (a shape the map cannot make is approached a step per run), so the fit that is named is

@@ -59,17 +59,19 @@ def extrapolate_block(settings: ExtrapolationSettings, increment_for, element_he
 
     "fixed": A_j = min(A, remaining). "adaptive": the largest A_j <= min(A_max, remaining) whose
     largest depth increment stays within f h_e, found by shrinking A_j in proportion to the
-    overshoot (the increment grows about linearly with A_j; at most 12 trials, A_j >= 1).
+    overshoot (the increment grows about linearly with A_j; at most 12 trials, A_j >= 1; if
+    none is within f h_e, the last one tried, with its own increment).
     """
     if settings.mode == "fixed":
         cycles = int(min(max(math.floor(settings.factor), 1), remaining_cycles))
         return (cycles, *increment_for(cycles))
     limit = settings.max_depth_increment_fraction * element_height_m
     cycles = int(min(max(math.floor(settings.max_factor), 1), remaining_cycles))
-    for _ in range(12):
-        outcome = increment_for(cycles)
+    outcome = increment_for(cycles)
+    for _ in range(11):
         peak = float(np.max(outcome[0]))
         if peak <= limit or cycles == 1:
             break
         cycles = max(1, math.floor(0.95 * cycles * limit / peak))
+        outcome = increment_for(cycles)
     return (cycles, *outcome)

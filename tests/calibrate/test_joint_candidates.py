@@ -22,7 +22,7 @@ from fewear.calibrate.joint_diagnose import (
     fit,
     fit_candidate,
     fit_cause,
-    running_in_cycles,
+    running_in_time_map,
 )
 from fewear.calibrate.joint_forward import WearHistory, with_halved_blocks
 from fewear.errors import FewearInputError
@@ -130,7 +130,7 @@ def test_running_in_time_map_is_the_integral_of_the_multiplier(form):
     for node, d in enumerate(sliding):
         m = MULTIPLIERS[form](n, d, r, s0)
         expected = float(np.sum(0.5 * (m[1:] + m[:-1]) * np.diff(n)))
-        tau = running_in_cycles(cycles, run, form, r - 1.0, s0)[node]
+        tau = running_in_time_map(cycles, run, form, r - 1.0, s0)[node]
         assert tau == pytest.approx(expected, rel=1e-7)
 
 
@@ -149,7 +149,7 @@ def _running_in_observations(run: WearHistory, form: str, r: float, s0: float,
     rate = run.depth_m[1] / run.cycles[1]  # m per cycle at each node
     cycles, angle, depth = [], [], []
     for count in counts:
-        nodal = rate * running_in_cycles(count, run, form, r - 1.0, s0)
+        nodal = rate * running_in_time_map(count, run, form, r - 1.0, s0)
         cycles.append(np.full(measured_angle.size, count))
         angle.append(measured_angle)
         depth.append(np.interp(bushing_angle, run.angle_rad, nodal, period=2 * np.pi))
@@ -182,12 +182,12 @@ def test_the_time_map_from_a_run_at_the_models_own_parameters_is_the_identity(fo
     run = WearHistory(np.zeros(4), np.array([0.0, 1.0]), np.zeros((2, 4)), sliding)
     r, s0, k_scale = 3.5, SCALES[form], 1.3
     own = RUNNING_IN_FORMS[form](r, s0)
-    cycles = running_in_cycles(7000.0, run, form, r - 1.0, s0, k_scale, own, k_scale)
+    cycles = running_in_time_map(7000.0, run, form, r - 1.0, s0, k_scale, own, k_scale)
     np.testing.assert_allclose(cycles, 7000.0, rtol=1e-12)
     # a run with twice the level: the same wear after half as many of its cycles, where
     # s S_eff(N d) = 2 s S_eff(N' d) (the node that never slides: N' = N / 2), or for the
     # running-in by cycles s N_eff(N) = 2 s N_eff(N') at every node
-    half = running_in_cycles(7000.0, run, form, r - 1.0, s0, k_scale, own, 2.0 * k_scale)
+    half = running_in_time_map(7000.0, run, form, r - 1.0, s0, k_scale, own, 2.0 * k_scale)
     if form == "cycles":
         np.testing.assert_allclose(own.effective_cycles(half),
                                    0.5 * own.effective_cycles(7000.0), rtol=1e-11)

@@ -44,9 +44,11 @@ def _missed(cause: str, reason: str):
                            "(training misfit 0.7 um against 0.4 um scatter, held-out 9 um): "
                            "'none', reported as a late misfit"),
     _missed("running_in", "measured: a bore-wide running-in warp of the cycles (r = 5.1, "
-                          "N_r = 716) is 'none', reported unexplained: the catalogue's running-in "
-                          "maps each node's cycles by its own sliding; its fit (r at the bound "
-                          "6) predicts the held-out count 29 % worse than the believed model"),
+                          "N_r = 716, m - 1 falling as (1 + N / N_r)^-2) is 'none', reported "
+                          "unexplained: the catalogue's running-in by cycles falls "
+                          "exponentially and fits the training counts worse than the one by "
+                          "sliding, whose fit (r at the bound 6) predicts the held-out count "
+                          "29 % worse than the believed model"),
 ])
 def test_names_the_hidden_cause(tmp_path, cause):
     """The hidden cause is the one named, and its extended run predicts the held-out profiles

@@ -66,3 +66,19 @@ def test_adaptive_block_bounds_the_largest_increment():
     assert increment.max() > 0.9 * 0.2 * 1e-4  # not needlessly short
     fixed = ExtrapolationSettings(mode="fixed", factor=5000)
     assert extrapolate_block(fixed, lambda a: (a * rate,), 1e-4, 3000)[0] == 3000
+
+
+def test_a_block_whose_increment_never_gets_small_enough_keeps_its_own_increment():
+    """An increment that levels off with A_j (2 f h_e (1 - exp(-A / 5))) stays above f h_e until
+    A_j < 3.5, beyond the 12 trials from A_max = 50,000: the block returned is the last one
+    tried, with that block's own increment."""
+    settings = ExtrapolationSettings(mode="adaptive", max_factor=50000.0,
+                                     max_depth_increment_fraction=0.1)
+    limit = 0.1 * 1e-4
+
+    def increment_for(cycles):
+        return (np.array([2.0 * limit * -math.expm1(-cycles / 5.0)]), cycles)
+
+    cycles, increment, evaluated_at = extrapolate_block(settings, increment_for, 1e-4, 400000)
+    assert increment[0] > limit  # the 12 trials ran out
+    assert cycles == evaluated_at
