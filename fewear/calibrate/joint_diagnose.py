@@ -62,13 +62,16 @@ starts). ``wear_coefficient`` is compared with the believed model, a richer caus
 believed model or, if it was accepted, with ``wear_coefficient``. A cause is accepted when (1) the
 extra-sum-of-squares F-test of the nested training fits gives p < ``significance`` / (forms
 tried) (Bonferroni), (2) its held-out RMS error is at least ``min_held_out_gain`` below the
-reference's and (3) its AICc is at least ``min_aicc_improvement`` lower (Burnham & Anderson 2002).
-The accepted causes are taken in order, the richer ones by held-out error, then
-``wear_coefficient``: each one's fitted model is run in full (the extended config) and scored on
-the held-out data, and the first whose full run is at least ``min_held_out_gain`` better than the
-believed model is named (the fits interpolate between runs on a grid, the full run is the model
-the user gets); the gain reported is that of the real run. Accepted causes after it are reported
-as confounded with it, those whose full run did not hold up as ``not_confirmed``.
+reference's and (3) its AICc is at least ``min_aicc_improvement`` lower (Burnham & Anderson 2002);
+none is accepted when the believed model predicts the held-out data within
+:data:`UNEXPLAINED_SCATTERS` times the instrument's scatter (a relative gain on an error at the
+noise is no evidence). The accepted causes are taken in order, the richer ones by held-out
+error, then ``wear_coefficient``: each one's fitted model is run in full (the extended config)
+and scored on the held-out data, and the first whose full run is at least
+``min_held_out_gain`` better than the believed model is named (the fits interpolate between runs
+on a grid, the full run is the model the user gets); the gain reported is that of the real run.
+Accepted causes after it are reported as confounded with it, those whose full run did not hold up
+as ``not_confirmed``.
 
 Resolution (:func:`forward_resolution`): the instrument's scatter, estimated from neighbouring
 profile points, and how far the believed model's worn bore moves when its wear blocks are halved.
@@ -813,11 +816,12 @@ def diagnose_joint(data: JointMeasurements, config: dict,
     run_at = _refinement_runs(config, candidate_runner(horizon, obs))
     fits = {name: fit_cause(forms, obs, baseline, settings, run_at)
             for name, forms in candidates.items()}
-    accepted, evidence = _select(baseline, fits, settings)
+    scatter = structure.scatter_estimate_m(obs.angle_rad, baseline.residuals_m, obs.cycles)
+    accepted, evidence = _select(baseline, fits, settings, scatter)
     causes, extended, final_fit, extended_depth, not_confirmed = _confirm(
         config, accepted, fits, baseline, obs, settings)
     confounded = _confounded(evidence, accepted, causes)
-    resolution = forward_resolution(config, base, obs, baseline)
+    resolution = forward_resolution(config, base, obs, scatter)
     summary = _summary(data, config, base, obs, settings, baseline, fits, evidence, causes,
                        confounded, untestable, final_fit, resolution, not_confirmed)
     return JointDiagnosis(summary, extended, obs, obs.depth_m - baseline.residuals_m,
@@ -843,20 +847,31 @@ def _refinement_runs(config: dict, run: Callable[[dict, str], WearHistory]) -> R
     return run_at
 
 
-def _select(baseline: Fit, fits: dict[str, Fit], settings) -> tuple[list[str], list[dict]]:
+def _select(baseline: Fit, fits: dict[str, Fit], settings,
+            scatter_m: float | None = None) -> tuple[list[str], list[dict]]:
     """The accepted causes in the order they are to be named (the richer ones by held-out
-    error, then ``wear_coefficient``) and the evidence for every cause tried."""
+    error, then ``wear_coefficient``) and the evidence for every cause tried. None is accepted
+    when the believed model already predicts the held-out data within
+    :data:`UNEXPLAINED_SCATTERS` times the instrument's scatter ``scatter_m`` (what 'none'
+    means): a relative gain on an error at the noise is no evidence of a cause."""
+    at_noise = scatter_m is not None and (
+        baseline.held_out_rms_m <= UNEXPLAINED_SCATTERS * scatter_m)
+
     tried = sum(f.forms_tried for f in fits.values())
+
+    def judged(fit_: Fit, reference: Fit) -> dict:
+        entry = verdict(fit_, reference, settings, tried)
+        return {**entry, "accepted": entry["accepted"] and not at_noise}
+
     evidence = []
     reference = baseline
     chosen: list[str] = []
     if "wear_coefficient" in fits:
-        entry = verdict(fits["wear_coefficient"], baseline, settings, tried)
+        entry = judged(fits["wear_coefficient"], baseline)
         evidence.append(entry)
         if entry["accepted"]:
             reference, chosen = fits["wear_coefficient"], ["wear_coefficient"]
-    richer = [verdict(f, reference, settings, tried) for name, f in fits.items()
-              if name != "wear_coefficient"]
+    richer = [judged(f, reference) for name, f in fits.items() if name != "wear_coefficient"]
     evidence += richer
     accepted = sorted((e for e in richer if e["accepted"]), key=lambda e: e["held_out_rms_m"])
     return [e["cause"] for e in accepted] + chosen, evidence
@@ -971,9 +986,10 @@ def cycle_structure(data: JointMeasurements, config: dict, obs: Observations, ba
 
 
 def forward_resolution(config: dict, base: WearHistory, obs: Observations,
-                       baseline: Fit) -> dict[str, Any]:
+                       scatter_m: float | None) -> dict[str, Any]:
     """What the measurements and the believed model can resolve: the instrument's scatter
-    (robust, from neighbouring profile points of the baseline's residuals) and how far the
+    ``scatter_m`` (robust, from neighbouring profile points of the baseline's residuals:
+    :func:`fewear.calibrate.joint_structure.scatter_estimate_m`) and how far the
     believed model's worn bore moves when its wear blocks are halved (RMS over the bore nodes
     at the measured cycle counts; the loop's discretisation error, roughly). A cause that moves
     the bore by less than the latter cannot be told from the block size."""
@@ -982,8 +998,7 @@ def forward_resolution(config: dict, base: WearHistory, obs: Observations,
                           "believed model, blocks halved")
     moved = np.array([finer.nodal_depth_m(c) - base.nodal_depth_m(c)
                       for c in np.unique(obs.cycles)])
-    return {"instrument_scatter_m": structure.scatter_estimate_m(obs.angle_rad,
-                                                                 baseline.residuals_m, obs.cycles),
+    return {"instrument_scatter_m": scatter_m,
             "halved_blocks_rms_m": float(np.sqrt(np.mean(moved**2)))}
 
 
