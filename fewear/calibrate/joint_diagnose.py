@@ -295,8 +295,8 @@ def _mixed_depth(candidate: Candidate, position: float, scale: float,
 
 
 def running_in_time_map(cycles: float, run: WearHistory, form: str, extra: float,
-                      scale: float, k_scale: float = 1.0,
-                      run_extension=None, run_k_scale: float = 1.0) -> np.ndarray:
+                        scale: float, k_scale: float = 1.0,
+                        run_extension=None, run_k_scale: float = 1.0) -> np.ndarray:
     """Per node a, the cycles of ``run`` after which the node has worn what the model with the
     running-in ``form`` (r - 1 = ``extra``, s0 or N0 = ``scale``) and the wear coefficient's
     level s = ``k_scale`` wears after ``cycles`` N: s S_eff(N d_a) = s_run S_eff,run(N' d_a),
@@ -323,7 +323,7 @@ def _on_node_axis(extension):
     """The extension as a law of the node's advance along its axis: ``running_in_cycles`` is
     the exponential law of :class:`RunningIn` with the cycles for the sliding distance."""
     if isinstance(extension, RunningInCycles):
-        return RunningIn(extension.k_initial_over_steady, extension.scale_cycles)
+        return extension.on_cycle_axis()
     return extension
 
 
@@ -854,10 +854,9 @@ def _select(baseline: Fit, fits: dict[str, Fit], settings,
     when the believed model already predicts the held-out data within
     :data:`UNEXPLAINED_SCATTERS` times the instrument's scatter ``scatter_m`` (what 'none'
     means): a relative gain on an error at the noise is no evidence of a cause."""
+    tried = sum(f.forms_tried for f in fits.values())
     at_noise = scatter_m is not None and (
         baseline.held_out_rms_m <= UNEXPLAINED_SCATTERS * scatter_m)
-
-    tried = sum(f.forms_tried for f in fits.values())
 
     def judged(fit_: Fit, reference: Fit) -> dict:
         entry = verdict(fit_, reference, settings, tried)

@@ -204,19 +204,20 @@ class RunningInCycles:
         _check_ratio(self.k_initial_over_steady)
         _check_positive("scale_cycles", self.scale_cycles, "a positive number of crank cycles")
 
+    def on_cycle_axis(self) -> RunningIn:
+        """The same law as :class:`RunningIn` with the crank cycles for the sliding distance."""
+        return RunningIn(self.k_initial_over_steady, self.scale_cycles)
+
     def multiplier(self, state: SlidingState) -> np.ndarray:
-        shape = np.shape(state.distance_m)
-        fall = math.exp(-float(state.cycles) / self.scale_cycles)
-        return np.full(shape, 1.0 + (self.k_initial_over_steady - 1.0) * fall)
+        fall = self.on_cycle_axis().multiplier(SlidingState(distance_m=state.cycles))
+        return np.full(np.shape(state.distance_m), float(fall))
 
     def advance(self, state: SlidingState, ds_m, dt_s, power_W_m2,
                 cycles: float = 0.0) -> SlidingState:
         return _advance_common(state, ds_m, dt_s, cycles)
 
     def effective_cycles(self, cycles) -> np.ndarray:
-        n = np.asarray(cycles, dtype=float)
-        n0 = self.scale_cycles
-        return n + (self.k_initial_over_steady - 1.0) * n0 * -np.expm1(-n / n0)
+        return self.on_cycle_axis().effective_distance_m(cycles)
 
     def effective_distance_m(self, distance_m, time_s=None, power_W_m2=None) -> np.ndarray:
         raise FewearInputError(

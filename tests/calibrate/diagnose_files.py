@@ -13,3 +13,23 @@ def diagnose_data_set(data) -> dict:
     config = load_config(data.believed_toml, run_sections())
     measured = read_joint_measurements([data.profiles_csv, data.max_wear_csv])
     return diagnose_joint(measured, config).summary
+
+
+def missed(cause: str, reason: str):
+    """A cause of a generator's slow tests that the diagnosis misses, as measured (``reason``):
+    a strict xfail, so a change that fixes it is seen."""
+    import pytest
+
+    return pytest.param(cause, marks=pytest.mark.xfail(strict=True, reason=reason))
+
+
+def assert_names_the_hidden_cause(generator, cause: str, folder) -> None:
+    """The first data set of ``cause`` from ``generator`` (a module with ``write_data_set`` and
+    ``data_set_seed``): the hidden cause is the one named, and its extended run predicts the
+    held-out profiles better than the believed model."""
+    data = generator.write_data_set(cause, generator.data_set_seed(cause, 0), folder)
+    summary = diagnose_data_set(data)
+    print(f"{cause}: truth {data.params}; named {summary['causes'] or ['none']}, gain "
+          f"{summary['gain']:+.2f}, unexplained {summary['unexplained']}")
+    assert summary["cause"] == cause, (data.params, summary["causes"])
+    assert summary["gain"] > 0.0

@@ -10,8 +10,8 @@ import json
 
 import pytest
 
-from tests.calibrate.diagnose_files import diagnose_data_set
-from tests.calibrate.fourth_joint_generator import data_set_seed, write_data_set
+from tests.calibrate import fourth_joint_generator as generator
+from tests.calibrate.diagnose_files import assert_names_the_hidden_cause, missed
 
 pytestmark = pytest.mark.slow
 
@@ -20,7 +20,7 @@ def test_cli_names_no_cause_on_the_believed_model(tmp_path):
     """Null data: the believed model itself, measured from replicas: no cause, via the CLI."""
     from fewear.cli import main
 
-    data = write_data_set("none", data_set_seed("none", 0), tmp_path / "data")
+    data = generator.write_data_set("none", generator.data_set_seed("none", 0), tmp_path / "data")
     out = tmp_path / "diagnosis"
     assert main(["diagnose", str(data.profiles_csv), str(data.max_wear_csv),
                  "--config", str(data.believed_toml), "--out", str(out)]) == 0
@@ -29,33 +29,24 @@ def test_cli_names_no_cause_on_the_believed_model(tmp_path):
     assert summary["unexplained"] == []
 
 
-def _missed(cause: str, reason: str):
-    return pytest.param(cause, marks=pytest.mark.xfail(strict=True, reason=reason))
-
-
 @pytest.mark.parametrize("cause", [
     "wear_coefficient",  # bronze at 298 HB, k x 0.79: gain 0.93
     "flexible_link",  # 6-element steel rod, E = 214 GPa, damping 1.5e-5 s: gain 0.18
-    _missed("friction", "measured: mu rising from 0.092 to 0.263 over N_g = 5,400 cycles is "
-                        "'none', reported unexplained: the believed model misses the training "
-                        "counts by only 1.5 um (4 x the scatter); the catalogue's friction is "
-                        "one constant mu"),
-    _missed("impact_wear", "measured: cubic-speed impact wear shows only at the held-out count "
-                           "(training misfit 0.7 um against 0.4 um scatter, held-out 9 um): "
-                           "'none', reported as a late misfit"),
-    _missed("running_in", "measured: a bore-wide running-in warp of the cycles (r = 5.1, "
-                          "N_r = 716, m - 1 falling as (1 + N / N_r)^-2) is 'none', reported "
-                          "unexplained: the catalogue's running-in by cycles falls "
-                          "exponentially and fits the training counts worse than the one by "
-                          "sliding, whose fit (r at the bound 6) predicts the held-out count "
-                          "29 % worse than the believed model"),
+    missed("friction", "measured: mu rising from 0.092 to 0.263 over N_g = 5,400 cycles is "
+                       "'none', reported unexplained: the believed model misses the training "
+                       "counts by only 1.5 um (4 x the scatter); the catalogue's friction is "
+                       "one constant mu"),
+    missed("impact_wear", "measured: cubic-speed impact wear shows only at the held-out count "
+                          "(training misfit 0.7 um against 0.4 um scatter, held-out 9 um): "
+                          "'none', reported as a late misfit"),
+    missed("running_in", "measured: a bore-wide running-in warp of the cycles (r = 5.1, "
+                         "N_r = 716, m - 1 falling as (1 + N / N_r)^-2) is 'none', reported "
+                         "unexplained: the catalogue's running-in by cycles falls "
+                         "exponentially and fits the training counts worse than the one by "
+                         "sliding, whose fit (r at the bound 6) predicts the held-out count "
+                         "29 % worse than the believed model"),
 ])
 def test_names_the_hidden_cause(tmp_path, cause):
     """The hidden cause is the one named, and its extended run predicts the held-out profiles
     better than the believed model."""
-    data = write_data_set(cause, data_set_seed(cause, 0), tmp_path)
-    summary = diagnose_data_set(data)
-    print(f"{cause}: truth {data.params}; named {summary['causes'] or ['none']}, gain "
-          f"{summary['gain']:+.2f}, unexplained {summary['unexplained']}")
-    assert summary["cause"] == cause, (data.params, summary["causes"])
-    assert summary["gain"] > 0.0
+    assert_names_the_hidden_cause(generator, cause, tmp_path)

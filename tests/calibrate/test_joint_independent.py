@@ -9,8 +9,8 @@ import json
 
 import pytest
 
-from tests.calibrate.diagnose_files import diagnose_data_set
-from tests.calibrate.independent_joint_generator import data_set_seed, write_data_set
+from tests.calibrate import independent_joint_generator as generator
+from tests.calibrate.diagnose_files import assert_names_the_hidden_cause, missed
 
 pytestmark = pytest.mark.slow
 
@@ -19,17 +19,13 @@ def test_cli_names_no_cause_on_the_believed_model(tmp_path):
     """Null data: the believed model itself, measured by the lab: no cause, via the CLI."""
     from fewear.cli import main
 
-    data = write_data_set("none", data_set_seed("none", 0), tmp_path / "data")
+    data = generator.write_data_set("none", generator.data_set_seed("none", 0), tmp_path / "data")
     out = tmp_path / "diagnosis"
     assert main(["diagnose", str(data.profiles_csv), str(data.max_wear_csv),
                  "--config", str(data.believed_toml), "--out", str(out)]) == 0
     summary = json.loads((out / "diagnosis.json").read_text())
     assert summary["cause"] == "none"
     assert summary["causes"] == []
-
-
-def _missed(cause: str, reason: str):
-    return pytest.param(cause, marks=pytest.mark.xfail(strict=True, reason=reason))
 
 
 @pytest.mark.parametrize("cause", [
@@ -39,26 +35,21 @@ def _missed(cause: str, reason: str):
     # law, gain 0.73, once its fit is refined on runs at its own parameters (a k level before,
     # gain 0.70: the time map of the believed run predicted the later counts 2 % better)
     "running_in",
-    _missed("friction", "measured: mu = 0.033 (believed 0.1) is 'none', reported unexplained and "
-                        "block-limited: refined on the run at its fitted mu, friction predicts "
-                        "the held-out count 14 % worse than the believed model; the believed "
-                        "config's blocks move its bore by 9.5 um when halved, as far as the "
-                        "misfit (with blocks of <= 500 cycles in truth and model it is named "
-                        "friction, mu = 0.030, gain 0.61)"),
-    _missed("impact_wear", "measured: impulse-proportional impact wear above a force "
-                           "threshold, removing 17 % of the sliding volume, is named 'none', "
-                           "reported unexplained (seed 301: wear_coefficient). With the "
-                           "catalogue's impulse form too, the energy form fits the training "
-                           "counts better, gain 0.097 against the 0.1 criterion; with blocks of "
-                           "<= 500 cycles (energy form alone) a k level, whose full run "
-                           "predicted 5 % worse"),
+    missed("friction", "measured: mu = 0.033 (believed 0.1) is 'none', reported unexplained and "
+                       "block-limited: refined on the run at its fitted mu, friction predicts "
+                       "the held-out count 14 % worse than the believed model; the believed "
+                       "config's blocks move its bore by 9.5 um when halved, as far as the "
+                       "misfit (with blocks of <= 500 cycles in truth and model it is named "
+                       "friction, mu = 0.030, gain 0.61)"),
+    missed("impact_wear", "measured: impulse-proportional impact wear above a force "
+                          "threshold, removing 17 % of the sliding volume, is named 'none', "
+                          "reported unexplained (seed 301: wear_coefficient). With the "
+                          "catalogue's impulse form too, the energy form fits the training "
+                          "counts better, gain 0.097 against the 0.1 criterion; with blocks of "
+                          "<= 500 cycles (energy form alone) a k level, whose full run "
+                          "predicted 5 % worse"),
 ])
 def test_names_the_hidden_cause(tmp_path, cause):
     """The hidden cause is the one named, and its extended run predicts the held-out profiles
     better than the believed model."""
-    data = write_data_set(cause, data_set_seed(cause, 0), tmp_path)
-    summary = diagnose_data_set(data)
-    print(f"{cause}: truth {data.params}; named {summary['causes'] or ['none']}, gain "
-          f"{summary['gain']:+.2f}, unexplained {summary['unexplained']}")
-    assert summary["cause"] == cause, (data.params, summary["causes"])
-    assert summary["gain"] > 0.0
+    assert_names_the_hidden_cause(generator, cause, tmp_path)
