@@ -28,7 +28,7 @@ from fewear.calibrate.joint_forward import model_config, simulate_wear
 from fewear.calibrate.joint_measured import MeasuredProfile, write_joint_profiles
 from fewear.cli import main
 from fewear.io.config import load_config
-from fewear.pipeline import run_sections
+from fewear.loop.settings import run_sections
 
 OUT = Path(os.environ.get("FEWEAR_DEMO_OUT", "out/demos/diagnose_joint"))
 OUT.mkdir(parents=True, exist_ok=True)

@@ -20,7 +20,7 @@ HANDLERS = {
     "contact": "fewear.contact.command:main",
     "dynamics": "fewear.mbd.command:main",
     "diagnose": "fewear.calibrate.command:main",
-    "run": "fewear.pipeline:main",
+    "run": "fewear.loop.command:main",
     "plot": "fewear.plot.worn_bushing:main",
 }
 

@@ -1,5 +1,5 @@
 """The wear loop of `fewear run` on a small case: Archard's volume, the ALE bore, the outputs,
-resume = uninterrupted, and bad checkpoints (fewear.pipeline, fewear.io.checkpoint)."""
+resume = uninterrupted, and bad checkpoints (fewear.loop)."""
 
 import json
 import math
@@ -101,19 +101,19 @@ def test_ale_moved_the_bore_nodes_exactly_to_the_worn_radius(explicit_run):
 
 def _interrupted_and_resumed(config, out, monkeypatch) -> np.ndarray:
     """Stop ``config``'s run after its first block, resume it; the final wear depths."""
-    import fewear.pipeline
+    import fewear.loop.command
 
-    original = fewear.pipeline.Progress.block
+    original = fewear.loop.command.Progress.block
 
     def interrupt(self, *args):
         original(self, *args)
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(fewear.pipeline.Progress, "block", interrupt)
+    monkeypatch.setattr(fewear.loop.command.Progress, "block", interrupt)
     with pytest.raises(KeyboardInterrupt):
         run(config, out)
     assert not (out / "summary.json").exists()  # all or nothing
-    monkeypatch.setattr(fewear.pipeline.Progress, "block", original)
+    monkeypatch.setattr(fewear.loop.command.Progress, "block", original)
     assert run(config, out, "--resume") == 0
     return _final_depth_m(out)
 

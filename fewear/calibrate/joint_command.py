@@ -19,7 +19,7 @@ from fewear.wear.coefficient import wear_section_toml
 
 
 def main(args) -> int:
-    from fewear.pipeline import run_sections
+    from fewear.loop.settings import run_sections
 
     config = load_config(args.config, [*run_sections(), "joint_diagnose"])
     settings = JointDiagnoseSettings.from_config(config.pop("joint_diagnose"))

@@ -1,6 +1,6 @@
 """Forward runs of the wear loop for the joint diagnosis: the worn bore against cycles.
 
-A run is :func:`fewear.pipeline.predict_case` for one rod model of a complete config (a model the
+A run is :func:`fewear.loop.block.predict_case` for one rod model of a complete config (a model the
 user believes, or one with a cause switched on), without checkpoint or outputs. Its result, a
 :class:`WearHistory`, holds the depth at the bore nodes after every block; between blocks the depth
 is interpolated linearly in cycles (the blocks bound the depth increment, so this is the loop's own
@@ -89,8 +89,9 @@ def simulate_wear(config: dict, label: str = "", comm=None) -> WearHistory:
         return _RUNS[key]
     from mpi4py import MPI
 
-    from fewear.contact.worn_bushing import WornBushing
-    from fewear.pipeline import new_case, predict_case, run_inputs_from_config
+    from fewear.loop.block import new_case, predict_case
+    from fewear.loop.bushing import WornBushing
+    from fewear.loop.settings import run_inputs_from_config
 
     comm = MPI.COMM_WORLD if comm is None else comm
     inputs = run_inputs_from_config(config)
@@ -126,8 +127,8 @@ def cycle_on_worn_bore(config: dict, angle_rad: np.ndarray | None = None,
     :class:`fewear.mbd.history.JointHistory` the wear stage would see."""
     from dataclasses import replace
 
+    from fewear.loop.settings import run_inputs_from_config
     from fewear.mbd.slider_crank import simulate
-    from fewear.pipeline import run_inputs_from_config
     from fewear.wear.state import WearState
 
     inputs = run_inputs_from_config(config)
@@ -147,7 +148,8 @@ def impact_measures_per_cycle(config: dict) -> dict[str, float]:
     """What the impacts of one crank cycle on the unworn joint wear by
     (:mod:`fewear.wear.impact`), from the steps that carry a force: ``energy``, the contact
     law's hysteresis work (J), and ``impulse``, the impacts' normal impulse (N s)."""
-    from fewear.pipeline import load_steps, run_inputs_from_config
+    from fewear.loop.settings import run_inputs_from_config
+    from fewear.loop.stages import load_steps
 
     inputs = run_inputs_from_config(config)
     steps = load_steps(cycle_on_worn_bore(config), inputs.loop.load_steps_per_cycle,

@@ -89,9 +89,14 @@ class BoreMotion:
     def bore_displacement(self, increment_m: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
         """Displacement (m) of this rank's bore dofs, shape (n, 2): ``increment_m(theta)`` along
         the radial direction at each bore node's angle theta in [0, 2 pi)."""
+        return self._radial_displacement(lambda angle, radius: increment_m(angle))
+
+    def _radial_displacement(self, increment_m) -> np.ndarray:
+        """The bore dofs' displacement (n, 2) by ``increment_m(theta, r)`` (m) along the radial
+        direction of each bore node, at its angle theta and radius r now."""
         xy = self.mesh.geometry.x[self.dof_node[self.bore_dofs], :2]
         angle = polar_angle(xy)
-        increment = np.asarray(increment_m(angle), dtype=float)
+        increment = np.asarray(increment_m(angle, np.hypot(xy[:, 0], xy[:, 1])), dtype=float)
         if increment.shape != angle.shape or not np.all(np.isfinite(increment)):
             raise ValueError(f"increment_m must map {angle.size} angles to as many finite radial "
                              f"increments (m), got shape {increment.shape}")
@@ -102,7 +107,17 @@ class BoreMotion:
         [0, 2 pi) from the bushing centre; vectorised, e.g. :func:`fewear.mesh.profile.
         periodic_linear` of a table), the interior by the elastic extension, the outer nodes not.
         """
-        bore = self.bore_displacement(increment_m)
+        return self._move(self.bore_displacement(increment_m))
+
+    def move_to(self, radius_m: Callable[[np.ndarray], np.ndarray]) -> BoreMove:
+        """Move every bore node radially onto the bore r = ``radius_m(theta)`` (m), the interior
+        by the elastic extension, the outer nodes not: :meth:`move` by r(theta) minus each
+        node's radius now."""
+        return self._move(self._radial_displacement(
+            lambda angle, radius: np.asarray(radius_m(angle), dtype=float) - radius))
+
+    def _move(self, bore: np.ndarray) -> BoreMove:
+        """Prescribe ``bore`` (the bore dofs' displacement), extend it into the interior, move."""
         values = self.boundary_value.x.array.reshape(-1, 2)
         values[:] = 0.0
         values[self.bore_dofs] = bore

@@ -14,7 +14,7 @@ import pytest
 
 from fewear.calibrate.joint_diagnose import CAUSES, diagnose_joint
 from fewear.io.config import load_config
-from fewear.pipeline import run_sections
+from fewear.loop.settings import run_sections
 from tests.calibrate.joint_cases import believed_text, hidden_joint_case
 
 pytestmark = pytest.mark.benchmark

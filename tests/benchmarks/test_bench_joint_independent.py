@@ -40,7 +40,7 @@ def test_independent_joint_diagnosis(tmp_path):
     from fewear.calibrate.joint_diagnose import diagnose_joint
     from fewear.calibrate.joint_measured import read_joint_measurements
     from fewear.io.config import load_config
-    from fewear.pipeline import run_sections
+    from fewear.loop.settings import run_sections
 
     named, misses, flagged, rows = Counter(), Counter(), Counter(), []
     config = None

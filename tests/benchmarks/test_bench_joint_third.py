@@ -19,7 +19,7 @@ import pytest
 
 from fewear.calibrate.joint_measured import read_joint_measurements
 from fewear.io.config import load_config
-from fewear.pipeline import run_sections
+from fewear.loop.settings import run_sections
 from tests.calibrate.third_joint_generator import CAUSES, data_set_seed, write_data_set
 
 pytestmark = pytest.mark.benchmark

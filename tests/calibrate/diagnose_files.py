@@ -8,7 +8,7 @@ def diagnose_data_set(data) -> dict:
     from fewear.calibrate.joint_diagnose import diagnose_joint
     from fewear.calibrate.joint_measured import read_joint_measurements
     from fewear.io.config import load_config
-    from fewear.pipeline import run_sections
+    from fewear.loop.settings import run_sections
 
     config = load_config(data.believed_toml, run_sections())
     measured = read_joint_measurements([data.profiles_csv, data.max_wear_csv])

@@ -2,7 +2,7 @@
 
 Each data set is the wear of the rod-slider clearance joint of the seed paper's slider-crank as a
 lab would measure it, made by this workbench's own forward model (:mod:`fewear.calibrate.
-joint_forward`, :mod:`fewear.pipeline`) with one hidden departure from the model the user
+joint_forward`, :mod:`fewear.loop`) with one hidden departure from the model the user
 believes, then passed through a model of the lab's instrument. The generator was written without
 reading the diagnosis it is meant to test; its laws, ranges and instrument differ on purpose from
 those of the earlier generators (see "Not used here" below).
@@ -77,7 +77,7 @@ Hidden causes (``CAUSES``; one per data set; ``params`` of :class:`DataSet` hold
     loop's block step carries it as a given source, smoothed like the sliding wear): the pockets
     the impacts dig change the later impacts (a strong feedback: the effect's size is far from
     proportional to V_ref). The loop is :func:`layered_run`, which runs
-    :func:`fewear.pipeline.run_block` block by block with this source added.
+    :func:`fewear.loop.block.run_block` block by block with this source added.
 ``running_in``
     The pin's grinding marks run in: the harder counterface's asperities abrade the bronze
     (two-body abrasion, k grows with the square of the counterface's excess roughness), and the
@@ -395,7 +395,7 @@ _LAYERED: dict[str, WearHistory] = {}
 def layered_run(config: dict, last_cycles: int, friction: dict | None = None,
                 impact_volume_m3: float = 0.0) -> WearHistory:
     """The wear loop of the config's rod model up to ``last_cycles``, block by block as
-    :func:`fewear.pipeline.run_block`, with a hidden effect layered on it:
+    :func:`fewear.loop.block.run_block`, with a hidden effect layered on it:
 
     - ``friction`` (``mu_0``, ``mu_dry``, ``n_g_cycles``): every block runs at the friction
       coefficient mu(N_j) of :func:`friction_coefficient` at its first cycle N_j, in the dynamics
@@ -412,9 +412,9 @@ def layered_run(config: dict, last_cycles: int, friction: dict | None = None,
         return _LAYERED[key]
     from mpi4py import MPI
 
-    from fewear.contact.worn_bushing import WornBushing
-    from fewear.mesh.snapshot import MeshSnapshot
-    from fewear.pipeline import new_case, run_block, run_inputs_from_config
+    from fewear.loop.block import new_case, restored_bushing, run_block
+    from fewear.loop.bushing import WornBushing
+    from fewear.loop.settings import run_inputs_from_config
 
     comm = MPI.COMM_WORLD
     start = time.perf_counter()
@@ -429,10 +429,7 @@ def layered_run(config: dict, last_cycles: int, friction: dict | None = None,
                 case.state.cycles, friction["mu_0"], friction["mu_dry"], friction["n_g_cycles"]))
             inputs = run_inputs_from_config(block_config)
             if case.records:
-                bushing = WornBushing(inputs.contact, comm)
-                bushing.restore(case.meshed_xy_m,
-                                MeshSnapshot(case.node_ids, case.snapshots[-1], case.cells),
-                                case.ale_moves, case.remeshes)
+                bushing = restored_bushing(inputs, case, comm)
         source = (_impact_depth_source(block_config, impact_volume_m3,
                                        inputs.loop.recorded_cycles_per_block)
                   if impact_volume_m3 > 0.0 else None)
@@ -448,7 +445,7 @@ def layered_run(config: dict, last_cycles: int, friction: dict | None = None,
 
 def _impact_depth_source(config: dict, volume_m3: float, recorded_cycles: int):
     """The impact wear of a block's recorded cycles as a depth per cycle on its current bore:
-    the source :func:`fewear.pipeline.run_block` adds to the block's wear."""
+    the source :func:`fewear.loop.block.run_block` adds to the block's wear."""
     def depth_per_cycle_m(history, state) -> np.ndarray:
         return impact_depth_per_cycle_m(impacts_of(history), state.angle_rad, config,
                                         volume_m3) / recorded_cycles
@@ -651,7 +648,7 @@ def write_data_set(cause: str, seed: int, directory: str | Path, noise: bool = T
     believed.toml, profiles.csv, max_wear.csv (module doc). ``noise=False``: the same data set
     without the instrument's noise."""
     from fewear.io.config import load_config
-    from fewear.pipeline import run_sections
+    from fewear.loop.settings import run_sections
 
     if cause not in CAUSES:
         raise ValueError(f"unknown cause {cause!r}; expected one of {', '.join(CAUSES)}")

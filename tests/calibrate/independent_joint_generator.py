@@ -145,7 +145,7 @@ class DataSet:
 def believed_config(path: Path) -> dict:
     """Write :data:`BELIEVED_TOML` to ``path`` and return its complete config."""
     from fewear.io.config import load_config
-    from fewear.pipeline import run_sections
+    from fewear.loop.settings import run_sections
 
     path.write_text(BELIEVED_TOML)
     return load_config(path, run_sections())
@@ -290,8 +290,8 @@ def impact_episodes(config: dict, depth_m: np.ndarray, angle_rad: np.ndarray):
     """Peak normal force (N), normal impulse (N s) and angle (rad, bushing frame) of every impact
     episode in :data:`IMPACT_RECORDED_CYCLES` crank cycles of the dynamics on the bore worn to
     ``depth_m`` at the nodes ``angle_rad``."""
+    from fewear.loop.settings import run_inputs_from_config
     from fewear.mbd.slider_crank import simulate
-    from fewear.pipeline import run_inputs_from_config
     from fewear.wear.state import WearState
 
     inputs = run_inputs_from_config(config)

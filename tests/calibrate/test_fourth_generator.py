@@ -11,8 +11,8 @@ from scipy.integrate import quad
 
 from fewear.calibrate.joint_measured import read_joint_measurements
 from fewear.io.config import load_config
+from fewear.loop.settings import run_sections
 from fewear.mbd.history import JointHistory, classify_modes
-from fewear.pipeline import run_sections
 from tests.calibrate import fourth_joint_generator as gen
 
 R_BORE = 0.010  # m, the believed bore radius

@@ -12,7 +12,7 @@ from fewear.calibrate.joint_diagnose import diagnose_joint
 from fewear.calibrate.joint_measured import write_joint_profiles, write_max_wear
 from fewear.cli import main
 from fewear.io.config import load_config
-from fewear.pipeline import run_sections
+from fewear.loop.settings import run_sections
 from tests.calibrate.joint_cases import believed_text, hidden_joint_case
 
 

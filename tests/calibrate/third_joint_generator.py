@@ -547,7 +547,7 @@ def write_max_wear_csv(path: Path, depth: np.ndarray, lab: Lab) -> None:
 
 def believed_config(path: Path) -> dict:
     from fewear.io.config import load_config
-    from fewear.pipeline import run_sections
+    from fewear.loop.settings import run_sections
 
     return load_config(path, run_sections())
 

@@ -10,9 +10,10 @@ from scipy.integrate import solve_ivp
 
 from fewear.cli import main
 from fewear.errors import FewearInputError
+from fewear.loop.settings import run_inputs_from_config
+from fewear.loop.stages import LoadSteps, cycle_sliding, cycle_wear, load_steps
 from fewear.mbd.contact import ContactLaw
 from fewear.mbd.history import JointHistory
-from fewear.pipeline import LoadSteps, cycle_sliding, cycle_wear, load_steps, run_inputs_from_config
 from fewear.wear.archard import CycleSliding, block_wear
 from fewear.wear.coefficient import ConstantWearCoefficient
 from fewear.wear.extensions import RunningIn, SlidingState
@@ -192,7 +193,7 @@ def test_without_impact_wear_the_block_is_unchanged():
 
 def _default_config():
     from fewear.io.config import load_config
-    from fewear.pipeline import run_sections
+    from fewear.loop.settings import run_sections
 
     return load_config(None, run_sections())
 
@@ -231,8 +232,8 @@ def test_fewear_run_adds_the_coefficient_times_the_cycles_impact_measure(tmp_pat
     import json
 
     from fewear.io.config import load_config
+    from fewear.loop.settings import run_sections
     from fewear.mbd.slider_crank import simulate
-    from fewear.pipeline import run_sections
 
     size = 2 * math.pi * 0.010 / 48 * (1 + 1e-9)
     text = (f"[mesh]\nbore_element_size_m = {size!r}\nradial_element_count = 4\n"

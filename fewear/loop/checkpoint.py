@@ -17,14 +17,19 @@ from __future__ import annotations
 import json
 import os
 import zipfile
+from dataclasses import asdict, fields
 from pathlib import Path
 
 import numpy as np
 
 from fewear.errors import FewearInputError
+from fewear.loop.progress import BlockRecord, CaseProgress, LoopCounts
+from fewear.wear.extensions import SlidingState
+from fewear.wear.state import WearState
 
 FILENAME = "fewear-checkpoint.npz"
 FORMAT = "fewear-run-checkpoint-1"
+LOOP_COUNT_NAMES = [count.name for count in fields(LoopCounts)]
 
 
 class Checkpoint:
@@ -50,7 +55,7 @@ class Checkpoint:
         os.replace(temporary, self.path)
 
     def load(self) -> dict:
-        """The cases of the checkpoint (rod -> :class:`fewear.pipeline.CaseProgress`); an input
+        """The cases of the checkpoint (rod -> :class:`fewear.loop.progress.CaseProgress`); an input
         error when it is missing, unreadable or made with another config."""
         if not self.path.exists():
             raise FewearInputError(
@@ -81,17 +86,14 @@ class Checkpoint:
                 "again") from None
 
 
-def _case_meta(case) -> dict:
+def _case_meta(case: CaseProgress) -> dict:
     return {"cycles": int(case.state.cycles), "blocks": int(case.state.blocks),
-            "ale_moves": int(case.ale_moves), "remeshes": int(case.remeshes),
-            "contact_retries": int(case.contact_retries),
-            "frictionless_steps": int(case.frictionless_steps),
-            "dropped_steps": int(case.dropped_steps),
+            **{name: int(value) for name, value in asdict(case.counts).items()},
             "stage_wall_time_s": dict(case.stage_wall_time_s),
             "time_s": float(case.mechanism.time_s)}
 
 
-def _case_arrays(case) -> dict:
+def _case_arrays(case: CaseProgress) -> dict:
     state, records = case.state, case.records
     return {
         "angle_rad": state.angle_rad, "depth_m": state.depth_m,
@@ -109,11 +111,8 @@ def _case_arrays(case) -> dict:
     }
 
 
-def _case_from(rod: str, meta: dict, data: dict):
+def _case_from(rod: str, meta: dict, data: dict) -> CaseProgress:
     from fewear.mbd.slider_crank import MechanismState
-    from fewear.pipeline import BlockRecord, CaseProgress
-    from fewear.wear.extensions import SlidingState
-    from fewear.wear.state import WearState
 
     def array(key):
         return data[f"{rod}/{key}"]
@@ -130,9 +129,7 @@ def _case_from(rod: str, meta: dict, data: dict):
         state=state, mechanism=MechanismState(meta["time_s"], array("q"), array("qd")),
         records=records, snapshots=list(array("snapshots")), node_ids=array("node_ids"),
         cells=array("cells"), meshed_xy_m=array("meshed_xy_m"),
-        ale_moves=meta["ale_moves"], remeshes=meta["remeshes"],
-        contact_retries=meta["contact_retries"], frictionless_steps=meta["frictionless_steps"],
-        dropped_steps=meta["dropped_steps"],
+        counts=LoopCounts(**{name: meta[name] for name in LOOP_COUNT_NAMES}),
         stage_wall_time_s=dict(meta["stage_wall_time_s"]))
 
 

@@ -1,12 +1,12 @@
-"""The stages of fewear.pipeline on their own: load steps, contact and Archard over a cycle."""
+"""The stages of fewear.loop.stages on their own: load steps, contact and Archard over a cycle."""
 
 import dataclasses
 
 import numpy as np
 import pytest
 
+from fewear.loop.stages import CycleWear, cycle_wear, load_steps
 from fewear.mbd.history import JointHistory
-from fewear.pipeline import CycleWear, cycle_wear, load_steps
 from fewear.wear.coefficient import ConstantWearCoefficient
 from fewear.wear.state import WearState
 
@@ -76,7 +76,7 @@ def test_a_light_step_without_equilibrium_wears_nothing_and_a_loaded_one_stops(c
     such a step (within 1% of the cycle's load-slip product) is dropped and counted; a loaded
     one is an error."""
     from fewear.contact.admissible import ContactLoadError
-    from fewear.pipeline import LoadSteps
+    from fewear.loop.stages import LoadSteps
 
     class Refusing:
         def __init__(self, refused):

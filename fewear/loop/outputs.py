@@ -19,10 +19,10 @@ from pathlib import Path
 import numpy as np
 
 from fewear.io.output import write_json
+from fewear.loop.progress import CaseProgress
 
 
 def write_run_outputs(folder: Path, cases: dict, inputs, config: dict) -> None:
-    from fewear.pipeline import case_summary
     from fewear.plot.wear import plot_max_wear, plot_wear_profiles
 
     loop = inputs.loop
@@ -46,6 +46,35 @@ def write_run_outputs(folder: Path, cases: dict, inputs, config: dict) -> None:
     plot_max_wear({rod: (np.array([r.cycles for r in case.records]),
                          np.array([r.depth_m.max() for r in case.records]))
                    for rod, case in cases.items()}, folder / "max_wear.png")
+
+
+def case_summary(case: CaseProgress, inputs) -> dict:
+    """The numbers of one rod model for ``summary.json``."""
+    state, geometry = case.state, inputs.contact.geometry
+    peak = int(np.argmax(state.depth_m))
+    first = case.records[0]
+    return {
+        "max_wear_depth_m": float(state.depth_m[peak]),
+        "max_wear_angle_deg": float(np.degrees(state.angle_rad[peak])),
+        "worn_volume_m3": geometry.width_m * state.worn_area_m2(geometry.inner_radius_m),
+        "cycles": int(state.cycles),
+        "blocks": int(state.blocks),
+        "ale_moves": int(case.counts.ale_moves),
+        "remeshes": int(case.counts.remeshes),
+        "contact_cold_retries": int(case.counts.contact_retries),
+        "contact_frictionless_steps": int(case.counts.frictionless_steps),
+        "contact_dropped_steps": int(case.counts.dropped_steps),
+        "first_block": {"cycles": first.block_cycles,
+                        "max_wear_depth_per_cycle_m": first.max_depth_per_cycle_m,
+                        "peak_contact_force_N": first.peak_contact_force_N,
+                        "impacts": first.impacts,
+                        "max_contact_pressure_Pa": first.max_contact_pressure_Pa},
+        "last_block": {"cycles": case.records[-1].block_cycles,
+                       "max_wear_depth_per_cycle_m": case.records[-1].max_depth_per_cycle_m,
+                       "max_contact_pressure_Pa": case.records[-1].max_contact_pressure_Pa},
+        "wall_time_s": case.wall_time_s,
+        "stage_wall_time_s": dict(case.stage_wall_time_s),
+    }
 
 
 def write_profiles_csv(path: Path, cases: dict) -> None:

@@ -1,10 +1,11 @@
 """The FE bushing as it wears: the contact operator on a mesh whose bore follows the wear state.
 
-After every wear block the bore nodes move radially outward by the block's depth increment (the
-worn bore r(theta) = R_b + h(theta) of :class:`fewear.wear.state.WearState`), the interior follows
+After every wear block the bore nodes move radially to the worn bore r(theta) = R_b + h(theta) of
+the :class:`fewear.wear.state.WearState` they are given (its one source), the interior follows
 (ALE mesh motion, the outer surface fixed), and the condensed contact operator is rebuilt on the
 moved mesh. When the motion since the last mesh passes a set fraction of the bore element height,
-the bushing is re-meshed from r(theta). Moves and re-meshes are counted.
+the bushing is re-meshed from r(theta). Moves, re-meshes and the contact's fallbacks are counted
+in the case's :class:`fewear.loop.progress.LoopCounts`.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.contact.sensitivity import pressure_sensitivity
 from fewear.contact.solver import BushingContactSolver
+from fewear.loop.progress import LoopCounts
 from fewear.mesh.ale import BoreMotion
 from fewear.mesh.bushing import bushing_mesh, radial_progression
 from fewear.mesh.profile import periodic_linear
@@ -45,17 +47,16 @@ class WornBushing:
     the wear moves them radially); :meth:`solve` returns the nodal results in this order whatever
     the order of the moved nodes (a node at angle 0 may come out at 2 pi - 1e-16 after a move).
     ``meshed_xy_m``: the node coordinates when the current mesh was made (the reference of its
-    motion); ``ale_moves``, ``remeshes``: counts; ``last_quality``: after the last move.
+    motion); ``counts``: the case's counts, which the moves and the contact's fallbacks add to;
+    ``last_quality``: after the last move.
     """
 
-    def __init__(self, problem: ContactProblem, comm, limits: RemeshLimits | None = None):
+    def __init__(self, problem: ContactProblem, comm, counts: LoopCounts | None = None,
+                 limits: RemeshLimits | None = None):
         self.problem, self.comm = problem, comm
+        self.counts = LoopCounts() if counts is None else counts
         self.limits = RemeshLimits() if limits is None else limits
         self.element_height_m = bore_element_height_m(problem)
-        self.ale_moves = 0
-        self.remeshes = 0
-        self.cold_retries = 0
-        self.frictionless_steps = 0
         self.last_quality = None
         self._mesh(bore_profile=None)
         self.angles = self.contact.angles.copy()
@@ -86,20 +87,20 @@ class WornBushing:
 
         On a worn bore the warm start from the previous load step (turned with the load) can lead
         the Newton iteration astray; a refused step is tried once more from a cold start (the
-        refusal resets the state), counted in ``cold_retries``. If the step with the Coulomb
+        refusal resets the state), counted in ``contact_retries``. If the step with the Coulomb
         traction still finds no equilibrium, it is solved without it (the traction tilts the
         pressure field by atan(mu), 5.7 deg for mu = 0.1), counted in ``frictionless_steps``
         and reported; a step that fails without friction too is an error."""
         try:
             result = self.contact.solve(force_N, rotation_increment_rad, friction)
         except ContactLoadError:
-            self.cold_retries += 1
+            self.counts.contact_retries += 1
             try:
                 result = self.contact.solve(force_N, rotation_increment_rad, friction)
             except ContactLoadError:
                 if not friction:
                     raise
-                self.frictionless_steps += 1
+                self.counts.frictionless_steps += 1
                 result = self.contact.solve(force_N, rotation_increment_rad, False)
         order = self._order
         return replace(result, angle_rad=self.angles.copy(), x_m=result.x_m[order],
@@ -116,17 +117,18 @@ class WornBushing:
                                  self.problem.penalty_stiffness_Pa_per_m())
         return active, J
 
-    def apply_wear(self, state: WearState, increment_m: np.ndarray) -> None:
-        """Move the bore by the block's depth increment (m, at ``angles``) to the worn bore of
-        ``state`` (ALE, :class:`fewear.mesh.ale.BoreMotion`); re-mesh from r(theta) when the
-        moved mesh passes the limits; rebuild the contact operator."""
-        move = self.motion.move(periodic_linear(self.angles, increment_m))
-        self.ale_moves += 1
+    def move_to(self, state: WearState) -> None:
+        """Move the bore to the worn bore r(theta) = R_b + h(theta) of ``state`` (ALE,
+        :class:`fewear.mesh.ale.BoreMotion`); re-mesh from r(theta) when the moved mesh passes the
+        limits; rebuild the contact operator."""
+        radius = periodic_linear(state.angle_rad, state.bore_radius_m(
+            self.problem.geometry.inner_radius_m, state.angle_rad))
+        move = self.motion.move_to(radius)
+        self.counts.ale_moves += 1
         self.last_quality = move.quality
         if self.limits.needs_remesh(move.quality):
-            radius = state.bore_radius_m(self.problem.geometry.inner_radius_m, state.angle_rad)
-            self._mesh(bore_profile=(state.angle_rad, radius))
-            self.remeshes += 1
+            self._mesh(bore_profile=(state.angle_rad, radius(state.angle_rad)))
+            self.counts.remeshes += 1
         self._rebuild_contact()
 
     def _rebuild_contact(self) -> None:
@@ -138,11 +140,9 @@ class WornBushing:
     def snapshot(self) -> MeshSnapshot:
         return take_snapshot(self.mesh, self.comm)
 
-    def restore(self, meshed_xy_m: np.ndarray, snapshot: MeshSnapshot, ale_moves: int,
-                remeshes: int) -> None:
+    def restore(self, meshed_xy_m: np.ndarray, snapshot: MeshSnapshot) -> None:
         """Put the bushing back as a checkpoint saw it: the mesh as made (``meshed_xy_m``, the
         reference of its motion and quality), then moved to ``snapshot``."""
         self._mesh(bore_profile=None, meshed_xy_m=meshed_xy_m)
         scatter_nodes(self.mesh, snapshot.node_ids, snapshot.xy_m)
-        self.ale_moves, self.remeshes = ale_moves, remeshes
         self._rebuild_contact()

@@ -1,0 +1,34 @@
+"""The wear prediction of the seed paper (Zhao, Zhang & Dai 2013, Fig. 3), block by block.
+
+The loop of ``fewear run`` follows the flowchart for each connecting-rod model (rigid,
+flexible). Every wear block j:
+
+1. **Dynamics** (:mod:`fewear.mbd`): the slider-crank with the revolute clearance joint on the worn
+   clearance c(theta) = c0 + h(theta) of the wear state; the first block settles from the ideal
+   mechanism, later ones start from the previous block's final state (a warm start: the orbit
+   only adapts to the slightly larger clearance). Then ``recorded_cycles_per_block`` crank cycles
+   are recorded: the joint reaction and the pin's rotation relative to the bushing.
+2. **Load steps**: each recorded cycle cut into n steps (seed: 200); each step carries the joint
+   force averaged over it and the relative rotation accumulated over it.
+3. **Contact** (:mod:`fewear.contact`): the FE bushing on the worn bore (Q8, outer surface clamped,
+   rigid pin on a pilot point) under each step's force: nodal pressures p and slips s.
+4. **Wear** (:mod:`fewear.wear`): Archard's law with k(p, v) (seed eq. 9-10) and the wear law's
+   history multiplier, per node, averaged over the recorded cycles; the block extrapolates it over
+   A_j real cycles (fixed, or adaptive: bounded depth increment per block). Optionally impacts
+   wear too: ``[wear] impact_wear_coefficient_m3_J`` k_imp > 0 adds k_imp times each step's
+   hysteresis work of the contact law, spread in proportion to the step's pressure
+   (:mod:`fewear.wear.impact`; default 0, none).
+5. **Geometry update**: the bore nodes move by the block's depth increment, the mesh follows (ALE)
+   or is re-meshed from the worn bore, and the contact operator is rebuilt: the next block runs
+   on the worn joint.
+
+The worn bore has one source, :class:`fewear.wear.state.WearState`; the dynamics' clearance and the
+mesh's bore are both derived from it. A checkpoint is written after every block
+(:mod:`fewear.loop.checkpoint`): ``--resume`` continues an interrupted run to the same result.
+
+The modules: :mod:`~fewear.loop.settings` (the typed inputs), :mod:`~fewear.loop.stages` (stages
+2-4 on one recorded history), :mod:`~fewear.loop.bushing` (the FE bushing on the worn bore),
+:mod:`~fewear.loop.block` (one block, stages 1-5), :mod:`~fewear.loop.progress` (a case's run so
+far), :mod:`~fewear.loop.checkpoint`, :mod:`~fewear.loop.outputs` and
+:mod:`~fewear.loop.command` (``fewear run``).
+"""

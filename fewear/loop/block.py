@@ -1,0 +1,135 @@
+"""One wear block of a rod model (stages 1-5 of the flowchart in :mod:`fewear.loop`), and the
+blocks of a case until its total cycles."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from fewear.contact.admissible import ContactLoadError
+from fewear.errors import FewearInputError
+from fewear.loop.progress import BlockRecord, CaseProgress, timed
+from fewear.loop.settings import RunInputs
+from fewear.loop.stages import cycle_sliding, cycle_wear, load_steps
+from fewear.wear.archard import CycleSliding, block_wear, smoothed_periodic
+from fewear.wear.extrapolation import extrapolate_block
+from fewear.wear.state import WearState
+
+
+def smoothed_block_wear(per_cycle: CycleSliding, state: WearState, extension, cycles: int,
+                        width_rad: float):
+    """:func:`block_wear` with the depth increment smoothed around the bore by a Gaussian of
+    standard deviation ``width_rad`` (volume kept; :func:`smoothed_periodic`): the dwell points of
+    the few recorded cycles stand for an orbit that varies from cycle to cycle over the A_j cycles
+    of the block, and the bore's contact does not resolve ripples shorter than a few elements.
+    The wear law's history starts from the crank cycles the wear state has run (their one
+    owner)."""
+    increment, sliding = block_wear(per_cycle, replace(state.sliding, cycles=float(state.cycles)),
+                                    extension, cycles)
+    step = 2.0 * math.pi / state.angle_rad.size
+    # the FFT convolution leaves rounding noise (~1e-21 m) where nothing wears: clip it
+    return np.maximum(smoothed_periodic(increment, step, width_rad), 0.0), sliding
+
+
+def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
+              added_depth_per_cycle=None) -> None:
+    """One wear block of ``case`` (stages 1-5), updating it in place. ``added_depth_per_cycle``
+    (history, state) -> depth per cycle (m, per bore node), optional: a wear source of another
+    law added to the block's impact wear (a given source of the block step, like it)."""
+    from fewear.mbd.slider_crank import simulate
+
+    loop, times = inputs.loop, case.stage_wall_time_s
+    state = case.state
+    crank = replace(inputs.dynamics.crank, rod=rod, joint="clearance",
+                    recorded_cycles=loop.recorded_cycles_per_block,
+                    settling_cycles=(inputs.dynamics.crank.settling_cycles
+                                     if case.mechanism is None else loop.warm_settling_cycles))
+    joint = replace(inputs.dynamics.joint,
+                    profile=state.clearance_profile(inputs.contact.geometry.inner_radius_m,
+                                                    inputs.contact.geometry.pin_radius_m))
+    with timed(times, "dynamics"):
+        try:
+            history, _, case.mechanism = simulate(
+                replace(inputs.dynamics, crank=crank, joint=joint), start=case.mechanism)
+        except RuntimeError as exc:  # the integrator's step size collapsed
+            raise FewearInputError(
+                f"{rod} rod, block {state.blocks + 1} at {state.cycles:,} cycles: the dynamics "
+                f"on the worn clearance failed ({exc}). The checkpoint holds the blocks done: a "
+                "smaller [integrator] min_step_s, a larger gap_tolerance_m or a wider [wear_loop] "
+                "wear_smoothing_width_deg may get past it") from None
+    with timed(times, "contact"):
+        steps = load_steps(history, loop.load_steps_per_cycle * loop.recorded_cycles_per_block,
+                           inputs.dynamics.joint.law)
+        try:
+            wear = cycle_wear(bushing, steps, inputs.wear_coefficient, loop.friction_in_contact,
+                              implicit=loop.implicit_wear_step)
+        except ContactLoadError as exc:  # a force the model cannot carry, or no equilibrium
+            raise FewearInputError(
+                f"{rod} rod, block {state.blocks + 1} at {state.cycles:,} cycles: the FE contact "
+                f"on the worn bore failed ({exc}); peak joint force "
+                f"{history.peak_contact_force_N:.0f} N. The checkpoint holds the blocks done: "
+                "a smaller [wear_loop] max_depth_increment_fraction (adaptive extrapolation) or "
+                "a wider wear_smoothing_width_deg keeps the worn bore smoother") from None
+    with timed(times, "wear"):
+        per_cycle = cycle_sliding(wear, steps, loop.recorded_cycles_per_block,
+                                  inputs.contact.contact.friction_coefficient,
+                                  inputs.impact_wear_coefficient_m3_J,
+                                  inputs.impact_impulse_wear_coefficient_m3_Ns)
+        if added_depth_per_cycle is not None:
+            per_cycle = replace(per_cycle, impact_depth_m=per_cycle.impact_depth_m
+                                + added_depth_per_cycle(history, state))
+        cycles, increment, sliding = extrapolate_block(
+            loop.extrapolation,
+            lambda cycles: smoothed_block_wear(per_cycle, state, inputs.extension, cycles,
+                                               math.radians(loop.wear_smoothing_width_deg)),
+            bushing.element_height_m, loop.total_cycles - state.cycles)
+        worn = WearState(state.angle_rad, state.depth_m + increment, sliding,
+                         state.cycles + cycles, state.blocks + 1)
+        geometry = inputs.contact.geometry
+        worn.checked_against_wall(geometry.inner_radius_m, geometry.outer_radius_m,
+                                  loop.max_wall_fraction)
+    with timed(times, "mesh"):
+        bushing.move_to(worn)
+        snapshot = bushing.snapshot()
+    case.state = worn
+    case.node_ids, case.cells, case.meshed_xy_m = (snapshot.node_ids, snapshot.cells,
+                                                   bushing.meshed_xy_m)
+    case.snapshots.append(snapshot.xy_m)
+    case.counts.dropped_steps += wear.dropped_steps
+    case.records.append(BlockRecord(
+        worn.cycles, cycles, worn.depth_m.copy(), history.peak_contact_force_N, history.impacts,
+        float(wear.pressure_Pa.max()),
+        float((per_cycle.depth_m + per_cycle.impact_depth_m).max())))
+
+
+def new_case(bushing) -> CaseProgress:
+    """An unworn case on the bushing's bore nodes, its first snapshot the unworn mesh; the case
+    holds the counts the bushing adds to."""
+    snapshot = bushing.snapshot()
+    return CaseProgress(WearState.unworn(bushing.angles), snapshots=[snapshot.xy_m],
+                        node_ids=snapshot.node_ids, cells=snapshot.cells,
+                        meshed_xy_m=bushing.meshed_xy_m, counts=bushing.counts)
+
+
+def restored_bushing(inputs: RunInputs, case: CaseProgress, comm):
+    """The FE bushing of ``case`` as its last block left it (a checkpoint's, or a case whose
+    contact model changes between blocks), adding to the case's counts."""
+    from fewear.loop.bushing import WornBushing
+    from fewear.mesh.snapshot import MeshSnapshot
+
+    bushing = WornBushing(inputs.contact, comm, case.counts)
+    bushing.restore(case.meshed_xy_m,
+                    MeshSnapshot(case.node_ids, case.snapshots[-1], case.cells))
+    return bushing
+
+
+def predict_case(rod: str, inputs: RunInputs, bushing, case: CaseProgress, after_block) -> None:
+    """Wear blocks until ``total_cycles``; ``after_block(case)`` runs after each (checkpoint,
+    progress)."""
+    while case.state.cycles < inputs.loop.total_cycles:
+        run_block(rod, inputs, bushing, case)
+        after_block(case)
+
+

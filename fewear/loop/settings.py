@@ -1,0 +1,96 @@
+"""The loop's inputs: the ``[wear_loop]`` settings and everything ``fewear run`` needs, parsed once
+from the config at the command's edge into typed stage inputs."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from fewear.errors import FewearInputError
+from fewear.wear.extrapolation import ExtrapolationSettings
+
+RUN_SECTIONS = ["wear_loop", "wear"]
+
+
+@dataclass(frozen=True)
+class WearLoopSettings:
+    """The ``[wear_loop]`` section (seed section 5 values by default)."""
+
+    rod_models: tuple[str, ...]
+    load_steps_per_cycle: int
+    total_cycles: int
+    friction_in_contact: bool
+    extrapolation: ExtrapolationSettings
+    recorded_cycles_per_block: int
+    warm_settling_cycles: int
+    max_wall_fraction: float
+    implicit_wear_step: bool
+    wear_smoothing_width_deg: float
+
+    def __post_init__(self):
+        unknown = [rod for rod in self.rod_models if rod not in ("rigid", "flexible")]
+        if unknown or not self.rod_models or len(set(self.rod_models)) != len(self.rod_models):
+            raise FewearInputError(
+                f"[wear_loop] rod_models = {list(self.rod_models)!r}: expected a non-empty list of "
+                "'rigid' and/or 'flexible', each once")
+        if self.load_steps_per_cycle < 2:
+            raise FewearInputError(
+                f"[wear_loop] load_steps_per_cycle = {self.load_steps_per_cycle}: expected >= 2")
+        if self.total_cycles < 1:
+            raise FewearInputError(f"[wear_loop] total_cycles = {self.total_cycles}: expected >= 1")
+        if self.recorded_cycles_per_block < 1 or self.warm_settling_cycles < 0:
+            raise FewearInputError(
+                f"[wear_loop] recorded_cycles_per_block = {self.recorded_cycles_per_block}, "
+                f"warm_settling_cycles = {self.warm_settling_cycles}: expected >= 1 and >= 0")
+        if not 0.0 < self.max_wall_fraction < 1.0:
+            raise FewearInputError(
+                f"[wear_loop] max_wall_fraction = {self.max_wall_fraction}: expected a fraction "
+                "of the bushing wall in (0, 1)")
+
+    @classmethod
+    def from_config(cls, section: dict) -> WearLoopSettings:
+        values = dict(section)
+        extrapolation = ExtrapolationSettings(
+            mode=values.pop("extrapolation"), factor=values.pop("extrapolation_factor"),
+            max_factor=values.pop("max_extrapolation_factor"),
+            max_depth_increment_fraction=values.pop("max_depth_increment_fraction"))
+        return cls(**{**values, "rod_models": tuple(values["rod_models"]),
+                      "extrapolation": extrapolation})
+
+
+@dataclass(frozen=True)
+class RunInputs:
+    """Everything ``fewear run`` needs, parsed once from the config at the command's edge."""
+
+    dynamics: object  # fewear.mbd.slider_crank.DynamicsInputs
+    contact: object  # fewear.contact.params.ContactProblem
+    wear_coefficient: object  # k(p, v), fewear.wear.coefficient
+    extension: object  # the wear law's history multiplier, fewear.wear.extensions
+    loop: WearLoopSettings
+    impact_wear_coefficient_m3_J: float = 0.0  # k_imp, fewear.wear.impact
+    impact_impulse_wear_coefficient_m3_Ns: float = 0.0  # c_J, fewear.wear.impact
+
+
+def run_sections() -> list[str]:
+    """The config sections ``fewear run`` reads."""
+    from fewear.contact.params import CONFIG_SECTIONS
+    from fewear.mbd.slider_crank import SECTIONS as DYNAMICS_SECTIONS
+
+    return list(dict.fromkeys([*RUN_SECTIONS, *CONFIG_SECTIONS, *DYNAMICS_SECTIONS]))
+
+
+def run_inputs_from_config(config: dict) -> RunInputs:
+    from fewear.contact.params import contact_problem_from_config
+    from fewear.mbd.slider_crank import dynamics_inputs_from_config
+    from fewear.wear.coefficient import wear_coefficient_from_config
+    from fewear.wear.extensions import wear_extension_from_config
+    from fewear.wear.impact import (
+        impact_impulse_wear_coefficient_from_config,
+        impact_wear_coefficient_from_config,
+    )
+
+    return RunInputs(dynamics_inputs_from_config(config), contact_problem_from_config(config),
+                     wear_coefficient_from_config(config["wear"]),
+                     wear_extension_from_config(config["wear"]),
+                     WearLoopSettings.from_config(config["wear_loop"]),
+                     impact_wear_coefficient_from_config(config["wear"]),
+                     impact_impulse_wear_coefficient_from_config(config["wear"]))

@@ -1,0 +1,160 @@
+"""Stages 2-4 of a wear block on one recorded history: load steps, contact at every step, and
+Archard's law summed over the steps into what one crank cycle does at each bore node."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+from scipy.integrate import cumulative_trapezoid
+
+from fewear.contact.admissible import ContactLoadError
+from fewear.mbd.history import JointHistory
+from fewear.wear.archard import CycleSliding, cycle_wear_depth_m
+from fewear.wear.impact import hysteresis_work_J, impact_impulse_N_s, impact_wear_depth_m
+
+DROPPABLE_SHARE = 0.01
+"""Load steps that find no contact equilibrium on a worn bore are dropped (counted, no wear)
+while together they carry at most this share of the cycle's load-slip product; beyond it the
+run stops with an error."""
+
+
+@dataclass(frozen=True)
+class LoadSteps:
+    """The load steps of the recorded cycles (bushing frame).
+
+    ``force_N`` (n, 2): joint force ON the pin pushing it into the bore (minus the bushing's
+    reaction on the pin), the mean over each step; ``rotation_rad`` (n,): rotation of the pin
+    relative to the bushing over the step; ``duration_s``: the length of one step;
+    ``hysteresis_work_J`` (n,): the work W_i the contact law's hysteresis dissipates over the step
+    (:func:`fewear.wear.impact.hysteresis_work_J`); ``impact_impulse_N_s`` (n,): the normal
+    impulse J_i of the impacts within the step (:func:`fewear.wear.impact.impact_impulse_N_s`).
+    """
+
+    time_s: np.ndarray
+    force_N: np.ndarray
+    rotation_rad: np.ndarray
+    duration_s: float
+    hysteresis_work_J: np.ndarray
+    impact_impulse_N_s: np.ndarray
+
+
+@dataclass(frozen=True)
+class CycleWear:
+    """Contact and wear of the recorded cycles on the bore nodes (sorted by angle).
+
+    ``pressure_Pa``, ``slip_m``, ``k_m2_N``: (n_steps, n_nodes); ``depth_per_cycle_m`` (n_nodes,):
+    plain Archard depth summed over all the steps; ``depth_sensitivity`` (n_nodes, n_nodes) its
+    derivative with respect to the bore's wear depth, or None; ``dropped_steps``: steps
+    that found no contact equilibrium on the worn bore, dropped within ``DROPPABLE_SHARE``.
+    """
+
+    angle_rad: np.ndarray
+    x_m: np.ndarray
+    y_m: np.ndarray
+    pressure_Pa: np.ndarray
+    slip_m: np.ndarray
+    k_m2_N: np.ndarray
+    depth_per_cycle_m: np.ndarray
+    depth_sensitivity: np.ndarray | None = None
+    dropped_steps: int = 0
+
+
+def load_steps(history: JointHistory, n_steps: int, law=None) -> LoadSteps:
+    """Cut the recorded history into ``n_steps`` equal steps (stage 2).
+
+    The force of a step is its mean over the step, the impulse over the step's length (the seed
+    samples it at one instant: an impact peak lasting microseconds is then hit or missed by the
+    sample, and the maximum depth after 10,000 cycles moved by 20 % between n = 200 and 400).
+    Archard's worn volume of a step, k |F| s, is linear in the force, so the mean keeps it for a
+    steady slip rate whatever n. The relative rotation is the integral of ``rel_omega_rad_s``
+    over the step, the hysteresis work W_i that of the dissipated power of ``law`` (the
+    clearance joint's :class:`fewear.mbd.contact.ContactLaw`; None: no work and no impacts, as
+    for the ideal joint) and the impact impulse J_i that of F_n over the impacts. All four
+    integrals are trapezoidal on the history, interpolated linearly at the step edges.
+    """
+    t = history.time_s
+    edges = np.linspace(t[0], t[-1], n_steps + 1)
+    middles = 0.5 * (edges[1:] + edges[:-1])
+    duration = float(edges[1] - edges[0])
+    impulse = cumulative_trapezoid(-history.reaction_force_N, t, axis=0, initial=0.0)  # ON pin
+    force = np.diff(np.column_stack([np.interp(edges, t, impulse[:, i]) for i in range(2)]),
+                    axis=0) / duration
+    rotation = np.diff(np.interp(edges, t, cumulative_trapezoid(history.rel_omega_rad_s, t,
+                                                                initial=0.0)))
+    work = impulse = np.zeros(n_steps)
+    if law is not None:
+        work = np.diff(np.interp(
+            edges, t, hysteresis_work_J(law, history.penetration_m, history.normal_force_N)))
+        impulse = np.diff(np.interp(
+            edges, t, impact_impulse_N_s(t, history.normal_force_N, history.mode)))
+    return LoadSteps(middles, force, rotation, duration, work, impulse)
+
+
+def cycle_wear(contact_model, steps: LoadSteps, wear_coefficient, friction: bool,
+               implicit: bool = False) -> CycleWear:
+    """Stages 3 and 4: contact at every load step, then Archard's law summed over the steps.
+
+    ``implicit``: also sum the steps' sensitivities k s dp/dh (``contact_model`` must offer
+    ``pressure_sensitivity(result)``, as :class:`fewear.loop.bushing.WornBushing` does)
+    for the linearly implicit block step of :func:`fewear.wear.archard.block_wear`.
+    """
+    results = _solve_steps(contact_model, steps, friction)
+    solved = next(r for r in results if r is not None)  # the heaviest step is never dropped
+    dropped = sum(r is None for r in results)
+    empty = replace(solved, pressure_Pa=np.zeros_like(solved.pressure_Pa),
+                    slip_m=np.zeros_like(solved.slip_m))
+    results = [empty if r is None else r for r in results]
+    pressure = np.array([r.pressure_Pa for r in results])
+    slip = np.array([r.slip_m for r in results])
+    speed = slip / steps.duration_s
+    k = np.where(slip > 0.0, wear_coefficient(pressure, np.maximum(speed, 1e-300)), 0.0)
+    sensitivity = None
+    if implicit:
+        sensitivity = np.zeros((pressure.shape[1], pressure.shape[1]))
+        for result, k_step, slip_step in zip(results, k, slip):
+            if np.any(slip_step > 0.0) and np.any(result.pressure_Pa > 0.0):
+                active, J = contact_model.pressure_sensitivity(result)
+                sensitivity[np.ix_(active, active)] += (k_step * slip_step)[active, None] * J
+    return CycleWear(solved.angle_rad, solved.x_m, solved.y_m, pressure, slip, k,
+                     cycle_wear_depth_m(k, pressure, slip), sensitivity, dropped)
+
+
+def _solve_steps(contact_model, steps: LoadSteps, friction: bool) -> list:
+    """The contact of every load step; None for a step that finds no equilibrium on the worn
+    bore while the steps dropped so far carry at most ``DROPPABLE_SHARE`` of the cycle's
+    sum of |F| |rotation| (the load-slip product Archard's wear grows with)."""
+    load_slip = np.linalg.norm(steps.force_N, axis=1) * np.abs(steps.rotation_rad)
+    allowance = DROPPABLE_SHARE * load_slip.sum()
+    results = []
+    for force, rotation, share in zip(steps.force_N, steps.rotation_rad, load_slip):
+        try:
+            results.append(contact_model.solve(force, rotation, friction=friction))
+        except ContactLoadError:
+            if share > allowance:
+                raise
+            allowance -= share
+            results.append(None)
+    return results
+
+
+def cycle_sliding(wear: CycleWear, steps: LoadSteps, cycles: int, friction_coefficient: float,
+                  impact_wear_coefficient_m3_J: float = 0.0,
+                  impact_impulse_wear_coefficient_m3_Ns: float = 0.0) -> CycleSliding:
+    """What one crank cycle does at each node, averaged over the ``cycles`` recorded cycles:
+    Archard depth, sliding distance, time in sliding contact, mean frictional power mu p v, the
+    depth's sensitivity to the wear, and the impact wear depth of k_imp =
+    ``impact_wear_coefficient_m3_J`` on the hysteresis work plus c_J =
+    ``impact_impulse_wear_coefficient_m3_Ns`` on the impact impulse
+    (:func:`fewear.wear.impact.impact_wear_depth_m`)."""
+    sliding = wear.slip_m > 0.0
+    distance = wear.slip_m.sum(axis=0) / cycles
+    time_s = steps.duration_s * sliding.sum(axis=0) / cycles
+    energy = friction_coefficient * (wear.pressure_Pa * wear.slip_m).sum(axis=0) / cycles
+    power = np.divide(energy, time_s, out=np.zeros_like(energy), where=time_s > 0.0)
+    sensitivity = None if wear.depth_sensitivity is None else wear.depth_sensitivity / cycles
+    impact_volume_m3 = (impact_wear_coefficient_m3_J * steps.hysteresis_work_J
+                        + impact_impulse_wear_coefficient_m3_Ns * steps.impact_impulse_N_s)
+    impact = impact_wear_depth_m(1.0, impact_volume_m3, steps.force_N, wear.pressure_Pa) / cycles
+    return CycleSliding(wear.depth_per_cycle_m / cycles, distance, time_s, power, sensitivity,
+                        impact)
