@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import logging
 import os
 import sys
 
@@ -102,8 +103,19 @@ def _is_root_rank() -> bool:
     return True
 
 
+def quiet_compiler_logs() -> None:
+    """Keep the form compiler's gcc command lines off the user's terminal: FFCx installs a root
+    log handler (``logging.basicConfig``) and cffi sets the root logger to INFO while it compiles
+    (distutils' ``set_threshold``), which printed ~50 ``INFO:root:`` lines on a first run. The
+    root handler is made here, before either is imported, and passes warnings and errors only."""
+    logging.basicConfig()
+    for handler in logging.getLogger().handlers:
+        handler.setLevel(logging.WARNING)
+
+
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
+    quiet_compiler_logs()
     module_name, function_name = HANDLERS[args.command].split(":")
     try:
         handler = getattr(importlib.import_module(module_name), function_name)

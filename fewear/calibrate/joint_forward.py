@@ -89,15 +89,14 @@ def simulate_wear(config: dict, label: str = "", comm=None) -> WearHistory:
         return _RUNS[key]
     from mpi4py import MPI
 
-    from fewear.loop.block import new_case, predict_case
-    from fewear.loop.bushing import WornBushing
+    from fewear.loop.block import new_bushing, new_case, predict_case
     from fewear.loop.settings import run_inputs_from_config
 
     comm = MPI.COMM_WORLD if comm is None else comm
     inputs = run_inputs_from_config(config)
     rod = inputs.loop.rod_models[0]
     start = time.perf_counter()
-    bushing = WornBushing(inputs.contact, comm)
+    bushing = new_bushing(inputs, comm)
     case = new_case(bushing)
     stopped = ""
     try:

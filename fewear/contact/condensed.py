@@ -102,15 +102,28 @@ class CondensedBushingContact:
         self.update_geometry(update_solver=False)
 
     # -- set-up ------------------------------------------------------------------------------
-    def update_geometry(self, update_solver: bool = True) -> None:
-        """(Re)build the nodal compliance G, the weights and node data from the current mesh."""
+    def update_geometry(self, update_solver: bool = True, keep_compliance: bool = False) -> None:
+        """(Re)build the nodal compliance G, the weights and node data from the current mesh.
+
+        ``keep_compliance``: keep the G of the geometry it was built on (its rows and columns
+        follow the bore nodes, should their angular order change) and update the rest: G costs
+        one dense multiple-right-hand-side solve with 2n columns (about a second on the
+        reference mesh), the rest milliseconds. An approximation the caller bounds by how far
+        the bore moved since G was built (:class:`fewear.loop.bushing.WornBushing`)."""
+        node_ids = self.solver.bore.global_ids.copy()
         if update_solver:
             self.solver.update_geometry()
         bore = self.solver.bore
         self.points = bore.points.copy()
         self.angles = bore.angles.copy()
         self.weights_m = bore_node_weights(self.solver.mesh, bore)
-        self.compliance = self._nodal_compliance()
+        if keep_compliance:
+            position = np.argsort(node_ids)[np.searchsorted(node_ids, bore.global_ids,
+                                                            sorter=np.argsort(node_ids))]
+            rows = (2 * position[:, None] + np.arange(2)[None, :]).reshape(-1)
+            self.compliance = self.compliance[np.ix_(rows, rows)]
+        else:
+            self.compliance = self._nodal_compliance()
         self.zero_displacement()
         self.pin_centre_m = np.zeros(2)
         self.newton.forget()

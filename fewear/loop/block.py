@@ -113,13 +113,21 @@ def new_case(bushing) -> CaseProgress:
                         meshed_xy_m=bushing.meshed_xy_m, counts=bushing.counts)
 
 
+def new_bushing(inputs: RunInputs, comm, counts=None):
+    """The unworn FE bushing of ``inputs`` (:class:`fewear.loop.bushing.WornBushing`) on
+    ``comm``, adding to ``counts`` (None: counts of its own)."""
+    from fewear.loop.bushing import WornBushing
+
+    return WornBushing(inputs.contact, comm, counts,
+                       compliance_update=inputs.loop.compliance_update)
+
+
 def restored_bushing(inputs: RunInputs, case: CaseProgress, comm):
     """The FE bushing of ``case`` as its last block left it (a checkpoint's, or a case whose
     contact model changes between blocks), adding to the case's counts."""
-    from fewear.loop.bushing import WornBushing
     from fewear.mesh.snapshot import MeshSnapshot
 
-    bushing = WornBushing(inputs.contact, comm, case.counts)
+    bushing = new_bushing(inputs, comm, case.counts)
     bushing.restore(case.meshed_xy_m,
                     MeshSnapshot(case.node_ids, case.snapshots[-1], case.cells))
     return bushing

@@ -20,6 +20,7 @@ from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.contact.sensitivity import pressure_sensitivity
 from fewear.contact.solver import BushingContactSolver
+from fewear.errors import FewearInputError
 from fewear.loop.progress import LoopCounts
 from fewear.mesh.ale import BoreMotion
 from fewear.mesh.bushing import bushing_mesh, radial_progression
@@ -39,6 +40,9 @@ def bore_element_height_m(problem: ContactProblem) -> float:
     return wall / n if q == 1.0 else wall * (q - 1.0) / (q**n - 1.0)
 
 
+COMPLIANCE_UPDATES = ("move", "remesh")
+
+
 class WornBushing:
     """The condensed contact model of the bushing, kept on the worn bore.
 
@@ -49,11 +53,23 @@ class WornBushing:
     ``meshed_xy_m``: the node coordinates when the current mesh was made (the reference of its
     motion); ``counts``: the case's counts, which the moves and the contact's fallbacks add to;
     ``last_quality``: after the last move.
+
+    ``compliance_update``: when the bore compliance G of the contact operator (one dense solve
+    with 2n right-hand sides, the dearest part of a move) is built: ``"move"`` after every move,
+    ``"remesh"`` once per mesh, on the mesh as made, and kept (reordered) while the mesh moves:
+    the re-mesh limit on the bore's motion (half the bore element's height by default) bounds
+    how far the geometry of G lags behind the worn bore. Both restore exactly from a checkpoint
+    (the mesh as made is in it).
     """
 
     def __init__(self, problem: ContactProblem, comm, counts: LoopCounts | None = None,
-                 limits: RemeshLimits | None = None):
+                 limits: RemeshLimits | None = None, compliance_update: str = "move"):
+        if compliance_update not in COMPLIANCE_UPDATES:
+            raise FewearInputError(
+                f"[wear_loop] compliance_update = {compliance_update!r}: expected one of "
+                f"{', '.join(map(repr, COMPLIANCE_UPDATES))}")
         self.problem, self.comm = problem, comm
+        self.keep_compliance = compliance_update == "remesh"
         self.counts = LoopCounts() if counts is None else counts
         self.limits = RemeshLimits() if limits is None else limits
         self.element_height_m = bore_element_height_m(problem)
@@ -129,10 +145,17 @@ class WornBushing:
         if self.limits.needs_remesh(move.quality):
             self._mesh(bore_profile=(state.angle_rad, radius(state.angle_rad)))
             self.counts.remeshes += 1
-        self._rebuild_contact()
+            self._follow_node_order()
+        else:
+            self._rebuild_contact()
 
     def _rebuild_contact(self) -> None:
-        self.contact.update_geometry()
+        """The contact operator on the moved mesh (G kept or rebuilt: ``compliance_update``)."""
+        self.contact.update_geometry(keep_compliance=self.keep_compliance)
+        self._follow_node_order()
+
+    def _follow_node_order(self) -> None:
+        """The permutation from the contact's bore node order to ``angles``'."""
         current = self.contact.solver.bore.global_ids
         sorter = np.argsort(current)
         self._order = sorter[np.searchsorted(current, self._node_ids, sorter=sorter)]

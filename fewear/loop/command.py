@@ -7,7 +7,7 @@ import math
 import sys
 import time
 
-from fewear.loop.block import new_case, predict_case, restored_bushing
+from fewear.loop.block import new_bushing, new_case, predict_case, restored_bushing
 from fewear.loop.progress import CaseProgress
 from fewear.loop.settings import run_inputs_from_config, run_sections
 
@@ -45,7 +45,6 @@ def main(args) -> int:
     from fewear.io.config import load_config
     from fewear.io.output import staged_output
     from fewear.loop import checkpoint
-    from fewear.loop.bushing import WornBushing
     from fewear.loop.outputs import write_run_outputs
 
     comm = MPI.COMM_WORLD
@@ -67,7 +66,7 @@ def main(args) -> int:
                 continue  # finished before an interruption: nothing to mesh or solve
             progress.message(f"{rod} rod: meshing the bushing and condensing it onto the bore")
             if case is None:
-                bushing = WornBushing(inputs.contact, comm)
+                bushing = new_bushing(inputs, comm)
                 case = cases[rod] = new_case(bushing)
             else:
                 bushing = restored_bushing(inputs, case, comm)

@@ -25,6 +25,7 @@ class WearLoopSettings:
     max_wall_fraction: float
     implicit_wear_step: bool
     wear_smoothing_width_deg: float
+    compliance_update: str
 
     def __post_init__(self):
         unknown = [rod for rod in self.rod_models if rod not in ("rigid", "flexible")]

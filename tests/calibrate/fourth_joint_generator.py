@@ -412,8 +412,7 @@ def layered_run(config: dict, last_cycles: int, friction: dict | None = None,
         return _LAYERED[key]
     from mpi4py import MPI
 
-    from fewear.loop.block import new_case, restored_bushing, run_block
-    from fewear.loop.bushing import WornBushing
+    from fewear.loop.block import new_bushing, new_case, restored_bushing, run_block
     from fewear.loop.settings import run_inputs_from_config
 
     comm = MPI.COMM_WORLD
@@ -421,7 +420,7 @@ def layered_run(config: dict, last_cycles: int, friction: dict | None = None,
     rod = config["wear_loop"]["rod_models"][0]
     block_config = model_config(config, rod, last_cycles)
     inputs = run_inputs_from_config(block_config)
-    bushing = WornBushing(inputs.contact, comm)
+    bushing = new_bushing(inputs, comm)
     case = new_case(bushing)
     while case.state.cycles < last_cycles:
         if friction is not None:

@@ -34,3 +34,23 @@ def test_input_errors_exit_2_without_traceback(tmp_path):
     assert process.stderr.startswith("fewear: error:") and "[nonsense]" in process.stderr
     assert "Traceback" not in process.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_compiler_info_lines_stay_off_the_terminal():
+    """cffi sets the root logger to INFO while FFCx's forms compile; the CLI's root handler passes
+    warnings and errors only, so gcc command lines never reach the user (a fresh process: pytest
+    holds handlers of its own on the root logger)."""
+    import subprocess
+    import sys
+
+    script = (
+        "import logging\n"
+        "from fewear.cli import quiet_compiler_logs\n"
+        "quiet_compiler_logs()\n"
+        "import ffcx\n"  # installs its basicConfig handler unless one exists
+        "logging.getLogger().setLevel(logging.INFO)\n"  # distutils' set_threshold in a compile
+        "logging.info('x86_64-linux-gnu-gcc -c libffcx_forms.c')\n"
+        "logging.warning('a real warning')\n")
+    err = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         check=True).stderr
+    assert "gcc" not in err and "a real warning" in err
