@@ -67,6 +67,11 @@ def build_parser() -> argparse.ArgumentParser:
     _add_config_and_out(run, "out/run")
     run.add_argument("--resume", action="store_true",
                      help="continue the run whose checkpoint is in --out (same config)")
+    run.add_argument("--jobs", type=int, default=None, metavar="N",
+                     help="rod models run side by side in worker processes (default: one per "
+                          "rod model, at most the CPU cores; 1: one after the other in this "
+                          "process). Under mpirun the ranks are split among the rod models "
+                          "instead")
 
     plot = sub.add_parser("plot", help="PyVista view of a run's worn bushing, coloured by depth")
     plot.add_argument("folder", metavar="DIR", help="the output folder of `fewear run`")

@@ -89,11 +89,14 @@ def test_wear_sits_left_and_right_of_the_bore(explicit_run):
 
 def test_ale_moved_the_bore_nodes_exactly_to_the_worn_radius(explicit_run):
     """The checkpoint's last mesh: every node that was on the bore now sits at R_b + h(theta)."""
-    data = np.load(explicit_run / "fewear-checkpoint.npz")
-    unworn, moved = data["rigid/snapshots"][0], data["rigid/snapshots"][-1]
+    folder = explicit_run / "fewear-checkpoint"
+    data = np.load(folder / "rigid.npz")
+    assert sorted(path.name for path in folder.glob("rigid-mesh-*.npy")) == [
+        "rigid-mesh-00000.npy", "rigid-mesh-00001.npy", "rigid-mesh-00002.npy"]
+    unworn, moved = (np.load(folder / f"rigid-mesh-0000{block}.npy") for block in (0, 2))
     on_bore = np.isclose(np.hypot(*unworn.T), R_B, rtol=1e-9)
     angle = np.mod(np.arctan2(unworn[on_bore, 1], unworn[on_bore, 0]), 2 * math.pi)
-    depth = np.interp(angle, data["rigid/angle_rad"], data["rigid/depth_m"], period=2 * math.pi)
+    depth = np.interp(angle, data["angle_rad"], data["depth_m"], period=2 * math.pi)
     np.testing.assert_allclose(np.hypot(*moved[on_bore].T), R_B + depth, atol=1e-15)
     radial = np.hypot(*moved[on_bore].T) / np.hypot(*unworn[on_bore].T)
     np.testing.assert_allclose(moved[on_bore], unworn[on_bore] * radial[:, None], atol=1e-15)
@@ -149,8 +152,8 @@ def test_resume_with_another_config_or_a_corrupt_checkpoint_is_an_input_error(
     assert run(other, explicit_run, "--resume") == 2
     assert "another config ([wear_loop] implicit_wear_step" in capsys.readouterr().err
     broken = tmp_path / "broken"
-    broken.mkdir()
-    (broken / "fewear-checkpoint.npz").write_bytes(b"not a checkpoint")
+    (broken / "fewear-checkpoint").mkdir(parents=True)
+    (broken / "fewear-checkpoint" / "rigid.npz").write_bytes(b"not a checkpoint")
     assert run(other, broken, "--resume") == 2
     assert "unreadable" in capsys.readouterr().err
     assert run(other, tmp_path / "empty", "--resume") == 2
@@ -196,6 +199,61 @@ def test_two_ranks_give_the_serial_wear(tmp_path, explicit_run):
     scale = serial["wear_depth_m"].max()
     np.testing.assert_allclose(parallel["wear_depth_m"], serial["wear_depth_m"],
                                atol=1e-8 * scale)
+
+
+def two_rods_config(tmp_path):
+    """The small case, one block of each rod model."""
+    config = write_config(tmp_path, implicit=False, smoothing=0.0, name="two_rods.toml")
+    config.write_text(config.read_text().replace('rod_models = ["rigid"]',
+                                                 'rod_models = ["rigid", "flexible"]')
+                      .replace("total_cycles = 4000", "total_cycles = 2000"))
+    return config
+
+
+@pytest.fixture(scope="module")
+def two_rods_one_after_the_other(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("two_rods")
+    assert run(two_rods_config(folder), folder / "out", "--jobs", "1") == 0
+    return (folder / "out" / "wear_profile.csv").read_text()
+
+
+def test_rods_side_by_side_in_processes_give_the_serial_result(tmp_path,
+                                                              two_rods_one_after_the_other):
+    """A plain `fewear run` runs the rod models in worker processes: each computes exactly what
+    the serial run does, so the files are the same, byte for byte."""
+    assert run(two_rods_config(tmp_path), tmp_path / "out", "--jobs", "2") == 0
+    profile = (tmp_path / "out" / "wear_profile.csv").read_text()
+    assert profile == two_rods_one_after_the_other
+    assert {line.split(",")[0] for line in profile.splitlines()[1:]} == {"rigid", "flexible"}
+
+
+@pytest.mark.mpi
+def test_ranks_split_among_the_rods_give_the_serial_result(tmp_path,
+                                                          two_rods_one_after_the_other):
+    """`mpirun -n 2 fewear run` with two rod models: one rank per rod model, the same files as
+    the serial run, byte for byte."""
+    import os
+    import shutil
+    import subprocess
+    import sys
+
+    mpirun = shutil.which("mpirun")
+    if mpirun is None:
+        pytest.skip("mpirun not found on PATH")
+    env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+           "OMPI_MCA_rmaps_base_oversubscribe": "1", "MPLBACKEND": "Agg"}
+    process = subprocess.run(
+        [mpirun, "-n", "2", sys.executable, "-m", "fewear.cli", "run", "--config",
+         str(two_rods_config(tmp_path)), "--out", str(tmp_path / "mpi")],
+        capture_output=True, text=True, timeout=600, env=env)
+    assert process.returncode == 0, process.stderr
+    assert (tmp_path / "mpi" / "wear_profile.csv").read_text() == two_rods_one_after_the_other
+
+
+def test_jobs_must_be_positive(tmp_path, capsys):
+    assert run(write_config(tmp_path), tmp_path / "out", "--jobs", "0") == 2
+    assert "--jobs 0: expected a number of processes >= 1" in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()
 
 
 def test_fewear_plot_renders_the_worn_bushing_off_screen(explicit_run):

@@ -97,6 +97,7 @@ from fewear.calibrate.joint_forward import (
     impact_measures_per_cycle,
     model_config,
     simulate_wear,
+    simulate_wears,
     with_halved_blocks,
     worn_volume_per_cycle_m3,
 )
@@ -696,20 +697,23 @@ def cause_config(config: dict, cause: str, value: float | None, form: str = "") 
     return changed
 
 
-def candidate_runner(cycles: int, obs: Observations) -> Callable[[dict, str], WearHistory]:
-    """How a candidate's config is run: ``cycles`` long, stopping once it wears
-    :data:`DEPTH_REACH` to twice that times deeper than the deepest measured wear
-    (:func:`candidate_runs`)."""
+def candidate_runner(cycles: int, obs: Observations) -> Callable[[list], list[WearHistory]]:
+    """How candidates' configs are run, given as ``[(config, label), ...]``: ``cycles`` long,
+    stopping once they wear :data:`DEPTH_REACH` to twice that times deeper than the deepest
+    measured wear (:func:`candidate_runs`); side by side (:func:`simulate_wears`)."""
     deepest = float(obs.depth_m.max())
 
-    def run(changed: dict, label: str) -> WearHistory:
+    def limited(changed: dict) -> dict:
         changed = model_config(changed, changed["wear_loop"]["rod_models"][0], cycles)
         loop, bushing = changed["wear_loop"], changed["bushing"]
         if deepest > 0.0:  # rounded up to a power of 2: data sets of about one depth share runs
             wall = bushing["outer_radius_m"] - bushing["inner_radius_m"]
             loop["max_wall_fraction"] = min(loop["max_wall_fraction"], 2.0 ** math.ceil(
                 math.log2(DEPTH_REACH * deepest / wall)))
-        return simulate_wear(changed, label)
+        return changed
+
+    def run(requests: list[tuple[dict, str]]) -> list[WearHistory]:
+        return simulate_wears([(limited(changed), label) for changed, label in requests])
 
     return run
 
@@ -731,13 +735,14 @@ def candidate_runs(config: dict, cause: str, cycles: int, base: WearHistory,
         return tuple(Candidate(cause, (base,), form=form) for form in RUNNING_IN_FORMS)
     if cause == "flexible_link":
         grid = sorted(settings.rod_modulus_factors)
-        runs = [run(cause_config(config, cause, f), f"flexible rod, E x {f:g}") for f in grid]
+        runs = run([(cause_config(config, cause, f), f"flexible rod, E x {f:g}") for f in grid])
         return _lasting(Candidate(cause, tuple(runs), tuple(grid), discrete=True), needed)
     if cause == "friction":
         believed = config["joint"]["friction_coefficient"]
         grid = sorted(set(settings.friction_grid) | {believed})
-        runs = [base if mu == believed else run(cause_config(config, cause, mu), f"mu = {mu:g}")
-                for mu in grid]
+        others = iter(run([(cause_config(config, cause, mu), f"mu = {mu:g}")
+                           for mu in grid if mu != believed]))
+        runs = [base if mu == believed else next(others) for mu in grid]
         return _lasting(Candidate(cause, tuple(runs), tuple(grid)), needed)
     # impact wear, each form at coefficients such that the impact volume is a set multiple of
     # the sliding volume on the unworn joint
@@ -750,8 +755,8 @@ def candidate_runs(config: dict, cause: str, cycles: int, base: WearHistory,
         per_unit = volume / max(measures[form], 1e-300)
         grid = [believed] + [believed + ratio * per_unit
                              for ratio in sorted(settings.impact_volume_ratios)]
-        runs = [base] + [run(cause_config(config, cause, c, form), f"{key} = {c:.3g}")
-                         for c in grid[1:]]
+        runs = [base] + run([(cause_config(config, cause, c, form), f"{key} = {c:.3g}")
+                             for c in grid[1:]])
         forms += _lasting(Candidate(cause, tuple(runs), tuple(grid), form), needed)
     return tuple(forms)
 
@@ -828,21 +833,21 @@ def diagnose_joint(data: JointMeasurements, config: dict,
                           extended_depth)
 
 
-def _refinement_runs(config: dict, run: Callable[[dict, str], WearHistory]) -> RunAt:
+def _refinement_runs(config: dict, run: Callable[[list], list[WearHistory]]) -> RunAt:
     """The runs the refinements ask for (made by ``run``): the extended model at the fit's
     parameters, its level included."""
     def run_at(candidate: Candidate, fitted: Fit) -> WearHistory:
         params = fitted.params
         if candidate.running_in:
             law = running_in_extension(fitted.form, params).params()
-            return run(_extended_config(config, "running_in", fitted),
-                       f"running-in ({fitted.form}), "
-                       + ", ".join(f"{key} = {value:.3g}" for key, value in law.items())
-                       + f", k x {params['k_scale']:.3g}")
+            return run([(_extended_config(config, "running_in", fitted),
+                         f"running-in ({fitted.form}), "
+                         + ", ".join(f"{key} = {value:.3g}" for key, value in law.items())
+                         + f", k x {params['k_scale']:.3g}")])[0]
         key = _grid_parameter(candidate.name, candidate.form)
         value = f", {key} = {params[key]:.3g}" if key else ""
-        return run(_extended_config(config, candidate.name, fitted),
-                   f"{candidate.name} refined: k x {params['k_scale']:.3g}{value}")
+        return run([(_extended_config(config, candidate.name, fitted),
+                     f"{candidate.name} refined: k x {params['k_scale']:.3g}{value}")])[0]
 
     return run_at
 

@@ -84,7 +84,7 @@ def with_halved_blocks(config: dict) -> dict:
 def simulate_wear(config: dict, label: str = "", comm=None) -> WearHistory:
     """The wear loop of the config's (single) rod model up to its ``total_cycles``. A run that
     wears through the wall or whose contact fails ends there (``stopped`` says why)."""
-    key = json.dumps(config, sort_keys=True, default=str)
+    key = _key(config)
     if key in _RUNS:
         return _RUNS[key]
     from mpi4py import MPI
@@ -117,6 +117,29 @@ def simulate_wear(config: dict, label: str = "", comm=None) -> WearHistory:
               + (" (stopped early)" if stopped else ""), file=sys.stderr, flush=True)
     _RUNS[key] = history
     return history
+
+
+def simulate_wears(requests: list[tuple[dict, str]]) -> list[WearHistory]:
+    """:func:`simulate_wear` of each ``(config, label)``: the runs not made yet side by side in
+    worker processes (spawned, one per CPU core, each BLAS on one thread), then all from the
+    memo. Serial under ``mpirun`` (the ranks share each run) or on one core."""
+    from mpi4py import MPI
+
+    from fewear.parallel import usable_cores, worker_pool
+
+    missing = list({_key(config): (config, label) for config, label in requests
+                    if _key(config) not in _RUNS}.values())
+    jobs = min(len(missing), usable_cores())
+    if jobs > 1 and MPI.COMM_WORLD.size == 1:
+        with worker_pool(jobs) as pool:
+            histories = pool.starmap(simulate_wear, missing)
+        _RUNS.update({_key(config): history
+                      for (config, _), history in zip(missing, histories)})
+    return [simulate_wear(config, label) for config, label in requests]
+
+
+def _key(config: dict) -> str:
+    return json.dumps(config, sort_keys=True, default=str)
 
 
 def cycle_on_worn_bore(config: dict, angle_rad: np.ndarray | None = None,

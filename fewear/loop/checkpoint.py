@@ -1,15 +1,21 @@
 """The checkpoint of ``fewear run``: everything needed to continue after any wear block.
 
-One NumPy archive, ``OUT/fewear-checkpoint.npz``, rewritten atomically (a temporary file renamed
-over it) by rank 0 after every block, so an interrupted run (Ctrl-C, a crash, a killed job) loses
-at most the block in progress. It holds the complete config the run used and, per rod model, the
-wear state, the mechanism's final state (the next block's warm start), the moved mesh's node
-coordinates after every block, the block records, the counts and the stage times.
-``fewear run --resume`` rebuilds the same objects and continues; since every block starts from
-exactly these arrays, the resumed run ends with the result of an uninterrupted one.
+One folder, ``OUT/fewear-checkpoint/``, with per rod model (each case is saved by the ranks or
+the process that runs it, so cases run side by side):
 
-A checkpoint made with another config, or one that cannot be read, is an input error naming
-the cause: resuming it would silently mix two different runs.
+- ``<rod>.npz``: the complete config the run used, the wear state, the mechanism's final state
+  (the next block's warm start), the block records, the mesh as made (the reference of its
+  motion), the counts and the stage times; rewritten atomically (a temporary file renamed over
+  it) after every block, so an interrupted run (Ctrl-C, a crash, a killed job) loses at most the
+  block in progress;
+- ``<rod>-mesh-<block>.npy``: the moved mesh's node coordinates after each block (block 0: the
+  unworn mesh), each written once, before the ``.npz`` that counts it: the I/O per block stays
+  the same however long the run.
+
+``fewear run --resume`` rebuilds the same objects and continues; since every block starts from
+exactly these arrays, the resumed run ends with the result of an uninterrupted one. A checkpoint
+made with another config, or one that cannot be read, is an input error naming the cause:
+resuming it would silently mix two different runs.
 """
 
 from __future__ import annotations
@@ -27,63 +33,76 @@ from fewear.loop.progress import BlockRecord, CaseProgress, LoopCounts
 from fewear.wear.extensions import SlidingState
 from fewear.wear.state import WearState
 
-FILENAME = "fewear-checkpoint.npz"
-FORMAT = "fewear-run-checkpoint-1"
+FOLDER = "fewear-checkpoint"
+FORMAT = "fewear-run-checkpoint-2"
 LOOP_COUNT_NAMES = [count.name for count in fields(LoopCounts)]
+UNREADABLE = (OSError, ValueError, KeyError, zipfile.BadZipFile, json.JSONDecodeError)
 
 
 class Checkpoint:
-    """The checkpoint file of a run writing into ``out_dir`` with ``config``."""
+    """The checkpoint folder of a run writing into ``out_dir`` with ``config``."""
 
-    def __init__(self, out_dir, config: dict, comm):
-        self.path = Path(out_dir).resolve() / FILENAME
+    def __init__(self, out_dir, config: dict):
+        self.path = Path(out_dir).resolve() / FOLDER
         self.config = json.loads(json.dumps(config))
-        self.comm = comm
 
-    def save(self, cases: dict) -> None:
-        """Write every case's progress (rank 0; atomically)."""
-        if self.comm.rank != 0:
-            return
+    def case_path(self, rod: str) -> Path:
+        return self.path / f"{rod}.npz"
+
+    def mesh_path(self, rod: str, block: int) -> Path:
+        return self.path / f"{rod}-mesh-{block:05d}.npy"
+
+    def save(self, rod: str, case: CaseProgress) -> None:
+        """Write ``case``'s progress after a block: the new mesh snapshots, then the case."""
+        self.path.mkdir(parents=True, exist_ok=True)
+        last = len(case.snapshots) - 1  # new, or left by a block that did not finish: write it
+        for block in range(last + 1):
+            if block == last or not self.mesh_path(rod, block).exists():
+                np.save(self.mesh_path(rod, block), case.snapshots[block])
         arrays = {"meta": np.array(json.dumps({
-            "format": FORMAT, "config": self.config,
-            "cases": {rod: _case_meta(case) for rod, case in cases.items()}}))}
-        for rod, case in cases.items():
-            arrays.update({f"{rod}/{key}": value for key, value in _case_arrays(case).items()})
-        temporary = self.path.with_name(f".{FILENAME}.{os.getpid()}.tmp")
+            "format": FORMAT, "config": self.config, "case": _case_meta(case)})),
+            **_case_arrays(case)}
+        temporary = self.path / f".{rod}.{os.getpid()}.tmp"
         with open(temporary, "wb") as handle:
             np.savez(handle, **arrays)
-        os.replace(temporary, self.path)
+        os.replace(temporary, self.case_path(rod))
 
-    def load(self) -> dict:
-        """The cases of the checkpoint (rod -> :class:`fewear.loop.progress.CaseProgress`); an input
-        error when it is missing, unreadable or made with another config."""
-        if not self.path.exists():
+    def load(self, rods) -> dict:
+        """The saved cases among ``rods`` (rod -> :class:`fewear.loop.progress.CaseProgress`); an
+        input error when there is none, or one is unreadable or made with another config."""
+        cases = {rod: self._load_case(rod) for rod in rods if self.case_path(rod).exists()}
+        if not cases:
             raise FewearInputError(
-                f"--resume: no checkpoint {self.path} (a run writes it after its first block); "
-                "run without --resume to start")
+                f"--resume: no checkpoint in {self.path} (a run writes it after its first "
+                "block); run without --resume to start")
+        return cases
+
+    def _load_case(self, rod: str) -> CaseProgress:
+        path = self.case_path(rod)
         try:
-            with np.load(self.path, allow_pickle=False) as archive:
+            with np.load(path, allow_pickle=False) as archive:
                 data = {key: archive[key] for key in archive.files}
             meta = json.loads(str(data["meta"]))
-        except (OSError, ValueError, KeyError, zipfile.BadZipFile, json.JSONDecodeError) as exc:
+        except UNREADABLE as exc:
             raise FewearInputError(
-                f"--resume: checkpoint {self.path} is unreadable ({exc}); delete it to start "
-                "again") from None
+                f"--resume: checkpoint {path} is unreadable ({exc}); delete {self.path} to "
+                "start again") from None
         if meta.get("format") != FORMAT:
             raise FewearInputError(
-                f"--resume: {self.path} has format {meta.get('format')!r}, expected {FORMAT!r}")
+                f"--resume: {path} has format {meta.get('format')!r}, expected {FORMAT!r}")
         difference = _first_difference(meta["config"], self.config)
         if difference:
             raise FewearInputError(
-                f"--resume: checkpoint {self.path} was made with another config ({difference}); "
+                f"--resume: checkpoint {path} was made with another config ({difference}); "
                 "resume with the same config, or run without --resume into another --out")
         try:
-            return {rod: _case_from(rod, case_meta, data)
-                    for rod, case_meta in meta["cases"].items()}
-        except (KeyError, ValueError, TypeError) as exc:
+            snapshots = [np.load(self.mesh_path(rod, block), allow_pickle=False)
+                         for block in range(meta["case"]["blocks"] + 1)]
+            return _case_from(meta["case"], data, snapshots)
+        except (*UNREADABLE, TypeError) as exc:
             raise FewearInputError(
-                f"--resume: checkpoint {self.path} is incomplete ({exc}); delete it to start "
-                "again") from None
+                f"--resume: checkpoint {path} is incomplete ({exc}); delete {self.path} to "
+                "start again") from None
 
 
 def _case_meta(case: CaseProgress) -> dict:
@@ -101,7 +120,7 @@ def _case_arrays(case: CaseProgress) -> dict:
         "lagged_power_W_m2": state.sliding.lagged_power_W_m2,
         "q": case.mechanism.q, "qd": case.mechanism.qd,
         "node_ids": case.node_ids, "cells": case.cells,
-        "meshed_xy_m": case.meshed_xy_m, "snapshots": np.array(case.snapshots),
+        "meshed_xy_m": case.meshed_xy_m,
         "record_cycles": np.array([r.cycles for r in records]),
         "record_block_cycles": np.array([r.block_cycles for r in records]),
         "record_depth_m": np.array([r.depth_m for r in records]),
@@ -111,11 +130,11 @@ def _case_arrays(case: CaseProgress) -> dict:
     }
 
 
-def _case_from(rod: str, meta: dict, data: dict) -> CaseProgress:
+def _case_from(meta: dict, data: dict, snapshots: list[np.ndarray]) -> CaseProgress:
     from fewear.mbd.slider_crank import MechanismState
 
     def array(key):
-        return data[f"{rod}/{key}"]
+        return data[key]
 
     state = WearState(array("angle_rad"), array("depth_m"),
                       SlidingState(array("sliding_distance_m"), array("sliding_time_s"),
@@ -127,7 +146,7 @@ def _case_from(rod: str, meta: dict, data: dict) -> CaseProgress:
                                         array("record_values"))]
     return CaseProgress(
         state=state, mechanism=MechanismState(meta["time_s"], array("q"), array("qd")),
-        records=records, snapshots=list(array("snapshots")), node_ids=array("node_ids"),
+        records=records, snapshots=snapshots, node_ids=array("node_ids"),
         cells=array("cells"), meshed_xy_m=array("meshed_xy_m"),
         counts=LoopCounts(**{name: meta[name] for name in LOOP_COUNT_NAMES}),
         stage_wall_time_s=dict(meta["stage_wall_time_s"]))

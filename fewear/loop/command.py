@@ -1,5 +1,12 @@
 """``fewear run``: the prediction for every rod model, a checkpoint after every block, a progress
-line per block, the outputs written all or nothing."""
+line per block, the outputs written all or nothing.
+
+The rod models are independent runs, so they run side by side: under ``mpirun -n N`` the ranks
+are split into one sub-communicator per rod model (a rod model with several ranks splits its FE
+work among them); a plain ``fewear run`` starts one worker process per rod model, up to the
+CPU cores (``--jobs``). A rod model on one rank or in one process computes exactly what the
+serial run does, so the results are the same, bit for bit.
+"""
 
 from __future__ import annotations
 
@@ -7,34 +14,109 @@ import math
 import sys
 import time
 
+from fewear.errors import FewearInputError
 from fewear.loop.block import new_bushing, new_case, predict_case, restored_bushing
+from fewear.loop.checkpoint import Checkpoint
 from fewear.loop.progress import CaseProgress
 from fewear.loop.settings import run_inputs_from_config, run_sections
+from fewear.parallel import usable_cores
 
 
 class Progress:
-    """One line per block on stderr (rank 0): a bar of the cycles done, depth, ETA."""
+    """One line per block of a rod model on stderr (the first rank of its communicator): a bar of
+    its cycles done, the depth, its ETA."""
 
-    def __init__(self, comm, total_cycles: int, n_cases: int):
-        self.comm, self.total, self.n_cases = comm, total_cycles, n_cases
+    def __init__(self, comm, rod: str, total_cycles: int, start_cycles: int = 0):
+        self.comm, self.rod, self.total = comm, rod, total_cycles
+        self.start_cycles = start_cycles  # done before this process (--resume)
         self.start = time.perf_counter()
-        self.resumed_fraction = 0.0  # of the whole run, done before this process (--resume)
 
     def message(self, text: str) -> None:
         if self.comm.rank == 0:
-            print(f"fewear run [{time.perf_counter() - self.start:6.1f} s] {text}",
+            print(f"fewear run [{time.perf_counter() - self.start:6.1f} s] {self.rod}: {text}",
                   file=sys.stderr, flush=True)
 
-    def block(self, rod: str, index: int, case: CaseProgress, done_before: float) -> None:
-        fraction = case.state.cycles / self.total
-        overall = (done_before + fraction) / self.n_cases
+    def block(self, case: CaseProgress) -> None:
+        cycles = case.state.cycles
+        done_here = cycles - self.start_cycles
         elapsed = time.perf_counter() - self.start
-        done_here = overall - self.resumed_fraction
-        eta = elapsed * (1.0 - overall) / done_here if done_here > 0 else math.inf
-        bar = "#" * int(20 * fraction) + "." * (20 - int(20 * fraction))
-        self.message(f"{rod} [{bar}] block {case.state.blocks}, {case.state.cycles:,}/"
-                     f"{self.total:,} cycles, max depth {case.state.depth_m.max():.3e} m, "
-                     f"ETA {eta:.0f} s")
+        eta = elapsed * (self.total - cycles) / done_here if done_here > 0 else math.inf
+        bar = "#" * int(20 * cycles / self.total) + "." * (20 - int(20 * cycles / self.total))
+        self.message(f"[{bar}] block {case.state.blocks}, {cycles:,}/{self.total:,} cycles, "
+                     f"max depth {case.state.depth_m.max():.3e} m, ETA {eta:.0f} s")
+
+
+def run_cases(rods, config: dict, out_dir, resumed: dict, comm) -> dict:
+    """The wear prediction of each of ``rods`` in turn on ``comm``, continuing the cases of
+    ``resumed`` (rod -> :class:`CaseProgress`), a checkpoint after every block; rod -> case."""
+    inputs = run_inputs_from_config(config)
+    store = Checkpoint(out_dir, config)
+    cases = {}
+    for rod in rods:
+        case = resumed.get(rod)
+        progress = Progress(comm, rod, inputs.loop.total_cycles,
+                            0 if case is None else case.state.cycles)
+        if case is not None and case.state.cycles >= inputs.loop.total_cycles:
+            cases[rod] = case  # finished before an interruption: nothing to mesh or solve
+            continue
+        progress.message("meshing the bushing and condensing it onto the bore")
+        if case is None:
+            bushing = new_bushing(inputs, comm)
+            case = new_case(bushing)
+        else:
+            bushing = restored_bushing(inputs, case, comm)
+
+        def after_block(case, rod=rod, progress=progress):
+            if comm.rank == 0:
+                store.save(rod, case)
+            progress.block(case)
+
+        predict_case(rod, inputs, bushing, case, after_block)
+        cases[rod] = case
+    return cases
+
+
+def _run_in_worker(rods, config: dict, out_dir, resumed: dict) -> dict:
+    """:func:`run_cases` in a worker process, on its own (singleton) MPI communicator."""
+    from mpi4py import MPI
+
+    return run_cases(rods, config, out_dir, resumed, MPI.COMM_WORLD)
+
+
+def _in_processes(rods, config: dict, out_dir, resumed: dict, jobs: int) -> dict:
+    """One worker process per group of rods (``jobs`` of them, :func:`fewear.parallel.
+    worker_pool`); a worker's error stops the others at once (their checkpoints stay)."""
+    from fewear.parallel import worker_pool
+
+    groups = [rods[index::jobs] for index in range(jobs)]
+    cases = {}
+    with worker_pool(jobs) as pool:
+        results = [pool.apply_async(_run_in_worker, (group, config, out_dir, {
+            rod: resumed[rod] for rod in group if rod in resumed})) for group in groups]
+        for result in results:
+            cases.update(result.get())
+    return cases
+
+
+def _on_ranks(rods, config: dict, out_dir, resumed: dict, world) -> dict:
+    """The ranks of ``world`` split into one sub-communicator per group of rods; the cases
+    gathered on rank 0 (the other ranks get an empty dict). An input error in one group is
+    raised on every rank, after the other groups have finished."""
+    groups = min(world.size, len(rods))
+    color = world.rank % groups
+    group_comm = world.Split(color, world.rank)
+    mine, error = {}, None
+    try:
+        mine = run_cases(rods[color::groups], config, out_dir, resumed, group_comm)
+    except FewearInputError as exc:
+        error = str(exc)
+    finally:
+        group_comm.Free()
+    errors = [message for message in world.allgather(error) if message]
+    if errors:
+        raise FewearInputError(errors[0])
+    gathered = world.gather(mine if world.rank == color else {}, root=0)
+    return {} if world.rank else {rod: case for part in gathered for rod, case in part.items()}
 
 
 def main(args) -> int:
@@ -44,39 +126,37 @@ def main(args) -> int:
 
     from fewear.io.config import load_config
     from fewear.io.output import staged_output
-    from fewear.loop import checkpoint
     from fewear.loop.outputs import write_run_outputs
 
-    comm = MPI.COMM_WORLD
+    world = MPI.COMM_WORLD
     config = load_config(args.config, run_sections())
     inputs = run_inputs_from_config(config)
-    progress = Progress(comm, inputs.loop.total_cycles, len(inputs.loop.rod_models))
-    store = checkpoint.Checkpoint(args.out, config, comm)
-    cases = store.load() if args.resume else {}
-    if cases:
-        progress.resumed_fraction = sum(
-            case.state.cycles / inputs.loop.total_cycles for case in cases.values()) / len(
-            inputs.loop.rod_models)
-        progress.message(f"resuming from {store.path}: " + ", ".join(
-            f"{rod} at {case.state.cycles:,} cycles" for rod, case in cases.items()))
-    with staged_output(args.out, comm) as stage:
-        for index, rod in enumerate(inputs.loop.rod_models):
-            case = cases.get(rod)
-            if case is not None and case.state.cycles >= inputs.loop.total_cycles:
-                continue  # finished before an interruption: nothing to mesh or solve
-            progress.message(f"{rod} rod: meshing the bushing and condensing it onto the bore")
-            if case is None:
-                bushing = new_bushing(inputs, comm)
-                case = cases[rod] = new_case(bushing)
-            else:
-                bushing = restored_bushing(inputs, case, comm)
-
-            def after_block(case, rod=rod, index=index):
-                store.save(cases)
-                progress.block(rod, index, case, index)
-
-            predict_case(rod, inputs, bushing, case, after_block)
-        if comm.rank == 0:
-            write_run_outputs(stage, cases, inputs, config)
-    progress.message(f"done: {args.out}")
+    rods = list(inputs.loop.rod_models)
+    jobs = _jobs(args.jobs, len(rods))
+    store = Checkpoint(args.out, config)
+    resumed = store.load(rods) if args.resume else {}
+    if resumed and world.rank == 0:
+        print(f"fewear run: resuming from {store.path}: " + ", ".join(
+            f"{rod} at {case.state.cycles:,} cycles" for rod, case in resumed.items()),
+            file=sys.stderr, flush=True)
+    with staged_output(args.out, world) as stage:
+        if world.size > 1:
+            cases = _on_ranks(rods, config, args.out, resumed, world)
+        elif jobs > 1:
+            cases = _in_processes(rods, config, args.out, resumed, jobs)
+        else:
+            cases = run_cases(rods, config, args.out, resumed, world)
+        if world.rank == 0:
+            write_run_outputs(stage, {rod: cases[rod] for rod in rods}, inputs, config)
+    if world.rank == 0:
+        print(f"fewear run: done: {args.out}", file=sys.stderr, flush=True)
     return 0
+
+
+def _jobs(requested: int | None, n_rods: int) -> int:
+    """Worker processes: ``--jobs`` (at least 1), by default one per rod model up to the cores."""
+    if requested is None:
+        return max(1, min(n_rods, usable_cores()))
+    if requested < 1:
+        raise FewearInputError(f"--jobs {requested}: expected a number of processes >= 1")
+    return min(requested, n_rods)

@@ -1,0 +1,46 @@
+"""Independent runs side by side in worker processes (the rod models of ``fewear run``, the
+candidate runs of a diagnosis).
+
+Workers are spawned (a fresh interpreter: forking a process that holds MPI and PETSc state is
+unsafe), each an MPI singleton of its own, with its BLAS on one thread so that the workers do
+not oversubscribe the cores between them. A spawned worker normally imports the parent's main
+script first; a script without a ``__main__`` guard (the literate demos, a user's script) would
+then run again in every worker, which starts workers of its own. So while the pool lives, the
+parent's ``__main__`` is a module without a file: the workers import fewear's functions only.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import types
+from contextlib import contextmanager
+
+SINGLE_THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS")
+
+
+def usable_cores() -> int:
+    """The CPU cores this process may run on."""
+    return len(os.sched_getaffinity(0))
+
+
+@contextmanager
+def worker_pool(processes: int):
+    """A spawned :class:`multiprocessing.pool.Pool` of ``processes`` workers; leaving the block
+    (also by an error, which stops the other workers at once) terminates them."""
+    import multiprocessing
+
+    saved = {name: os.environ.get(name) for name in SINGLE_THREAD_VARIABLES}
+    os.environ.update(dict.fromkeys(SINGLE_THREAD_VARIABLES, "1"))  # read by the spawned
+    main_module = sys.modules["__main__"]
+    sys.modules["__main__"] = types.ModuleType("__main__")
+    try:
+        with multiprocessing.get_context("spawn").Pool(processes) as pool:
+            yield pool
+    finally:
+        sys.modules["__main__"] = main_module
+        for name, value in saved.items():
+            if value is None:
+                os.environ.pop(name, None)
+            else:
+                os.environ[name] = value
