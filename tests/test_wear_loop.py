@@ -266,5 +266,21 @@ def test_fewear_plot_renders_the_worn_bushing_off_screen(explicit_run):
                              capture_output=True, text=True, timeout=300,
                              env={**os.environ, "PYVISTA_OFF_SCREEN": "true"})
     assert process.returncode == 0, process.stderr
+    assert "X server" not in process.stderr and "Warning" not in process.stderr
     assert (explicit_run / "worn_bushing.png").stat().st_size > 10_000
     assert main(["plot", str(explicit_run / "absent")]) == 2
+
+
+def test_compared_panels_share_one_exaggeration_and_one_colour_range():
+    """Two rods worn 3 um and 6 um deep: one factor for both (the deeper at a tenth of the
+    bushing, rounded down to 1, 2 or 5 x 10^k) and a colour range from 0 to 6 um, whatever the
+    rounding noise below zero."""
+    from fewear.plot.worn_bushing import common_view
+
+    shallow, deep = np.full((4, 3), 3e-6), np.full((4, 3), 6e-6)
+    scale, clim = common_view([shallow, deep], [np.array([-2.45e-12, 3e-6]),
+                                                np.array([0.0, 6e-6])], 0.03)
+    assert scale == 500.0  # 0.003 m / 6e-6 m = 500 exactly
+    assert clim == (0.0, pytest.approx(6.0))
+    scale, _ = common_view([deep * 1.1], [np.array([6.6e-6])], 0.03)
+    assert scale == 200.0  # 454.5 rounds down to 2 x 10^2

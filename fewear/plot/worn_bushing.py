@@ -3,12 +3,15 @@
 Reads only the run's files (``<case>.xdmf`` + ``.h5``, through meshio), never the model; this
 command's process imports neither DOLFINx nor PETSc, so VTK and DOLFINx never share a process.
 The mesh is drawn at its last block, the displacement exaggerated so that microns of wear show on
-a centimetre bushing; shown on screen, or written to ``DIR/<case>_worn_bushing.png`` off screen
-(``PYVISTA_OFF_SCREEN=true`` or no display).
+a centimetre bushing; the rod models side by side at one exaggeration and on one colour scale
+from zero, so that the panels compare; shown on screen, or written to ``DIR/worn_bushing.png``
+off screen (``PYVISTA_OFF_SCREEN=true`` or no display; VTK's warnings, such as the missing X
+server's, are switched off).
 """
 
 from __future__ import annotations
 
+import math
 import os
 from pathlib import Path
 
@@ -35,32 +38,54 @@ def last_block(path: Path):
             point_data["radial_displacement_m"], cycles)
 
 
+def common_view(displacements: list[np.ndarray], radials: list[np.ndarray],
+                extent_m: float) -> tuple[float, tuple[float, float]]:
+    """One exaggeration and one colour range (um) for panels that are compared: the largest
+    displacement of any panel drawn at a tenth of ``extent_m``, the factor rounded down to 1, 2 or
+    5 times a power of ten; the range from 0 to the deepest wear (rounding noise below 0 of the
+    radial displacement, ~1e-12 m, is not wear)."""
+    largest = max(float(np.abs(d).max()) for d in displacements)
+    raw = 0.1 * extent_m / max(largest, 1e-30)
+    decade = 10.0 ** math.floor(math.log10(raw))
+    scale = max(step * decade for step in (1.0, 2.0, 5.0) if step * decade <= raw)
+    deepest_um = 1e6 * max(float(r.max()) for r in radials)
+    return scale, (0.0, max(deepest_um, 1e-6))
+
+
 def main(args) -> int:
     folder = Path(args.folder)
     files = sorted(folder.glob("*.xdmf"))
     if not files:
         raise FewearInputError(f"{folder}: no <case>.xdmf of a `fewear run` to plot")
     import pyvista
+    import vtk
 
+    vtk.vtkObject.GlobalWarningDisplayOff()
     off_screen = os.environ.get("PYVISTA_OFF_SCREEN", "").lower() == "true" or not (
         os.environ.get("DISPLAY"))
+    cases = [last_block(path) for path in files]
+    scale, clim = common_view([case[2] for case in cases], [case[3] for case in cases],
+                              float(np.ptp(cases[0][0][:, 0])))
     plotter = pyvista.Plotter(shape=(1, len(files)), off_screen=off_screen,
                               window_size=(600 * len(files), 600))
-    for column, path in enumerate(files):
-        points, quads, displacement, radial, cycles = last_block(path)
-        scale = 0.1 * np.ptp(points[:, 0]) / max(np.abs(displacement).max(), 1e-30)
+    for column, (path, (points, quads, displacement, radial, cycles)) in enumerate(
+            zip(files, cases)):
         grid = pyvista.UnstructuredGrid(
             np.column_stack([np.full(len(quads), 9), quads]).ravel(),
             np.full(len(quads), VTK_BIQUADRATIC_QUAD), points + scale * displacement)
-        grid.point_data["wear depth (um)"] = 1e6 * radial
+        grid.point_data["wear depth (um)"] = 1e6 * np.maximum(radial, 0.0)
         plotter.subplot(0, column)
-        plotter.add_mesh(grid, scalars="wear depth (um)", cmap="viridis")
-        plotter.add_text(f"{path.stem} rod, {cycles:,.0f} cycles, motion x{scale:.0f}",
+        plotter.add_mesh(grid, scalars="wear depth (um)", cmap="viridis", clim=clim,
+                         scalar_bar_args={"fmt": "%.1f"})
+        plotter.add_text(f"{path.stem} rod, {cycles:,.0f} cycles, motion x{scale:g}",
                          font_size=10)
         plotter.view_xy()
     if off_screen:
         target = folder / "worn_bushing.png"
-        plotter.screenshot(str(target))
+        try:
+            plotter.screenshot(str(target))
+        except OSError as exc:
+            raise FewearInputError(f"cannot write {target}: {exc.strerror or exc}") from None
         print(f"fewear plot: wrote {target}")
     else:
         plotter.show()
