@@ -37,9 +37,11 @@ def run_setting(folder, name: str, sections: dict) -> dict:
     """rod -> {cycles: (angle_rad, depth_m)} at the cycle counts of CYCLES: the depth linear in
     the cycles between the ends of the block that holds the count (a block's wear is A_j times
     its rate per cycle, linear in the cycles by construction)."""
-    body = f"[wear_loop]\ntotal_cycles = {max(CYCLES)}\n"
-    for section, values in sections.items():
-        body += f"[{section}]\n" + "".join(f"{key} = {value!r}\n" for key, value in values.items())
+    sections = {**sections, "wear_loop": {"total_cycles": max(CYCLES),
+                                          **sections.get("wear_loop", {})}}
+    body = "".join(f"[{section}]\n" + "".join(f"{key} = {value!r}\n"
+                                               for key, value in values.items())
+                   for section, values in sections.items())
     slug = "".join(c if c.isalnum() else "_" for c in name)
     config = folder / f"{slug}.toml"
     config.write_text(body)
