@@ -32,7 +32,6 @@ import math
 import numpy as np
 
 from fewear.mbd.contact import ClearanceProfile, ContactLaw, Friction
-from fewear.mbd.points import rotation
 
 
 def contact_normal(nx: float, ny: float, slope: float) -> tuple[float, float]:
@@ -261,12 +260,12 @@ class ClearanceJoint:
         v_imp = self.impact_velocity_m_s if self.in_contact else self._candidate_velocity
         f, F_n, F_t, _ = self.local_forces(z, v_imp, derivatives=False)
         delta = self.gap(z)[0]
-        to_bushing = rotation(z[6]).T
+        c, s = float(np.cos(z[6])), float(np.sin(z[6]))  # A(phi_bushing)^T turns into its frame
         return {
-            "eccentricity_m": to_bushing @ np.array(z[0:2]),
+            "eccentricity_m": (c * z[0] + s * z[1], -s * z[0] + c * z[1]),
             "penetration_m": max(delta, 0.0),
             "normal_force_N": F_n,
             "friction_force_N": F_t,
-            "reaction_force_N": to_bushing @ np.array(f),
+            "reaction_force_N": (c * f[0] + s * f[1], -s * f[0] + c * f[1]),
             "rel_omega_rad_s": z[4] - z[5],
         }
