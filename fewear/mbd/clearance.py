@@ -227,19 +227,24 @@ class ClearanceJoint:
         return K, BD[:, _VELOCITY_VARIABLES] @ A.T
 
     def begin_step(self, q, qd):
-        """Remember the approach velocity at the start of a step (the impact velocity if the
-        contact begins in this step)."""
+        """A step starts at (q, q'): remember the approach velocity there (the impact velocity if
+        the contact begins in this step)."""
+        z, _, _ = self._kinematics(q[self.indices], qd[self.indices])
+        self._start_step(*self.gap(z)[:2])
+
+    def end_step(self, q, qd):
+        """The step ended at (q, q'), where the next one starts: a contact that began in the step
+        gets the approach velocity at its start as impact velocity; then as :meth:`begin_step`."""
         z, _, _ = self._kinematics(q[self.indices], qd[self.indices])
         delta, rate, _, _ = self.gap(z)
+        if delta > 0.0 and not self.in_contact:
+            self.impact_velocity_m_s = self._candidate_velocity
+        self._start_step(delta, rate)
+
+    def _start_step(self, delta, rate):
         self.in_contact = delta > 0.0
         if not self.in_contact:
             self._candidate_velocity = rate
-
-    def end_step(self, q, qd):
-        z, _, _ = self._kinematics(q[self.indices], qd[self.indices])
-        delta = self.gap(z)[0]
-        if delta > 0.0 and not self.in_contact:
-            self.impact_velocity_m_s = self._candidate_velocity
 
     def step_error(self, q_old, qdd_old, q_new, qdd_new, h):
         """(local error estimate of e (m), delta at step start, delta at step end).

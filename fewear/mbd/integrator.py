@@ -37,7 +37,9 @@ step when its corrections stop contracting (the step is retried shorter).
 Step-size control (adaptive mode): force elements may offer ``step_error`` returning an estimate of
 the local error of a contact gap (m) and whether the step entered contact too deep; the step is
 rejected and retried shorter when the estimate exceeds the tolerance. See
-:class:`fewear.mbd.clearance.ClearanceJoint` for the estimate used.
+:class:`fewear.mbd.clearance.ClearanceJoint` for the estimate used. Such elements follow the
+steps: ``begin_step(q, q')`` at the initial state, ``end_step(q, q')`` after each accepted step
+(which is where the next step begins).
 """
 
 from __future__ import annotations
@@ -269,8 +271,6 @@ class GeneralizedAlpha:
             self.stats.smallest_step_s = min(self.stats.smallest_step_s, h)
             if observer is not None:
                 observer(state, h)
-            for element in self._controlled:
-                element.begin_step(state.q, state.qd)
             h = max(h_next, st.min_step_s)
         self.stats.extra["next_step_s"] = h
         self.stats.wall_time_s += time.perf_counter() - start
