@@ -32,7 +32,6 @@ import math
 import numpy as np
 
 from fewear.mbd.contact import ClearanceProfile, ContactLaw, Friction
-from fewear.mbd.points import rotation
 
 
 def contact_normal(nx: float, ny: float, slope: float) -> tuple[float, float]:
@@ -48,24 +47,43 @@ def contact_normal(nx: float, ny: float, slope: float) -> tuple[float, float]:
 
 
 def normal_turn(nx: float, ny: float, d: float, dc: float, ddc: float, F_n: float,
-                F_t: float) -> tuple[np.ndarray, np.ndarray]:
-    """How the force -F_n m + F_t m_perp turns at fixed F_n, F_t: its derivatives (2, 2) with
-    respect to the eccentricity e and (2,) with respect to the bushing angle phi. With
-    s = c'/d, m~ = n - s t, dn/de = t t^T / d, dt/de = -n t^T / d, dtheta/de = t^T / d,
-    dtheta/dphi = -1, ds/de = (c'' t^T / d - c' n^T) / d^2 and ds/dphi = -c''/d:
-    dm~/de = ((1 - c''/d) t t^T + s (t n^T + n t^T)) / d, dm~/dphi = c'' t / d,
-    dm/d. = (I - m m^T) dm~/d. / |m~|."""
-    n, t = np.array([nx, ny]), np.array([-ny, nx])
+                F_t: float) -> tuple[tuple[float, float, float, float], tuple[float, float]]:
+    """How the force -F_n m + F_t m_perp turns at fixed F_n, F_t: its derivatives with respect to
+    the eccentricity e, the 2 x 2 matrix (a00, a01, a10, a11) row by row, and with respect to the
+    bushing angle phi, (b0, b1). With s = c'/d, m~ = n - s t, dn/de = t t^T / d,
+    dt/de = -n t^T / d, dtheta/de = t^T / d, dtheta/dphi = -1, ds/de = (c'' t^T / d - c' n^T) / d^2
+    and ds/dphi = -c''/d: dm~/de = ((1 - c''/d) t t^T + s (t n^T + n t^T)) / d,
+    dm~/dphi = c'' t / d, dm/d. = (I - m m^T) dm~/d. / |m~|. Scalar arithmetic on 2 x 2 matrices,
+    each sum in index order (as a matrix product takes it)."""
+    tx, ty = -ny, nx
     slope = dc / d
-    raw = n - slope * t
-    length = float(np.hypot(*raw))
-    m = raw / length
-    project = (np.eye(2) - np.outer(m, m)) / length
-    turn_e = project @ ((1.0 - ddc / d) * np.outer(t, t)
-                        + slope * (np.outer(t, n) + np.outer(n, t))) / d
-    turn_phi = project @ (ddc / d * t)
-    force_turn = -F_n * np.eye(2) + F_t * np.array([[0.0, -1.0], [1.0, 0.0]])
-    return force_turn @ turn_e, force_turn @ turn_phi
+    rx, ry = nx - slope * tx, ny - slope * ty
+    length = float(np.hypot(rx, ry))
+    mx, my = rx / length, ry / length
+    # P = (I - m m^T) / |m~| (symmetric)
+    p00, p01, p11 = (1.0 - mx * mx) / length, -mx * my / length, (1.0 - my * my) / length
+    # X = (1 - c''/d) t t^T + s (t n^T + n t^T)
+    w = 1.0 - ddc / d
+    x00 = w * (tx * tx) + slope * (tx * nx + nx * tx)
+    x01 = w * (tx * ty) + slope * (tx * ny + nx * ty)
+    x10 = w * (ty * tx) + slope * (ty * nx + ny * tx)
+    x11 = w * (ty * ty) + slope * (ty * ny + ny * ty)
+    # dm/de = P X / d, dm/dphi = P v with v = c'' t / d
+    e00, e01 = (p00 * x00 + p01 * x10) / d, (p00 * x01 + p01 * x11) / d
+    e10, e11 = (p01 * x00 + p11 * x10) / d, (p01 * x01 + p11 * x11) / d
+    curvature = ddc / d
+    v0, v1 = curvature * tx, curvature * ty
+    b0, b1 = p00 * v0 + p01 * v1, p01 * v0 + p11 * v1
+    # the force turns with m: d(-F_n m + F_t m_perp) = [[-F_n, -F_t], [F_t, -F_n]] dm
+    turn_e = (-F_n * e00 + -F_t * e10, -F_n * e01 + -F_t * e11,
+              F_t * e00 + -F_n * e10, F_t * e01 + -F_n * e11)
+    return turn_e, (-F_n * b0 + -F_t * b1, F_t * b0 + -F_n * b1)
+
+
+# z = (e, e', omega_pin, omega_bushing, phi_bushing): the entries that depend on q, on q'; the
+# columns of A (ClearanceJoint._force_jacobians) that are their derivatives
+_POSITION_VARIABLES, _POSITION_COLUMNS = [0, 1, 6], [0, 1, 3]
+_VELOCITY_VARIABLES = slice(2, 6)
 
 
 class ClearanceJoint:
@@ -81,6 +99,10 @@ class ClearanceJoint:
         self.impact_velocity_m_s = 0.0
         self.in_contact = False
         self._candidate_velocity = 0.0
+        self._diagonal = np.arange(len(self.indices))
+        # (f, F_t) -> (force on e, moment on the pin's angle, moment on the bushing's)
+        self._moment_arms = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0],
+                                      [0.0, 0.0, pin_radius_m], [0.0, 0.0, -bushing_radius_m]])
 
     # --- kinematics ---------------------------------------------------------------------------
     def _kinematics(self, q_b, qd_b):
@@ -144,26 +166,29 @@ class ClearanceJoint:
         rx, ry = nx - dc * tx / d, ny - dc * ty / d
         dthx, dthy = -(e_n * tx + e_t * nx) / d**2, -(e_n * ty + e_t * ny) / d**2
         curving = ddc * (e_t / d - omega_b)  # c'' theta_dot: how c' theta_dot moves with theta
-        ddelta = np.array([rx, ry, 0.0, 0.0, 0.0, 0.0, dc])
-        drate = np.array([e_t * tx / d - dc * dthx - curving * tx / d,
-                          e_t * ty / d - dc * dthy - curving * ty / d, rx, ry, 0.0, dc,
-                          curving])
-        dF_n = dF_ddelta * ddelta + dF_drate * drate
+        ddelta = (rx, ry, 0.0, 0.0, 0.0, 0.0, dc)
+        drate = (e_t * tx / d - dc * dthx - curving * tx / d,
+                 e_t * ty / d - dc * dthy - curving * ty / d, rx, ry, 0.0, dc, curving)
+        dF_n = [dF_ddelta * a + dF_drate * b for a, b in zip(ddelta, drate)]
         mu = self.friction.coefficient
-        dF_t = -mu * psi * dF_n
+        friction = -mu * psi
+        dF_t = [friction * a for a in dF_n]
         if dpsi != 0.0:
-            dslip = np.array([-e_n * tx / d, -e_n * ty / d, tx, ty, self.pin_radius,
-                              -self.bushing_radius, 0.0])
-            dF_t -= mu * F_n * dpsi * dslip
+            dslip = (-e_n * tx / d, -e_n * ty / d, tx, ty, self.pin_radius,
+                     -self.bushing_radius, 0.0)
+            slip = mu * F_n * dpsi
+            dF_t = [a - slip * b for a, b in zip(dF_t, dslip)]
         mx, my = contact_normal(nx, ny, dc / d)
-        D = np.empty((3, 7))
-        D[0] = -mx * dF_n - my * dF_t
-        D[1] = -my * dF_n + mx * dF_t
-        D[2] = dF_t
-        turn_e, turn_phi = normal_turn(nx, ny, d, dc, ddc, F_n, F_t)
-        D[0:2, 0:2] += turn_e
-        D[0:2, 6] += turn_phi
-        return D
+        df_1 = [-mx * a - my * b for a, b in zip(dF_n, dF_t)]
+        df_2 = [-my * a + mx * b for a, b in zip(dF_n, dF_t)]
+        (a00, a01, a10, a11), (b0, b1) = normal_turn(nx, ny, d, dc, ddc, F_n, F_t)
+        df_1[0] += a00
+        df_1[1] += a01
+        df_1[6] += b0
+        df_2[0] += a10
+        df_2[1] += a11
+        df_2[6] += b1
+        return np.array([df_1, df_2, dF_t])
 
     # --- force element interface -------------------------------------------------------------
     def evaluate(self, q_b, qd_b, t, jacobian: bool = True):
@@ -182,40 +207,44 @@ class ClearanceJoint:
         return Q, K, C
 
     def _force_jacobians(self, qp, qb, f, D):
-        """(dQ/dq, dQ/dq') = (B D dz/dq + geometric stiffness, B D dz/dq') with B = dQ/d(f, F_t)."""
-        G_p, G_b = self.pin.jacobian(qp), self.bushing.jacobian(qb)
-        g_p, g_b = self.pin.angle_gradient(qp), self.bushing.angle_gradient(qb)
+        """(dQ/dq, dQ/dq') = (B D dz/dq + geometric stiffness, B D dz/dq').
+
+        The columns A = [E^T, g_pin, g_bushing] (k, 4) hold the derivatives of the joint's
+        variables: E = de/dq = [G_pin, -G_bushing] and the points' angle gradients, each padded
+        with zeros to the joint's k coordinates. B = dQ/d(f, F_t) = [E^T, R_pin g_pin - R_bushing
+        g_bushing] = A R; dz/dq has the rows (E, 0, 0, 0, 0, g_bushing) and dz/dq' the rows
+        (0, E, g_pin, g_bushing, 0), so only the columns of B D of the non-zero rows enter."""
         n_p = self._np
-        k = len(self.indices)
-        B = np.zeros((k, 3))
-        B[:n_p, :2], B[:n_p, 2] = G_p.T, self.pin_radius * g_p
-        B[n_p:, :2], B[n_p:, 2] = -G_b.T, -self.bushing_radius * g_b
-        Z_q = np.zeros((7, k))
-        Z_q[0:2, :n_p], Z_q[0:2, n_p:], Z_q[6, n_p:] = G_p, -G_b, g_b
-        Z_qd = np.zeros((7, k))
-        Z_qd[2:4, :n_p], Z_qd[2:4, n_p:] = G_p, -G_b
-        Z_qd[4, :n_p], Z_qd[5, n_p:] = g_p, g_b
-        BD = B @ D
-        K = BD @ Z_q
-        diagonal = np.arange(k)
-        K[diagonal, diagonal] += np.concatenate([self.pin.hessian(qp, f),
-                                                 -self.bushing.hessian(qb, f)])
-        return K, BD @ Z_qd
+        A = np.zeros((len(self.indices), 4))
+        A[:n_p, 0:2] = self.pin.jacobian(qp).T
+        np.negative(self.bushing.jacobian(qb).T, out=A[n_p:, 0:2])
+        A[:n_p, 2] = self.pin.angle_gradient(qp)
+        A[n_p:, 3] = self.bushing.angle_gradient(qb)
+        BD = (A @ self._moment_arms) @ D
+        K = BD[:, _POSITION_VARIABLES] @ A[:, _POSITION_COLUMNS].T
+        K[self._diagonal, self._diagonal] += np.concatenate([self.pin.hessian(qp, f),
+                                                             -self.bushing.hessian(qb, f)])
+        return K, BD[:, _VELOCITY_VARIABLES] @ A.T
 
     def begin_step(self, q, qd):
-        """Remember the approach velocity at the start of a step (the impact velocity if the
-        contact begins in this step)."""
+        """A step starts at (q, q'): remember the approach velocity there (the impact velocity if
+        the contact begins in this step)."""
+        z, _, _ = self._kinematics(q[self.indices], qd[self.indices])
+        self._start_step(*self.gap(z)[:2])
+
+    def end_step(self, q, qd):
+        """The step ended at (q, q'), where the next one starts: a contact that began in the step
+        gets the approach velocity at its start as impact velocity; then as :meth:`begin_step`."""
         z, _, _ = self._kinematics(q[self.indices], qd[self.indices])
         delta, rate, _, _ = self.gap(z)
+        if delta > 0.0 and not self.in_contact:
+            self.impact_velocity_m_s = self._candidate_velocity
+        self._start_step(delta, rate)
+
+    def _start_step(self, delta, rate):
         self.in_contact = delta > 0.0
         if not self.in_contact:
             self._candidate_velocity = rate
-
-    def end_step(self, q, qd):
-        z, _, _ = self._kinematics(q[self.indices], qd[self.indices])
-        delta = self.gap(z)[0]
-        if delta > 0.0 and not self.in_contact:
-            self.impact_velocity_m_s = self._candidate_velocity
 
     def step_error(self, q_old, qdd_old, q_new, qdd_new, h):
         """(local error estimate of e (m), delta at step start, delta at step end).
@@ -236,12 +265,12 @@ class ClearanceJoint:
         v_imp = self.impact_velocity_m_s if self.in_contact else self._candidate_velocity
         f, F_n, F_t, _ = self.local_forces(z, v_imp, derivatives=False)
         delta = self.gap(z)[0]
-        to_bushing = rotation(z[6]).T
+        c, s = float(np.cos(z[6])), float(np.sin(z[6]))  # A(phi_bushing)^T turns into its frame
         return {
-            "eccentricity_m": to_bushing @ np.array(z[0:2]),
+            "eccentricity_m": (c * z[0] + s * z[1], -s * z[0] + c * z[1]),
             "penetration_m": max(delta, 0.0),
             "normal_force_N": F_n,
             "friction_force_N": F_t,
-            "reaction_force_N": to_bushing @ np.array(f),
+            "reaction_force_N": (c * f[0] + s * f[1], -s * f[0] + c * f[1]),
             "rel_omega_rad_s": z[4] - z[5],
         }

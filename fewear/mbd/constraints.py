@@ -86,6 +86,8 @@ class ConstraintSet:
                 raise TypeError(f"unsupported constraint {constraint!r}")
         self._build_offsets(offsets, n_coordinates)
         self._jacobian = self._D.copy()
+        # the columns where Phi_q can be non-zero (D's and the offsets' angles), increasing
+        self.columns = np.union1d(np.flatnonzero(self._D.any(axis=0)), self._angle_columns)
 
     def _add_revolute(self, revolute, rows):
         offsets = []

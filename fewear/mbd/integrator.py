@@ -37,7 +37,9 @@ step when its corrections stop contracting (the step is retried shorter).
 Step-size control (adaptive mode): force elements may offer ``step_error`` returning an estimate of
 the local error of a contact gap (m) and whether the step entered contact too deep; the step is
 rejected and retried shorter when the estimate exceeds the tolerance. See
-:class:`fewear.mbd.clearance.ClearanceJoint` for the estimate used.
+:class:`fewear.mbd.clearance.ClearanceJoint` for the estimate used. Such elements follow the
+steps: ``begin_step(q, q')`` at the initial state, ``end_step(q, q')`` after each accepted step
+(which is where the next step begins).
 """
 
 from __future__ import annotations
@@ -55,8 +57,8 @@ REUSE_CONTRACTION = 0.25  # modified Newton: rebuild when |dq| shrinks by less t
 
 
 def lu_solve(factors, rhs):
-    """Solve with the LU factors (lu, pivots) of LAPACK's dgetrf."""
-    x, _ = lapack.dgetrs(*factors, rhs)
+    """Solve with the LU factors (lu, pivots) of LAPACK's dgetrf, in place of ``rhs``."""
+    x, _ = lapack.dgetrs(*factors, rhs, overwrite_b=True)
     return x
 
 
@@ -142,6 +144,9 @@ class GeneralizedAlpha:
         self._matrix = np.zeros((n + m, n + m))
         self._diagonal = np.arange(n)
         self._controlled = [e for e in system.force_elements if hasattr(e, "step_error")]
+        self._alpha_m, self._alpha_f, self._gamma, self._beta = settings.coefficients
+        # the constant block of the iteration matrix, (1 - alpha_m)/(1 - alpha_f) M
+        self._mass_term = ((1.0 - self._alpha_m) / (1.0 - self._alpha_f)) * system.mass
         self._factors = None  # (lu, pivots) of the last iteration matrix
         self._factors_step_s = math.nan  # the h it was built for
         self._aged = True  # rebuild at the next step's first iteration
@@ -159,7 +164,7 @@ class GeneralizedAlpha:
     def _predictor_and_update(self, h: float):
         """(P, w): the rows (q, q', q'', a)_{n+1} of the predictor are P @ (q, q', q'', a)_n
         (q''_{n+1} = q''_n, a_{n+1} from it); a Newton correction dq adds w dq to them."""
-        alpha_m, alpha_f, gamma, beta = self.settings.coefficients
+        alpha_m, alpha_f, gamma, beta = self._alpha_m, self._alpha_f, self._gamma, self._beta
         a_qdd, a_a = 1.0 / (1.0 - alpha_m), -alpha_m / (1.0 - alpha_m)  # a_{n+1} predicted
         predictor = np.array([
             [1.0, h, h * h * beta * a_qdd, h * h * (0.5 - beta + beta * a_a)],
@@ -182,17 +187,20 @@ class GeneralizedAlpha:
         Y = predictor @ np.array([s.q, s.qd, s.qdd, s.a])
         q1, qd1, qdd1, a1 = Y
         lam1 = s.lam.copy()
-        bh2 = self.settings.coefficients[3] * h * h
+        bh2 = self._beta * h * h
         full = not st.modified_newton
         rebuild = full or self._aged or h != self._factors_step_s
         previous, first_full = math.inf, 1
+        x = np.empty(n + sys_.n_constraints)  # (beta h^2 residual, Phi), solved in place
         for iteration in range(1, st.max_newton_iterations + 1):
             Q, K, C = sys_.forces(q1, qd1, t1, jacobian=rebuild)
             phi, jac = sys_.constraint_values_and_jacobian(q1, t1)
             residual = sys_.mass @ qdd1 + jac.T @ lam1 - Q
             if rebuild and not self._factorize(q1, lam1, jac, K, C, h):
                 return None
-            x = lu_solve(self._factors, np.concatenate((bh2 * residual, phi)))
+            np.multiply(residual, bh2, out=x[:n])
+            x[n:] = phi
+            lu_solve(self._factors, x)
             dq = x[:n]
             Y -= update * dq
             lam1 -= x[n:] / bh2
@@ -218,13 +226,12 @@ class GeneralizedAlpha:
     def _factorize(self, q, lam, jac, K, C, h) -> bool:
         """LU of [[beta h^2 S_t, Phi_q^T], [Phi_q, 0]] (module docstring); False if singular."""
         sys_ = self.system
-        alpha_m, alpha_f, gamma, beta = self.settings.coefficients
         n = sys_.n_coordinates
-        bh2 = beta * h * h
+        bh2 = self._beta * h * h
         A = self._matrix
-        A[:n, :n] = ((1.0 - alpha_m) / (1.0 - alpha_f)) * sys_.mass
+        A[:n, :n] = self._mass_term
         if C is not None:
-            A[:n, :n] -= (gamma * h) * C
+            A[:n, :n] -= (self._gamma * h) * C
         if K is not None:
             A[:n, :n] -= bh2 * K
         A[self._diagonal, self._diagonal] += bh2 * sys_.constraint_hessian(q, lam)
@@ -264,8 +271,6 @@ class GeneralizedAlpha:
             self.stats.smallest_step_s = min(self.stats.smallest_step_s, h)
             if observer is not None:
                 observer(state, h)
-            for element in self._controlled:
-                element.begin_step(state.q, state.qd)
             h = max(h_next, st.min_step_s)
         self.stats.extra["next_step_s"] = h
         self.stats.wall_time_s += time.perf_counter() - start

@@ -28,12 +28,6 @@ import math
 import numpy as np
 
 
-def rotation(angle_rad: float) -> np.ndarray:
-    """The planar rotation matrix A(angle)."""
-    c, s = np.cos(angle_rad), np.sin(angle_rad)
-    return np.array([[c, -s], [s, c]])
-
-
 class GroundPoint:
     """A fixed point of the ground (no coordinates)."""
 

@@ -114,6 +114,8 @@ class MultibodySystem:
             self.gravity_forces[first:first + len(block)] += block
         self.inverse_mass = np.linalg.inv(self.mass)
         self.constraint_set = ConstraintSet(self.constraints, n)
+        self._constrained = self.constraint_set.columns
+        self._constrained_inverse_mass = self.inverse_mass[self._constrained]
         self._rows = self.constraint_set.rows
         self.n_constraints = self.constraint_set.n_rows
         self._force_blocks = [(e, *_block_indices(e.indices)) for e in self.force_elements]
@@ -181,11 +183,13 @@ class MultibodySystem:
 
         Through the Schur complement of the KKT system [[M, Phi_q^T], [Phi_q, 0]]:
         (Phi_q M^-1 Phi_q^T) mu = Phi_q q' + Phi_t, q' <- q' - M^-1 Phi_q^T mu. ``jacobian``: Phi_q
-        if the caller has it at q (the integrator passes its last Newton Jacobian)."""
-        jac = self.constraint_jacobian(q) if jacobian is None else jacobian
-        weighted = jac @ self.inverse_mass
-        schur = weighted @ jac.T
-        _, mu, info = lapack.dposv(schur, jac @ qd + self.constraint_time_derivative(t))
+        if the caller has it at q (the integrator passes its last Newton Jacobian). Phi_q is zero
+        outside the columns the constraints touch, so the products run over those only."""
+        columns = self._constrained
+        jac = (self.constraint_jacobian(q) if jacobian is None else jacobian)[:, columns]
+        weighted = jac @ self._constrained_inverse_mass
+        schur = weighted[:, columns] @ jac.T
+        _, mu, info = lapack.dposv(schur, jac @ qd[columns] + self.constraint_time_derivative(t))
         if info != 0:
             raise np.linalg.LinAlgError("velocity projection: Phi_q has dependent rows")
         return qd - mu @ weighted
