@@ -57,7 +57,8 @@ REUSE_CONTRACTION = 0.25  # modified Newton: rebuild when |dq| shrinks by less t
 
 
 def lu_solve(factors, rhs):
-    """Solve with the LU factors (lu, pivots) of LAPACK's dgetrf, in place of ``rhs``."""
+    """Solve with the LU factors (lu, pivots) of LAPACK's dgetrf (in place of ``rhs`` when it is a
+    contiguous float array)."""
     x, _ = lapack.dgetrs(*factors, rhs, overwrite_b=True)
     return x
 
@@ -200,7 +201,7 @@ class GeneralizedAlpha:
                 return None
             np.multiply(residual, bh2, out=x[:n])
             x[n:] = phi
-            lu_solve(self._factors, x)
+            x = lu_solve(self._factors, x)
             dq = x[:n]
             Y -= update * dq
             lam1 -= x[n:] / bh2
