@@ -87,28 +87,29 @@ def force_trace(truth: dict, run, cycles: int, start_deg: float,
 
 
 def hidden_joint_case(config: dict, cause: str, seed: int, with_growth: bool = True,
-                      force_start_deg: float | None = None):
+                      force_start_deg: float | None = None,
+                      profile_cycles: tuple[int, ...] = PROFILE_CYCLES):
     """(measured data, truth parameters, true angular offset in deg) for ``cause`` ('none':
-    the believed model itself); with a force trace at the last count recorded from the crank
-    angle ``force_start_deg`` on, if given."""
+    the believed model itself), profiles measured after ``profile_cycles``; with a force trace
+    at the last count recorded from the crank angle ``force_start_deg`` on, if given."""
     rng = np.random.default_rng(seed)
     truth, params = truth_config(config, cause, rng)
     rod = truth["wear_loop"]["rod_models"][0]
-    run = simulate_wear(model_config(truth, rod, PROFILE_CYCLES[-1]), f"truth: {cause}")
+    last = profile_cycles[-1]
+    run = simulate_wear(model_config(truth, rod, last), f"truth: {cause}")
     if run.stopped:
         raise ValueError(f"the truth of {cause} seed {seed} ({params}) stopped before "
-                         f"{PROFILE_CYCLES[-1]:,} cycles: {run.stopped}")
+                         f"{last:,} cycles: {run.stopped}")
     offset = rng.uniform(-20.0, 20.0)
     profiles = tuple(measure_profile(run.angle_rad, run.nodal_depth_m(c), rng, cycles=c,
-                                     offset_deg=offset).profile for c in PROFILE_CYCLES)
+                                     offset_deg=offset).profile for c in profile_cycles)
     growth = None
     if with_growth:
-        cycles = np.arange(2000, PROFILE_CYCLES[-1] + 1, 2000)
+        cycles = np.arange(2000, last + 1, 2000)
         growth = max_wear_growth(cycles, np.array([run.nodal_depth_m(c).max() for c in cycles]),
                                  rng)
     force = None if force_start_deg is None else (
-        force_trace(model_config(truth, rod, PROFILE_CYCLES[-1]), run, PROFILE_CYCLES[-1],
-                    force_start_deg, rng),)
+        force_trace(model_config(truth, rod, last), run, last, force_start_deg, rng),)
     data = JointMeasurements(profiles=profiles, max_wear=growth, force=force,
                              sources=(f"synthetic {cause} seed {seed}",))
     return data, params, offset

@@ -1,19 +1,35 @@
 """The joint diagnosis finds an effect hidden in measured joint wear (fewear.calibrate.
 joint_diagnose): each cause of the catalogue switched on in the wear loop at random parameters,
 measured by an independent profilometer model (unknown angular origin, 0.5 um noise), diagnosed
-without the answer; the believed model's own data give no cause."""
+without the answer; the believed model's own data give no cause.
+
+The default suite runs two diagnoses on a short campaign (profiles after 2,000 to 8,000 cycles)
+with the catalogue cut to the wear coefficient's level and friction (``QUICK``): hidden friction
+is named over the level, and the believed model's own data, through `fewear diagnose` with a load
+cell's trace, give no cause. The two share their forward runs (memoised by config), a minute in
+all. The slow variant (`make slow`) diagnoses each cause against the full catalogue on the full
+campaign (profiles after 4,000 to 16,000 cycles; 20 s to several minutes each), and the null case
+on two seeds.
+"""
 
 import json
 
 import numpy as np
 import pytest
 
-from fewear.calibrate.joint_diagnose import diagnose_joint
+from fewear.calibrate.joint_diagnose import JointDiagnoseSettings, diagnose_joint
 from fewear.calibrate.joint_measured import write_joint_profiles, write_max_wear
 from fewear.cli import main
 from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
 from tests.calibrate.joint_cases import believed_text, hidden_joint_case
+
+SHORT = (2000, 4000, 6000, 8000)
+"""The default suite's campaign: profile cycle counts (the full one: joint_cases.PROFILE_CYCLES)."""
+QUICK = {"candidates": ["wear_coefficient", "friction"]}
+"""The default suite's [joint_diagnose] section: the level and friction (on the default grid)."""
+FORCE_START_DEG = 117.0
+"""The crank angle at which the load cell's trace starts."""
 
 
 @pytest.fixture(scope="module")
@@ -26,12 +42,23 @@ def believed(tmp_path_factory):
 SLOW = pytest.mark.slow  # each hidden-cause case costs its own forward runs (~20-60 s)
 
 
-# The default suite hides friction; the demo (demos/diagnose_joint.py) hides a flexible rod whose
-# modulus lies between the candidate's grid points; the other causes are slow.
+def test_the_hidden_friction_is_named_over_the_level_on_a_short_campaign(believed):
+    """The quick catalogue: friction and the k level that is the cheapest explanation of it."""
+    data, truth, _ = hidden_joint_case(believed[1], "friction", 13, profile_cycles=SHORT)
+    summary = diagnose_joint(data, believed[1], JointDiagnoseSettings.from_config(QUICK)).summary
+    assert summary["cause"] == "friction", (truth, summary["candidates"])
+    assert summary["gain"] > 0.25  # held-out error of the extended run at most 3/4
+    assert summary["data_kind"] == "joint"
+    assert {c["cause"] for c in summary["candidates"]} == {"wear_coefficient", "friction"}
+
+
+# The default suite hides friction (above, on the short campaign with the quick catalogue); the
+# demo (demos/diagnose_joint.py, slow) hides a flexible rod whose modulus lies between the
+# candidate's grid points; each cause against the full catalogue is slow.
+@pytest.mark.slow
 @pytest.mark.parametrize("cause, seed", [
-    ("friction", 13),
-    pytest.param("wear_coefficient", 11, marks=SLOW), pytest.param("flexible_link", 12, marks=SLOW),
-    pytest.param("impact_wear", 14, marks=SLOW), pytest.param("running_in", 15, marks=SLOW)])
+    ("friction", 13), ("wear_coefficient", 11), ("flexible_link", 12), ("impact_wear", 14),
+    ("running_in", 15)])
 def test_the_hidden_cause_is_named_and_the_prediction_improves(believed, cause, seed):
     data, truth, offset = hidden_joint_case(believed[1], cause, seed)
     summary = diagnose_joint(data, believed[1]).summary
@@ -40,10 +67,46 @@ def test_the_hidden_cause_is_named_and_the_prediction_improves(believed, cause, 
     assert summary["data_kind"] == "joint"
 
 
-@pytest.mark.parametrize("seed", [21, pytest.param(22, marks=SLOW)])
-def test_the_believed_models_own_data_give_no_cause_and_the_origin_is_found(believed, seed):
-    data, _, offset = hidden_joint_case(believed[1], "none", seed, force_start_deg=117.0)
-    summary = diagnose_joint(data, believed[1]).summary
+def write_force_trace(path, trace) -> None:
+    """A load cell's trace (:class:`ForceTrace`) as ``time_s, fx_N, fy_N, cycles``."""
+    lines = ["time_s,fx_N,fy_N,cycles"] + [
+        f"{t!r},{fx!r},{fy!r},{trace.cycles}"
+        for t, fx, fy in zip(trace.time_s.tolist(), trace.fx_N.tolist(), trace.fy_N.tolist())]
+    path.write_text("\n".join(lines) + "\n")
+
+
+def diagnose_files(believed, data, folder, joint_diagnose: dict | None = None) -> dict:
+    """`fewear diagnose` on ``data`` written to files in ``folder`` (profiles, maximum-depth
+    growth, force traces), against the believed model with the [joint_diagnose] section
+    ``joint_diagnose`` (None: the default one); returns diagnosis.json."""
+    folder.mkdir(parents=True, exist_ok=True)
+    files = [folder / "profiles.csv", folder / "max_wear.csv"]
+    write_joint_profiles(files[0], data.profiles)
+    write_max_wear(files[1], *data.max_wear)
+    for trace in data.force or ():
+        files.append(folder / f"force_{trace.cycles}.csv")
+        write_force_trace(files[-1], trace)
+    config = folder / "config.toml"
+    section = "" if joint_diagnose is None else "[joint_diagnose]\n" + "".join(
+        f"{key} = {json.dumps(value)}\n" for key, value in joint_diagnose.items())
+    config.write_text(believed[0].read_text() + section)
+    out = folder / "out"
+    assert main(["diagnose", *map(str, files), "--config", str(config), "--out", str(out)]) == 0
+    return json.loads((out / "diagnosis.json").read_text())
+
+
+@pytest.fixture(scope="module")
+def null_by_the_command(believed, tmp_path_factory):
+    """The believed model's own data (seed 21, the short campaign, a load cell's trace at the
+    last count) diagnosed by `fewear diagnose` with the quick catalogue: (diagnosis.json, the
+    output folder, the instrument's true angular offset)."""
+    data, _, offset = hidden_joint_case(believed[1], "none", 21, force_start_deg=FORCE_START_DEG,
+                                        profile_cycles=SHORT)
+    folder = tmp_path_factory.mktemp("null")
+    return diagnose_files(believed, data, folder, QUICK), folder / "out", offset
+
+
+def assert_no_cause_and_the_origin_found(summary, offset):
     assert summary["causes"] == [] and summary["cause"] == "none"
     assert summary["unexplained"] == []  # the misfit is the instrument's scatter
     # which the diagnosis estimates from neighbouring points: the profilometer's 0.5 um
@@ -54,26 +117,35 @@ def test_the_believed_models_own_data_give_no_cause_and_the_origin_is_found(beli
     assert summary["held_out_error"]["baseline"] < 1.5e-6
     # the load cell's trace is the believed model's own: its crank phase is found
     trace, = summary["residual_structure"]["traces"]
-    assert trace["phase_deg"] == pytest.approx(117.0, abs=1.0)
+    assert trace["phase_deg"] == pytest.approx(FORCE_START_DEG, abs=1.0)
     assert summary["residual_structure"]["crank_cycle"]["impacts"]["impacts_per_cycle"] > 0
 
 
-def test_fewear_diagnose_reads_joint_files_and_writes_its_outputs(believed, tmp_path):
-    data, _, _ = hidden_joint_case(believed[1], "none", 21)
-    profiles, growth = tmp_path / "profiles.csv", tmp_path / "max_wear.csv"
-    write_joint_profiles(profiles, data.profiles)
-    write_max_wear(growth, *data.max_wear)
-    out = tmp_path / "out"
-    assert main(["diagnose", str(profiles), str(growth), "--config", str(believed[0]),
-                 "--out", str(out)]) == 0
-    summary = json.loads((out / "diagnosis.json").read_text())
+def test_the_believed_models_own_data_give_no_cause_and_the_origin_is_found(
+        null_by_the_command):
+    summary, _, offset = null_by_the_command
+    assert_no_cause_and_the_origin_found(summary, offset)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", [21, 22])
+def test_the_believed_models_own_data_give_no_cause_against_the_full_catalogue(believed, seed):
+    data, _, offset = hidden_joint_case(believed[1], "none", seed,
+                                        force_start_deg=FORCE_START_DEG)
+    assert_no_cause_and_the_origin_found(diagnose_joint(data, believed[1]).summary, offset)
+
+
+def test_fewear_diagnose_reads_joint_files_and_writes_its_outputs(null_by_the_command):
+    summary, out, _ = null_by_the_command
     assert summary["data_kind"] == "joint" and summary["cause"] == "none"
+    assert {c["cause"] for c in summary["candidates"]} == set(QUICK["candidates"])
     for name in ("report.md", "joint_fits.png", "extended.toml"):
         assert (out / name).stat().st_size > 0
 
 
 def test_one_cycle_count_is_a_clear_error(believed, tmp_path, capsys):
-    data, _, _ = hidden_joint_case(believed[1], "none", 21, with_growth=False)
+    data, _, _ = hidden_joint_case(believed[1], "none", 21, with_growth=False,
+                                   profile_cycles=SHORT)
     path = tmp_path / "one.csv"
     write_joint_profiles(path, data.profiles[:1])
     assert main(["diagnose", str(path), "--config", str(believed[0]),

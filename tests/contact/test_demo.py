@@ -1,19 +1,15 @@
 """demos/hertz_contact.py runs and produces what it promises: a convergence table whose finest
-errors against Hertz are small, a positive fitted rate, and the plot."""
+errors against Hertz are small, a positive fitted rate, and the plot. (The demo's run is the
+session fixture ``hertz_demo`` of tests/contact/conftest.py, shared with tests/contact/
+test_hertz.py.)"""
 
 import csv
-import runpy
-from pathlib import Path
 
 import numpy as np
 
-DEMO = Path(__file__).resolve().parents[2] / "demos" / "hertz_contact.py"
 
-
-def test_hertz_demo(tmp_path, monkeypatch):
-    monkeypatch.setenv("FEWEAR_DEMO_OUT", str(tmp_path))
-    monkeypatch.setenv("MPLBACKEND", "Agg")
-    runpy.run_path(str(DEMO), run_name="__main__")
+def test_hertz_demo(hertz_demo):
+    tmp_path, _ = hertz_demo
 
     with open(tmp_path / "convergence.csv", newline="") as handle:
         rows = list(csv.DictReader(handle))

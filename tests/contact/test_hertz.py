@@ -17,7 +17,6 @@ length); it is checked against the 3% bound too. The rigid approach is not compa
 depends on the size of the bushing (REFERENCES.md).
 """
 
-import dataclasses
 import math
 
 import numpy as np
@@ -100,19 +99,24 @@ def test_moment_width_of_a_sampled_ellipse_on_q8_bore_nodes():
 
 
 @pytest.fixture(scope="module")
-def refinement_study():
-    from fewear.contact.solver import BushingContactSolver
-
+def refinement_study(hertz_demo):
+    """The FE solutions on the three meshes, as demos/hertz_contact.py solves them (the session
+    fixture ``hertz_demo``: the demo's study is this one, its constants are checked here, so the
+    three solves are made once), compared here with the Hertz reference computed here."""
+    _, demo = hertz_demo
+    assert (demo["FORCE_N"], tuple(demo["ELEMENTS_PER_HALF_WIDTH"]), demo["RADIAL_ELEMENT_COUNT"],
+            demo["RADIAL_GRADING_RATIO"]) == (FORCE_N, ELEMENTS_PER_HALF_WIDTH,
+                                              RADIAL_ELEMENT_COUNT, RADIAL_GRADING_RATIO)
     problem = contact_problem_from_config(load_config(None, CONFIG_SECTIONS))
+    assert demo["problem"] == problem
     hertz = hertz_reference(problem, FORCE_N)
     study = []
-    for per_half_width in ELEMENTS_PER_HALF_WIDTH:
-        mesh = dataclasses.replace(
-            problem.mesh, bore_element_size_m=bore_element_size_m(hertz, per_half_width),
-            radial_element_count=RADIAL_ELEMENT_COUNT, radial_grading_ratio=RADIAL_GRADING_RATIO)
-        solver = BushingContactSolver(dataclasses.replace(problem, mesh=mesh))
-        result = solver.solve((0.0, -FORCE_N))
-        study.append((mesh.bore_element_size_m, result, compare_with_hertz(result, hertz)))
+    for per_half_width, result in zip(ELEMENTS_PER_HALF_WIDTH, demo["results"], strict=True):
+        size = bore_element_size_m(hertz, per_half_width)
+        # Q8 bore nodes: a vertex and an edge midpoint per bore element
+        assert result.angle_rad.size == 2 * round(2 * math.pi * hertz.bore_radius_m / size)
+        np.testing.assert_array_equal(result.applied_force_N, (0.0, -FORCE_N))
+        study.append((size, result, compare_with_hertz(result, hertz)))
     print(f"\nHertz: a = {hertz.half_width_m * 1e6:.1f} um "
           f"(a/R_b = {hertz.half_width_m / hertz.bore_radius_m:.3f}), "
           f"p0 = {hertz.peak_pressure_Pa / 1e6:.2f} MPa")

@@ -3,6 +3,10 @@
 
 Both runs of each are subprocesses of the same command, so the only difference is the partition of
 the mesh (assembly order, distributed LU); what remains is the Newton tolerance.
+
+The default suite runs the demo on its two coarse meshes (`FEWEAR_DEMO_COARSE=1`: the same code,
+seconds); the slow variant (`make slow`) compares the demo's full refinement study (three meshes
+up to 1024 bore elements, a minute or two under MPI).
 """
 
 import csv
@@ -80,11 +84,14 @@ def read_table(path):
 
 
 @pytest.mark.mpi
-def test_hertz_demo_two_ranks_equal_serial(tmp_path):
+@pytest.mark.parametrize("coarse", ["1", pytest.param("0", marks=pytest.mark.slow)],
+                         ids=["coarse", "full"])
+def test_hertz_demo_two_ranks_equal_serial(tmp_path, coarse):
     mpirun = mpirun_or_skip()
-    serial = run([sys.executable, str(DEMO)], FEWEAR_DEMO_OUT=str(tmp_path / "serial"))
+    serial = run([sys.executable, str(DEMO)], FEWEAR_DEMO_OUT=str(tmp_path / "serial"),
+                 FEWEAR_DEMO_COARSE=coarse)
     parallel = run([mpirun, "-n", "2", sys.executable, str(DEMO)],
-                   FEWEAR_DEMO_OUT=str(tmp_path / "mpi"))
+                   FEWEAR_DEMO_OUT=str(tmp_path / "mpi"), FEWEAR_DEMO_COARSE=coarse)
     # only rank 0 prints: the table appears once
     assert parallel.stdout.count("fitted rates") == 1
     tables = [read_table(tmp_path / name / "convergence.csv") for name in ("serial", "mpi")]
