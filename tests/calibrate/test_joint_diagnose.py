@@ -3,13 +3,13 @@ joint_diagnose): each cause of the catalogue switched on in the wear loop at ran
 measured by an independent profilometer model (unknown angular origin, 0.5 um noise), diagnosed
 without the answer; the believed model's own data give no cause.
 
-The default suite runs two diagnoses on a short campaign (profiles after 2,000 to 8,000 cycles)
-with the catalogue cut to the wear coefficient's level and friction (``QUICK``): hidden friction
-is named over the level, and the believed model's own data, through `fewear diagnose` with a load
-cell's trace, give no cause. The two share their forward runs (memoised by config), a minute in
-all. The slow variant (`make slow`) diagnoses each cause against the full catalogue on the full
-campaign (profiles after 4,000 to 16,000 cycles; 20 s to several minutes each), and the null case
-on two seeds.
+The default suite runs two diagnoses on a short campaign (profiles after 1,000 to 4,000 cycles,
+within the coarse model's first wear block) with the catalogue cut to the wear coefficient's level
+and friction on a coarser grid (``QUICK``): hidden friction is named over the level, and the
+believed model's own data, through `fewear diagnose` with a load cell's trace, give no cause. The
+two share their forward runs (memoised by config), under a minute in all. The slow variant
+(`make slow`) diagnoses each cause against the full catalogue on the full campaign (profiles after
+4,000 to 16,000 cycles; 20 s to several minutes each), and the null case on two seeds.
 """
 
 import json
@@ -24,10 +24,11 @@ from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
 from tests.calibrate.joint_cases import believed_text, hidden_joint_case
 
-SHORT = (2000, 4000, 6000, 8000)
+SHORT = (1000, 2000, 3000, 4000)
 """The default suite's campaign: profile cycle counts (the full one: joint_cases.PROFILE_CYCLES)."""
-QUICK = {"candidates": ["wear_coefficient", "friction"]}
-"""The default suite's [joint_diagnose] section: the level and friction (on the default grid)."""
+QUICK = {"candidates": ["wear_coefficient", "friction"], "friction_grid": [0.05, 0.2, 0.4]}
+"""The default suite's [joint_diagnose] section: the level, and friction run at 0.05, 0.2, 0.4 and
+the believed 0.1 (the default grid adds 0.02 and 0.3)."""
 FORCE_START_DEG = 117.0
 """The crank angle at which the load cell's trace starts."""
 
