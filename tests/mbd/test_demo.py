@@ -1,8 +1,8 @@
 """The slider-crank demo (the paper's Fig. 6) runs and its numbers hang together.
 
-By default the demo runs without its sensitivity study (`FEWEAR_DEMO_QUICK=1`: four more runs of
+By default the demo runs without its sensitivity study (`FEWEAR_DEMO_QUICK=1`: five more runs of
 three crank cycles, printed, not checked); the slow variant (`make slow`) runs the demo whole and
-checks that the study reports a peak force for each of its four cases."""
+checks that the study reports a peak force for each of its five cases."""
 
 import json
 import runpy
@@ -24,7 +24,7 @@ def test_demo_reproduces_figure_6(tmp_path, monkeypatch, quick):
     runpy.run_path(str(DEMO), run_name="__main__")
     results = json.loads((tmp_path / "results.json").read_text())
     sensitivity = results["sensitivity_peak_N"]
-    assert len(sensitivity) == (0 if quick == "1" else 4)
+    assert len(sensitivity) == (0 if quick == "1" else 5)
     assert all(peak > 0.0 for peak in sensitivity.values())
     peaks = results["peak_force_N"]
     crank = SliderCrank()
