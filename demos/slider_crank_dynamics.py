@@ -1,9 +1,9 @@
 # # Slider-crank with a revolute clearance joint: rigid versus flexible connecting rod
 #
-# The seed paper's Fig. 6 (Zhao, Zhang, Dai 2013, section 5). A crank of length r = 0.1 m turns at
-# a constant 1200 rpm (one cycle = 0.05 s); the connecting rod (l = 0.34 m, 18 mm x 5 mm, E = 211 GPa)
-# drives a 0.5 kg slider through a revolute joint with radial clearance c = 0.5 mm (pin radius
-# 9.5 mm in a 10 mm bore). The equations of motion in absolute coordinates q,
+# The seed paper's Fig. 6 (Zhao, Zhang, Dai 2013, section 5). A crank of length r = 0.1 m turns at a
+# constant 1200 rpm (one cycle = 0.05 s); the connecting rod (l = 0.34 m, 18 mm x 5 mm, E = 211 GPa)
+# drives a 0.5 kg slider through a revolute joint with radial clearance c = 0.5 mm (pin radius 9.5
+# mm in a 10 mm bore). The equations of motion in absolute coordinates q,
 #
 # $$ M \ddot q + \Phi_q^T \lambda = Q(q, \dot q, t), \qquad \Phi(q, t) = 0, $$
 #
@@ -97,8 +97,8 @@ print(f"peak force ratio flexible/rigid = {ratio:.3f} (paper: below 0.5)")
 #
 # The crank is driven at constant speed, so its inertia only changes the driving torque: the
 # printed 1e5 kg m^2 must give the same joint forces as our 2.5e-4 kg m^2 (up to the scatter of a
-# nearly chaotic impact sequence). The rod density sets the rod's inertia forces and so the
-# impacts: the printed digits (2660, our reading) against steel (7800), for both rods. The restitution
+# nearly chaotic impact sequence). The rod density sets the rod's inertia forces and so the impacts:
+# the printed digits (2660, our reading) against steel (7800), for both rods. The restitution
 # coefficient (not in the paper; ours 0.9) sets the energy lost per impact. For the flexible rod,
 # the damping (not in the paper; ours 1% on the first bending mode) decides how long the rod rings.
 

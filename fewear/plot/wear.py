@@ -59,3 +59,30 @@ def plot_max_wear(series: dict, path) -> None:
     figure.tight_layout()
     figure.savefig(path, dpi=120)
     plt.close(figure)
+
+
+def plot_max_wear_bands(series: dict, path) -> None:
+    """Maximum wear depth (um) against crank cycles as the mean of several runs with a band of
+    one standard deviation either side, one line per label.
+
+    ``series``: label -> (cycles, {"mean": [m], "sd": [m]}) at the listed cycle counts.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, axes = plt.subplots(figsize=(6.5, 4.5))
+    for label, (cycles, depth) in series.items():
+        cycles = np.append(0, cycles)
+        mean = 1e6 * np.append(0.0, depth["mean"])
+        sd = 1e6 * np.append(0.0, depth["sd"])
+        line, = axes.plot(cycles, mean, "o-", ms=3, label=label)
+        axes.fill_between(cycles, mean - sd, mean + sd, color=line.get_color(), alpha=0.25)
+    axes.set(xlabel="crank cycles", ylabel="maximum wear depth (um)",
+             title="maximum wear depth: mean of the runs, +- one standard deviation")
+    axes.grid(alpha=0.3)
+    axes.legend(fontsize=8)
+    figure.tight_layout()
+    figure.savefig(path, dpi=120)
+    plt.close(figure)

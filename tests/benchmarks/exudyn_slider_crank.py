@@ -45,13 +45,14 @@ class SliderCrankParameters:
     gravity_m_s2: float = 9.81
 
 
-def parameters_from_defaults() -> SliderCrankParameters:
-    """The rigid mechanism of fewear's [mechanism] defaults (``fewear/defaults/dynamics.toml``):
-    rod inertia m l^2/12 of the uniform rod, slider inertia 1e-4 m^2 times its mass (its rotation is
-    constrained, so the value does not matter), as in ``fewear.mbd.slider_crank``."""
+def parameters_from_defaults(**changes) -> SliderCrankParameters:
+    """The rigid mechanism of fewear's [mechanism] defaults (``fewear/defaults/dynamics.toml``)
+    with ``changes`` of [mechanism] keys: rod inertia m l^2/12 of the uniform rod, slider inertia
+    1e-4 m^2 times its mass (its rotation is constrained, so the value does not matter), as in
+    ``fewear.mbd.slider_crank``."""
     from fewear.io.config import load_config
 
-    mechanism = load_config(None, ["mechanism"])["mechanism"]
+    mechanism = {**load_config(None, ["mechanism"])["mechanism"], **changes}
     rod_mass = (mechanism["rod_density_kg_m3"] * mechanism["rod_height_m"]
                 * mechanism["rod_width_m"] * mechanism["rod_length_m"])
     return SliderCrankParameters(

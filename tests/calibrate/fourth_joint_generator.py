@@ -171,6 +171,8 @@ from fewear.calibrate.joint_measured import write_max_wear
 CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in", "none")
 BELIEVED_TOML = """\
 # The model the user believes (merged onto fewear's embedded defaults).
+[mechanism]
+rod_density_kg_m3 = 7800.0
 [mesh]
 bore_element_size_m = 0.0013089969389957472   # 2*pi*0.010/48*(1+1e-9)
 radial_element_count = 4

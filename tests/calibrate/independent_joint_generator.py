@@ -70,6 +70,8 @@ from fewear.calibrate.joint_forward import WearHistory, model_config, simulate_w
 
 CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in", "none")
 BELIEVED_TOML = """\
+[mechanism]
+rod_density_kg_m3 = 7800.0
 [mesh]
 bore_element_size_m = 0.0013089969389957472   # 2*pi*0.010/48*(1+1e-9)
 radial_element_count = 4
@@ -77,7 +79,8 @@ radial_element_count = 4
 rod_models = ["rigid"]
 load_steps_per_cycle = 40
 """
-"""The model the user believes: the coarse rigid-rod wear loop (defaults otherwise)."""
+"""The model the user believes: the coarse rigid-rod wear loop with a steel rod (the density this
+generator was written for; defaults otherwise)."""
 IMPACT_RECORDED_CYCLES = 3
 
 

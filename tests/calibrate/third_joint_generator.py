@@ -7,11 +7,11 @@ exponential or Blau running-in, no hysteresis-energy or impulse impact wear, no 
 
 Believed model
 --------------
-The user believes ``BELIEVED_TOML``: the defaults with a coarse bore mesh (48 elements around the
-10 mm bore, 4 across the wall), the rigid connecting rod and 40 load steps per crank cycle. Its
-forward run is :func:`fewear.calibrate.joint_forward.simulate_wear`: the nodal wear depth
-h_b(N, theta) after N crank cycles, linear in N between the wear blocks and linear in angle
-between the bore nodes (the model's own definition of the worn surface).
+The user believes ``BELIEVED_TOML``: the defaults with a steel rod (7800 kg/m^3) and a coarse bore
+mesh (48 elements around the 10 mm bore, 4 across the wall), the rigid connecting rod and 40 load
+steps per crank cycle. Its forward run is :func:`fewear.calibrate.joint_forward.simulate_wear`: the
+nodal wear depth h_b(N, theta) after N crank cycles, linear in N between the wear blocks and linear
+in angle between the bore nodes (the model's own definition of the worn surface).
 
 Hidden causes (the truth; one per data set)
 -------------------------------------------
@@ -110,6 +110,8 @@ import numpy as np
 
 CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in", "none")
 BELIEVED_TOML = """\
+[mechanism]
+rod_density_kg_m3 = 7800.0
 [mesh]
 bore_element_size_m = 0.0013089969389957472   # 2*pi*0.010/48*(1+1e-9)
 radial_element_count = 4

@@ -217,7 +217,8 @@ def test_the_coefficient_must_be_a_finite_number_at_least_zero(value):
     assert impact_wear_coefficient_from_config({"impact_wear_coefficient_m3_J": 2}) == 2.0
 
 
-IMPACT_RUN = (f"[mesh]\nbore_element_size_m = {2 * math.pi * 0.010 / 48 * (1 + 1e-9)!r}\n"
+IMPACT_RUN = ("[mechanism]\nrod_density_kg_m3 = 7800.0\n"
+              f"[mesh]\nbore_element_size_m = {2 * math.pi * 0.010 / 48 * (1 + 1e-9)!r}\n"
               "radial_element_count = 4\n"
               "[wear]\ncoefficient_model = \"constant\"\n{impact}\n"
               "[wear_loop]\nrod_models = [\"rigid\"]\nload_steps_per_cycle = 40\n"
