@@ -89,14 +89,16 @@ def config_text(density_kg_m3: float, start_angle_deg: float, changes: dict) -> 
 
 
 def run_members(name: str, density_kg_m3: float, changes: dict) -> list[Path]:
-    """The members' run folders of one study case, running those not complete yet."""
+    """The members' run folders of one study case, running those not complete yet (resuming
+    one that was interrupted)."""
     folders = []
     for member in range(MEMBERS):
         folder = OUT / f"{name}-member{member}"
         if not (folder / "summary.json").exists():
             config = OUT / f"{name}-member{member}.toml"
             config.write_text(config_text(density_kg_m3, float(member), changes))
-            assert main(["run", "--config", str(config), "--out", str(folder)]) == 0
+            resume = ["--resume"] if (folder / "fewear-checkpoint").is_dir() else []
+            assert main(["run", "--config", str(config), "--out", str(folder), *resume]) == 0
         folders.append(folder)
     return folders
 
