@@ -45,9 +45,11 @@ config.write_text("\n".join(config_lines) + "\n")
 #
 # `fewear run` writes everything into one folder: the summary, the profiles after every block,
 # the growth of the maximum depth, the bushing through the run as XDMF, and the two figures.
+# `--overwrite` replaces the demo's previous run there (without it `fewear run` refuses a folder
+# that holds another run).
 
 # +
-assert main(["run", "--config", str(config), "--out", str(OUT / "run")]) == 0
+assert main(["run", "--config", str(config), "--out", str(OUT / "run"), "--overwrite"]) == 0
 summary = json.loads((OUT / "run" / "summary.json").read_text())
 cases = summary["cases"]
 for rod, case in cases.items():

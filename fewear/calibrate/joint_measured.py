@@ -48,7 +48,6 @@ column), a repeated angle or cycle count, a time that does not increase.
 
 from __future__ import annotations
 
-import csv
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -56,8 +55,9 @@ from pathlib import Path
 
 import numpy as np
 
-from fewear.calibrate.measured import _numeric_column, _read_rows
+from fewear.calibrate.measured import _numeric_column, _read_rows, csv_cells
 from fewear.errors import FewearInputError
+from fewear.io.text import read_text_file
 
 KIND_COLUMNS = {
     "profiles": ("cycles", "angle_deg", "wear_depth_m"),
@@ -267,16 +267,10 @@ def _comment_lines(comment: str) -> list[str]:
 
 def _read_header(path: Path) -> tuple[int, list[str]]:
     """The line number and column names of the first line that is not blank or a comment."""
-    try:
-        with open(path, encoding="utf-8-sig") as stream:
-            for number, line in enumerate(stream, start=1):
-                stripped = line.strip()
-                if stripped and not stripped.startswith("#"):
-                    return number, [cell.strip() for cell in next(csv.reader([stripped]))]
-    except OSError as exc:
-        raise FewearInputError(f"cannot read measured data {path}: {exc.strerror}") from None
-    except UnicodeDecodeError:
-        raise FewearInputError(f"{path}: not a text (UTF-8) CSV file") from None
+    for number, line in enumerate(read_text_file(path, "measured data").splitlines(), start=1):
+        stripped = line.strip()
+        if stripped and not stripped.startswith("#"):
+            return number, [cell.strip() for cell in csv_cells(path, number, stripped)]
     raise FewearInputError(f"{path}: no header line (column names) found")
 
 

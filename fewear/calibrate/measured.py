@@ -47,6 +47,7 @@ from pathlib import Path
 import numpy as np
 
 from fewear.errors import FewearInputError
+from fewear.io.text import read_text_file
 
 DATA_KINDS = ("cumulative_volume", "mass_loss", "specific_wear_rate", "wear_rate")
 VARIABLES = ("pressure_Pa", "velocity_m_s", "sliding_distance_m", "wear_volume_m3", "time_s",
@@ -322,16 +323,13 @@ def _constant_in_test(data, name, values, index, test_name) -> float:
 
 def _read_rows(path: Path) -> tuple[int, list[str], list[tuple[int, list[str]]]]:
     """The header's line number, its column names, and the (line number, cells) of data rows."""
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except OSError as exc:
-        raise FewearInputError(f"cannot read measured data {path}: {exc.strerror}") from None
+    text = read_text_file(path, "measured data")
     header_line, header, rows = 0, None, []
     for line_number, line in enumerate(text.splitlines(), start=1):
         stripped = line.strip()
         if not stripped or stripped.startswith("#"):
             continue
-        cells = next(csv.reader([line]))
+        cells = csv_cells(path, line_number, line)
         if header is None:
             header_line, header = line_number, [cell.strip() for cell in cells]
             continue
@@ -346,6 +344,20 @@ def _read_rows(path: Path) -> tuple[int, list[str], list[tuple[int, list[str]]]]
     if not rows:
         raise FewearInputError(f"{path}: no data rows after the header (line {header_line})")
     return header_line, header, rows
+
+
+def csv_cells(path, line_number: int, line: str) -> list[str]:
+    """The cells of one CSV line; a line the csv module refuses (a cell longer than its field
+    limit, a stray quote) is an input error naming the file and line."""
+    try:
+        return next(csv.reader([line]))
+    except csv.Error as exc:
+        limit = csv.field_size_limit()
+        reason = (f"a cell longer than {limit:,} characters" if "field limit" in str(exc)
+                  else str(exc))
+        raise FewearInputError(
+            f"{path} line {line_number}: {reason}; expected comma-separated cells (numbers, "
+            f"test ids, names) of at most {limit:,} characters each") from None
 
 
 def _resolve_aliases(header: list[str]) -> tuple[list[str], list[str]]:

@@ -67,11 +67,10 @@ def load_config(path: str | Path | None, sections: Iterable[str]) -> Config:
 
 def read_toml(path: str | Path) -> dict[str, Any]:
     """Parse a TOML file, turning I/O and syntax errors into input errors."""
+    from fewear.io.text import read_text_file
+
     path = Path(path)
-    try:
-        text = path.read_text()
-    except OSError as exc:
-        raise FewearInputError(f"cannot read config file {path}: {exc.strerror}") from None
+    text = read_text_file(path, "config file")
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
