@@ -15,7 +15,14 @@ import os
 import signal
 import sys
 
-from fewear.errors import FewearInputError, Terminated, interrupt_note, one_line, set_interrupt_note
+from fewear.errors import (
+    FewearInputError,
+    Terminated,
+    has_interrupt_note,
+    interrupt_note,
+    one_line,
+    set_interrupt_note,
+)
 
 # subcommand -> "module:function" that takes the parsed arguments and returns an exit status
 HANDLERS = {
@@ -28,12 +35,22 @@ HANDLERS = {
 }
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with the edge's one-line errors: ``fewear: error: <what>; see <command> --help``
+    (exit status 2) instead of the usage block."""
+
+    def error(self, message: str):
+        _report("error", f"{self.prog}: {message}; see `{self.prog} --help`", 2)
+        raise SystemExit(2)
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="fewear",
         description="Finite-element wear workbench for revolute clearance joints.",
     )
-    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND",
+                                parser_class=_Parser)
 
     config = sub.add_parser("config", help="print the embedded default config (TOML)")
     config.add_argument("--out", metavar="FILE.toml", help="write it to FILE instead of stdout")
@@ -145,7 +162,13 @@ def main(argv: list[str] | None = None) -> int:
         message = naming_the_config(one_line(str(exc)), getattr(args, "config", None))
         return _report("error", message, 2)
     except OSError as exc:
-        return _report("error", os_error_message(exc), 2)
+        kept = interrupt_note() if has_interrupt_note() else ""
+        return _report("error", os_error_message(exc) + (f"; {kept}" if kept else ""), 2)
+    except (OverflowError, FloatingPointError) as exc:
+        if getattr(args, "config", None) is None:
+            raise  # the embedded defaults overflowed: a bug, not an input
+        return _report("error", f"config {args.config}: a value is beyond what the computation "
+                       f"can carry ({exc}); compare your values with `fewear config`", 2)
     except (KeyboardInterrupt, Terminated) as exc:
         what = "Ctrl-C" if isinstance(exc, KeyboardInterrupt) else str(exc) or "SIGTERM"
         return _report("interrupted", f"{what}: {interrupt_note()}",

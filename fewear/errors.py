@@ -25,6 +25,14 @@ def require_finite_positive(name: str, value: float) -> None:
     )
 
 
+def require_poisson_ratio(name: str, value: float) -> None:
+    """A Poisson ratio of an isotropic elastic material lies in (-1, 0.5)."""
+    require(
+        isinstance(value, (int, float)) and math.isfinite(value) and -1.0 < value < 0.5,
+        f"{name} = {value!r}: must lie in (-1, 0.5)",
+    )
+
+
 SHORT_VALUE_CHARS = 80
 """A value echoed in an error message is shortened to about this many characters."""
 LONG_RUN_CHARS = 120
@@ -75,6 +83,11 @@ def set_interrupt_note(note) -> None:
     """From now until the command ends, an interruption (Ctrl-C, SIGTERM) is reported with
     ``note()``: what was kept and how to go on (None: :data:`NOTHING_KEPT`)."""
     _interrupt_note[0] = note
+
+
+def has_interrupt_note() -> bool:
+    """Whether the running command said what an interruption keeps (:func:`set_interrupt_note`)."""
+    return _interrupt_note[0] is not None
 
 
 def interrupt_note() -> str:

@@ -130,3 +130,27 @@ def test_overwrite_replaces_the_earlier_run(tmp_path, complete_run):
     assert not [path for path in out.iterdir() if path.name.startswith(".fewear-")]
     assert sorted(path.name for path in (out / "fewear-checkpoint").iterdir()) == [
         "rigid-mesh-00000.npy", "rigid-mesh-00001.npy", "rigid.npz"]
+
+
+def test_a_full_disk_keeps_the_checkpoint_and_says_how_to_resume(tmp_path, monkeypatch, capsys):
+    import errno
+
+    import fewear.loop.outputs
+
+    def full(folder, *args):
+        raise OSError(errno.ENOSPC, "No space left on device", str(folder / "summary.json"))
+
+    monkeypatch.setattr(fewear.loop.outputs, "write_run_outputs", full)
+    config = write_config(tmp_path)
+    assert run(config, tmp_path / "out") == 2
+    err = capsys.readouterr().err
+    assert "No space left on device" in err and "keeps rigid at 4,000/4,000 cycles" in err
+    assert "fewear run --resume" in err and err.count("fewear: error:") == 1
+    monkeypatch.undo()
+    assert run(config, tmp_path / "out", "--resume") == 0
+    assert (tmp_path / "out" / "summary.json").exists()
+
+
+def test_resume_and_overwrite_together_are_refused(tmp_path, capsys):
+    assert run(write_config(tmp_path), tmp_path / "out", "--resume", "--overwrite") == 2
+    assert "choose one" in capsys.readouterr().err

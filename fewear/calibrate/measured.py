@@ -64,6 +64,11 @@ POSITIVE = {"pressure_Pa", "velocity_m_s", "normal_load_N", "density_kg_m3"}
 CUMULATIVE = ("sliding_distance_m", "time_s")
 WEAR_AMOUNTS = ("wear_volume_m3", "mass_loss_kg")
 ABSOLUTE_ZERO_C = -273.15
+PLAUSIBLE_MAX = {"wear_volume_m3": (1e-4, "100 cm^3, more than a whole pin"),
+                 "mass_loss_kg": (1.0, "1 kg, more than a whole pin"),
+                 "specific_wear_rate_m3_N_m": (1e-9, "1e3 mm^3/(N m), beyond the severest wear"),
+                 "wear_rate_m3_m": (1e-6, "1 cm^3 per metre of sliding")}
+"""Wear readings no tribometer gives (a unit mistake): the largest magnitude and what it is."""
 
 ALIASES = {"sliding_speed_m_s": "velocity_m_s", "speed_m_s": "velocity_m_s",
            "contact_pressure_Pa": "pressure_Pa", "load_N": "normal_load_N",
@@ -227,6 +232,7 @@ def read_measured_wear(path: str | Path, *, density_kg_m3: float | None = None) 
         for name in CUMULATIVE:
             if name in columns:
                 _check_cumulative(name, columns[name], tests, test_id, where)
+        _check_not_all_negative(wear_column, columns[wear_column], tests, test_id, where)
         notes += _dips(columns[wear_column], tests, wear_column)
     if data_kind == "mass_loss":
         _mass_loss_to_volume(source, header_line, columns, density_kg_m3, notes)
@@ -418,6 +424,15 @@ def _check_values(name: str, values: np.ndarray, where: Callable[[int], str]) ->
     else:
         bad, allowed = ~(values >= 0.0), "a non-negative number"
     bad |= ~np.isfinite(values)
+    if name in PLAUSIBLE_MAX:
+        largest, meaning = PLAUSIBLE_MAX[name]
+        too_large = np.abs(values) > largest
+        if np.any(too_large & ~bad):
+            index = int(np.flatnonzero(too_large & ~bad)[0])
+            hint = next(hint for prefix, hint in UNIT_HINTS.items() if name.startswith(prefix))
+            raise FewearInputError(
+                f"{where(index)}, column {name}: {values[index]!r} is beyond what a pin-on-disc "
+                f"test gives (at most {largest:g}, {meaning}); SI units: {hint}")
     if np.any(bad):
         index = int(np.flatnonzero(bad)[0])
         raise FewearInputError(
@@ -441,6 +456,18 @@ def _check_cumulative(name, values, tests, test_id, where) -> None:
                 f"{values[previous]!r} of the previous reading of test {test_id[current]} "
                 f"({where(previous)}); readings are cumulative and must not decrease"
             )
+
+
+def _check_not_all_negative(name, values, tests, test_id, where) -> None:
+    """A reading may dip below zero by the scatter of a weighing or a profile, but a test whose
+    every reading is below zero measured no wear (a sign convention, a mass gain): an error."""
+    for index in tests:
+        if np.all(values[index] < 0.0):
+            raise FewearInputError(
+                f"{where(index[0])}, column {name}: every reading of test {test_id[index[0]]} is "
+                f"below zero ({values[index].min()!r} to {values[index].max()!r}); wear is "
+                "measured as a loss (>= 0; a reading may dip below zero by its scatter, not "
+                "stay there): check the sign (before minus after)")
 
 
 def _dips(values, tests, name) -> list[str]:

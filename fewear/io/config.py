@@ -61,8 +61,12 @@ def load_config(path: str | Path | None, sections: Iterable[str]) -> Config:
     """
     sections = list(sections)
     defaults = default_config()
+    from fewear.io.limits import check_limits
+
     checked = {} if path is None else check_config(read_toml(path), defaults, source=str(path))
-    return {name: {**defaults[name], **checked.get(name, {})} for name in sections}
+    config = {name: {**defaults[name], **checked.get(name, {})} for name in sections}
+    check_limits(config, "the embedded default config" if path is None else str(path))
+    return config
 
 
 def read_toml(path: str | Path) -> dict[str, Any]:

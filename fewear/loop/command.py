@@ -134,6 +134,9 @@ def main(args) -> int:
     from fewear.loop.outputs import write_run_outputs
 
     world = MPI.COMM_WORLD
+    if args.resume and getattr(args, "overwrite", False):
+        raise FewearInputError("--resume and --overwrite: choose one (--resume continues the run "
+                               "in --out, --overwrite replaces it with a new one)")
     config = load_config(args.config, run_sections())
     inputs = run_inputs_from_config(config)
     rods = list(inputs.loop.rod_models)
@@ -199,7 +202,8 @@ def earlier_run_kept(args, store: Checkpoint, world):
     """Nothing lost: a run refuses a folder that holds an earlier run unless ``--resume`` (the
     same run, continued) or ``--overwrite`` (the earlier run is set aside, and restored if this
     run fails or is interrupted before its first block). A failed run leaves the folder as it
-    found it: a new run's checkpoint is removed, a resumed run's stays (it is the same run)."""
+    found it: a new run's checkpoint is removed, a resumed run's stays (it is the same run); an
+    interruption or an OS error (a full disk) keeps the checkpoint of the blocks done."""
     out = Path(args.out).resolve()
     error, aside, existed = None, None, out.exists()
     if world.rank == 0:
@@ -221,7 +225,9 @@ def earlier_run_kept(args, store: Checkpoint, world):
         yield
     except BaseException as exc:
         if world.rank == 0:
-            interrupted = isinstance(exc, (KeyboardInterrupt, Terminated))
+            # an interruption, or the OS refusing a write (a full disk), is no fault of the run:
+            # its checkpoint stays, to be resumed
+            interrupted = isinstance(exc, (KeyboardInterrupt, Terminated, OSError))
             if not args.resume and not (interrupted and store.saved_cycles()):
                 shutil.rmtree(store.path, ignore_errors=True)  # this run's, not worth keeping
                 if aside is not None:

@@ -144,3 +144,33 @@ def test_shorten_and_one_line():
     assert len(one_line("word " * 10_000)) <= 1100
     with pytest.raises(FewearInputError):
         raise FewearInputError("x")
+
+
+def test_a_joint_diagnosis_without_config_says_which_model_it_runs(tmp_path, monkeypatch,
+                                                                   capsys):
+    """The embedded default is the paper's full case (minutes per forward run): the diagnosis
+    says so before it starts, and the forward runs report their progress."""
+    import fewear.calibrate.joint_command
+
+    def stop(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(fewear.calibrate.joint_command, "diagnose_joint", stop)
+    path = tmp_path / "profiles.csv"
+    path.write_text("cycles,angle_deg,wear_depth_m\n1000,0,1e-6\n1000,90,2e-6\n1000,180,1e-6\n")
+    assert main(["diagnose", str(path), "--out", str(tmp_path / "out")]) == 130
+    err = capsys.readouterr().err
+    assert "no --config: the believed model is the embedded default config" in err
+    assert "1,872 quadrilaterals" in err and "--config" in err
+    assert err.strip().splitlines()[-1].startswith("fewear: interrupted: Ctrl-C: nothing")
+
+
+def test_a_forward_run_reports_its_progress(monkeypatch, capsys):
+    from types import SimpleNamespace
+
+    import fewear.calibrate.joint_forward as forward
+
+    monkeypatch.setattr(forward, "PROGRESS_INTERVAL_S", 0.0)
+    progress = forward._BlockProgress("believed model", 40_000, True)
+    progress(SimpleNamespace(state=SimpleNamespace(cycles=8000, blocks=2)))
+    assert "forward run believed model: 8,000/40,000 cycles, block 2" in capsys.readouterr().err
