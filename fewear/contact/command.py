@@ -22,6 +22,7 @@ import math
 import time
 
 from fewear.errors import FewearInputError
+from fewear.io.limits import MIN_FORCE_N
 
 
 def checked_force_N(force: list[float] | tuple[float, float]) -> tuple[float, float]:
@@ -31,6 +32,12 @@ def checked_force_N(force: list[float] | tuple[float, float]) -> tuple[float, fl
         if not math.isfinite(value):
             raise FewearInputError(
                 f"--force {name} = {value!r} N: expected a finite number of newtons")
+    magnitude = math.hypot(force_x, force_y)
+    if 0.0 < magnitude < MIN_FORCE_N:
+        raise FewearInputError(
+            f"--force {force_x!r} {force_y!r}: |F| = {magnitude:.3g} N is below {MIN_FORCE_N:g} N, "
+            "a load whose contact the model cannot resolve (the pin's approach is below the "
+            f"solver's tolerance); give 0 0 for no load, or at least {MIN_FORCE_N:g} N")
     return force_x, force_y
 
 

@@ -25,6 +25,10 @@ MIN_STEP_S = 1e-12
 """The adaptive step never needs to go below 1 ps (impacts last ~0.1 ms)."""
 MAX_DYNAMICS_CYCLES = 1000
 """Settling plus recorded crank cycles of one dynamics run (a few seconds each)."""
+MIN_FORCE_N = 1e-3
+"""`fewear contact --force`: a load below 1 mN (but not 0) moves the pin less than the contact
+solver's tolerance resolves; it fails with a misleading "cannot carry it" (tested down to 1e-6 N,
+refused with margin)."""
 MIN_BORE_ELEMENTS = 16
 """Elements around the bore: fewer cannot resolve a contact arc (the default has 144)."""
 MAX_MESH_CELLS = 50_000

@@ -30,8 +30,15 @@ def main(args) -> int:
         raise FewearInputError(f"--cycles {args.cycles}: expected a whole number from 1 to "
                                f"{MAX_DYNAMICS_CYCLES:,} (crank cycles, a few seconds each)")
     joint_model = joint_model_from_config(config)
-    history, summary = simulate_slider_crank(config, rod=args.rod, joint=args.joint,
-                                             cycles=args.cycles, progress=True)
+    try:
+        history, summary = simulate_slider_crank(config, rod=args.rod, joint=args.joint,
+                                                 cycles=args.cycles, progress=True)
+    except RuntimeError as exc:  # the integrator's step size collapsed
+        raise FewearInputError(
+            f"the dynamics cannot integrate this mechanism ({exc}): a value of [mechanism], "
+            "[clearance_joint] or [integrator] makes it too stiff, too light or too fast for the "
+            "integrator (compare with `fewear config`; a smaller [integrator] min_step_s or a "
+            "larger gap_tolerance_m may get past it)") from None
     used = {name: dict(table) for name, table in config.items()}
     for key, value in (("rod", args.rod), ("joint", args.joint),
                        ("recorded_cycles", args.cycles)):

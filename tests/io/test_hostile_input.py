@@ -174,3 +174,23 @@ def test_a_forward_run_reports_its_progress(monkeypatch, capsys):
     progress = forward._BlockProgress("believed model", 40_000, True)
     progress(SimpleNamespace(state=SimpleNamespace(cycles=8000, blocks=2)))
     assert "forward run believed model: 8,000/40,000 cycles, block 2" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("force", ["1e-300", "1e-12"])
+def test_a_vanishing_force_is_refused_before_the_solve(tmp_path, capsys, force):
+    """It ended in a ZeroDivisionError traceback (1e-300) or a 'cannot carry it' (1e-12)."""
+    assert main(["contact", "--force", force, "0", "--out", str(tmp_path / "out")]) == 2
+    assert_one_error_line(2, capsys.readouterr().err, f"--force {float(force)!r} 0.0",
+                          "below 0.001 N", "0 0 for no load")
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_mechanism_the_integrator_cannot_carry_is_an_input_error(tmp_path, capsys):
+    """A valid but absurd model (gravity 1e12 m/s^2) collapsed the integrator's step: it was a
+    RuntimeError traceback."""
+    path = tmp_path / "heavy.toml"
+    path.write_text("[mechanism]\ngravity_m_s2 = 1e12\n")
+    assert main(["dynamics", "--config", str(path), "--out", str(tmp_path / "out")]) == 2
+    assert_one_error_line(2, capsys.readouterr().err, f"config {path}",
+                          "cannot integrate this mechanism", "min_step_s")
+    assert not (tmp_path / "out").exists()
