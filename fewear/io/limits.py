@@ -156,7 +156,7 @@ def _mesh(config: dict) -> str:
         return (f"[mesh] bore_element_size_m = {size!r} m and radial_element_count = "
                 f"{config['mesh']['radial_element_count']} make a mesh of about {cells:,} "
                 f"quadrilaterals (the default: {DEFAULT_MESH_CELLS:,}); its contact model alone "
-                f"would take about {_duration(estimate)}; expected at most {MAX_MESH_CELLS:,} "
+                f"would take about {duration(estimate)}; expected at most {MAX_MESH_CELLS:,} "
                 f"quadrilaterals (here: bore_element_size_m >= {smallest:.3g} m)")
     return ""
 
@@ -190,13 +190,14 @@ def _wear_loop(config: dict) -> str:
                else "max_extrapolation_factor")
         return (f"[wear_loop] total_cycles = {loop['total_cycles']:,} with {key} = "
                 f"{loop[key]!r} makes at least {blocks:,} wear blocks (about "
-                f"{_duration(blocks * SECONDS_PER_BLOCK)}); expected at most "
+                f"{duration(blocks * SECONDS_PER_BLOCK)}); expected at most "
                 f"{MAX_WEAR_BLOCKS:,}: raise {key} to at least "
                 f"{loop['total_cycles'] / MAX_WEAR_BLOCKS:.3g} or lower total_cycles")
     return ""
 
 
-def _duration(seconds: float) -> str:
+def duration(seconds: float) -> str:
+    """A wall time in words: seconds, minutes, hours or days."""
     if seconds < 120:
         return f"{seconds:.0f} s"
     if seconds < 7200:
@@ -205,4 +206,4 @@ def _duration(seconds: float) -> str:
         return f"{seconds / 3600:.0f} h"
     if seconds < 86400 * 365 * 100:
         return f"{seconds / 86400:,.0f} days"
-    return "more than a century"
+    return "a century or more"

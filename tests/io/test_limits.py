@@ -78,9 +78,15 @@ PIN_ON_DISC = "test_id,pressure_Pa,velocity_m_s,sliding_distance_m,wear_volume_m
 @pytest.mark.parametrize("name, text, needles", [
     ("all-negative test", PIN_ON_DISC + "a,1e6,1,100,-1e-9\na,1e6,1,200,-2e-9\n"
      "b,2e6,1,100,1e-9\nb,2e6,1,200,2e-9\n", ["line 2", "every reading of test a is below zero"]),
-    ("volume beyond a pin", PIN_ON_DISC + "a,1e6,1,100,5.0\n", ["5.0", "at most 0.0001"]),
+    ("volume beyond a pin", PIN_ON_DISC + "a,1e6,1,100,5.0\n", ["5.0", "up to 100 cm^3"]),
+    ("pressure beyond any material", PIN_ON_DISC + "a,1e300,1,100,1e-9\n",
+     ["column pressure_Pa: 1e+300", "10 GPa"]),
+    ("velocity of a glacier", PIN_ON_DISC + "a,1e6,1e-300,100,1e-9\n",
+     ["column velocity_m_s: 1e-300", "0.1 um/s"]),
+    ("distance beyond the moon", PIN_ON_DISC + "a,1e6,1,1e300,1e-9\n",
+     ["column sliding_distance_m: 1e+300", "100,000 km"]),
     ("rate beyond severe wear", "test_id,normal_load_N,sliding_distance_m,"
-     "specific_wear_rate_m3_N_m\na,10,100,1e-6\n", ["specific_wear_rate_m3_N_m", "1e-09"]),
+     "specific_wear_rate_m3_N_m\na,10,100,1e-6\n", ["specific_wear_rate_m3_N_m", "1e3 mm^3/(N m)"]),
     ("all-negative profile", "cycles,angle_deg,wear_depth_m\n1000,0,-1e-6\n1000,90,-2e-6\n"
      "1000,180,-3e-6\n", ["column wear_depth_m: -1e-06", "check the sign"]),
     ("all-negative growth", "cycles,max_wear_depth_m\n1000,-1e-6\n2000,-2e-6\n",
@@ -112,3 +118,14 @@ def test_negative_depths_within_the_noise_are_kept():
                         "1000,0,-1e-6\n1000,90,5e-6\n1000,180,1e-6\n")
         data = depths(path)
         assert any("below zero" in note for note in data.notes)
+
+
+def test_measured_cycles_that_would_make_endless_forward_runs_are_refused(tmp_path, capsys):
+    path = tmp_path / "profiles.csv"
+    path.write_text("cycles,angle_deg,wear_depth_m\n" + "".join(
+        f"{cycles},{angle},{depth}\n" for cycles, depth in ((1000, 1e-7), (10**14, 1e-6))
+        for angle in (0, 90, 180)))
+    assert main(["diagnose", str(path), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()[-1]
+    assert err.startswith(f"fewear: error: {path}: the last measured cycle count "
+                          "100,000,000,000,000") and "at most 10,000" in err, err
