@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 import time
 
 from fewear.errors import FewearInputError
@@ -66,6 +67,11 @@ def main(args: argparse.Namespace) -> int:
     config = load_config(args.config, CONFIG_SECTIONS)
     problem = contact_problem_from_config(config)
     hertz = hertz_reference(problem, math.hypot(*force_N))
+    if comm.rank == 0:
+        from fewear.io.limits import mesh_size
+
+        print(f"fewear contact: meshing the bushing (about {mesh_size(config)[1]:,} "
+              "quadrilaterals) and solving the contact", file=sys.stderr, flush=True)
     with staged_output(args.out, comm) as stage:
         solver, result, timings_s = _solve(problem, force_N, rotation_rad, args.friction, comm)
         _write_outputs(stage, solver, result, hertz, config, timings_s, rotation_rad,
