@@ -21,7 +21,8 @@ def contents(folder):
             for path in sorted(folder.rglob("*")) if path.is_file()}
 
 
-@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM], ids=["ctrl-c", "sigterm"])
+@pytest.mark.parametrize("signum", [pytest.param(signal.SIGINT, marks=pytest.mark.slow),
+                                    signal.SIGTERM], ids=["ctrl-c", "sigterm"])
 def test_an_interrupted_run_says_what_it_kept_and_leaves_no_staging_folder(tmp_path, signum):
     config = write_config(tmp_path)
     config.write_text(config.read_text().replace("total_cycles = 4000", "total_cycles = 8000"))

@@ -117,17 +117,23 @@ def _integrator(config: dict) -> str:
 def mesh_size(config: dict) -> tuple[int, int] | None:
     """(elements around the bore before rounding, quadrilaterals) of the config's [mesh] on its
     [bushing] bore, None without them (or with values their own checks refuse)."""
+    from fewear.mesh.geometry import MeshSettings
+
     mesh, bushing = config.get("mesh"), config.get("bushing")
     if mesh is None or bushing is None:
         return None
-    size, radius = mesh["bore_element_size_m"], bushing["inner_radius_m"]
-    if not (size > 0.0 and radius > 0.0 and math.isfinite(size) and math.isfinite(radius)):
+    radius = bushing["inner_radius_m"]
+    try:
+        settings = MeshSettings(mesh["bore_element_size_m"], mesh["radial_element_count"],
+                                mesh["radial_grading_ratio"])
+    except FewearInputError:
+        return None  # the stage's own check names it
+    if not (radius > 0.0 and math.isfinite(radius)):
         return None
-    around = 2.0 * math.pi * radius / size
-    if around > 1e12:
-        return int(1e12), int(1e12) * max(mesh["radial_element_count"], 1)
-    around = math.ceil(around - 1e-9)
-    return around, 4 * math.ceil(around / 4) * max(mesh["radial_element_count"], 1)
+    if 2.0 * math.pi * radius / settings.bore_element_size_m > 1e12:
+        return int(1e12), int(1e12) * settings.radial_element_count
+    around = settings.elements_around(radius)
+    return around, settings.circumferential_element_count(radius) * settings.radial_element_count
 
 
 def condensation_estimate_s(cells: int) -> float:
