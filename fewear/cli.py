@@ -118,6 +118,9 @@ def print_default_config(args: argparse.Namespace) -> int:
     try:
         with open(args.out, "x") as handle:
             handle.write(text)
+    except FileExistsError:
+        raise FewearInputError(f"cannot write {args.out}: the file exists; `fewear config --out` "
+                               "never overwrites a file: remove it or give another name") from None
     except OSError as exc:
         raise FewearInputError(f"cannot write {args.out}: {exc.strerror}") from None
     return 0

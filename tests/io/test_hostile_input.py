@@ -194,3 +194,34 @@ def test_a_mechanism_the_integrator_cannot_carry_is_an_input_error(tmp_path, cap
     assert_one_error_line(2, capsys.readouterr().err, f"config {path}",
                           "cannot integrate this mechanism", "min_step_s")
     assert not (tmp_path / "out").exists()
+
+
+def test_an_interruption_while_outputs_move_in_waits_until_all_are_in(tmp_path, monkeypatch):
+    """All or nothing also against Ctrl-C: the signal that arrives while the staged files move
+    into the output folder is delivered after the last one."""
+    import os
+    import signal
+
+    from fewear.io import output
+
+    moved = []
+    original = output.Path.replace
+
+    def replace(self, target):
+        if not moved:
+            os.kill(os.getpid(), signal.SIGINT)  # held: no KeyboardInterrupt here
+        moved.append(self.name)
+        return original(self, target)
+
+    import threading
+    import time
+
+    # another thread that may take the signal (as in a full test session): it must still wait
+    threading.Thread(target=time.sleep, args=(1.0,), daemon=True).start()
+    monkeypatch.setattr(output.Path, "replace", replace)
+    with pytest.raises(KeyboardInterrupt):
+        with output.staged_output(tmp_path / "out") as stage:
+            for name in ("a.csv", "b.csv", "c.csv"):
+                (stage / name).write_text(name)
+    assert sorted(path.name for path in (tmp_path / "out").iterdir()) == ["a.csv", "b.csv",
+                                                                          "c.csv"]
