@@ -89,16 +89,21 @@ def config_text(density_kg_m3: float, start_angle_deg: float, changes: dict) -> 
 
 
 def run_members(name: str, density_kg_m3: float, changes: dict) -> list[Path]:
-    """The members' run folders of one study case, running those not complete yet (resuming
-    one that was interrupted)."""
+    """The members' run folders of one study case: a complete run of the same config is read,
+    an interrupted one resumed, any other replaced (`--overwrite`)."""
     folders = []
     for member in range(MEMBERS):
         folder = OUT / f"{name}-member{member}"
-        if not (folder / "summary.json").exists():
-            config = OUT / f"{name}-member{member}.toml"
-            config.write_text(config_text(density_kg_m3, float(member), changes))
-            resume = ["--resume"] if (folder / "fewear-checkpoint").is_dir() else []
-            assert main(["run", "--config", str(config), "--out", str(folder), *resume]) == 0
+        config = OUT / f"{name}-member{member}.toml"
+        text = config_text(density_kg_m3, float(member), changes)
+        same = config.exists() and config.read_text() == text
+        if not (same and (folder / "summary.json").exists()):
+            config.write_text(text)
+            if same and (folder / "fewear-checkpoint").is_dir():
+                how = ["--resume"]
+            else:
+                how = ["--overwrite"] if folder.exists() else []
+            assert main(["run", "--config", str(config), "--out", str(folder), *how]) == 0
         folders.append(folder)
     return folders
 

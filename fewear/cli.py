@@ -8,12 +8,21 @@ imported lazily so that, e.g., ``fewear dynamics`` never imports DOLFINx.
 from __future__ import annotations
 
 import argparse
+import errno
 import importlib
 import logging
 import os
+import signal
 import sys
 
-from fewear.errors import FewearInputError
+from fewear.errors import (
+    FewearInputError,
+    Terminated,
+    has_interrupt_note,
+    interrupt_note,
+    one_line,
+    set_interrupt_note,
+)
 
 # subcommand -> "module:function" that takes the parsed arguments and returns an exit status
 HANDLERS = {
@@ -26,12 +35,22 @@ HANDLERS = {
 }
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with the edge's one-line errors: ``fewear: error: <what>; see <command> --help``
+    (exit status 2) instead of the usage block."""
+
+    def error(self, message: str):
+        _report("error", f"{self.prog}: {message}; see `{self.prog} --help`", 2)
+        raise SystemExit(2)
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="fewear",
         description="Finite-element wear workbench for revolute clearance joints.",
     )
-    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND",
+                                parser_class=_Parser)
 
     config = sub.add_parser("config", help="print the embedded default config (TOML)")
     config.add_argument("--out", metavar="FILE.toml", help="write it to FILE instead of stdout")
@@ -67,6 +86,10 @@ def build_parser() -> argparse.ArgumentParser:
     _add_config_and_out(run, "out/run")
     run.add_argument("--resume", action="store_true",
                      help="continue the run whose checkpoint is in --out (same config)")
+    run.add_argument("--overwrite", action="store_true",
+                     help="replace an earlier run (checkpoint and outputs) in --out; without it "
+                          "a run refuses a folder that holds one. The earlier run is restored "
+                          "if the new one fails")
     run.add_argument("--jobs", type=int, default=None, metavar="N",
                      help="rod models run side by side in worker processes (default: one per "
                           "rod model, at most the CPU cores; 1: one after the other in this "
@@ -95,6 +118,9 @@ def print_default_config(args: argparse.Namespace) -> int:
     try:
         with open(args.out, "x") as handle:
             handle.write(text)
+    except FileExistsError:
+        raise FewearInputError(f"cannot write {args.out}: the file exists; `fewear config --out` "
+                               "never overwrites a file: remove it or give another name") from None
     except OSError as exc:
         raise FewearInputError(f"cannot write {args.out}: {exc.strerror}") from None
     return 0
@@ -119,16 +145,90 @@ def quiet_compiler_logs() -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """The command line's edge: every failure a user can cause ends here as one line on stderr.
+
+    - bad input (:class:`FewearInputError`): ``fewear: error: ...``, exit status 2;
+    - a file or folder the OS refuses (permissions, a full disk, ...): the same, naming the path;
+    - Ctrl-C (exit status 130) or SIGTERM / SIGHUP (143): ``fewear: interrupted: ...`` saying what
+      was kept and how to go on (:func:`fewear.errors.set_interrupt_note`); the command's staging
+      folder is removed on the way out, as for any failure.
+    """
     args = build_parser().parse_args(argv)
     quiet_compiler_logs()
     module_name, function_name = HANDLERS[args.command].split(":")
+    set_interrupt_note(None)
+    previous = _terminate_as_exception()
     try:
         handler = getattr(importlib.import_module(module_name), function_name)
         return int(handler(args) or 0)
     except FewearInputError as exc:
-        if _is_root_rank():
-            print(f"fewear: error: {exc}", file=sys.stderr)
-        return 2
+        message = naming_the_config(one_line(str(exc)), getattr(args, "config", None))
+        return _report("error", message, 2)
+    except OSError as exc:
+        kept = interrupt_note() if has_interrupt_note() else ""
+        return _report("error", os_error_message(exc) + (f"; {kept}" if kept else ""), 2)
+    except (OverflowError, FloatingPointError) as exc:
+        if getattr(args, "config", None) is None:
+            raise  # the embedded defaults overflowed: a bug, not an input
+        return _report("error", f"config {args.config}: a value is beyond what the computation "
+                       f"can carry ({exc}); compare your values with `fewear config`", 2)
+    except (KeyboardInterrupt, Terminated) as exc:
+        what = "Ctrl-C" if isinstance(exc, KeyboardInterrupt) else str(exc) or "SIGTERM"
+        return _report("interrupted", f"{what}: {interrupt_note()}",
+                       130 if isinstance(exc, KeyboardInterrupt) else 143)
+    finally:
+        set_interrupt_note(None)
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+
+
+def naming_the_config(message: str, path: str | None) -> str:
+    """``message`` prefixed with ``config PATH:`` when it is about a value of the user's config
+    (``key = value`` of a config key) and does not name the file yet: the stages' checks name the
+    section and key, the edge adds the file."""
+    import re
+
+    from fewear.io.config import default_config
+
+    if path is None or str(path) in message:
+        return message
+    keys = {key for table in default_config().values() for key in table}
+    named = re.findall(r"([A-Za-z_][A-Za-z0-9_]*)\]? =", message)
+    return f"config {path}: {message}" if any(key in keys for key in named) else message
+
+
+def _report(kind: str, message: str, status: int) -> int:
+    if _is_root_rank():
+        print(f"fewear: {kind}: {one_line(message)}", file=sys.stderr, flush=True)
+    return status
+
+
+def os_error_message(exc: OSError) -> str:
+    """An OS error (permission, full disk, missing file, ...) as a sentence naming the path."""
+    reason = exc.strerror or str(exc) or type(exc).__name__
+    if exc.errno == errno.ENOSPC:
+        reason += " (free some space, or write to another --out)"
+    elif exc.errno in (errno.EACCES, errno.EPERM, errno.EROFS):
+        reason += " (choose a folder you may write to, or change its permissions)"
+    paths = [str(path) for path in (exc.filename, exc.filename2) if path]
+    return f"{' -> '.join(paths)}: {reason}" if paths else reason
+
+
+def _terminate_as_exception() -> dict:
+    """SIGTERM and SIGHUP raise :class:`Terminated` (so the command unwinds and cleans up, like
+    Ctrl-C); the previous handlers, to restore. Only the main thread may set handlers."""
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        return {}
+
+    def terminate(signum, frame):
+        raise Terminated(signal.Signals(signum).name)
+
+    previous = {}
+    for signum in (signal.SIGTERM, signal.SIGHUP):
+        previous[signum] = signal.signal(signum, terminate)
+    return previous
 
 
 if __name__ == "__main__":

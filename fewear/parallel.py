@@ -35,7 +35,7 @@ def worker_pool(processes: int):
     main_module = sys.modules["__main__"]
     sys.modules["__main__"] = types.ModuleType("__main__")
     try:
-        with multiprocessing.get_context("spawn").Pool(processes) as pool:
+        with multiprocessing.get_context("spawn").Pool(processes, _quiet_worker) as pool:
             yield pool
     finally:
         sys.modules["__main__"] = main_module
@@ -44,3 +44,12 @@ def worker_pool(processes: int):
                 os.environ.pop(name, None)
             else:
                 os.environ[name] = value
+
+
+def _quiet_worker() -> None:
+    """A worker ignores Ctrl-C (the terminal sends it to the whole process group): the parent
+    reports the interruption once and terminates the workers when it leaves the pool, instead of
+    every worker printing a ``KeyboardInterrupt`` traceback."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)

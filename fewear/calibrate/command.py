@@ -7,6 +7,7 @@ DIR/extended_wear.toml, all or nothing.
 from __future__ import annotations
 
 import argparse
+import sys
 
 from fewear.calibrate.diagnose import DiagnoseSettings, diagnose, readings_from_measured
 from fewear.calibrate.measured import read_measured_wear
@@ -31,7 +32,11 @@ def main(args: argparse.Namespace) -> int:
     config = load_config(args.config, sections=["diagnose"])
     settings = DiagnoseSettings.from_config(config["diagnose"])
     data = read_measured_wear(args.measured)
-    diagnosis = diagnose(readings_from_measured(data), settings)
+    readings = readings_from_measured(data)
+    print(f"fewear diagnose: {len(data.test_names())} tests, {data.test_id.size} readings from "
+          f"{args.measured}: fitting plain Archard and the causes "
+          f"({', '.join(settings.candidates)})", file=sys.stderr, flush=True)
+    diagnosis = diagnose(readings, settings)
     with staged_output(args.out) as stage:
         write_outputs(diagnosis, stage)
     summary = diagnosis.summary

@@ -228,8 +228,9 @@ def readings_from_columns(
     if velocity is not None:
         keep &= np.isfinite(velocity) & (velocity > 0.0)
     if not np.all(keep):
-        notes.append(f"{int(np.sum(~keep))} reading(s) with zero sliding distance or zero wear "
-                     "left out (no information on the rate in a multiplicative model)")
+        notes.append(f"{int(np.sum(~keep))} reading(s) with zero sliding distance or with zero or "
+                     "negative wear (the scatter of the readings) left out of the fits (no "
+                     "information on the rate in a multiplicative model)")
     kept_tests = np.unique(index[keep])
     remap = -np.ones(len(labels), int)
     remap[kept_tests] = np.arange(len(kept_tests))

@@ -7,6 +7,7 @@ nothing.
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -24,6 +25,7 @@ def main(args) -> int:
     config = load_config(args.config, [*run_sections(), "joint_diagnose"])
     settings = JointDiagnoseSettings.from_config(config.pop("joint_diagnose"))
     data = read_joint_measurements(args.measured)
+    print(f"fewear diagnose: {believed_model(args.config, config)}", file=sys.stderr, flush=True)
     diagnosis = diagnose_joint(data, config, settings)
     with staged_output(args.out) as stage:
         write_joint_outputs(diagnosis, stage)
@@ -36,6 +38,24 @@ def main(args) -> int:
     for sentence in s["unexplained"]:
         print(f"fewear diagnose: unexplained: {sentence}")
     return 0
+
+
+def believed_model(path, config: dict) -> str:
+    """Which model the diagnosis takes as believed, its size, and (without ``--config``) that the
+    embedded default is the full paper case, minutes per run."""
+    from fewear.io.limits import mesh_size
+
+    rod = config["wear_loop"]["rod_models"][0]
+    cells = mesh_size(config)[1]
+    size = (f"{rod} rod, a mesh of about {cells:,} quadrilaterals, "
+            f"{config['wear_loop']['load_steps_per_cycle']} load steps per cycle")
+    if path is not None:
+        return f"believed model: {path} ({size}); forward runs follow, each reports its progress"
+    return (f"no --config: the believed model is the embedded default config, the paper's case "
+            f"({size}): each forward run of it takes minutes, and a diagnosis makes dozens; "
+            "progress follows. For a quicker diagnosis give your model as --config "
+            "(`fewear config` prints the default to start from; a coarser [mesh] and fewer "
+            "[wear_loop] load_steps_per_cycle run much faster)")
 
 
 def config_differences(config: dict) -> str:

@@ -806,7 +806,9 @@ def diagnose_joint(data: JointMeasurements, config: dict,
     rod = config["wear_loop"]["rod_models"][0]
     horizon = int(math.ceil(settings.max_k_scale * obs.cycles.max()))
     # the believed run goes further: running-in maps N to up to r N cycles of it
-    base = simulate_wear(model_config(config, rod, RUNNING_IN_REACH * horizon), "believed model")
+    believed_config = model_config(config, rod, RUNNING_IN_REACH * horizon)
+    _check_run_length(data, obs, believed_config)
+    base = simulate_wear(believed_config, "believed model")
     believed = Candidate("baseline", (base,))
     offset = _offset_start(obs, believed, settings.max_offset_deg)
     phi = settings.max_offset_deg
@@ -831,6 +833,26 @@ def diagnose_joint(data: JointMeasurements, config: dict,
                        confounded, untestable, final_fit, resolution, not_confirmed)
     return JointDiagnosis(summary, extended, obs, obs.depth_m - baseline.residuals_m,
                           extended_depth)
+
+
+def _check_run_length(data, obs, believed_config: dict) -> None:
+    """The forward runs go a few times the last measured cycle count: a count that makes them
+    longer than a run may be (:data:`fewear.io.limits.MAX_WEAR_BLOCKS`) is refused before any
+    run, naming the count, the blocks it would take and what would do."""
+    from fewear.io.limits import MAX_WEAR_BLOCKS, SECONDS_PER_BLOCK, duration, wear_blocks
+
+    loop = believed_config["wear_loop"]
+    blocks = wear_blocks(loop)
+    if blocks > MAX_WEAR_BLOCKS:
+        key = ("extrapolation_factor" if loop["extrapolation"] == "fixed"
+               else "max_extrapolation_factor")
+        raise FewearInputError(
+            f"{', '.join(data.sources) or 'the measured data'}: the last measured cycle count "
+            f"{int(obs.cycles.max()):,} makes each forward run of the believed model go to "
+            f"{loop['total_cycles']:,} cycles, at least {blocks:,} wear blocks (about "
+            f"{duration(blocks * SECONDS_PER_BLOCK)} per run); expected at most "
+            f"{MAX_WEAR_BLOCKS:,}: check the cycles column (crank revolutions), or raise "
+            f"[wear_loop] {key} in --config")
 
 
 def _refinement_runs(config: dict, run: Callable[[list], list[WearHistory]]) -> RunAt:

@@ -23,6 +23,8 @@ from fewear.errors import FewearInputError
 from fewear.mesh.profile import periodic_linear
 
 _RUNS: dict[str, WearHistory] = {}
+PROGRESS_INTERVAL_S = 10.0
+"""A long forward run reports its progress on stderr at most this often."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -99,8 +101,9 @@ def simulate_wear(config: dict, label: str = "", comm=None) -> WearHistory:
     bushing = new_bushing(inputs, comm)
     case = new_case(bushing)
     stopped = ""
+    progress = _BlockProgress(label or rod, inputs.loop.total_cycles, comm.rank == 0)
     try:
-        predict_case(rod, inputs, bushing, case, lambda case: None)
+        predict_case(rod, inputs, bushing, case, progress)
     except FewearInputError as exc:
         stopped = str(exc)
     if not case.records:
@@ -117,6 +120,23 @@ def simulate_wear(config: dict, label: str = "", comm=None) -> WearHistory:
               + (" (stopped early)" if stopped else ""), file=sys.stderr, flush=True)
     _RUNS[key] = history
     return history
+
+
+class _BlockProgress:
+    """A forward run's progress on stderr: a line every :data:`PROGRESS_INTERVAL_S` at most (the
+    candidate runs of a diagnosis are many; a line per block would drown the terminal)."""
+
+    def __init__(self, label: str, total_cycles: int, show: bool):
+        self.label, self.total, self.show = label, total_cycles, show
+        self.start = self.last = time.perf_counter()
+
+    def __call__(self, case) -> None:
+        now = time.perf_counter()
+        if self.show and now - self.last >= PROGRESS_INTERVAL_S:
+            self.last = now
+            print(f"fewear diagnose: forward run {self.label}: {case.state.cycles:,}/"
+                  f"{self.total:,} cycles, block {case.state.blocks}, {now - self.start:.0f} s",
+                  file=sys.stderr, flush=True)
 
 
 def simulate_wears(requests: list[tuple[dict, str]]) -> list[WearHistory]:

@@ -12,7 +12,8 @@ in the column names, ``#`` comment lines allowed anywhere, one row per reading:
   [-360, 720); it is normalised to [0, 360) and sorted within each cycle count, and an angle that
   appears twice within one cycle count (after normalisation) is an error. A trace may cover the
   full circle or an arc of it, at any sampling (e.g. every 2-5 degrees); at least 3 angles.
-  Depths slightly below zero (instrument noise) are data: kept, and counted in the notes.
+  Depths slightly below zero (instrument noise) are data: kept, and counted in the notes; a depth
+  further below zero than the file's deepest wear is above it (or 0.1 um) is an error.
 - maximum-depth growth (``max_wear``)::
 
       cycles, max_wear_depth_m
@@ -48,7 +49,6 @@ column), a repeated angle or cycle count, a time that does not increase.
 
 from __future__ import annotations
 
-import csv
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -56,8 +56,9 @@ from pathlib import Path
 
 import numpy as np
 
-from fewear.calibrate.measured import _numeric_column, _read_rows
+from fewear.calibrate.measured import _numeric_column, _read_rows, csv_cells
 from fewear.errors import FewearInputError
+from fewear.io.text import read_text_file
 
 KIND_COLUMNS = {
     "profiles": ("cycles", "angle_deg", "wear_depth_m"),
@@ -78,6 +79,8 @@ MAX_CYCLES = 1e15
 """Above this a cycle count no longer fits the reader's integers (and no test runs so long)."""
 IMPLAUSIBLE_DEPTH_m = 1e-2
 """A wear depth of this size (1 cm, the whole bore radius of a 10 mm bushing) is a unit mistake."""
+NOISE_FLOOR_m = 1e-7
+"""Depths down to -0.1 um are noise even in a file without wear (a profilometer's resolution)."""
 
 UNIT_HINTS = {
     "max_wear_depth": "max_wear_depth_m (1 um = 1e-6 m, 1 mm = 1e-3 m)",
@@ -267,16 +270,10 @@ def _comment_lines(comment: str) -> list[str]:
 
 def _read_header(path: Path) -> tuple[int, list[str]]:
     """The line number and column names of the first line that is not blank or a comment."""
-    try:
-        with open(path, encoding="utf-8-sig") as stream:
-            for number, line in enumerate(stream, start=1):
-                stripped = line.strip()
-                if stripped and not stripped.startswith("#"):
-                    return number, [cell.strip() for cell in next(csv.reader([stripped]))]
-    except OSError as exc:
-        raise FewearInputError(f"cannot read measured data {path}: {exc.strerror}") from None
-    except UnicodeDecodeError:
-        raise FewearInputError(f"{path}: not a text (UTF-8) CSV file") from None
+    for number, line in enumerate(read_text_file(path, "measured data").splitlines(), start=1):
+        stripped = line.strip()
+        if stripped and not stripped.startswith("#"):
+            return number, [cell.strip() for cell in csv_cells(path, number, stripped)]
     raise FewearInputError(f"{path}: no header line (column names) found")
 
 
@@ -375,6 +372,20 @@ def _check_depths(name: str, depth: np.ndarray, where: Callable[[int], str]) -> 
             f"depth in metres: convert to metres (1 um = 1e-6 m, 1 mm = 1e-3 m)")
 
 
+def _check_noise(name: str, depth: np.ndarray, where: Callable[[int], str]) -> None:
+    """Depths below zero are instrument noise only while no deeper than the file's deepest wear
+    (or :data:`NOISE_FLOOR_m`): a file of negative depths measured no wear, or has its sign
+    flipped."""
+    floor = max(float(np.max(depth)), NOISE_FLOOR_m)
+    bad = np.flatnonzero(depth < -floor)
+    if bad.size:
+        raise FewearInputError(
+            f"{where(bad[0])}, column {name}: {depth[bad[0]]!r} m; the file's deepest wear is "
+            f"{max(float(np.max(depth)), 0.0):.3g} m, so depths below zero are instrument noise "
+            f"only down to -{floor:.3g} m: a wear depth is the radial growth of the bore (>= 0, "
+            "noise aside), check the sign")
+
+
 def _negative_note(source: str, name: str, depth: np.ndarray) -> list[str]:
     negative = int(np.sum(depth < 0.0))
     if not negative:
@@ -393,6 +404,7 @@ def _profiles_from(source, kind, columns, where) -> tuple[list[MeasuredProfile],
             f"{where(bad[0])}, column angle_deg: {angle_deg[bad[0]]!r}; expected an angle in "
             f"degrees in [{low:g}, {high:g})")
     _check_depths("wear_depth_m", depth, where)
+    _check_noise("wear_depth_m", depth, where)
     normalised = np.mod(angle_deg, 360.0)
     normalised[normalised >= 360.0] = 0.0  # mod of a tiny negative angle rounds up to 360
     profiles, notes = [], []
@@ -447,6 +459,7 @@ def _max_wear_from(source, kind, columns, where) -> tuple[tuple, list[str]]:
     cycles = _cycles_column(columns["cycles"], where)
     depth = columns["max_wear_depth_m"]
     _check_depths("max_wear_depth_m", depth, where)
+    _check_noise("max_wear_depth_m", depth, where)
     order = np.argsort(cycles, kind="stable")
     same = np.flatnonzero(np.diff(cycles[order]) == 0)
     if same.size:

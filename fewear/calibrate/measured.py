@@ -47,6 +47,7 @@ from pathlib import Path
 import numpy as np
 
 from fewear.errors import FewearInputError
+from fewear.io.text import read_text_file
 
 DATA_KINDS = ("cumulative_volume", "mass_loss", "specific_wear_rate", "wear_rate")
 VARIABLES = ("pressure_Pa", "velocity_m_s", "sliding_distance_m", "wear_volume_m3", "time_s",
@@ -63,6 +64,22 @@ POSITIVE = {"pressure_Pa", "velocity_m_s", "normal_load_N", "density_kg_m3"}
 CUMULATIVE = ("sliding_distance_m", "time_s")
 WEAR_AMOUNTS = ("wear_volume_m3", "mass_loss_kg")
 ABSOLUTE_ZERO_C = -273.15
+PLAUSIBLE_RANGE = {
+    "wear_volume_m3": (0.0, 1e-4, "|V| up to 100 cm^3, more than a whole pin"),
+    "mass_loss_kg": (0.0, 1.0, "|m| up to 1 kg, more than a whole pin"),
+    "specific_wear_rate_m3_N_m": (0.0, 1e-9, "up to 1e3 mm^3/(N m), beyond the severest wear"),
+    "wear_rate_m3_m": (0.0, 1e-6, "up to 1 cm^3 per metre of sliding"),
+    "pressure_Pa": (1e2, 1e10, "100 Pa to 10 GPa, beyond the hardest material"),
+    "velocity_m_s": (1e-7, 1e3, "0.1 um/s to 1 km/s"),
+    "normal_load_N": (1e-6, 1e6, "1 uN (a nanotribometer) to 1 MN"),
+    "sliding_distance_m": (0.0, 1e8, "up to 100,000 km"),
+    "time_s": (0.0, 1e9, "up to about 30 years"),
+    "friction_coefficient": (0.0, 10.0, "0 to 10"),
+    "temperature_C": (-273.15, 3000.0, "up to 3000 C, above any metal's melting point"),
+    "density_kg_m3": (100.0, 3e4, "100 to 30,000 kg/m^3, osmium's is 22,590"),
+}
+"""What a tribometer can report (beyond it: a unit mistake): the range of each column's
+magnitude and what it means."""
 
 ALIASES = {"sliding_speed_m_s": "velocity_m_s", "speed_m_s": "velocity_m_s",
            "contact_pressure_Pa": "pressure_Pa", "load_N": "normal_load_N",
@@ -226,6 +243,7 @@ def read_measured_wear(path: str | Path, *, density_kg_m3: float | None = None) 
         for name in CUMULATIVE:
             if name in columns:
                 _check_cumulative(name, columns[name], tests, test_id, where)
+        _check_not_all_negative(wear_column, columns[wear_column], tests, test_id, where)
         notes += _dips(columns[wear_column], tests, wear_column)
     if data_kind == "mass_loss":
         _mass_loss_to_volume(source, header_line, columns, density_kg_m3, notes)
@@ -322,16 +340,13 @@ def _constant_in_test(data, name, values, index, test_name) -> float:
 
 def _read_rows(path: Path) -> tuple[int, list[str], list[tuple[int, list[str]]]]:
     """The header's line number, its column names, and the (line number, cells) of data rows."""
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except OSError as exc:
-        raise FewearInputError(f"cannot read measured data {path}: {exc.strerror}") from None
+    text = read_text_file(path, "measured data")
     header_line, header, rows = 0, None, []
     for line_number, line in enumerate(text.splitlines(), start=1):
         stripped = line.strip()
         if not stripped or stripped.startswith("#"):
             continue
-        cells = next(csv.reader([line]))
+        cells = csv_cells(path, line_number, line)
         if header is None:
             header_line, header = line_number, [cell.strip() for cell in cells]
             continue
@@ -346,6 +361,20 @@ def _read_rows(path: Path) -> tuple[int, list[str], list[tuple[int, list[str]]]]
     if not rows:
         raise FewearInputError(f"{path}: no data rows after the header (line {header_line})")
     return header_line, header, rows
+
+
+def csv_cells(path, line_number: int, line: str) -> list[str]:
+    """The cells of one CSV line; a line the csv module refuses (a cell longer than its field
+    limit, a stray quote) is an input error naming the file and line."""
+    try:
+        return next(csv.reader([line]))
+    except csv.Error as exc:
+        limit = csv.field_size_limit()
+        reason = (f"a cell longer than {limit:,} characters" if "field limit" in str(exc)
+                  else str(exc))
+        raise FewearInputError(
+            f"{path} line {line_number}: {reason}; expected comma-separated cells (numbers, "
+            f"test ids, names) of at most {limit:,} characters each") from None
 
 
 def _resolve_aliases(header: list[str]) -> tuple[list[str], list[str]]:
@@ -406,6 +435,17 @@ def _check_values(name: str, values: np.ndarray, where: Callable[[int], str]) ->
     else:
         bad, allowed = ~(values >= 0.0), "a non-negative number"
     bad |= ~np.isfinite(values)
+    if name in PLAUSIBLE_RANGE:
+        low, high, meaning = PLAUSIBLE_RANGE[name]
+        size = np.abs(values) if name in WEAR_AMOUNTS else values
+        beyond = ((size > high) | ((size < low) & (size != 0.0))) & ~bad
+        if np.any(beyond):
+            index = int(np.flatnonzero(beyond)[0])
+            hint = next((hint for prefix, hint in UNIT_HINTS.items() if name.startswith(prefix)),
+                        name)
+            raise FewearInputError(
+                f"{where(index)}, column {name}: {values[index]!r} is beyond what a pin-on-disc "
+                f"test gives ({meaning}); SI units: {hint}")
     if np.any(bad):
         index = int(np.flatnonzero(bad)[0])
         raise FewearInputError(
@@ -429,6 +469,18 @@ def _check_cumulative(name, values, tests, test_id, where) -> None:
                 f"{values[previous]!r} of the previous reading of test {test_id[current]} "
                 f"({where(previous)}); readings are cumulative and must not decrease"
             )
+
+
+def _check_not_all_negative(name, values, tests, test_id, where) -> None:
+    """A reading may dip below zero by the scatter of a weighing or a profile, but a test whose
+    every reading is below zero measured no wear (a sign convention, a mass gain): an error."""
+    for index in tests:
+        if np.all(values[index] < 0.0):
+            raise FewearInputError(
+                f"{where(index[0])}, column {name}: every reading of test {test_id[index[0]]} is "
+                f"below zero ({values[index].min()!r} to {values[index].max()!r}); wear is "
+                "measured as a loss (>= 0; a reading may dip below zero by its scatter, not "
+                "stay there): check the sign (before minus after)")
 
 
 def _dips(values, tests, name) -> list[str]:

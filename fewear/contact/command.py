@@ -19,9 +19,11 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 import time
 
 from fewear.errors import FewearInputError
+from fewear.io.limits import MIN_FORCE_N
 
 
 def checked_force_N(force: list[float] | tuple[float, float]) -> tuple[float, float]:
@@ -31,6 +33,12 @@ def checked_force_N(force: list[float] | tuple[float, float]) -> tuple[float, fl
         if not math.isfinite(value):
             raise FewearInputError(
                 f"--force {name} = {value!r} N: expected a finite number of newtons")
+    magnitude = math.hypot(force_x, force_y)
+    if 0.0 < magnitude < MIN_FORCE_N:
+        raise FewearInputError(
+            f"--force {force_x!r} {force_y!r}: |F| = {magnitude:.3g} N is below {MIN_FORCE_N:g} N, "
+            "a load whose contact the model cannot resolve (the pin's approach is below the "
+            f"solver's tolerance); give 0 0 for no load, or at least {MIN_FORCE_N:g} N")
     return force_x, force_y
 
 
@@ -59,6 +67,11 @@ def main(args: argparse.Namespace) -> int:
     config = load_config(args.config, CONFIG_SECTIONS)
     problem = contact_problem_from_config(config)
     hertz = hertz_reference(problem, math.hypot(*force_N))
+    if comm.rank == 0:
+        from fewear.io.limits import mesh_size
+
+        print(f"fewear contact: meshing the bushing (about {mesh_size(config)[1]:,} "
+              "quadrilaterals) and solving the contact", file=sys.stderr, flush=True)
     with staged_output(args.out, comm) as stage:
         solver, result, timings_s = _solve(problem, force_N, rotation_rad, args.friction, comm)
         _write_outputs(stage, solver, result, hertz, config, timings_s, rotation_rad,

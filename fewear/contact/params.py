@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from fewear.errors import require, require_finite_positive
+from fewear.errors import require, require_finite_positive, require_poisson_ratio
 from fewear.mesh.geometry import BushingGeometry, MeshSettings
 
 
@@ -24,11 +24,7 @@ class BushingMaterial:
 
     def __post_init__(self) -> None:
         require_finite_positive("bushing youngs_modulus_Pa", self.youngs_modulus_Pa)
-        ν = self.poisson_ratio
-        require(
-            isinstance(ν, (int, float)) and math.isfinite(ν) and -1.0 < ν < 0.5,
-            f"bushing poisson_ratio = {ν!r}: must lie in (-1, 0.5)",
-        )
+        require_poisson_ratio("bushing poisson_ratio", self.poisson_ratio)
 
     @property
     def plane_strain_modulus_Pa(self) -> float:

@@ -61,17 +61,20 @@ def load_config(path: str | Path | None, sections: Iterable[str]) -> Config:
     """
     sections = list(sections)
     defaults = default_config()
+    from fewear.io.limits import check_limits
+
     checked = {} if path is None else check_config(read_toml(path), defaults, source=str(path))
-    return {name: {**defaults[name], **checked.get(name, {})} for name in sections}
+    config = {name: {**defaults[name], **checked.get(name, {})} for name in sections}
+    check_limits(config, "the embedded default config" if path is None else str(path))
+    return config
 
 
 def read_toml(path: str | Path) -> dict[str, Any]:
     """Parse a TOML file, turning I/O and syntax errors into input errors."""
+    from fewear.io.text import read_text_file
+
     path = Path(path)
-    try:
-        text = path.read_text()
-    except OSError as exc:
-        raise FewearInputError(f"cannot read config file {path}: {exc.strerror}") from None
+    text = read_text_file(path, "config file")
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

@@ -51,14 +51,42 @@ def staged_output(out_dir: str | Path, comm=None) -> Iterator[Path]:
                 out.rmdir()
         raise
     if rank == 0:
-        for item in staging.iterdir():
-            target = out / item.name
-            if target.is_dir() and not target.is_symlink():
-                shutil.rmtree(target)
-            item.replace(target)
-        staging.rmdir()
+        with _signals_held():  # Ctrl-C or SIGTERM waits until every file is in place
+            for item in staging.iterdir():
+                target = out / item.name
+                if target.is_dir() and not target.is_symlink():
+                    shutil.rmtree(target)
+                item.replace(target)
+            staging.rmdir()
     if comm is not None:
         comm.barrier()
+
+
+@contextmanager
+def _signals_held():
+    """Hold Ctrl-C, SIGTERM and SIGHUP while the outputs move into place, and deliver them right
+    after: an interruption then finds the folder with all of them or none. (The Python handlers
+    are swapped, not the signal mask: another thread may take a signal the main thread masks.)"""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught: list[int] = []
+    previous = {signum: signal.signal(signum, lambda signum, frame: caught.append(signum))
+                for signum in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)}
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+        if caught:
+            handler = previous[caught[0]]
+            if callable(handler):
+                handler(caught[0], None)
+            elif handler == signal.SIG_DFL:
+                signal.raise_signal(caught[0])
 
 
 def _make_staging(out: Path) -> tuple[str | None, str | None, bool]:

@@ -56,9 +56,12 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
         except RuntimeError as exc:  # the integrator's step size collapsed
             raise FewearInputError(
                 f"{rod} rod, block {state.blocks + 1} at {state.cycles:,} cycles: the dynamics "
-                f"on the worn clearance failed ({exc}). The checkpoint holds the blocks done: a "
-                "smaller [integrator] min_step_s, a larger gap_tolerance_m or a wider [wear_loop] "
-                "wear_smoothing_width_deg may get past it") from None
+                f"on the worn clearance failed ({exc}): a smaller [integrator] min_step_s, a "
+                "larger gap_tolerance_m or a wider [wear_loop] wear_smoothing_width_deg may get "
+                "past it"
+                + ("" if state.blocks else "; on the unworn clearance, a value of [mechanism], "
+                   "[clearance_joint] or [integrator] makes the mechanism too stiff, too light or "
+                   "too fast to integrate (compare with `fewear config`)")) from None
     with timed(times, "contact"):
         steps = load_steps(history, loop.load_steps_per_cycle * loop.recorded_cycles_per_block,
                            inputs.dynamics.joint.law)
@@ -69,9 +72,9 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
             raise FewearInputError(
                 f"{rod} rod, block {state.blocks + 1} at {state.cycles:,} cycles: the FE contact "
                 f"on the worn bore failed ({exc}); peak joint force "
-                f"{history.peak_contact_force_N:.0f} N. The checkpoint holds the blocks done: "
-                "a smaller [wear_loop] max_depth_increment_fraction (adaptive extrapolation) or "
-                "a wider wear_smoothing_width_deg keeps the worn bore smoother") from None
+                f"{history.peak_contact_force_N:.0f} N: a smaller [wear_loop] "
+                "max_depth_increment_fraction (adaptive extrapolation) or a wider "
+                "wear_smoothing_width_deg keeps the worn bore smoother") from None
     with timed(times, "wear"):
         per_cycle = cycle_sliding(wear, steps, loop.recorded_cycles_per_block,
                                   inputs.contact.contact.friction_coefficient,

@@ -67,6 +67,24 @@ class Checkpoint:
             np.savez(handle, **arrays)
         os.replace(temporary, self.case_path(rod))
 
+    def saved_cycles(self) -> dict:
+        """rod -> crank cycles of each case saved in the folder (read from the cases' metadata
+        only, whatever config made them; an unreadable case is left out)."""
+        found = {}
+        for path in sorted(self.path.glob("*.npz")) if self.path.is_dir() else []:
+            try:
+                with np.load(path, allow_pickle=False) as archive:
+                    found[path.stem] = int(json.loads(str(archive["meta"]))["case"]["cycles"])
+            except (*UNREADABLE, TypeError):
+                continue
+        return found
+
+    def remove_temporary_files(self) -> None:
+        """Drop the half-written ``.<rod>.<pid>.tmp`` files of a process that was killed while
+        it saved (the case files themselves are replaced atomically)."""
+        for path in self.path.glob(".*.tmp") if self.path.is_dir() else []:
+            path.unlink(missing_ok=True)
+
     def load(self, rods) -> dict:
         """The saved cases among ``rods`` (rod -> :class:`fewear.loop.progress.CaseProgress`); an
         input error when there is none, or one is unreadable or made with another config."""
@@ -80,17 +98,22 @@ class Checkpoint:
     def _load_case(self, rod: str) -> CaseProgress:
         path = self.case_path(rod)
         try:
+            if path.stat().st_size == 0:
+                raise ValueError("the file is empty (0 bytes): a write cut short")
             with np.load(path, allow_pickle=False) as archive:
                 data = {key: archive[key] for key in archive.files}
             meta = json.loads(str(data["meta"]))
+            if not isinstance(meta, dict):
+                raise ValueError("its metadata is not a table")
         except UNREADABLE as exc:
+            reason = ("not a checkpoint file (.npz)" if "pickled" in str(exc) else str(exc))
             raise FewearInputError(
-                f"--resume: checkpoint {path} is unreadable ({exc}); delete {self.path} to "
+                f"--resume: checkpoint {path} is unreadable ({reason}); delete {self.path} to "
                 "start again") from None
         if meta.get("format") != FORMAT:
             raise FewearInputError(
                 f"--resume: {path} has format {meta.get('format')!r}, expected {FORMAT!r}")
-        difference = _first_difference(meta["config"], self.config)
+        difference = _first_difference(meta.get("config"), self.config)
         if difference:
             raise FewearInputError(
                 f"--resume: checkpoint {path} was made with another config ({difference}); "

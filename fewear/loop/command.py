@@ -11,12 +11,17 @@ serial run does, so the results are the same, bit for bit.
 from __future__ import annotations
 
 import math
+import shlex
+import shutil
 import sys
+import tempfile
 import time
+from contextlib import contextmanager
+from pathlib import Path
 
-from fewear.errors import FewearInputError
+from fewear.errors import FewearInputError, Terminated, set_interrupt_note
 from fewear.loop.block import new_bushing, new_case, predict_case, restored_bushing
-from fewear.loop.checkpoint import Checkpoint
+from fewear.loop.checkpoint import FOLDER, Checkpoint
 from fewear.loop.progress import CaseProgress
 from fewear.loop.settings import run_inputs_from_config, run_sections
 from fewear.parallel import usable_cores
@@ -129,6 +134,9 @@ def main(args) -> int:
     from fewear.loop.outputs import write_run_outputs
 
     world = MPI.COMM_WORLD
+    if args.resume and getattr(args, "overwrite", False):
+        raise FewearInputError("--resume and --overwrite: choose one (--resume continues the run "
+                               "in --out, --overwrite replaces it with a new one)")
     config = load_config(args.config, run_sections())
     inputs = run_inputs_from_config(config)
     rods = list(inputs.loop.rod_models)
@@ -139,18 +147,99 @@ def main(args) -> int:
         print(f"fewear run: resuming from {store.path}: " + ", ".join(
             f"{rod} at {case.state.cycles:,} cycles" for rod, case in resumed.items()),
             file=sys.stderr, flush=True)
-    with staged_output(args.out, world) as stage:
-        if world.size > 1:
-            cases = _on_ranks(rods, config, args.out, resumed, world)
-        elif jobs > 1:
-            cases = _in_processes(rods, config, args.out, resumed, jobs)
-        else:
-            cases = run_cases(rods, config, args.out, resumed, world)
-        if world.rank == 0:
-            write_run_outputs(stage, {rod: cases[rod] for rod in rods}, inputs, config)
+    with earlier_run_kept(args, store, world):
+        set_interrupt_note(lambda: interrupt_note(args, store, rods, inputs.loop.total_cycles))
+        with staged_output(args.out, world) as stage:
+            if world.size > 1:
+                cases = _on_ranks(rods, config, args.out, resumed, world)
+            elif jobs > 1:
+                cases = _in_processes(rods, config, args.out, resumed, jobs)
+            else:
+                cases = run_cases(rods, config, args.out, resumed, world)
+            if world.rank == 0:
+                write_run_outputs(stage, {rod: cases[rod] for rod in rods}, inputs, config)
     if world.rank == 0:
         print(f"fewear run: done: {args.out}", file=sys.stderr, flush=True)
     return 0
+
+
+def resume_command(args) -> str:
+    """The command line that continues this run."""
+    config = "" if args.config is None else f" --config {shlex.quote(str(args.config))}"
+    return f"fewear run --resume{config} --out {shlex.quote(str(args.out))}"
+
+
+def interrupt_note(args, store: Checkpoint, rods, total_cycles: int) -> str:
+    """What an interrupted run kept (the rods' cycles in the checkpoint) and how to go on."""
+    saved = {rod: cycles for rod, cycles in store.saved_cycles().items() if rod in rods}
+    if not saved:
+        return ("no wear block had finished, nothing was kept (the output folder is as it was); "
+                "start again with: " + resume_command(args).replace(" --resume", ""))
+    kept = ", ".join(f"{rod} at {cycles:,}/{total_cycles:,} cycles"
+                     for rod, cycles in saved.items())
+    return f"the checkpoint {store.path} keeps {kept}; continue with: {resume_command(args)}"
+
+
+EARLIER_RUN_FILES = ("summary.json", "wear_profile.csv", "max_wear.csv", "wear_profiles.png",
+                     "max_wear.png", "worn_bushing.png")
+"""The files of a `fewear run` in its output folder (with the checkpoint and the cases' .xdmf and
+.h5): what --overwrite replaces."""
+
+
+def earlier_run(out: Path) -> list[Path]:
+    """The checkpoint and output files of an earlier run in ``out`` (none: [])."""
+    if not out.is_dir():
+        return []
+    found = [out / FOLDER] if (out / FOLDER).is_dir() and any((out / FOLDER).iterdir()) else []
+    found += [out / name for name in EARLIER_RUN_FILES if (out / name).is_file()]
+    if found:  # the cases' XDMF files belong to a run only beside its checkpoint or summary
+        found += sorted(path for pattern in ("*.xdmf", "*.h5") for path in out.glob(pattern))
+    return found
+
+
+@contextmanager
+def earlier_run_kept(args, store: Checkpoint, world):
+    """Nothing lost: a run refuses a folder that holds an earlier run unless ``--resume`` (the
+    same run, continued) or ``--overwrite`` (the earlier run is set aside, and restored if this
+    run fails or is interrupted before its first block). A failed run leaves the folder as it
+    found it: a new run's checkpoint is removed, a resumed run's stays (it is the same run); an
+    interruption or an OS error (a full disk) keeps the checkpoint of the blocks done."""
+    out = Path(args.out).resolve()
+    error, aside, existed = None, None, out.exists()
+    if world.rank == 0:
+        store.remove_temporary_files()
+        earlier = [] if args.resume else earlier_run(out)
+        if earlier and not args.overwrite:
+            error = (f"output folder {out} holds an earlier run ("
+                     + ", ".join(path.name for path in earlier[:4])
+                     + (", ..." if len(earlier) > 4 else "") + "); continue it with --resume, "
+                     "replace it with --overwrite, or choose another --out")
+        elif earlier:
+            aside = Path(tempfile.mkdtemp(prefix=".fewear-previous-", dir=out))
+            for path in earlier:
+                path.replace(aside / path.name)
+    error = world.bcast(error, root=0)
+    if error:
+        raise FewearInputError(error)
+    try:
+        yield
+    except BaseException as exc:
+        if world.rank == 0:
+            # an interruption, or the OS refusing a write (a full disk), is no fault of the run:
+            # its checkpoint stays, to be resumed
+            interrupted = isinstance(exc, (KeyboardInterrupt, Terminated, OSError))
+            if not args.resume and not (interrupted and store.saved_cycles()):
+                shutil.rmtree(store.path, ignore_errors=True)  # this run's, not worth keeping
+                if aside is not None:
+                    for path in aside.iterdir():
+                        path.replace(out / path.name)
+            if aside is not None:
+                shutil.rmtree(aside, ignore_errors=True)
+            if not existed and out.is_dir() and not any(out.iterdir()):
+                out.rmdir()
+        raise
+    if world.rank == 0 and aside is not None:
+        shutil.rmtree(aside, ignore_errors=True)
 
 
 def _jobs(requested: int | None, n_rods: int) -> int:

@@ -15,6 +15,7 @@ import numpy as np
 
 from fewear.errors import FewearInputError
 from fewear.io.config import load_config
+from fewear.io.limits import MAX_DYNAMICS_CYCLES
 from fewear.io.output import staged_output
 from fewear.mbd.history import MODES, JointHistory
 from fewear.mbd.slider_crank import SECTIONS, joint_model_from_config, simulate_slider_crank
@@ -25,11 +26,19 @@ CSV_COLUMNS = ("time_s", "crank_angle_deg", "slider_x_m", "ex_m", "ey_m", "penet
 
 def main(args) -> int:
     config = load_config(args.config, SECTIONS)
-    if args.cycles is not None and args.cycles < 1:
-        raise FewearInputError(f"--cycles {args.cycles}: expected a whole number >= 1")
+    if args.cycles is not None and not 1 <= args.cycles <= MAX_DYNAMICS_CYCLES:
+        raise FewearInputError(f"--cycles {args.cycles}: expected a whole number from 1 to "
+                               f"{MAX_DYNAMICS_CYCLES:,} (crank cycles, a few seconds each)")
     joint_model = joint_model_from_config(config)
-    history, summary = simulate_slider_crank(config, rod=args.rod, joint=args.joint,
-                                             cycles=args.cycles, progress=True)
+    try:
+        history, summary = simulate_slider_crank(config, rod=args.rod, joint=args.joint,
+                                                 cycles=args.cycles, progress=True)
+    except RuntimeError as exc:  # the integrator's step size collapsed
+        raise FewearInputError(
+            f"the dynamics cannot integrate this mechanism ({exc}): a value of [mechanism], "
+            "[clearance_joint] or [integrator] makes it too stiff, too light or too fast for the "
+            "integrator (compare with `fewear config`; a smaller [integrator] min_step_s or a "
+            "larger gap_tolerance_m may get past it)") from None
     used = {name: dict(table) for name, table in config.items()}
     for key, value in (("rod", args.rod), ("joint", args.joint),
                        ("recorded_cycles", args.cycles)):

@@ -72,7 +72,11 @@ class MeshSettings:
             f"mesh radial_grading_ratio = {g!r}: must lie in [1, 1000]",
         )
 
+    def elements_around(self, inner_radius_m: float) -> int:
+        """ceil(2 pi R_b / h): the elements of size h that cover the bore (before rounding)."""
+        return math.ceil(2.0 * math.pi * inner_radius_m / self.bore_element_size_m - 1e-9)
+
     def circumferential_element_count(self, inner_radius_m: float) -> int:
-        """Elements around the bore: ceil(2 pi R_b / h) rounded up to a multiple of 4 (>= 8)."""
-        n = math.ceil(2.0 * math.pi * inner_radius_m / self.bore_element_size_m - 1e-9)
-        return max(8, 4 * math.ceil(n / 4))
+        """Elements around the bore: ceil(2 pi R_b / h) rounded up to a multiple of 4 (>= 8; a
+        config is refused below 16, :mod:`fewear.io.limits`)."""
+        return max(8, 4 * math.ceil(self.elements_around(inner_radius_m) / 4))
