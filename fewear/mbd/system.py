@@ -16,6 +16,7 @@ import numpy as np
 from scipy.linalg import lapack
 
 from fewear.errors import FewearInputError
+from fewear.mbd.ancf import NO_MATRIX, add_beam_forces
 from fewear.mbd.constraints import ConstraintSet
 
 
@@ -44,20 +45,18 @@ class BeamElasticity:
         self.beam = beam
         self.damping_s = damping_s
         self.indices = np.arange(first_index, first_index + beam.n_coordinates)
+        self._kernel_data = beam.kernel_data(0.0, damping_s)
 
     def evaluate(self, q_b, qd_b, t, jacobian: bool = True):
         """(Q, dQ/dq, dQ/dq'); the derivatives are None if not ``jacobian`` (dQ/dq' also
         without damping)."""
-        if self.damping_s == 0.0:
-            if not jacobian:
-                return -self.beam.elastic_forces(q_b), None, None
-            forces, stiffness = self.beam.elastic_forces_and_stiffness(q_b)
-            return -forces, -stiffness, None
-        forces, tangent, damping = self.beam.stiffness_proportional_forces(
-            q_b, qd_b, self.damping_s, jacobian)
+        k = len(q_b)
+        Q = np.zeros(k)
+        K, C = (np.zeros((k, k)), np.zeros((k, k))) if jacobian else (NO_MATRIX,) * 2
+        add_beam_forces(q_b, qd_b, *self._kernel_data, -1.0, jacobian, Q, K, C)
         if not jacobian:
-            return -forces, None, None
-        return -forces, -tangent, -damping
+            return Q, None, None
+        return Q, K, (C if self.damping_s else None)
 
 
 class MultibodySystem:
