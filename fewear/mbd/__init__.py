@@ -1,4 +1,5 @@
-"""Planar multibody dynamics in NumPy: rigid bodies, ANCF beams, clearance joints.
+"""Planar multibody dynamics in NumPy (the ANCF beam forces compiled with numba): rigid bodies,
+ANCF beams, clearance joints.
 
 - ``points``, ``constraints``, ``system``: bodies' material points, holonomic constraints
   (revolute, prismatic, driven angle) and the assembled system M q'' + Phi_q^T lambda = Q;
