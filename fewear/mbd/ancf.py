@@ -423,6 +423,29 @@ def _vecmat(x, A, out):
 
 
 @compiled
+def _invariants(s_z, z, z_dot, s, s_rate):
+    """s = (S z) . z / 2 + s0 and s' = (S z) . z' (the rows S_i z in ``s_z``)."""
+    for i in range(6):
+        total, rate = 0.0, 0.0
+        for m in range(6):
+            total += s_z[i, m] * z[m]
+            rate += s_z[i, m] * z_dot[m]
+        s[i], s_rate[i] = 0.5 * total + _S0[i], rate
+
+
+@compiled
+def _force_in_z(s_z, s_dot_z, stress, stress_rate, damping, beta, f_z):
+    """f_z = sum_i [(H s)_i + (tau + beta) (H s')_i] S_i z + beta (H s)_i S_i z' (``damping`` =
+    tau + beta)."""
+    for m in range(6):
+        total = 0.0
+        for i in range(6):
+            total += ((stress[i] + damping * stress_rate[i]) * s_z[i, m]
+                      + beta * stress[i] * s_dot_z[i, m])
+        f_z[m] = total
+
+
+@compiled
 def _gather_invariant_rows(z, rows):
     """rows = the rows S_i z (6, 6) of the six invariants at z (each row of S_i has one entry)."""
     for i in range(6):
@@ -492,8 +515,9 @@ def add_beam_forces(q, qd, dofs, B, H, tau, beta, scale, jacobian, forces, d_dq,
     assembling K), the element forces are B^T of it. dF/dq = B^T (G + R) B,
     dF/dq' = B^T (beta G + tau M) B (:func:`_point_tangents`)."""
     q_e, qd_e, f_e = np.empty(12), np.empty(12), np.empty(12)
-    z, z_dot, s, stress, stress_rate, f_z = (np.empty(6), np.empty(6), np.empty(6), np.empty(6),
-                                             np.empty(6), np.empty(6))
+    z, z_dot, s, s_rate, stress, stress_rate, f_z = (np.empty(6), np.empty(6), np.empty(6),
+                                                     np.empty(6), np.empty(6), np.empty(6),
+                                                     np.empty(6))
     s_z, s_dot_z = np.empty((6, 6)), np.empty((6, 6))
     elastic_z, rate_z, material_z, work = (np.empty((6, 6)), np.empty((6, 6)), np.empty((6, 6)),
                                            np.empty((6, 12)))
@@ -509,13 +533,11 @@ def add_beam_forces(q, qd, dofs, B, H, tau, beta, scale, jacobian, forces, d_dq,
             _matvec(B_p, qd_e, z_dot)
             _gather_invariant_rows(z, s_z)
             _gather_invariant_rows(z_dot, s_dot_z)
-            _matvec(s_z, z, s)
-            _matvec(H_p, 0.5 * s + _S0, stress)
-            _matvec(s_z, z_dot, s)
-            _matvec(H_p, s, stress_rate)
-            _vecmat(stress + damping * stress_rate, s_z, f_z)
-            _vecmat(stress, s_dot_z, s)
-            _vecmat(f_z + beta[e] * s, B_p, f_e)
+            _invariants(s_z, z, z_dot, s, s_rate)
+            _matvec(H_p, s, stress)
+            _matvec(H_p, s_rate, stress_rate)
+            _force_in_z(s_z, s_dot_z, stress, stress_rate, damping, beta[e], f_z)
+            _vecmat(f_z, B_p, f_e)
             for r in range(12):
                 forces[dofs_e[r]] += scale * f_e[r]
             if jacobian:

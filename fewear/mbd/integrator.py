@@ -351,6 +351,35 @@ def _project_velocities(data, jac, qd, t):
 
 
 @compiled
+def _scaled_residual(mass, qdd, jac, lam, Q, scale, out):
+    """out[:n] = beta h^2 (M q'' + Phi_q^T lambda - Q) (``scale`` = beta h^2)."""
+    n = qdd.size
+    for r in range(n):
+        total = -Q[r]
+        for c in range(n):
+            total += mass[r, c] * qdd[c]
+        for c in range(lam.size):
+            total += jac[c, r] * lam[c]
+        out[r] = scale * total
+
+
+@compiled
+def _correct(Y1, lam1, update, bh2, x):
+    """Apply the Newton correction x = (dq, beta h^2 dlambda): (q, q', q'', a) -= w dq,
+    lambda -= dlambda; return max |dq| (NaN if dq is not finite)."""
+    n = Y1.shape[1]
+    size, finite = 0.0, True
+    for c in range(n):
+        for row in range(4):
+            Y1[row, c] -= update[row] * x[c]
+        size = max(size, abs(x[c]))
+        finite = finite and math.isfinite(x[c])
+    for c in range(lam1.size):
+        lam1[c] -= x[n + c] / bh2
+    return size if finite else math.nan
+
+
+@compiled
 def _newton(data, settings, t1, Y1, lam1, update, h, lu, pivots, newton, counts):
     """Newton on (q, lambda) at t1 from the predicted Y1 (4, n), lam1 (in place): (converged,
     the last Phi_q) (module docstring: modified Newton)."""
@@ -367,7 +396,7 @@ def _newton(data, settings, t1, Y1, lam1, update, h, lu, pivots, newton, counts)
         system_forces(data, Y1[0], Y1[1], t1, rebuild, Q, K, C)
         constraint_values_and_jacobian(data.D, data.c0, data.c1, data.offset_rows,
                                        data.offset_columns, data.offset_u, Y1[0], t1, phi, jac)
-        x[:n] = ((data.mass @ Y1[2] + jac.T @ lam1) - Q) * bh2
+        _scaled_residual(data.mass, Y1[2], jac, lam1, Q, bh2, x)
         if rebuild:
             if not _factorize(data, settings, Y1[0], lam1, jac, K, C, h, lu, pivots):
                 return False, jac
@@ -375,11 +404,8 @@ def _newton(data, settings, t1, Y1, lam1, update, h, lu, pivots, newton, counts)
             counts[3] += 1
         x[n:] = phi
         lu_solve(lu, pivots, x)
-        for row in range(4):
-            Y1[row] -= update[row] * x[:n]
-        lam1 -= x[n:] / bh2
+        size = _correct(Y1, lam1, update, bh2, x)
         counts[2] += 1
-        size = np.abs(x[:n]).max()
         if not math.isfinite(size):
             return False, jac
         if size < tolerance:
