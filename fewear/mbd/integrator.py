@@ -34,12 +34,12 @@ because a reused matrix is only kept while the iteration contracts by at least 1
 iteration, so the error left after the last correction is below |dq| / 3. Full Newton rejects the
 step when its corrections stop contracting (the step is retried shorter).
 
-Step-size control (adaptive mode): force elements may offer ``step_error`` returning an estimate of
-the local error of a contact gap (m) and whether the step entered contact too deep; the step is
-rejected and retried shorter when the estimate exceeds the tolerance. See
-:class:`fewear.mbd.clearance.ClearanceJoint` for the estimate used. Such elements follow the
-steps: ``begin_step(q, q')`` at the initial state, ``end_step(q, q')`` after each accepted step
-(which is where the next step begins).
+Step-size control (adaptive mode): each clearance joint estimates the local error of its contact
+gap (m) and tells whether the step entered contact too deep (:func:`fewear.mbd.clearance.
+step_error`); the step is rejected and retried shorter when the estimate exceeds the tolerance.
+The joints' memory follows the steps: :func:`fewear.mbd.clearance.begin_step` at the initial
+state, :func:`fewear.mbd.clearance.end_step` after each accepted step (which is where the next
+step begins).
 
 Compiled (numba): :func:`advance` runs the step loop (predictor, Newton with the system's compiled
 forces and constraints, LU with partial pivoting, velocity projection, step-size control) on the
