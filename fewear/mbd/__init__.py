@@ -1,4 +1,5 @@
-"""Planar multibody dynamics in NumPy: rigid bodies, ANCF beams, clearance joints.
+"""Planar multibody dynamics compiled with numba (the whole step loop; ``jit``: the decorator
+and its cache): rigid bodies, ANCF beams, clearance joints.
 
 - ``points``, ``constraints``, ``system``: bodies' material points, holonomic constraints
   (revolute, prismatic, driven angle) and the assembled system M q'' + Phi_q^T lambda = Q;

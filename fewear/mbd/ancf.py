@@ -53,7 +53,8 @@ values of this element are even exact there, with any number of elements).
 The energy is written as U = sum_points 1/2 s^T H s over six strain invariants s_i = z^T S_i z / 2 +
 s0_i of z = (t, d, k), which is linear in q (z = B q). Hence the internal forces F = dU/dq =
 B^T sum_i (H s)_i S_i z and the exact tangent K = dF/dq = B^T [sum_i (H s)_i S_i + sum_ij H_ij
-(S_i z)(S_j z)^T] B, evaluated for all elements at once with batched matrix products.
+(S_i z)(S_j z)^T] B, compiled with numba (:func:`add_beam_forces`, point by point, with the
+Kelvin-Voigt and stiffness-proportional damping terms).
 """
 
 from __future__ import annotations
@@ -65,6 +66,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fewear.errors import FewearInputError
+from fewear.mbd.jit import compiled
 
 COORDINATES_PER_NODE = 4
 COORDINATES_PER_ELEMENT = 12
@@ -183,7 +185,6 @@ _S, _S0 = _invariant_matrices()
 # S_i z by gathering: each row of S_i has at most one non-zero entry, so (S_i z)_m = f * z[index].
 _SZ_INDEX = np.argmax(_S != 0.0, axis=2)
 _SZ_FACTOR = _S.max(axis=2)
-_S_FLAT = _S.reshape(6, 36)
 
 
 class AncfBeam:
@@ -241,8 +242,7 @@ class AncfBeam:
         for p in range(2, 5):
             energy[p, 5, 5] = weights[p] * b * E * h
         self._B = operators
-        self._B_stacked = operators.reshape(-1, COORDINATES_PER_ELEMENT)
-        self._B_stacked_T = np.ascontiguousarray(self._B_stacked.T)
+        self._B_stacked_T = np.ascontiguousarray(operators.reshape(-1, COORDINATES_PER_ELEMENT).T)
         self._H = energy
 
     def _build_assembly_indices(self) -> None:
@@ -345,8 +345,7 @@ class AncfBeam:
 
     def elastic_forces(self, q: np.ndarray) -> np.ndarray:
         """Internal forces F(q) = dU/dq (N,), so that M q'' + F = Q."""
-        s_z, _, stress = self._strain_state(q)
-        return self._assemble_vector(self._element_forces(s_z, stress))
+        return self.stiffness_proportional_forces(q, q, 0.0, jacobian=False)[0]
 
     def stiffness_matrix(self, q: np.ndarray) -> np.ndarray:
         """Tangent stiffness K(q) = dF/dq (N, N), exact and symmetric."""
@@ -354,11 +353,8 @@ class AncfBeam:
 
     def elastic_forces_and_stiffness(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """F(q) and K(q) from one evaluation of the strains (for Newton iterations)."""
-        s_z, _, stress = self._strain_state(q)
-        forces = self._assemble_vector(self._element_forces(s_z, stress))
-        geometric = (stress @ _S_FLAT).reshape(s_z.shape)
-        material = np.swapaxes(s_z, -1, -2) @ (self._H @ s_z)
-        return forces, self._project(geometric + material)
+        forces, stiffness, _ = self.stiffness_proportional_forces(q, q, 0.0)
+        return forces, stiffness
 
     def internal_forces(self, q: np.ndarray, qd: np.ndarray):
         """Elastic plus Kelvin-Voigt damping forces and their exact Jacobians (M q'' + F = Q).
@@ -369,21 +365,7 @@ class AncfBeam:
         damping); dF/dq adds tau B^T sum_ij H_ij (S_i z)(S_j z')^T B (not symmetric). The damping
         forces vanish for rigid motion (s' = 0) and dissipate tau s'^T H s' >= 0.
         """
-        tau = self.section.damping_time_s
-        s_z, _, stress = self._strain_state(q)
-        qd_elements = np.asarray(qd, dtype=float)[self._element_dofs]
-        z_dot = (qd_elements @ self._B_stacked_T).reshape(self.n_elements, -1, 6)
-        s_dot_z = z_dot[..., _SZ_INDEX] * _SZ_FACTOR
-        strain_rate = (s_z @ z_dot[..., None])[..., 0]
-        total_stress = stress + tau * (self._H @ strain_rate[..., None])[..., 0]
-        forces = self._assemble_vector(self._element_forces(s_z, total_stress))
-        geometric = (total_stress @ _S_FLAT).reshape(s_z.shape)
-        h_s_z = self._H @ s_z
-        material = np.swapaxes(s_z, -1, -2) @ h_s_z
-        rate = np.swapaxes(h_s_z, -1, -2) @ s_dot_z
-        stiffness = self._project(geometric + material + tau * rate)
-        damping = self._project(tau * material)
-        return forces, stiffness, damping
+        return self._forces(q, qd, self.section.damping_time_s, 0.0, True)
 
     def stiffness_proportional_forces(self, q: np.ndarray, qd: np.ndarray, beta_s: float,
                                       jacobian: bool = True):
@@ -395,29 +377,180 @@ class AncfBeam:
         d(K q')/dq = B^T [sum_i (H s')_i S_i + sum_ij H_ij (b_i a_j^T + a_i b_j^T)] B.
         Returns (forces (N,), d/dq (N, N) or None, d/dq' (N, N) or None).
         """
-        s_z, _, stress = self._strain_state(q)
-        qd_elements = np.asarray(qd, dtype=float)[self._element_dofs]
-        z_dot = (qd_elements @ self._B_stacked_T).reshape(self.n_elements, -1, 6)
-        s_dot_z = z_dot[..., _SZ_INDEX] * _SZ_FACTOR
-        stress_rate = (self._H @ (s_z @ z_dot[..., None]))[..., 0]
-        point_forces = ((stress + beta_s * stress_rate)[..., None, :] @ s_z
-                        + beta_s * (stress[..., None, :] @ s_dot_z))
-        forces = self._assemble_vector(point_forces.reshape(self.n_elements, -1)
-                                       @ self._B_stacked)
-        if not jacobian:
-            return forces, None, None
-        h_s_z = self._H @ s_z
-        elastic = (stress @ _S_FLAT).reshape(s_z.shape) + np.swapaxes(s_z, -1, -2) @ h_s_z
-        cross = np.swapaxes(h_s_z, -1, -2) @ s_dot_z
-        rate = (stress_rate @ _S_FLAT).reshape(s_z.shape) + cross + np.swapaxes(cross, -1, -2)
-        stiffness = self._project(elastic)
-        return forces, stiffness + beta_s * self._project(rate), beta_s * stiffness
+        return self._forces(q, qd, 0.0, beta_s, jacobian)
 
-    def _project(self, tangent_z: np.ndarray) -> np.ndarray:
-        """Assemble B^T T B over the points and elements for T (elements, points, 6, 6)."""
-        tangent_B = (tangent_z @ self._B).reshape(self.n_elements, -1, 12)
-        return self._assemble_matrix(self._B_stacked_T @ tangent_B)
+    def _forces(self, q, qd, tau_s, beta_s, jacobian):
+        """(F, dF/dq, dF/dq') of :func:`add_beam_forces` (the derivatives None if not
+        ``jacobian``)."""
+        n = self.n_coordinates
+        forces = np.zeros(n)
+        d_dq, d_dqd = (np.zeros((n, n)), np.zeros((n, n))) if jacobian else (NO_MATRIX,) * 2
+        add_beam_forces(np.asarray(q, dtype=float), np.asarray(qd, dtype=float),
+                        *self.kernel_data(tau_s, beta_s), 1.0, jacobian, forces, d_dq, d_dqd)
+        return (forces, d_dq, d_dqd) if jacobian else (forces, None, None)
 
-    def _element_forces(self, s_z: np.ndarray, stress: np.ndarray) -> np.ndarray:
-        f_z = (stress[..., None, :] @ s_z).reshape(self.n_elements, -1)
-        return f_z @ self._B_stacked
+    def kernel_data(self, tau_s: float, beta_s: float, first_index: int = 0):
+        """(element coordinates (E, 12), B (E, points, 6, 12), H (E, points, 6, 6), tau (E,),
+        beta (E,)): the arrays of :func:`add_beam_forces` for this beam at ``first_index`` of q."""
+        shape = (self.n_elements, *self._B.shape)
+        return (first_index + self._element_dofs,
+                np.ascontiguousarray(np.broadcast_to(self._B, shape)),
+                np.ascontiguousarray(np.broadcast_to(self._H, (self.n_elements, *self._H.shape))),
+                np.full(self.n_elements, float(tau_s)), np.full(self.n_elements, float(beta_s)))
+
+
+# -- compiled element forces ----------------------------------------------------------------------
+NO_MATRIX = np.zeros((0, 0))  # the Jacobian arguments of add_beam_forces when none is wanted
+
+
+@compiled
+def _matvec(A, x, out):
+    """out = A x (small dense A; explicit loops, no BLAS call or allocation)."""
+    for i in range(A.shape[0]):
+        total = 0.0
+        for j in range(A.shape[1]):
+            total += A[i, j] * x[j]
+        out[i] = total
+
+
+@compiled
+def _vecmat(x, A, out):
+    """out = x^T A."""
+    out[:] = 0.0
+    for i in range(A.shape[0]):
+        for j in range(A.shape[1]):
+            out[j] += x[i] * A[i, j]
+
+
+@compiled
+def _invariants(s_z, z, z_dot, s, s_rate):
+    """s = (S z) . z / 2 + s0 and s' = (S z) . z' (the rows S_i z in ``s_z``)."""
+    for i in range(6):
+        total, rate = 0.0, 0.0
+        for m in range(6):
+            total += s_z[i, m] * z[m]
+            rate += s_z[i, m] * z_dot[m]
+        s[i], s_rate[i] = 0.5 * total + _S0[i], rate
+
+
+@compiled
+def _force_in_z(s_z, s_dot_z, stress, stress_rate, damping, beta, f_z):
+    """f_z = sum_i [(H s)_i + (tau + beta) (H s')_i] S_i z + beta (H s)_i S_i z' (``damping`` =
+    tau + beta)."""
+    for m in range(6):
+        total = 0.0
+        for i in range(6):
+            total += ((stress[i] + damping * stress_rate[i]) * s_z[i, m]
+                      + beta * stress[i] * s_dot_z[i, m])
+        f_z[m] = total
+
+
+@compiled
+def _gather_invariant_rows(z, rows):
+    """rows = the rows S_i z (6, 6) of the six invariants at z (each row of S_i has one entry)."""
+    for i in range(6):
+        for m in range(6):
+            rows[i, m] = _SZ_FACTOR[i, m] * z[_SZ_INDEX[i, m]]
+
+
+@compiled
+def _add_projected(B, T, work, target):
+    """target += B^T T B for one point (B (6, 12), T (6, 6), target (12, 12); work (6, 12))."""
+    work[:] = 0.0
+    for a in range(6):
+        for b in range(6):
+            if T[a, b] != 0.0:
+                for c in range(12):
+                    work[a, c] += T[a, b] * B[b, c]
+    for r in range(12):
+        for a in range(6):
+            if B[a, r] != 0.0:
+                for c in range(12):
+                    target[r, c] += B[a, r] * work[a, c]
+
+
+@compiled
+def _point_tangents(s_z, s_dot_z, stress, stress_rate, H, tau, beta, elastic, rate, material):
+    """Fill (G, R, M) in z (6, 6 each): the elastic tangent G = sum_i (H s)_i S_i + M with the
+    material part M = (S z)^T H (S z), and the rate part R = (tau + beta) (sum_i (H s')_i S_i + X)
+    + beta X^T with X = (H S z)^T (S z') (AncfBeam.internal_forces and
+    stiffness_proportional_forces). ``material`` holds H S z on entry."""
+    h_s_z = material
+    for j in range(6):
+        for b in range(6):
+            total = 0.0
+            for i in range(6):
+                total += H[j, i] * s_z[i, b]
+            h_s_z[j, b] = total
+    for a in range(6):
+        for b in range(6):
+            geometric, rate_geometric = 0.0, 0.0
+            for i in range(6):
+                geometric += stress[i] * _S[i, a, b]
+                rate_geometric += stress_rate[i] * _S[i, a, b]
+            material_ab, cross, cross_t = 0.0, 0.0, 0.0
+            for j in range(6):
+                material_ab += s_z[j, a] * h_s_z[j, b]
+                cross += h_s_z[j, a] * s_dot_z[j, b]
+                cross_t += h_s_z[j, b] * s_dot_z[j, a]
+            elastic[a, b] = geometric + material_ab
+            rate[a, b] = (tau + beta) * (rate_geometric + cross) + beta * cross_t
+    for a in range(6):
+        for b in range(6):
+            material[a, b] = elastic[a, b]
+            for i in range(6):
+                material[a, b] -= stress[i] * _S[i, a, b]
+
+
+@compiled
+def add_beam_forces(q, qd, dofs, B, H, tau, beta, scale, jacobian, forces, d_dq, d_dqd):
+    """Add scale F(q, q') to ``forces`` and, if ``jacobian``, scale dF/dq to ``d_dq`` and
+    scale dF/dq' to ``d_dqd``, for the ANCF elements with coordinates ``dofs`` (E, 12) of q
+    (global arrays, any beams), with Kelvin-Voigt damping time ``tau`` and stiffness-proportional
+    damping ``beta`` (s, per element): F = F_el(q) + beta K(q) q' + tau B^T sum_i (H s')_i S_i z.
+
+    Per integration point: z = B q_e, z' = B q'_e, a_i = S_i z, b_i = S_i z', the invariants
+    s_i = a_i . z / 2 + s0_i and their rates s'_i = a_i . z'; the force in z is
+    sum_i [(H s)_i + (tau + beta) (H s')_i] a_i + beta (H s)_i b_i (K q' = dF_el/dt formed without
+    assembling K), the element forces are B^T of it. dF/dq = B^T (G + R) B,
+    dF/dq' = B^T (beta G + tau M) B (:func:`_point_tangents`)."""
+    q_e, qd_e, f_e = np.empty(12), np.empty(12), np.empty(12)
+    z, z_dot, s, s_rate, stress, stress_rate, f_z = (np.empty(6), np.empty(6), np.empty(6),
+                                                     np.empty(6), np.empty(6), np.empty(6),
+                                                     np.empty(6))
+    s_z, s_dot_z = np.empty((6, 6)), np.empty((6, 6))
+    elastic_z, rate_z, material_z, work = (np.empty((6, 6)), np.empty((6, 6)), np.empty((6, 6)),
+                                           np.empty((6, 12)))
+    stiffness, rate, material = np.empty((12, 12)), np.empty((12, 12)), np.empty((12, 12))
+    for e in range(dofs.shape[0]):
+        dofs_e, damping = dofs[e], tau[e] + beta[e]
+        for r in range(12):
+            q_e[r], qd_e[r] = q[dofs_e[r]], qd[dofs_e[r]]
+        stiffness[:], rate[:], material[:] = 0.0, 0.0, 0.0
+        for p in range(B.shape[1]):
+            B_p, H_p = B[e, p], H[e, p]
+            _matvec(B_p, q_e, z)
+            _matvec(B_p, qd_e, z_dot)
+            _gather_invariant_rows(z, s_z)
+            _gather_invariant_rows(z_dot, s_dot_z)
+            _invariants(s_z, z, z_dot, s, s_rate)
+            _matvec(H_p, s, stress)
+            _matvec(H_p, s_rate, stress_rate)
+            _force_in_z(s_z, s_dot_z, stress, stress_rate, damping, beta[e], f_z)
+            _vecmat(f_z, B_p, f_e)
+            for r in range(12):
+                forces[dofs_e[r]] += scale * f_e[r]
+            if jacobian:
+                _point_tangents(s_z, s_dot_z, stress, stress_rate, H_p, tau[e], beta[e],
+                                elastic_z, rate_z, material_z)
+                _add_projected(B_p, elastic_z, work, stiffness)
+                if damping != 0.0:
+                    _add_projected(B_p, rate_z, work, rate)
+                if tau[e] != 0.0:
+                    _add_projected(B_p, material_z, work, material)
+        if jacobian:
+            for r in range(12):
+                for c in range(12):
+                    d_dq[dofs_e[r], dofs_e[c]] += scale * (stiffness[r, c] + rate[r, c])
+                    d_dqd[dofs_e[r], dofs_e[c]] += scale * (beta[e] * stiffness[r, c]
+                                                            + tau[e] * material[r, c])

@@ -1,8 +1,8 @@
 """Holonomic constraints Phi(q, t) = 0 of planar mechanisms, evaluated all at once.
 
-The constraint classes describe rows; :class:`ConstraintSet` evaluates every row of a system in a
-few vectorised NumPy operations (the Newton iteration calls it once per iteration, so the cost is
-the number of NumPy calls, not the arithmetic). Every constraint here has the form
+The constraint classes describe rows; :class:`ConstraintSet` holds every row of a system as a few
+arrays that the compiled functions below evaluate (the Newton iteration calls them once per
+iteration). Every constraint here has the form
 
     Phi(q, t) = D q + c0 + c1 t + R w(q),   w = the rotated offsets A(phi_p) u_p of rigid points,
 
@@ -20,7 +20,11 @@ written as the complex number w_p = (u_p0 + i u_p1) exp(i phi_p):
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
+
+from fewear.mbd.jit import compiled
 
 
 class Revolute:
@@ -84,10 +88,7 @@ class ConstraintSet:
                 self.c1[rows] = -constraint.d1
             else:
                 raise TypeError(f"unsupported constraint {constraint!r}")
-        self._build_offsets(offsets, n_coordinates)
-        self._jacobian = self._D.copy()
-        # the columns where Phi_q can be non-zero (D's and the offsets' angles), increasing
-        self.columns = np.union1d(np.flatnonzero(self._D.any(axis=0)), self._angle_columns)
+        self._build_offsets(offsets)
 
     def _add_revolute(self, revolute, rows):
         offsets = []
@@ -102,40 +103,71 @@ class ConstraintSet:
             raise ValueError("a revolute joint between two points of the same body")
         return offsets
 
-    def _build_offsets(self, offsets, n):
-        """Index arrays: the offsets' angle columns, and for w viewed as (re, im) pairs their
-        rows, columns, the scatter R (rows, 2P) and the Hessian gather (n, 2P)."""
-        count = len(offsets)
-        self._angle_columns = np.array([col for _, col, _ in offsets], dtype=int)
-        self._u = np.array([complex(u[0], u[1]) for _, _, u in offsets], dtype=complex)
-        pair_rows = np.array([[row, row + 1] for row, _, _ in offsets], dtype=int).reshape(-1)
-        pair_columns = np.repeat(self._angle_columns, 2)
-        self._pair_rows, self._pair_columns = pair_rows, pair_columns
-        self._scatter = np.zeros((self.n_rows, 2 * count))
-        self._scatter[pair_rows, np.arange(2 * count)] = 1.0
-        self._gather = np.zeros((n, 2 * count))
-        self._gather[pair_columns, np.arange(2 * count)] = -1.0
+    def _build_offsets(self, offsets):
+        """The offsets' first rows, angle columns and u (P, 2)."""
+        self.offset_rows = np.array([row for row, _, _ in offsets], dtype=np.int64)
+        self.offset_columns = np.array([col for _, col, _ in offsets], dtype=np.int64)
+        self.offset_u = np.array([u for _, _, u in offsets], dtype=float).reshape(-1, 2)
 
-    def _offsets(self, q):
-        """w_p = u_p exp(i phi_p) (complex, P)."""
-        return self._u * np.exp(1j * q[self._angle_columns])
-
-    def values_and_jacobian(self, q, t):
-        """(Phi (m,), Phi_q (m, n)); Phi_q is a buffer overwritten by the next call."""
-        w = self._offsets(q)
-        phi = self._D @ q + self._c0 + self.c1 * t + self._scatter @ w.view(float)
-        self._jacobian[self._pair_rows, self._pair_columns] = (1j * w).view(float)
-        return phi, self._jacobian
+    @property
+    def kernel_data(self):
+        """(D, c0, c1, offset rows, offset columns, u): the arrays of the compiled functions."""
+        return (self._D, self._c0, self.c1, self.offset_rows, self.offset_columns, self.offset_u)
 
     def jacobian(self, q):
         """Phi_q (m, n) (a new array)."""
-        return self.values_and_jacobian(q, 0.0)[1].copy()
-
-    def hessian(self, q, lam):
-        """The diagonal (n,) of d(Phi_q^T lambda)/dq."""
-        return self._gather @ (lam[self._pair_rows] * self._offsets(q).view(float))
+        phi, jac = np.zeros(self.n_rows), np.zeros(self._D.shape)
+        constraint_values_and_jacobian(*self.kernel_data, np.asarray(q, dtype=float), 0.0, phi,
+                                       jac)
+        return jac
 
     def convective(self, q, qd):
         """(dPhi_q/dt) q' (m,)."""
-        rates = qd[self._angle_columns]
-        return self._scatter @ (-(rates * rates) * self._offsets(q)).view(float)
+        out = np.zeros(self.n_rows)
+        constraint_convective(*self.kernel_data[3:], np.asarray(q, dtype=float),
+                              np.asarray(qd, dtype=float), out)
+        return out
+
+
+@compiled
+def _rotated(u, phi):
+    """w = A(phi) u (as the complex number (u0 + i u1) exp(i phi))."""
+    c, s = math.cos(phi), math.sin(phi)
+    return c * u[0] - s * u[1], s * u[0] + c * u[1]
+
+
+@compiled
+def constraint_values_and_jacobian(D, c0, c1, rows, columns, u, q, t, phi, jac):
+    """Fill Phi = D q + c0 + c1 t + R w and Phi_q = D + (i w_p in the column of phi_p)."""
+    m, n = D.shape
+    for r in range(m):
+        total = 0.0
+        for c in range(n):
+            total += D[r, c] * q[c]
+            jac[r, c] = D[r, c]
+        phi[r] = total + c0[r] + c1[r] * t
+    for p in range(rows.size):
+        w0, w1 = _rotated(u[p], q[columns[p]])
+        phi[rows[p]] += w0
+        phi[rows[p] + 1] += w1
+        jac[rows[p], columns[p]] = -w1
+        jac[rows[p] + 1, columns[p]] = w0
+
+
+@compiled
+def add_constraint_hessian(rows, columns, u, q, lam, scale, diagonal):
+    """diagonal += scale d(Phi_q^T lambda)/dq (diagonal: -lambda_j . w_p in phi_p's column)."""
+    for p in range(rows.size):
+        w0, w1 = _rotated(u[p], q[columns[p]])
+        diagonal[columns[p]] -= scale * (lam[rows[p]] * w0 + lam[rows[p] + 1] * w1)
+
+
+@compiled
+def constraint_convective(rows, columns, u, q, qd, out):
+    """out = (dPhi_q/dt) q' = -phi_p'^2 w_p in the joints' rows."""
+    out[:] = 0.0
+    for p in range(rows.size):
+        w0, w1 = _rotated(u[p], q[columns[p]])
+        rate2 = qd[columns[p]] * qd[columns[p]]
+        out[rows[p]] -= rate2 * w0
+        out[rows[p] + 1] -= rate2 * w1

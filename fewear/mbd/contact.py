@@ -36,6 +36,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 
 from fewear.errors import FewearInputError
+from fewear.mbd.jit import compiled
 
 CONTACT_LAWS = ("lankarani-nikravesh", "hunt-crossley", "flores", "tabulated")
 
@@ -110,26 +111,53 @@ class ContactLaw:
                 f"contact stiffness {self.stiffness_N_m1_5!r} N/m^1.5: expected > 0")
         object.__setattr__(self, "chi", hysteresis_factor(self.law, self.restitution))
 
+    @property
+    def kernel_data(self):
+        """(power law?, (K, chi, v_imp floor), table (2, T)): the arguments of
+        :func:`normal_force`."""
+        table = (np.array([[0.0], [0.0]]) if self.law != "tabulated"
+                 else np.stack([self.penetration_m, self.force_N]))
+        return (self.law != "tabulated",
+                np.array([self.stiffness_N_m1_5, self.chi, self.min_impact_velocity_m_s]), table)
+
     def elastic(self, delta_m: float) -> tuple[float, float]:
         """(F_el, dF_el/ddelta) for delta >= 0."""
-        if self.law != "tabulated":
-            root = math.sqrt(delta_m)
-            return self.stiffness_N_m1_5 * delta_m * root, 1.5 * self.stiffness_N_m1_5 * root
-        pen, force = self.penetration_m, self.force_N
-        k = min(max(int(np.searchsorted(pen, delta_m)) - 1, 0), pen.size - 2)
-        slope = (force[k + 1] - force[k]) / (pen[k + 1] - pen[k])
-        return force[k] + slope * (delta_m - pen[k]), slope
+        power_law, _, table = self.kernel_data
+        return elastic_force(power_law, self.stiffness_N_m1_5, table, table.shape[1], delta_m)
 
     def normal_force(self, delta_m: float, rate_m_s: float, impact_velocity_m_s: float):
         """(F_n, dF_n/ddelta, dF_n/ddelta_dot) (N, N/m, N s/m); zero derivatives when clipped."""
-        if delta_m <= 0.0:
-            return 0.0, 0.0, 0.0
-        v_imp = max(impact_velocity_m_s, self.min_impact_velocity_m_s)
-        elastic, stiffness = self.elastic(delta_m)
-        damping = 1.0 + self.chi * rate_m_s / v_imp
-        if damping <= 0.0:
-            return 0.0, 0.0, 0.0
-        return elastic * damping, stiffness * damping, elastic * self.chi / v_imp
+        power_law, parameters, table = self.kernel_data
+        return normal_force(power_law, parameters, table, table.shape[1], delta_m, rate_m_s,
+                            impact_velocity_m_s)
+
+
+@compiled
+def elastic_force(power_law, stiffness, table, size, delta_m):
+    """(F_el, dF_el/ddelta) for delta >= 0: K delta^1.5, or the table (2, size) of penetrations
+    and forces interpolated linearly (extrapolated past its last point)."""
+    if power_law:
+        root = math.sqrt(delta_m)
+        return stiffness * delta_m * root, 1.5 * stiffness * root
+    pen, force = table[0, :size], table[1, :size]
+    k = min(max(np.searchsorted(pen, delta_m) - 1, 0), size - 2)
+    slope = (force[k + 1] - force[k]) / (pen[k + 1] - pen[k])
+    return force[k] + slope * (delta_m - pen[k]), slope
+
+
+@compiled
+def normal_force(power_law, parameters, table, size, delta_m, rate_m_s, impact_velocity_m_s):
+    """(F_n, dF_n/ddelta, dF_n/ddelta_dot) = F_el [1 + chi delta_dot / v_imp] clipped at 0 (module
+    docstring); ``parameters`` = (K, chi, floor of v_imp)."""
+    if delta_m <= 0.0:
+        return 0.0, 0.0, 0.0
+    stiffness, chi, min_impact_velocity = parameters[0], parameters[1], parameters[2]
+    v_imp = max(impact_velocity_m_s, min_impact_velocity)
+    elastic, elastic_stiffness = elastic_force(power_law, stiffness, table, size, delta_m)
+    damping = 1.0 + chi * rate_m_s / v_imp
+    if damping <= 0.0:
+        return 0.0, 0.0, 0.0
+    return elastic * damping, elastic_stiffness * damping, elastic * chi / v_imp
 
 
 @dataclass(frozen=True)
@@ -151,14 +179,20 @@ class Friction:
 
     def factor(self, slip_m_s: float) -> tuple[float, float]:
         """(psi, dpsi/dv) with F_t = -mu F_n psi(v_t): psi = c_d(|v|) sign(v)."""
-        speed = abs(slip_m_s)
-        if speed <= self.v0_m_s:
-            return 0.0, 0.0
-        sign = 1.0 if slip_m_s > 0.0 else -1.0
-        if speed >= self.v1_m_s:
-            return sign, 0.0
-        width = self.v1_m_s - self.v0_m_s
-        return sign * (speed - self.v0_m_s) / width, 1.0 / width
+        return friction_factor(self.v0_m_s, self.v1_m_s, slip_m_s)
+
+
+@compiled
+def friction_factor(v0_m_s, v1_m_s, slip_m_s):
+    """(psi, dpsi/dv) of Ambrosio's regularisation (module docstring): psi = c_d(|v|) sign(v)."""
+    speed = abs(slip_m_s)
+    if speed <= v0_m_s:
+        return 0.0, 0.0
+    sign = 1.0 if slip_m_s > 0.0 else -1.0
+    if speed >= v1_m_s:
+        return sign, 0.0
+    width = v1_m_s - v0_m_s
+    return sign * (speed - v0_m_s) / width, 1.0 / width
 
 
 @dataclass(frozen=True)
@@ -198,22 +232,28 @@ class ClearanceProfile:
                 f"clearance {bad!r} m: the radial clearance must be positive (pin radius < bore)")
         object.__setattr__(self, "angle_rad", angle)
         object.__setattr__(self, "clearance_m", clearance)
-        object.__setattr__(self, "is_constant", angle.size == 1)
+        cubic = np.array([[0.0, 0.0, 0.0, clearance[0]]])  # (c3, c2, c1, c0) per piece
         if angle.size > 1:
             spline = CubicSpline(np.append(angle, angle[0] + 2.0 * math.pi),
                                  np.append(clearance, clearance[0]), bc_type="periodic")
-            object.__setattr__(self, "_cubic", spline.c.T.tolist())  # (c3, c2, c1, c0) per piece
+            cubic = np.ascontiguousarray(spline.c.T)
+        object.__setattr__(self, "cubic", cubic)
 
     def __call__(self, theta_rad: float) -> tuple[float, float, float]:
         """(c, dc/dtheta, d2c/dtheta2) at the direction theta (any real angle)."""
-        if self.is_constant:
-            return float(self.clearance_m[0]), 0.0, 0.0
-        angle = self.angle_rad
-        theta = theta_rad % (2.0 * math.pi)
-        k = int(np.searchsorted(angle, theta, side="right")) - 1
-        if k < 0:  # before the first angle: the last piece, which wraps past 2 pi
-            k, theta = angle.size - 1, theta + 2.0 * math.pi
-        c3, c2, c1, c0 = self._cubic[k]
-        x = theta - float(angle[k])
-        return (((c3 * x + c2) * x + c1) * x + c0, (3.0 * c3 * x + 2.0 * c2) * x + c1,
-                6.0 * c3 * x + 2.0 * c2)
+        return clearance_at(self.angle_rad, self.cubic, self.angle_rad.size, theta_rad)
+
+
+@compiled
+def clearance_at(angle_rad, cubic, size, theta_rad):
+    """(c, dc/dtheta, d2c/dtheta2) of the periodic piecewise cubic with pieces (c3, c2, c1, c0)
+    ``cubic`` starting at ``angle_rad`` (the first ``size``; one piece: a constant)."""
+    angle = angle_rad[:size]
+    theta = theta_rad % (2.0 * math.pi)
+    k = np.searchsorted(angle, theta, side="right") - 1
+    if k < 0:  # before the first angle: the last piece, which wraps past 2 pi
+        k, theta = size - 1, theta + 2.0 * math.pi
+    c3, c2, c1, c0 = cubic[k, 0], cubic[k, 1], cubic[k, 2], cubic[k, 3]
+    x = theta - angle[k]
+    return (((c3 * x + c2) * x + c1) * x + c0, (3.0 * c3 * x + 2.0 * c2) * x + c1,
+            6.0 * c3 * x + 2.0 * c2)

@@ -34,12 +34,17 @@ because a reused matrix is only kept while the iteration contracts by at least 1
 iteration, so the error left after the last correction is below |dq| / 3. Full Newton rejects the
 step when its corrections stop contracting (the step is retried shorter).
 
-Step-size control (adaptive mode): force elements may offer ``step_error`` returning an estimate of
-the local error of a contact gap (m) and whether the step entered contact too deep; the step is
-rejected and retried shorter when the estimate exceeds the tolerance. See
-:class:`fewear.mbd.clearance.ClearanceJoint` for the estimate used. Such elements follow the
-steps: ``begin_step(q, q')`` at the initial state, ``end_step(q, q')`` after each accepted step
-(which is where the next step begins).
+Step-size control (adaptive mode): each clearance joint estimates the local error of its contact
+gap (m) and tells whether the step entered contact too deep (:func:`fewear.mbd.clearance.
+step_error`); the step is rejected and retried shorter when the estimate exceeds the tolerance.
+The joints' memory follows the steps: :func:`fewear.mbd.clearance.begin_step` at the initial
+state, :func:`fewear.mbd.clearance.end_step` after each accepted step (which is where the next
+step begins).
+
+Compiled (numba): :func:`advance` runs the step loop (predictor, Newton with the system's compiled
+forces and constraints, LU with partial pivoting, velocity projection, step-size control) on the
+system's :data:`fewear.mbd.system.SystemData` until t_end, or until its buffer of recorded steps
+is full; :class:`GeneralizedAlpha` is the Python face (states, statistics, observers).
 """
 
 from __future__ import annotations
@@ -49,18 +54,21 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.linalg import lapack
 
 from fewear.errors import FewearInputError
+from fewear.mbd.clearance import begin_step, end_step, step_error
+from fewear.mbd.constraints import (
+    add_constraint_hessian,
+    constraint_values_and_jacobian,
+)
+from fewear.mbd.jit import compiled
+from fewear.mbd.system import system_forces
 
 REUSE_CONTRACTION = 0.25  # modified Newton: rebuild when |dq| shrinks by less than this
-
-
-def lu_solve(factors, rhs):
-    """Solve with the LU factors (lu, pivots) of LAPACK's dgetrf (in place of ``rhs`` when it is a
-    contiguous float array)."""
-    x, _ = lapack.dgetrs(*factors, rhs, overwrite_b=True)
-    return x
+RECORD_CHUNK = 4096  # recorded steps per call of the compiled loop
+# advance's status: reached t_end, the record buffer is full, the step fell below min_step_s,
+# the velocity projection met dependent constraint rows
+DONE, BUFFER_FULL, STEP_TOO_SMALL, SINGULAR_PROJECTION = 0, 1, 2, 3
 
 
 @dataclass(frozen=True)
@@ -110,6 +118,15 @@ class IntegratorSettings:
         beta = 0.25 * (gamma + 0.5) ** 2
         return alpha_m, alpha_f, gamma, beta
 
+    @property
+    def kernel_data(self) -> tuple:
+        """The settings as the tuple :func:`advance` takes: (alpha_m, alpha_f, gamma, beta,
+        step_s, min_step_s, gap_tolerance_m, newton_tolerance, max_newton_iterations, adaptive,
+        project_velocities, modified_newton)."""
+        return (*self.coefficients, self.step_s, self.min_step_s, self.gap_tolerance_m,
+                self.newton_tolerance, self.max_newton_iterations, self.adaptive,
+                self.project_velocities, self.modified_newton)
+
 
 @dataclass
 class State:
@@ -121,6 +138,25 @@ class State:
     qdd: np.ndarray
     a: np.ndarray
     lam: np.ndarray
+
+
+@dataclass
+class Trajectory:
+    """The accepted steps of a run, one row each: the state after the step, the step size and the
+    clearance joints' memory then (rows, J, 3) (see fewear.mbd.clearance.JointData)."""
+
+    time_s: np.ndarray
+    step_s: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    qdd: np.ndarray
+    a: np.ndarray
+    lam: np.ndarray
+    joint_memory: np.ndarray
+
+    def state(self, row: int) -> State:
+        return State(float(self.time_s[row]), self.q[row], self.qd[row], self.qdd[row],
+                     self.a[row], self.lam[row])
 
 
 @dataclass
@@ -141,167 +177,315 @@ class GeneralizedAlpha:
         self.system = system
         self.settings = settings
         self.stats = RunStats()
-        n, m = system.n_coordinates, system.n_constraints
-        self._matrix = np.zeros((n + m, n + m))
-        self._diagonal = np.arange(n)
-        self._controlled = [e for e in system.force_elements if hasattr(e, "step_error")]
-        self._alpha_m, self._alpha_f, self._gamma, self._beta = settings.coefficients
-        # the constant block of the iteration matrix, (1 - alpha_m)/(1 - alpha_f) M
-        self._mass_term = ((1.0 - self._alpha_m) / (1.0 - self._alpha_f)) * system.mass
-        self._factors = None  # (lu, pivots) of the last iteration matrix
-        self._factors_step_s = math.nan  # the h it was built for
-        self._aged = True  # rebuild at the next step's first iteration
-        self._scheme = (math.nan, None, None)  # (h, predictor, update) of the last step size
+        size = system.n_coordinates + system.n_constraints
+        # the LU factors of the last iteration matrix, the h they were built for and whether
+        # they have aged (module docstring); the counters of RunStats
+        self._lu, self._pivots = np.zeros((size, size)), np.zeros(size, dtype=np.int64)
+        self._newton = np.array([math.nan, 1.0])
+        self._counts = np.array([0.0, 0.0, 0.0, 0.0, math.inf])
 
     def initial_state(self, q0, qd0, t0: float = 0.0) -> State:
         """A state with consistent accelerations and multipliers (q0, qd0 must be consistent)."""
         q0 = np.asarray(q0, dtype=float).copy()
         qd0 = np.asarray(qd0, dtype=float).copy()
-        for element in self._controlled:
-            element.begin_step(q0, qd0)
+        joints = self.system.data.joints
+        for j in range(joints.memory.shape[0]):
+            begin_step(joints, j, q0, qd0)
         qdd0, lam0 = self.system.consistent_accelerations(q0, qd0, t0)
         return State(t0, q0, qd0, qdd0, qdd0.copy(), lam0)
 
-    def _predictor_and_update(self, h: float):
-        """(P, w): the rows (q, q', q'', a)_{n+1} of the predictor are P @ (q, q', q'', a)_n
-        (q''_{n+1} = q''_n, a_{n+1} from it); a Newton correction dq adds w dq to them."""
-        alpha_m, alpha_f, gamma, beta = self._alpha_m, self._alpha_f, self._gamma, self._beta
-        a_qdd, a_a = 1.0 / (1.0 - alpha_m), -alpha_m / (1.0 - alpha_m)  # a_{n+1} predicted
-        predictor = np.array([
-            [1.0, h, h * h * beta * a_qdd, h * h * (0.5 - beta + beta * a_a)],
-            [0.0, 1.0, h * gamma * a_qdd, h * (1.0 - gamma + gamma * a_a)],
-            [0.0, 0.0, 1.0, 0.0],
-            [0.0, 0.0, a_qdd, a_a],
-        ])
-        beta_p = (1.0 - alpha_m) / ((1.0 - alpha_f) * beta * h * h)
-        update = np.array([1.0, gamma / (beta * h), beta_p, beta_p * (1.0 - alpha_f) * a_qdd])
-        return predictor, update[:, None]
-
-    def step(self, s: State, h: float) -> State | None:
-        """One generalized-alpha step of size h; None if Newton does not converge."""
-        sys_, st = self.system, self.settings
-        n = sys_.n_coordinates
-        t1 = s.t + h
-        if h != self._scheme[0]:
-            self._scheme = (h, *self._predictor_and_update(h))
-        _, predictor, update = self._scheme
-        Y = predictor @ np.array([s.q, s.qd, s.qdd, s.a])
-        q1, qd1, qdd1, a1 = Y
-        lam1 = s.lam.copy()
-        bh2 = self._beta * h * h
-        full = not st.modified_newton
-        rebuild = full or self._aged or h != self._factors_step_s
-        previous, first_full = math.inf, 1
-        x = np.empty(n + sys_.n_constraints)  # (beta h^2 residual, Phi), solved in place
-        for iteration in range(1, st.max_newton_iterations + 1):
-            Q, K, C = sys_.forces(q1, qd1, t1, jacobian=rebuild)
-            phi, jac = sys_.constraint_values_and_jacobian(q1, t1)
-            residual = sys_.mass @ qdd1 + jac.T @ lam1 - Q
-            if rebuild and not self._factorize(q1, lam1, jac, K, C, h):
-                return None
-            np.multiply(residual, bh2, out=x[:n])
-            x[n:] = phi
-            x = lu_solve(self._factors, x)
-            dq = x[:n]
-            Y -= update * dq
-            lam1 -= x[n:] / bh2
-            self.stats.newton_iterations += 1
-            size = np.abs(dq).max()
-            if not math.isfinite(size):
-                return None
-            if size < st.newton_tolerance:
-                break
-            if not full and size > REUSE_CONTRACTION * previous:
-                full, first_full = True, iteration + 1  # the reused matrix is too far off
-            elif full and iteration >= first_full + 2 and size > 0.5 * previous:
-                return None  # not contracting (e.g. cycling in and out of contact): shorter step
-            previous = size
-            rebuild = full
-        else:
-            return None
-        self._aged = iteration > 2
-        if st.project_velocities and sys_.n_constraints:
-            qd1 = sys_.project_velocities(q1, qd1, t1, jac)
-        return State(t1, q1, qd1, qdd1, a1, lam1)
-
-    def _factorize(self, q, lam, jac, K, C, h) -> bool:
-        """LU of [[beta h^2 S_t, Phi_q^T], [Phi_q, 0]] (module docstring); False if singular."""
-        sys_ = self.system
-        n = sys_.n_coordinates
-        bh2 = self._beta * h * h
-        A = self._matrix
-        A[:n, :n] = self._mass_term
-        if C is not None:
-            A[:n, :n] -= (self._gamma * h) * C
-        if K is not None:
-            A[:n, :n] -= bh2 * K
-        A[self._diagonal, self._diagonal] += bh2 * sys_.constraint_hessian(q, lam)
-        A[:n, n:] = jac.T
-        A[n:, :n] = jac
-        lu, pivots, info = lapack.dgetrf(A)
-        if info != 0:
-            return False
-        self._factors, self._factors_step_s = (lu, pivots), h
-        self.stats.factorizations += 1
-        return True
-
     def run(self, state: State, t_end: float, observer=None) -> State:
-        """Integrate from ``state`` to ``t_end``; call ``observer(state, h)`` after every step."""
-        st = self.settings
-        h = self.stats.extra.get("next_step_s", st.step_s)
-        start = time.perf_counter()
-        while state.t < t_end - 1e-14:
-            h = min(h, st.step_s, t_end - state.t)
-            new = self.step(state, h)
-            if new is None:
-                h = self._shrink(h, 0.25, state.t)
-                self.stats.rejected += 1
-                continue
-            h_next = st.step_s
-            if st.adaptive and self._controlled:
-                accept, factor = self._control(state, new, h)
-                if not accept:
-                    h = self._shrink(h, factor, state.t)
-                    self.stats.rejected += 1
-                    continue
-                h_next = h * factor
-            for element in self._controlled:
-                element.end_step(new.q, new.qd)
-            state = new
-            self.stats.steps += 1
-            self.stats.smallest_step_s = min(self.stats.smallest_step_s, h)
-            if observer is not None:
-                observer(state, h)
-            h = max(h_next, st.min_step_s)
-        self.stats.extra["next_step_s"] = h
-        self.stats.wall_time_s += time.perf_counter() - start
+        """Integrate from ``state`` to ``t_end``; call ``observer(state, h)`` after every step
+        (once the run is done, in the order of the steps)."""
+        if observer is None:
+            return self._run(state, t_end, record=False)[0]
+        state, trajectory = self._run(state, t_end, record=True)
+        for row in range(trajectory.time_s.size):
+            observer(trajectory.state(row), float(trajectory.step_s[row]))
         return state
 
-    def _shrink(self, h: float, factor: float, t: float) -> float:
-        h_new = h * factor
-        if h_new < self.settings.min_step_s:
+    def run_recorded(self, state: State, t_end: float) -> tuple[State, Trajectory]:
+        """Integrate from ``state`` to ``t_end``; return the final state and every step's."""
+        return self._run(state, t_end, record=True)
+
+    def _run(self, state: State, t_end: float, record: bool):
+        sys_, st = self.system, self.settings
+        n, m, joints = sys_.n_coordinates, sys_.n_constraints, sys_.data.joints.memory.shape[0]
+        Y = np.array([state.q, state.qd, state.qdd, state.a])
+        lam = np.array(state.lam, dtype=float)
+        t, h = state.t, self.stats.extra.get("next_step_s", st.step_s)
+        rows = RECORD_CHUNK if record else 0
+        chunks = []
+        start = time.perf_counter()
+        while True:
+            buffers = (np.empty(rows), np.empty(rows), np.empty((rows, 4, n)), np.empty((rows, m)),
+                       np.empty((rows, joints, 3)))
+            status, t, h, count = advance(sys_.data, st.kernel_data, t, Y, lam, t_end, h,
+                                          self._lu, self._pivots, self._newton, self._counts,
+                                          *buffers)
+            chunks.append([buffer[:count] for buffer in buffers])
+            if status != BUFFER_FULL:
+                break
+        self.stats.wall_time_s += time.perf_counter() - start
+        self._update_stats(h)
+        if status == STEP_TOO_SMALL:
             raise RuntimeError(
-                f"generalized-alpha: step size fell below min_step_s = "
-                f"{self.settings.min_step_s:g} s at t = {t:.6g} s")
-        return h_new
+                f"generalized-alpha: step size fell below min_step_s = {st.min_step_s:g} s at "
+                f"t = {t:.6g} s")
+        if status == SINGULAR_PROJECTION:
+            raise np.linalg.LinAlgError("velocity projection: Phi_q has dependent rows")
+        final = State(t, Y[0].copy(), Y[1].copy(), Y[2].copy(), Y[3].copy(), lam.copy())
+        if not record:
+            return final, None
+        times, steps, Ys, lams, memories = (np.concatenate(parts) for parts in zip(*chunks))
+        return final, Trajectory(times, steps, Ys[:, 0], Ys[:, 1], Ys[:, 2], Ys[:, 3], lams,
+                                 memories)
 
-    def _control(self, old: State, new: State, h: float) -> tuple[bool, float]:
-        """(accept, factor): the next step (if accepted) or the retry (if not) is factor * h.
+    def _update_stats(self, next_step_s: float) -> None:
+        steps, rejected, iterations, factorizations, smallest = self._counts
+        self.stats.steps, self.stats.rejected = int(steps), int(rejected)
+        self.stats.newton_iterations, self.stats.factorizations = int(iterations), int(
+            factorizations)
+        self.stats.smallest_step_s = float(smallest)
+        self.stats.extra["next_step_s"] = next_step_s
 
-        Rejects a step that enters contact deeper than the gap tolerance (retry aimed, by the
-        secant on the gap, at half the tolerance) or whose local error estimate exceeds it; the
-        next step grows with the error like h^3, by at most 2x."""
-        tol = self.settings.gap_tolerance_m
-        factor = 2.0
-        for element in self._controlled:
-            error_m, gap_old, gap_new = element.step_error(old.q, old.qdd, new.q, new.qdd, h)
-            if gap_old <= 0.0 and gap_new > tol:
-                secant = (0.5 * tol - gap_old) / (gap_new - gap_old)
-                return False, min(0.9, max(0.02, secant))
-            if max(gap_old, gap_new) <= 0.0:
-                continue  # free flight: the steps are limited by step_s and the onset rule
-            if error_m > tol:
-                return False, max(0.1, 0.8 * (tol / error_m) ** (1.0 / 3.0))
-            if error_m > 0.0:
-                factor = min(factor, 0.9 * (tol / error_m) ** (1.0 / 3.0))
-        return True, max(0.2, min(2.0, factor))
+
+# -- compiled -------------------------------------------------------------------------------------
+@compiled
+def lu_factor(A, pivots):
+    """LU factors of A with partial pivoting, in place (Golub & Van Loan, Matrix Computations,
+    alg. 3.4.1: row k swapped with pivots[k]); False if A is singular."""
+    size = A.shape[0]
+    for k in range(size):
+        pivot = k
+        for i in range(k + 1, size):
+            if abs(A[i, k]) > abs(A[pivot, k]):
+                pivot = i
+        pivots[k] = pivot
+        if A[pivot, k] == 0.0:
+            return False
+        if pivot != k:
+            for c in range(size):
+                A[k, c], A[pivot, c] = A[pivot, c], A[k, c]
+        inverse = 1.0 / A[k, k]
+        for i in range(k + 1, size):
+            A[i, k] *= inverse
+            factor = A[i, k]
+            if factor != 0.0:
+                for c in range(k + 1, size):
+                    A[i, c] -= factor * A[k, c]
+    return True
+
+
+@compiled
+def lu_solve(LU, pivots, b):
+    """Solve A x = b in place of b with the factors of :func:`lu_factor`."""
+    size = LU.shape[0]
+    for k in range(size):
+        p = pivots[k]
+        if p != k:
+            b[k], b[p] = b[p], b[k]
+    for i in range(size):
+        for c in range(i):
+            b[i] -= LU[i, c] * b[c]
+    for i in range(size - 1, -1, -1):
+        for c in range(i + 1, size):
+            b[i] -= LU[i, c] * b[c]
+        b[i] /= LU[i, i]
+
+
+@compiled
+def _predictor_and_update(settings, h):
+    """(P, w): the rows (q, q', q'', a)_{n+1} of the predictor are P @ (q, q', q'', a)_n
+    (q''_{n+1} = q''_n, a_{n+1} from it); a Newton correction dq adds w dq to them."""
+    alpha_m, alpha_f, gamma, beta = settings[0], settings[1], settings[2], settings[3]
+    a_qdd, a_a = 1.0 / (1.0 - alpha_m), -alpha_m / (1.0 - alpha_m)  # a_{n+1} predicted
+    predictor = np.array([
+        [1.0, h, h * h * beta * a_qdd, h * h * (0.5 - beta + beta * a_a)],
+        [0.0, 1.0, h * gamma * a_qdd, h * (1.0 - gamma + gamma * a_a)],
+        [0.0, 0.0, 1.0, 0.0],
+        [0.0, 0.0, a_qdd, a_a],
+    ])
+    beta_p = (1.0 - alpha_m) / ((1.0 - alpha_f) * beta * h * h)
+    update = np.array([1.0, gamma / (beta * h), beta_p, beta_p * (1.0 - alpha_f) * a_qdd])
+    return predictor, update
+
+
+@compiled
+def _factorize(data, settings, q, lam, jac, K, C, h, lu, pivots):
+    """LU of [[beta h^2 S_t, Phi_q^T], [Phi_q, 0]] (module docstring) into ``lu``; False if
+    singular."""
+    alpha_m, alpha_f, gamma, beta = settings[0], settings[1], settings[2], settings[3]
+    n, m = q.size, jac.shape[0]
+    bh2 = beta * h * h
+    mass_factor = (1.0 - alpha_m) / (1.0 - alpha_f)
+    lu[:] = 0.0
+    for r in range(n):
+        for c in range(n):
+            lu[r, c] = mass_factor * data.mass[r, c] - (gamma * h) * C[r, c] - bh2 * K[r, c]
+    hessian = np.zeros(n)
+    add_constraint_hessian(data.offset_rows, data.offset_columns, data.offset_u, q, lam, bh2,
+                           hessian)
+    for r in range(n):
+        lu[r, r] += hessian[r]
+        for c in range(m):
+            lu[r, n + c] = jac[c, r]
+            lu[n + c, r] = jac[c, r]
+    return lu_factor(lu, pivots)
+
+
+@compiled
+def _project_velocities(data, jac, qd, t):
+    """The M-orthogonal projection of q' onto Phi_q q' + Phi_t = 0 through the Schur complement
+    of the KKT system [[M, Phi_q^T], [Phi_q, 0]]: (Phi_q M^-1 Phi_q^T) mu = Phi_q q' + Phi_t,
+    q' <- q' - M^-1 Phi_q^T mu; False if Phi_q has dependent rows."""
+    weighted = jac @ data.inverse_mass
+    schur = weighted @ jac.T
+    mu = jac @ qd + data.c1
+    pivots = np.zeros(mu.size, dtype=np.int64)
+    if not lu_factor(schur, pivots):
+        return False
+    lu_solve(schur, pivots, mu)
+    qd -= mu @ weighted
+    return True
+
+
+@compiled
+def _scaled_residual(mass, qdd, jac, lam, Q, scale, out):
+    """out[:n] = beta h^2 (M q'' + Phi_q^T lambda - Q) (``scale`` = beta h^2)."""
+    n = qdd.size
+    for r in range(n):
+        total = -Q[r]
+        for c in range(n):
+            total += mass[r, c] * qdd[c]
+        for c in range(lam.size):
+            total += jac[c, r] * lam[c]
+        out[r] = scale * total
+
+
+@compiled
+def _correct(Y1, lam1, update, bh2, x):
+    """Apply the Newton correction x = (dq, beta h^2 dlambda): (q, q', q'', a) -= w dq,
+    lambda -= dlambda; return max |dq| (NaN if dq is not finite)."""
+    n = Y1.shape[1]
+    size, finite = 0.0, True
+    for c in range(n):
+        for row in range(4):
+            Y1[row, c] -= update[row] * x[c]
+        size = max(size, abs(x[c]))
+        finite = finite and math.isfinite(x[c])
+    for c in range(lam1.size):
+        lam1[c] -= x[n + c] / bh2
+    return size if finite else math.nan
+
+
+@compiled
+def _newton(data, settings, t1, Y1, lam1, update, h, lu, pivots, newton, counts):
+    """Newton on (q, lambda) at t1 from the predicted Y1 (4, n), lam1 (in place): (converged,
+    the last Phi_q) (module docstring: modified Newton)."""
+    beta, tolerance = settings[3], settings[7]
+    max_iterations, modified = settings[8], settings[11]
+    n, m = Y1.shape[1], lam1.size
+    bh2 = beta * h * h
+    full = not modified
+    rebuild = full or newton[1] != 0.0 or h != newton[0]
+    previous, first_full = math.inf, 1
+    Q, K, C = np.zeros(n), np.zeros((n, n)), np.zeros((n, n))
+    phi, jac, x = np.zeros(m), np.zeros((m, n)), np.empty(n + m)
+    for iteration in range(1, max_iterations + 1):
+        system_forces(data, Y1[0], Y1[1], t1, rebuild, Q, K, C)
+        constraint_values_and_jacobian(data.D, data.c0, data.c1, data.offset_rows,
+                                       data.offset_columns, data.offset_u, Y1[0], t1, phi, jac)
+        _scaled_residual(data.mass, Y1[2], jac, lam1, Q, bh2, x)
+        if rebuild:
+            if not _factorize(data, settings, Y1[0], lam1, jac, K, C, h, lu, pivots):
+                return False, jac
+            newton[0] = h
+            counts[3] += 1
+        x[n:] = phi
+        lu_solve(lu, pivots, x)
+        size = _correct(Y1, lam1, update, bh2, x)
+        counts[2] += 1
+        if not math.isfinite(size):
+            return False, jac
+        if size < tolerance:
+            newton[1] = 1.0 if iteration > 2 else 0.0
+            return True, jac
+        if not full and size > REUSE_CONTRACTION * previous:
+            full, first_full = True, iteration + 1  # the reused matrix is too far off
+        elif full and iteration >= first_full + 2 and size > 0.5 * previous:
+            return False, jac  # not contracting (e.g. cycling in and out of contact): shorter step
+        previous = size
+        rebuild = full
+    return False, jac
+
+
+@compiled
+def _control(data, settings, Y, Y1, h):
+    """(accept, factor): the next step (if accepted) or the retry (if not) is factor * h.
+
+    Rejects a step that enters contact deeper than the gap tolerance (retry aimed, by the
+    secant on the gap, at half the tolerance) or whose local error estimate exceeds it; the
+    next step grows with the error like h^3, by at most 2x."""
+    tol = settings[6]
+    factor = 2.0
+    for j in range(data.joints.memory.shape[0]):
+        error_m, gap_old, gap_new = step_error(data.joints, j, Y[0], Y[2], Y1[0], Y1[2], h)
+        if gap_old <= 0.0 and gap_new > tol:
+            secant = (0.5 * tol - gap_old) / (gap_new - gap_old)
+            return False, min(0.9, max(0.02, secant))
+        if max(gap_old, gap_new) <= 0.0:
+            continue  # free flight: the steps are limited by step_s and the onset rule
+        if error_m > tol:
+            return False, max(0.1, 0.8 * (tol / error_m) ** (1.0 / 3.0))
+        if error_m > 0.0:
+            factor = min(factor, 0.9 * (tol / error_m) ** (1.0 / 3.0))
+    return True, max(0.2, min(2.0, factor))
+
+
+@compiled
+def advance(data, settings, t, Y, lam, t_end, h, lu, pivots, newton, counts, times, steps,
+            rows_Y, rows_lam, rows_memory):
+    """Step from (t, Y = (q, q', q'', a), lambda) (updated in place) towards t_end; record each
+    accepted step in the row buffers while they last. Returns (status, t, next h, rows recorded).
+
+    ``newton`` = (h of the factors in ``lu``, aged); ``counts`` = (steps, rejected, Newton
+    iterations, factorizations, smallest step). A failed Newton retries with h / 4, a step the
+    control rejects with its factor; the next step after an accepted one is factor * h (fixed
+    steps of step_s without control or clearance joints)."""
+    step_s, min_step_s, adaptive, project = settings[4], settings[5], settings[9], settings[10]
+    controlled = adaptive and data.joints.memory.shape[0] > 0
+    recorded = 0
+    while t < t_end - 1e-14:
+        if recorded == times.size and times.size > 0:
+            return BUFFER_FULL, t, h, recorded
+        h = min(h, step_s, t_end - t)
+        predictor, update = _predictor_and_update(settings, h)
+        Y1, lam1 = predictor @ Y, lam.copy()
+        accept, jac = _newton(data, settings, t + h, Y1, lam1, update, h, lu, pivots, newton,
+                              counts)
+        factor = 0.25
+        if accept and controlled:
+            accept, factor = _control(data, settings, Y, Y1, h)
+        if not accept:
+            h *= factor
+            counts[1] += 1
+            if h < min_step_s:
+                return STEP_TOO_SMALL, t, h, recorded
+            continue
+        if project and lam.size and not _project_velocities(data, jac, Y1[1], t + h):
+            return SINGULAR_PROJECTION, t, h, recorded
+        for j in range(data.joints.memory.shape[0]):
+            end_step(data.joints, j, Y1[0], Y1[1])
+        t += h
+        Y[:] = Y1
+        lam[:] = lam1
+        counts[0] += 1
+        counts[4] = min(counts[4], h)
+        if times.size > 0:
+            times[recorded], steps[recorded] = t, h
+            rows_Y[recorded], rows_lam[recorded] = Y, lam
+            rows_memory[recorded] = data.joints.memory
+            recorded += 1
+        h = max(h * factor if controlled else step_s, min_step_s)
+    return DONE, t, h, recorded

@@ -4,12 +4,11 @@ A point maps the coordinates of its body, ``q_b`` (a slice of the system vector 
 ``indices``; an array or a list of floats), to a position ``r`` (m) and an angle ``theta`` (rad) of
 the material line through it, with the derivatives the constraints and the Newton Jacobian need:
 
-- ``G = dr/dq_b`` (2, k) and ``g = dtheta/dq_b`` (k,);
-- ``hessian(q_b, f)``: the diagonal (k,) of d(G^T f)/dq_b for a fixed force ``f`` (geometric
-  stiffness; diagonal for every planar point here);
-- ``motion(q_b, qd_b)``: position, velocity ``G qd_b``, angle and angular velocity ``g . qd_b`` as
-  floats (scalar arithmetic: the clearance joint calls it in every Newton iteration);
-- ``generalized_force(q_b, fx, fy, moment)``: the generalised force G^T f + moment g (a list);
+- compiled (numba), for the clearance joint's kernels, from the point's ``kind`` and ``offset``:
+  ``point_motion`` (position, velocity G q'_b, angle, angular velocity g . q'_b),
+  ``point_derivatives`` (G = dr/dq_b (2, k), g = dtheta/dq_b (k,)), ``add_point_force`` (the
+  generalised force G^T f + moment g) and ``add_point_hessian`` (the diagonal of d(G^T f)/dq_b for
+  a fixed force f: geometric stiffness, diagonal for every planar point here);
 - ``affine = (G0, r0)`` and ``rotating_offset``: the split r = r0 + G0 q_b + A(phi) u with a
   constant G0, used by :class:`fewear.mbd.constraints.ConstraintSet` to evaluate all revolute
   joints at once; ``rotating_offset`` is ``(local index of phi, u)`` for a rigid-body point, else
@@ -27,6 +26,8 @@ import math
 
 import numpy as np
 
+from fewear.mbd.jit import compiled
+
 
 class GroundPoint:
     """A fixed point of the ground (no coordinates)."""
@@ -36,29 +37,11 @@ class GroundPoint:
     def __init__(self, x_m: float, y_m: float):
         self.indices = np.zeros(0, dtype=int)
         self._r = np.array([x_m, y_m], dtype=float)
-        self._x, self._y = float(x_m), float(y_m)
         self.affine = (np.zeros((2, 0)), self._r.copy())
+        self.kind, self.offset = GROUND, self._r.copy()
 
     def position(self, q_b):
         return self._r.copy()
-
-    def jacobian(self, q_b):
-        return np.zeros((2, 0))
-
-    def angle(self, q_b):
-        return 0.0
-
-    def angle_gradient(self, q_b):
-        return np.zeros(0)
-
-    def hessian(self, q_b, f):
-        return np.zeros(0)
-
-    def motion(self, q_b, qd_b):
-        return self._x, self._y, 0.0, 0.0, 0.0, 0.0
-
-    def generalized_force(self, q_b, fx, fy, moment):
-        return []
 
 
 class RigidPoint:
@@ -67,52 +50,14 @@ class RigidPoint:
     def __init__(self, first_index: int, u_m=(0.0, 0.0)):
         self.indices = np.arange(first_index, first_index + 3)
         self.u = np.asarray(u_m, dtype=float)
-        self._u0, self._u1 = float(self.u[0]), float(self.u[1])
-        self._cache = (math.nan, 0.0, 0.0)
         self.affine = (np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]), np.zeros(2))
         self.rotating_offset = (2, self.u.copy())
-
-    def _rotated(self, phi):
-        """A(phi) u as two floats (scalar maths, cached: these run in every Newton iteration)."""
-        cached_phi, au0, au1 = self._cache
-        if phi != cached_phi:
-            c, s = math.cos(phi), math.sin(phi)
-            au0, au1 = c * self._u0 - s * self._u1, s * self._u0 + c * self._u1
-            self._cache = (phi, au0, au1)
-        return au0, au1
+        self.kind, self.offset = RIGID, self.u.copy()
 
     def position(self, q_b):
-        au0, au1 = self._rotated(q_b[2])
-        return np.array([q_b[0] + au0, q_b[1] + au1])
-
-    def jacobian(self, q_b):
-        au0, au1 = self._rotated(q_b[2])
-        return np.array([[1.0, 0.0, -au1], [0.0, 1.0, au0]])
-
-    def angle(self, q_b):
-        return q_b[2]
-
-    def angle_gradient(self, q_b):
-        return _RIGID_ANGLE_GRADIENT
-
-    def hessian(self, q_b, f):
-        au0, au1 = self._rotated(q_b[2])
-        return np.array([0.0, 0.0, -(f[0] * au0 + f[1] * au1)])
-
-    def motion(self, q_b, qd_b):
-        """(x, y, x', y', phi, phi'): r = R + A u, r' = R' + phi' k x A u."""
-        phi, omega = q_b[2], qd_b[2]
-        au0, au1 = self._rotated(phi)
-        return q_b[0] + au0, q_b[1] + au1, qd_b[0] - omega * au1, qd_b[1] + omega * au0, phi, omega
-
-    def generalized_force(self, q_b, fx, fy, moment):
-        """(fx, fy, (A u) x f + moment)."""
-        au0, au1 = self._rotated(q_b[2])
-        return [fx, fy, au0 * fy - au1 * fx + moment]
-
-
-_RIGID_ANGLE_GRADIENT = np.array([0.0, 0.0, 1.0])
-_NODE_JACOBIAN = np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]])
+        """r = R + A(phi) u."""
+        return np.array(point_motion(RIGID, self.offset, np.asarray(q_b, dtype=float),
+                                     np.zeros(3))[:2])
 
 
 class NodePoint:
@@ -122,34 +67,81 @@ class NodePoint:
 
     def __init__(self, first_index: int):
         self.indices = np.arange(first_index, first_index + 4)
-        self.affine = (_NODE_JACOBIAN.copy(), np.zeros(2))
+        self.affine = (np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]]), np.zeros(2))
+        self.kind, self.offset = NODE, np.zeros(2)
 
     def position(self, q_b):
         return np.array([q_b[0], q_b[1]], dtype=float)
 
-    def jacobian(self, q_b):
-        return _NODE_JACOBIAN
 
-    def angle(self, q_b):
-        return math.atan2(q_b[3], q_b[2]) - math.pi / 2
+# -- compiled point kinematics --------------------------------------------------------------------
+# A point in compiled code: its kind, its number of coordinates and ``offset`` (the ground point's
+# position, the rigid point's body-fixed u; unused for a node).
+GROUND, RIGID, NODE = 0, 1, 2
+POINT_COORDINATES = (0, 3, 4)
 
-    def angle_gradient(self, q_b):
-        """dtheta/dq_b = (0, 0, -r_y2, r_y1) / |r_y|^2."""
+
+@compiled
+def point_motion(kind, offset, q_b, qd_b):
+    """(x, y, x', y', theta, theta') of a point: r = R + A(phi) u, r' = R' + phi' k x A u for a
+    rigid point; for a node theta = atan2(r_y) - pi/2, theta' = (r_y x r_y') / |r_y|^2."""
+    if kind == GROUND:
+        return offset[0], offset[1], 0.0, 0.0, 0.0, 0.0
+    if kind == RIGID:
+        phi, omega = q_b[2], qd_b[2]
+        c, s = math.cos(phi), math.sin(phi)
+        au0, au1 = c * offset[0] - s * offset[1], s * offset[0] + c * offset[1]
+        return (q_b[0] + au0, q_b[1] + au1, qd_b[0] - omega * au1, qd_b[1] + omega * au0, phi,
+                omega)
+    a, b = q_b[2], q_b[3]
+    omega = (a * qd_b[3] - b * qd_b[2]) / (a * a + b * b)
+    return q_b[0], q_b[1], qd_b[0], qd_b[1], math.atan2(b, a) - math.pi / 2, omega
+
+
+@compiled
+def point_derivatives(kind, offset, q_b, sign, G, g):
+    """Fill ``G`` (2, k) with sign dr/dq_b and ``g`` (k,) with dtheta/dq_b (k = the point's
+    coordinates): G = [I, k x A u] and g = (0, 0, 1) for a rigid point, G = [I, 0] and
+    g = (0, 0, -r_y2, r_y1) / |r_y|^2 for a node."""
+    if kind == RIGID:
+        c, s = math.cos(q_b[2]), math.sin(q_b[2])
+        au0, au1 = c * offset[0] - s * offset[1], s * offset[0] + c * offset[1]
+        G[0, 0], G[0, 1], G[0, 2] = sign, 0.0, -sign * au1
+        G[1, 0], G[1, 1], G[1, 2] = 0.0, sign, sign * au0
+        g[0], g[1], g[2] = 0.0, 0.0, 1.0
+    elif kind == NODE:
         a, b = q_b[2], q_b[3]
         norm2 = a * a + b * b
-        return np.array([0.0, 0.0, -b / norm2, a / norm2])
+        for i in range(2):
+            for j in range(4):
+                G[i, j] = sign if i == j else 0.0
+        g[0], g[1], g[2], g[3] = 0.0, 0.0, -b / norm2, a / norm2
 
-    def hessian(self, q_b, f):
-        return np.zeros(4)
 
-    def motion(self, q_b, qd_b):
-        """(x, y, x', y', theta, theta') with theta' = (r_y x r_y') / |r_y|^2."""
-        a, b = q_b[2], q_b[3]
-        omega = (a * qd_b[3] - b * qd_b[2]) / (a * a + b * b)
-        return q_b[0], q_b[1], qd_b[0], qd_b[1], math.atan2(b, a) - math.pi / 2, omega
-
-    def generalized_force(self, q_b, fx, fy, moment):
-        """(fx, fy, -moment r_y2, moment r_y1) / |r_y|^2 in the slope entries."""
+@compiled
+def add_point_force(kind, offset, q_b, fx, fy, moment, out):
+    """out += G^T f + moment g: (fx, fy, (A u) x f + moment) on a rigid point, (fx, fy,
+    -moment r_y2, moment r_y1) / |r_y|^2 on a node (in the slope entries)."""
+    if kind == RIGID:
+        c, s = math.cos(q_b[2]), math.sin(q_b[2])
+        au0, au1 = c * offset[0] - s * offset[1], s * offset[0] + c * offset[1]
+        out[0] += fx
+        out[1] += fy
+        out[2] += au0 * fy - au1 * fx + moment
+    elif kind == NODE:
         a, b = q_b[2], q_b[3]
         scale = moment / (a * a + b * b)
-        return [fx, fy, -scale * b, scale * a]
+        out[0] += fx
+        out[1] += fy
+        out[2] += -scale * b
+        out[3] += scale * a
+
+
+@compiled
+def add_point_hessian(kind, offset, q_b, fx, fy, out):
+    """out += the diagonal of d(G^T f)/dq_b at fixed f: -(A u) . f in phi for a rigid point (zero
+    for the others)."""
+    if kind == RIGID:
+        c, s = math.cos(q_b[2]), math.sin(q_b[2])
+        au0, au1 = c * offset[0] - s * offset[1], s * offset[0] + c * offset[1]
+        out[2] -= fx * au0 + fy * au1

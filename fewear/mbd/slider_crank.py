@@ -28,12 +28,12 @@ import numpy as np
 
 from fewear.errors import FewearInputError
 from fewear.io.config import Config, load_config
-from fewear.mbd.clearance import ClearanceJoint
+from fewear.mbd.clearance import ClearanceJoint, measure_rows
 from fewear.mbd.constraints import DrivenAngle, PrismaticX, Revolute
 from fewear.mbd.contact import ClearanceProfile, ContactLaw, Friction, lankarani_nikravesh_stiffness
 from fewear.mbd.history import JointHistory, classify_modes
-from fewear.mbd.integrator import GeneralizedAlpha, IntegratorSettings
-from fewear.mbd.points import GroundPoint, NodePoint, RigidPoint
+from fewear.mbd.integrator import GeneralizedAlpha, IntegratorSettings, State, Trajectory
+from fewear.mbd.points import GroundPoint, NodePoint, RigidPoint, point_motion
 from fewear.mbd.system import MultibodySystem
 
 SECTIONS = ("mechanism", "clearance_joint", "integrator", "dynamics_output", "bushing", "pin",
@@ -283,20 +283,25 @@ class SliderCrankModel:
         qd[self.i_slider] = float(v_b)
         return q, qd
 
-    def measure(self, state):
-        """The joint quantities at an integrator state (dict, see JointHistory)."""
+    def measure(self, trajectory: Trajectory) -> dict:
+        """The joint quantities at each row of a trajectory (arrays, see JointHistory)."""
         if self.clearance is not None:
-            return self.clearance.measure(state.q, state.qd)
-        force = -state.lam[self._joint_rows]  # the constraint force on the pin
-        pin_idx = self.rod_b.indices
-        omega_pin = self.rod_b.motion(state.q[pin_idx].tolist(), state.qd[pin_idx].tolist())[5]
+            columns = measure_rows(self.system.data.joints, 0, trajectory.q, trajectory.qd,
+                                   trajectory.joint_memory)
+            return {"eccentricity_m": columns[:, 0:2], "penetration_m": columns[:, 2],
+                    "normal_force_N": columns[:, 3], "friction_force_N": columns[:, 4],
+                    "reaction_force_N": columns[:, 5:7], "rel_omega_rad_s": columns[:, 7]}
+        force = -trajectory.lam[:, self._joint_rows]  # the constraint force on the pin
+        point, idx = self.rod_b, self.rod_b.indices
+        omega_pin = [point_motion(point.kind, point.offset, q[idx], qd[idx])[5]
+                     for q, qd in zip(trajectory.q, trajectory.qd)]
         return {
-            "eccentricity_m": np.zeros(2),
-            "penetration_m": 0.0,
-            "normal_force_N": math.hypot(force[0], force[1]),
-            "friction_force_N": 0.0,
+            "eccentricity_m": np.zeros((force.shape[0], 2)),
+            "penetration_m": np.zeros(force.shape[0]),
+            "normal_force_N": np.hypot(force[:, 0], force[:, 1]),
+            "friction_force_N": np.zeros(force.shape[0]),
             "reaction_force_N": force,
-            "rel_omega_rad_s": omega_pin,
+            "rel_omega_rad_s": np.array(omega_pin),
         }
 
 
@@ -344,6 +349,19 @@ def simulate_slider_crank(config: Config | None = None, rod: str | None = None,
     return history, summary
 
 
+def compile_dynamics() -> None:
+    """Compile, or load from numba's cache, every kernel a dynamics run calls (the same for both
+    rods and joints: the arrays only change size) by a few steps of the default clearance
+    mechanism; worker processes started afterwards load the cached code instead of each compiling
+    it (:mod:`fewear.mbd.jit`)."""
+    inputs = dynamics_inputs_from_config(load_config(None, SECTIONS))
+    model = SliderCrankModel(replace(inputs.crank, joint="clearance"), inputs.joint)
+    integrator = GeneralizedAlpha(model.system, inputs.integrator)
+    state = integrator.initial_state(*model.initial_conditions())
+    _, trajectory = integrator.run_recorded(state, state.t + 3 * inputs.integrator.step_s)
+    model.measure(_joined([trajectory]))
+
+
 def simulate(inputs: DynamicsInputs, start: MechanismState | None = None,
              progress: bool = False) -> tuple[JointHistory, RunSummary, MechanismState]:
     """Simulate ``inputs.crank.settling_cycles`` + ``recorded_cycles`` crank cycles.
@@ -361,54 +379,60 @@ def simulate(inputs: DynamicsInputs, start: MechanismState | None = None,
     else:
         state = integrator.initial_state(start.q, start.qd, start.time_s)
     t0, period = state.t, crank.period_s
-    rows: list = []
-
-    def record(s, h):
-        rows.append((s.t, s.q[model.i_crank + 2], s.q[model.i_slider], s.qd[model.i_slider],
-                     model.measure(s)))
-
+    recorded: list[Trajectory] = []
     total = crank.settling_cycles + crank.recorded_cycles
     clock = time.perf_counter()
     for cycle in range(total):
         recording = cycle >= crank.settling_cycles
-        if recording and not rows:
-            record(state, 0.0)
-        state = integrator.run(state, t0 + (cycle + 1) * period, record if recording else None)
+        t_end = t0 + (cycle + 1) * period
+        if recording and not recorded:
+            recorded.append(_single_row(state, model.system))
+        if recording:
+            state, trajectory = integrator.run_recorded(state, t_end)
+            recorded.append(trajectory)
+        else:
+            state = integrator.run(state, t_end)
         if progress:
             print(f"fewear dynamics: cycle {cycle + 1}/{total} "
                   f"({'recorded' if recording else 'settling'}), t = {state.t:.4f} s, "
                   f"{integrator.stats.steps} steps, {time.perf_counter() - clock:.1f} s",
                   file=sys.stderr, flush=True)
     wall = time.perf_counter() - clock
-    history = _history(rows, joint_model.impact_max_duration_s, crank.joint == "ideal")
+    history = _history(model, _joined(recorded), joint_model.impact_max_duration_s,
+                       crank.joint == "ideal")
     stats = integrator.stats
     summary = RunSummary(stats.steps, stats.rejected, stats.newton_iterations, wall, wall / total,
                          stats.smallest_step_s, total)
     return history, summary, MechanismState(state.t, state.q.copy(), state.qd.copy())
 
 
-def _history(rows, impact_max_duration_s: float, ideal: bool) -> JointHistory:
-    time_s = np.array([r[0] for r in rows])
-    measures = [r[4] for r in rows]
+def _joined(parts: list[Trajectory]) -> Trajectory:
+    """The trajectories one after the other (contiguous arrays, as the kernels are compiled
+    for)."""
+    return Trajectory(*(np.concatenate([getattr(part, name) for part in parts])
+                        for name in Trajectory.__dataclass_fields__))
 
-    def column(key):
-        return np.array([m[key] for m in measures], dtype=float)
 
-    penetration = column("penetration_m")
+def _single_row(state: State, system) -> Trajectory:
+    """The trajectory of one row: ``state`` with the joints' memory now."""
+    return Trajectory(np.array([state.t]), np.zeros(1), state.q[None], state.qd[None],
+                      state.qdd[None], state.a[None], state.lam[None],
+                      system.data.joints.memory[None].copy())
+
+
+def _history(model: SliderCrankModel, trajectory: Trajectory, impact_max_duration_s: float,
+             ideal: bool) -> JointHistory:
+    measures = model.measure(trajectory)
+    time_s = trajectory.time_s
     if ideal:
         mode = np.full(time_s.size, 2, dtype=int)
     else:
-        mode = classify_modes(time_s, column("normal_force_N"), impact_max_duration_s)
+        mode = classify_modes(time_s, measures["normal_force_N"], impact_max_duration_s)
     return JointHistory(
         time_s=time_s,
-        crank_angle_rad=np.array([r[1] for r in rows]),
-        slider_x_m=np.array([r[2] for r in rows]),
-        slider_velocity_m_s=np.array([r[3] for r in rows]),
-        eccentricity_m=column("eccentricity_m").reshape(-1, 2),
-        penetration_m=penetration,
-        normal_force_N=column("normal_force_N"),
-        friction_force_N=column("friction_force_N"),
-        reaction_force_N=column("reaction_force_N").reshape(-1, 2),
-        rel_omega_rad_s=column("rel_omega_rad_s"),
+        crank_angle_rad=trajectory.q[:, model.i_crank + 2],
+        slider_x_m=trajectory.q[:, model.i_slider],
+        slider_velocity_m_s=trajectory.qd[:, model.i_slider],
         mode=mode,
+        **measures,
     )

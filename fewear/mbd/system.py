@@ -4,60 +4,35 @@ Coordinates are absolute: ``(x, y, phi)`` of each rigid body's centre of mass an
 coordinates of each ANCF beam. In these coordinates the mass matrix is constant (rigid bodies:
 diag(m, m, J); ANCF: the consistent mass, Shabana 2005 ch. 7) and a planar rigid body has no
 velocity-product inertia terms, so M is assembled once. The forces are gravity (constant), the
-beams' elastic forces and the force elements (the clearance joints); each force element returns its
-generalized force and the analytic derivatives dQ/dq and dQ/dq' used by the Newton iteration.
+beams' elastic forces with stiffness-proportional damping Q = -F(q) - beta K(q) q' (K = dF/dq:
+beta K q' = beta dF/dt vanishes for rigid-body motion and gives a mode of frequency omega the
+damping ratio beta omega / 2, Rayleigh damping without the mass term) and the force elements (the
+clearance joints), each with the analytic derivatives dQ/dq and dQ/dq' used by the Newton
+iteration.
+
+:meth:`MultibodySystem.finalize` packs the whole system into one :data:`SystemData` of arrays,
+which the compiled functions (:func:`system_forces` and the integrator's step) evaluate.
 """
 
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 import numpy as np
-from scipy.linalg import lapack
 
 from fewear.errors import FewearInputError
+from fewear.mbd.ancf import add_beam_forces
+from fewear.mbd.clearance import ClearanceJoint, add_joint_forces, joint_data
 from fewear.mbd.constraints import ConstraintSet
+from fewear.mbd.jit import compiled
 
-
-def _block_indices(indices):
-    """(vector index, matrix block index) of a force element's coordinates: slices when they are
-    contiguous (an ANCF beam: plain slicing is several times faster than fancy indexing)."""
-    if len(indices) and np.array_equal(indices, np.arange(indices[0], indices[0] + len(indices))):
-        block = slice(int(indices[0]), int(indices[0]) + len(indices))
-        return block, (block, block)
-    return indices, np.ix_(indices, indices)
-
-
-class BeamElasticity:
-    """The elastic forces of an ANCF beam as a force element, with optional stiffness-proportional
-    damping: Q = -F(q) - beta K(q) q', K = dF/dq.
-
-    beta K q' = beta dF/dt vanishes for rigid-body motion (F is invariant under it) and gives a
-    mode of frequency omega the damping ratio beta omega / 2 (Rayleigh damping without the mass
-    term). Newton gets the exact dQ/dq = -K - beta d(K q')/dq and dQ/dq' = -beta K
-    (:meth:`fewear.mbd.ancf.AncfBeam.stiffness_proportional_forces`).
-    """
-
-    def __init__(self, beam, first_index: int, damping_s: float = 0.0):
-        if not (damping_s >= 0.0 and math.isfinite(damping_s)):
-            raise FewearInputError(f"beam damping {damping_s!r} s: expected a number >= 0")
-        self.beam = beam
-        self.damping_s = damping_s
-        self.indices = np.arange(first_index, first_index + beam.n_coordinates)
-
-    def evaluate(self, q_b, qd_b, t, jacobian: bool = True):
-        """(Q, dQ/dq, dQ/dq'); the derivatives are None if not ``jacobian`` (dQ/dq' also
-        without damping)."""
-        if self.damping_s == 0.0:
-            if not jacobian:
-                return -self.beam.elastic_forces(q_b), None, None
-            forces, stiffness = self.beam.elastic_forces_and_stiffness(q_b)
-            return -forces, -stiffness, None
-        forces, tangent, damping = self.beam.stiffness_proportional_forces(
-            q_b, qd_b, self.damping_s, jacobian)
-        if not jacobian:
-            return -forces, None, None
-        return -forces, -tangent, -damping
+SystemData = namedtuple("SystemData", [
+    "mass", "inverse_mass", "gravity_forces",  # (n, n), (n, n), (n,)
+    "beam_dofs", "beam_B", "beam_H", "beam_tau", "beam_beta",  # ancf.add_beam_forces (all beams)
+    "D", "c0", "c1", "offset_rows", "offset_columns", "offset_u",  # constraints.py
+    "joints",  # clearance.JointData
+])
 
 
 class MultibodySystem:
@@ -67,6 +42,7 @@ class MultibodySystem:
         self.gravity = np.asarray(gravity_m_s2, dtype=float)
         self._mass_blocks: list[tuple[int, np.ndarray]] = []
         self._gravity_blocks: list[tuple[int, np.ndarray]] = []
+        self._beams: list[tuple] = []  # the arrays of add_beam_forces of each beam
         self.constraints: list = []
         self.force_elements: list = []
         self.n_coordinates = 0
@@ -87,11 +63,13 @@ class MultibodySystem:
 
     def add_beam(self, beam, damping_s: float = 0.0) -> int:
         """Add an ANCF beam (fewear.mbd.ancf.AncfBeam) with stiffness-proportional damping
-        ``damping_s`` (see BeamElasticity); return the index of its first coordinate."""
+        ``damping_s`` (module docstring); return the index of its first coordinate."""
+        if not (damping_s >= 0.0 and math.isfinite(damping_s)):
+            raise FewearInputError(f"beam damping {damping_s!r} s: expected a number >= 0")
         first = self.n_coordinates
         self._mass_blocks.append((first, np.asarray(beam.mass_matrix(), dtype=float)))
         self._gravity_blocks.append((first, np.asarray(beam.gravity_forces(self.gravity))))
-        self.force_elements.append(BeamElasticity(beam, first, damping_s))
+        self._beams.append(beam.kernel_data(0.0, damping_s, first))
         self.n_coordinates += beam.n_coordinates
         return first
 
@@ -99,11 +77,14 @@ class MultibodySystem:
         self.constraints.append(constraint)
 
     def add_force(self, element) -> None:
+        """Add a force element (a :class:`fewear.mbd.clearance.ClearanceJoint`)."""
+        if not isinstance(element, ClearanceJoint):
+            raise TypeError(f"unsupported force element {element!r}")
         self.force_elements.append(element)
 
     def finalize(self) -> MultibodySystem:
-        """Assemble the constant mass matrix (and its inverse) and gravity forces; fix the
-        constraint rows."""
+        """Assemble the constant mass matrix (and its inverse) and gravity forces, fix the
+        constraint rows and pack the system into :attr:`data`."""
         n = self.n_coordinates
         self.mass = np.zeros((n, n))
         self.gravity_forces = np.zeros(n)
@@ -114,52 +95,30 @@ class MultibodySystem:
             self.gravity_forces[first:first + len(block)] += block
         self.inverse_mass = np.linalg.inv(self.mass)
         self.constraint_set = ConstraintSet(self.constraints, n)
-        self._constrained = self.constraint_set.columns
-        self._constrained_inverse_mass = self.inverse_mass[self._constrained]
         self._rows = self.constraint_set.rows
         self.n_constraints = self.constraint_set.n_rows
-        self._force_blocks = [(e, *_block_indices(e.indices)) for e in self.force_elements]
+        joints = joint_data(self.force_elements)
+        for j, element in enumerate(self.force_elements):
+            element.share_memory(joints.memory[j:j + 1])
+        self.data = SystemData(self.mass, self.inverse_mass, self.gravity_forces,
+                               *self._beam_arrays(), *self.constraint_set.kernel_data, joints)
         return self
 
+    def _beam_arrays(self):
+        """The beams' arrays of add_beam_forces, all elements of all beams concatenated."""
+        if not self._beams:
+            return (np.zeros((0, 12), dtype=np.int64), np.zeros((0, 5, 6, 12)),
+                    np.zeros((0, 5, 6, 6)), np.zeros(0), np.zeros(0))
+        return tuple(np.concatenate(arrays) for arrays in zip(*self._beams))
+
     # --- evaluation -------------------------------------------------------------------------
-    def constraint_values_and_jacobian(self, q, t):
-        """(Phi, Phi_q): Phi_q is a buffer, valid until the next constraint evaluation."""
-        return self.constraint_set.values_and_jacobian(q, t)
-
-    def constraint_jacobian(self, q):
-        """Phi_q (m, n) (a new array)."""
-        return self.constraint_set.jacobian(q)
-
-    def constraint_time_derivative(self, t):
-        """Phi_t (m,) (constant for these constraints)."""
-        return self.constraint_set.c1
-
-    def constraint_hessian(self, q, lam):
-        """d(Phi_q^T lambda)/dq, which is diagonal for these constraints: its diagonal (n,)."""
-        return self.constraint_set.hessian(q, lam)
-
-    def constraint_convective(self, q, qd):
-        """(dPhi_q/dt) q' (m,)."""
-        return self.constraint_set.convective(q, qd)
-
-    def forces(self, q, qd, t, jacobian: bool = True):
-        """Q(q, q', t), dQ/dq and dQ/dq' (dense, or None where no element contributes; both None
-        if not ``jacobian``)."""
-        Q = self.gravity_forces.copy()
-        K = C = None
-        for element, idx, block in self._force_blocks:
-            Q_b, K_b, C_b = element.evaluate(q[idx], qd[idx], t, jacobian)
-            Q[idx] += Q_b
-            if K_b is not None:
-                K = self._zeros() if K is None else K
-                K[block] += K_b
-            if C_b is not None:
-                C = self._zeros() if C is None else C
-                C[block] += C_b
+    def forces(self, q, qd, t):
+        """(Q(q, q', t), dQ/dq, dQ/dq') (:func:`system_forces`)."""
+        n = self.n_coordinates
+        Q, K, C = np.zeros(n), np.zeros((n, n)), np.zeros((n, n))
+        system_forces(self.data, np.asarray(q, dtype=float), np.asarray(qd, dtype=float), t,
+                      True, Q, K, C)
         return Q, K, C
-
-    def _zeros(self):
-        return np.zeros((self.n_coordinates, self.n_coordinates))
 
     def kinetic_energy(self, qd):
         return 0.5 * qd @ self.mass @ qd
@@ -171,25 +130,24 @@ class MultibodySystem:
     def consistent_accelerations(self, q, qd, t):
         """Solve M q'' + Phi_q^T lambda = Q, Phi_q q'' = -(dPhi_q/dt) q' for (q'', lambda)."""
         Q, _, _ = self.forces(q, qd, t)
-        jac = self.constraint_jacobian(q)
+        jac = self.constraint_set.jacobian(q)
         m = self.n_constraints
         A = np.block([[self.mass, jac.T], [jac, np.zeros((m, m))]])
-        rhs = np.concatenate([Q, -self.constraint_convective(q, qd)])
+        rhs = np.concatenate([Q, -self.constraint_set.convective(q, qd)])
         sol = np.linalg.solve(A, rhs)
         return sol[: self.n_coordinates], sol[self.n_coordinates:]
 
-    def project_velocities(self, q, qd, t, jacobian=None):
-        """The M-orthogonal projection of q' onto Phi_q q' + Phi_t = 0.
 
-        Through the Schur complement of the KKT system [[M, Phi_q^T], [Phi_q, 0]]:
-        (Phi_q M^-1 Phi_q^T) mu = Phi_q q' + Phi_t, q' <- q' - M^-1 Phi_q^T mu. ``jacobian``: Phi_q
-        if the caller has it at q (the integrator passes its last Newton Jacobian). Phi_q is zero
-        outside the columns the constraints touch, so the products run over those only."""
-        columns = self._constrained
-        jac = (self.constraint_jacobian(q) if jacobian is None else jacobian)[:, columns]
-        weighted = jac @ self._constrained_inverse_mass
-        schur = weighted[:, columns] @ jac.T
-        _, mu, info = lapack.dposv(schur, jac @ qd[columns] + self.constraint_time_derivative(t))
-        if info != 0:
-            raise np.linalg.LinAlgError("velocity projection: Phi_q has dependent rows")
-        return qd - mu @ weighted
+@compiled
+def system_forces(data, q, qd, t, jacobian, Q, K, C):
+    """Fill Q(q, q', t) and, if ``jacobian``, K = dQ/dq and C = dQ/dq': gravity, the beams'
+    -F - beta K q' (:func:`fewear.mbd.ancf.add_beam_forces`) and the clearance joints
+    (:func:`fewear.mbd.clearance.add_joint_forces`)."""
+    Q[:] = data.gravity_forces
+    if jacobian:
+        K[:] = 0.0
+        C[:] = 0.0
+    add_beam_forces(q, qd, data.beam_dofs, data.beam_B, data.beam_H, data.beam_tau,
+                    data.beam_beta, -1.0, jacobian, Q, K, C)
+    for j in range(data.joints.memory.shape[0]):
+        add_joint_forces(data.joints, j, q, qd, jacobian, Q, K, C)

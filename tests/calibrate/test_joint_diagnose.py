@@ -19,6 +19,7 @@ import pytest
 
 from fewear.calibrate.joint_diagnose import JointDiagnoseSettings, diagnose_joint
 from fewear.calibrate.joint_measured import write_joint_profiles, write_max_wear
+from fewear.calibrate.joint_structure import MAX_LISTED_IMPACTS
 from fewear.cli import main
 from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
@@ -119,7 +120,11 @@ def assert_no_cause_and_the_origin_found(summary, offset):
     # the load cell's trace is the believed model's own: its crank phase is found
     trace, = summary["residual_structure"]["traces"]
     assert trace["phase_deg"] == pytest.approx(FORCE_START_DEG, abs=1.0)
-    assert summary["residual_structure"]["crank_cycle"]["impacts"]["impacts_per_cycle"] > 0
+    # the crank cycle's impact table: how many impacts the cycle has is the chaotic clearance
+    # motion's outcome (none is possible); the table itself is tested on a made history in
+    # test_joint_structure.py
+    impacts = summary["residual_structure"]["crank_cycle"]["impacts"]
+    assert len(impacts["largest"]) == min(impacts["impacts_per_cycle"], MAX_LISTED_IMPACTS)
 
 
 def test_the_believed_models_own_data_give_no_cause_and_the_origin_is_found(

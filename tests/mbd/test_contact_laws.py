@@ -148,7 +148,7 @@ def test_generalized_force_jacobian_matches_finite_differences():
     q[3:5] = pin - 5.05e-4 * np.array([math.cos(0.7), math.sin(0.7)])
     qd = np.zeros(6)
     joint.begin_step(q, qd)
-    joint._candidate_velocity = 0.5
+    joint.data.memory[0, 2] = 0.5  # the approach velocity: the impact velocity of the contact
     Q, K, C = joint.evaluate(q, qd, 0.0)
     for k in range(6):
         step = 1e-10
