@@ -41,9 +41,6 @@ def believed(tmp_path_factory):
     return path, load_config(path, run_sections())
 
 
-SLOW = pytest.mark.slow  # each hidden-cause case costs its own forward runs (~20-60 s)
-
-
 def test_the_hidden_friction_is_named_over_the_level_on_a_short_campaign(believed):
     """The quick catalogue: friction and the k level that is the cheapest explanation of it."""
     data, truth, _ = hidden_joint_case(believed[1], "friction", 13, profile_cycles=SHORT)
@@ -56,7 +53,8 @@ def test_the_hidden_friction_is_named_over_the_level_on_a_short_campaign(believe
 
 # The default suite hides friction (above, on the short campaign with the quick catalogue); the
 # demo (demos/diagnose_joint.py, slow) hides a flexible rod whose modulus lies between the
-# candidate's grid points; each cause against the full catalogue is slow.
+# candidate's grid points; each cause against the full catalogue is slow (its own forward runs,
+# 20 s to several minutes).
 @pytest.mark.slow
 @pytest.mark.parametrize("cause, seed", [
     ("friction", 13), ("wear_coefficient", 11), ("flexible_link", 12), ("impact_wear", 14),

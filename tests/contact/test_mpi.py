@@ -6,7 +6,7 @@ the mesh (assembly order, distributed LU); what remains is the Newton tolerance.
 
 The default suite runs the demo on its two coarse meshes (`FEWEAR_DEMO_COARSE=1`: the same code,
 seconds); the slow variant (`make slow`) compares the demo's full refinement study (three meshes
-up to 1024 bore elements, a minute or two under MPI).
+up to 1020 bore elements, a minute or two under MPI).
 """
 
 import csv
