@@ -38,7 +38,7 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
     """One wear block of ``case`` (stages 1-5), updating it in place. ``added_depth_per_cycle``
     (history, state) -> depth per cycle (m, per bore node), optional: a wear source of another
     law added to the block's impact wear (a given source of the block step, like it)."""
-    from fewear.mbd.slider_crank import simulate
+    from fewear.mbd.slider_crank import UNINTEGRABLE_HINT, simulate
 
     loop, times = inputs.loop, case.stage_wall_time_s
     state = case.state
@@ -59,9 +59,8 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
                 f"on the worn clearance failed ({exc}): a smaller [integrator] min_step_s, a "
                 "larger gap_tolerance_m or a wider [wear_loop] wear_smoothing_width_deg may get "
                 "past it"
-                + ("" if state.blocks else "; on the unworn clearance, a value of [mechanism], "
-                   "[clearance_joint] or [integrator] makes the mechanism too stiff, too light or "
-                   "too fast to integrate (compare with `fewear config`)")) from None
+                + ("" if state.blocks else f"; on the unworn clearance, {UNINTEGRABLE_HINT}")
+            ) from None
     with timed(times, "contact"):
         steps = load_steps(history, loop.load_steps_per_cycle * loop.recorded_cycles_per_block,
                            inputs.dynamics.joint.law)

@@ -187,18 +187,16 @@ def interrupt_note(args, store: Checkpoint, rods, total_cycles: int) -> str:
     return f"the checkpoint {store.path} keeps {kept}; continue with: {resume_command(args)}"
 
 
-EARLIER_RUN_FILES = ("summary.json", "wear_profile.csv", "max_wear.csv", "wear_profiles.png",
-                     "max_wear.png", "worn_bushing.png")
-"""The files of a `fewear run` in its output folder (with the checkpoint and the cases' .xdmf and
-.h5): what --overwrite replaces."""
-
-
 def earlier_run(out: Path) -> list[Path]:
-    """The checkpoint and output files of an earlier run in ``out`` (none: [])."""
+    """The checkpoint and output files of an earlier run in ``out`` (none: []): what --overwrite
+    replaces (the files :mod:`fewear.loop.outputs` writes, and ``fewear plot``'s figure)."""
+    from fewear.loop.outputs import RUN_FILES
+    from fewear.plot.worn_bushing import FIGURE
+
     if not out.is_dir():
         return []
     found = [out / FOLDER] if (out / FOLDER).is_dir() and any((out / FOLDER).iterdir()) else []
-    found += [out / name for name in EARLIER_RUN_FILES if (out / name).is_file()]
+    found += [out / name for name in (*RUN_FILES, FIGURE) if (out / name).is_file()]
     if found:  # the cases' XDMF files belong to a run only beside its checkpoint or summary
         found += sorted(path for pattern in ("*.xdmf", "*.h5") for path in out.glob(pattern))
     return found

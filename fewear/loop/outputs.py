@@ -21,12 +21,17 @@ import numpy as np
 from fewear.io.output import write_json
 from fewear.loop.progress import CaseProgress
 
+SUMMARY, PROFILES_CSV, MAX_WEAR_CSV = "summary.json", "wear_profile.csv", "max_wear.csv"
+PROFILES_PNG, MAX_WEAR_PNG = "wear_profiles.png", "max_wear.png"
+RUN_FILES = (SUMMARY, PROFILES_CSV, MAX_WEAR_CSV, PROFILES_PNG, MAX_WEAR_PNG)
+"""The files of a run with fixed names (besides ``<case>.xdmf`` and ``.h5``)."""
+
 
 def write_run_outputs(folder: Path, cases: dict, inputs, config: dict) -> None:
     from fewear.plot.wear import plot_max_wear, plot_wear_profiles
 
     loop = inputs.loop
-    write_json(folder / "summary.json", {
+    write_json(folder / SUMMARY, {
         "what": "seed section 5: wear at the rod-slider clearance joint, block by block with "
                 "the worn geometry fed back (ALE / re-meshing, worn clearance in the dynamics)",
         "load_steps_per_cycle": loop.load_steps_per_cycle,
@@ -36,16 +41,16 @@ def write_run_outputs(folder: Path, cases: dict, inputs, config: dict) -> None:
         "cases": {rod: case_summary(case, inputs) for rod, case in cases.items()},
         "config": config,
     })
-    write_profiles_csv(folder / "wear_profile.csv", cases)
-    write_max_wear_csv(folder / "max_wear.csv", cases)
+    write_profiles_csv(folder / PROFILES_CSV, cases)
+    write_max_wear_csv(folder / MAX_WEAR_CSV, cases)
     for rod, case in cases.items():
         write_xdmf(folder / f"{rod}.xdmf", case)
     plot_wear_profiles({rod: (case.state.angle_rad, case.state.depth_m)
-                        for rod, case in cases.items()}, folder / "wear_profiles.png",
+                        for rod, case in cases.items()}, folder / PROFILES_PNG,
                        loop.total_cycles)
     plot_max_wear({rod: (np.array([r.cycles for r in case.records]),
                          np.array([r.depth_m.max() for r in case.records]))
-                   for rod, case in cases.items()}, folder / "max_wear.png")
+                   for rod, case in cases.items()}, folder / MAX_WEAR_PNG)
 
 
 def case_summary(case: CaseProgress, inputs) -> dict:

@@ -18,7 +18,12 @@ from fewear.io.config import load_config
 from fewear.io.limits import MAX_DYNAMICS_CYCLES
 from fewear.io.output import staged_output
 from fewear.mbd.history import MODES, JointHistory
-from fewear.mbd.slider_crank import SECTIONS, joint_model_from_config, simulate_slider_crank
+from fewear.mbd.slider_crank import (
+    SECTIONS,
+    UNINTEGRABLE_HINT,
+    joint_model_from_config,
+    simulate_slider_crank,
+)
 
 CSV_COLUMNS = ("time_s", "crank_angle_deg", "slider_x_m", "ex_m", "ey_m", "penetration_m", "fn_N",
                "ft_N", "fx_N", "fy_N", "rel_omega_rad_s", "mode")
@@ -35,10 +40,8 @@ def main(args) -> int:
                                                  cycles=args.cycles, progress=True)
     except RuntimeError as exc:  # the integrator's step size collapsed
         raise FewearInputError(
-            f"the dynamics cannot integrate this mechanism ({exc}): a value of [mechanism], "
-            "[clearance_joint] or [integrator] makes it too stiff, too light or too fast for the "
-            "integrator (compare with `fewear config`; a smaller [integrator] min_step_s or a "
-            "larger gap_tolerance_m may get past it)") from None
+            f"the dynamics cannot integrate this mechanism ({exc}): {UNINTEGRABLE_HINT}; a "
+            "smaller [integrator] min_step_s or a larger gap_tolerance_m may get past it") from None
     used = {name: dict(table) for name, table in config.items()}
     for key, value in (("rod", args.rod), ("joint", args.joint),
                        ("recorded_cycles", args.cycles)):

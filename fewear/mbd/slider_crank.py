@@ -36,6 +36,12 @@ from fewear.mbd.integrator import GeneralizedAlpha, IntegratorSettings, State, T
 from fewear.mbd.points import GroundPoint, NodePoint, RigidPoint, point_motion
 from fewear.mbd.system import MultibodySystem
 
+UNINTEGRABLE_HINT = ("a value of [mechanism], [clearance_joint] or [integrator] makes the "
+                     "mechanism too stiff, too light or too fast to integrate (compare with "
+                     "`fewear config`)")
+"""What to check when the integrator's step size collapses on a mechanism (a RuntimeError of
+:func:`simulate`), for the commands' error messages."""
+
 SECTIONS = ("mechanism", "clearance_joint", "integrator", "dynamics_output", "bushing", "pin",
             "joint")
 

@@ -20,6 +20,8 @@ import numpy as np
 from fewear.errors import FewearInputError
 
 VTK_BIQUADRATIC_QUAD = 28
+FIGURE = "worn_bushing.png"
+"""The figure written into the run's folder off screen."""
 
 
 def last_block(path: Path):
@@ -81,7 +83,7 @@ def main(args) -> int:
                          font_size=10)
         plotter.view_xy()
     if off_screen:
-        target = folder / "worn_bushing.png"
+        target = folder / FIGURE
         try:
             plotter.screenshot(str(target))
         except OSError as exc:
