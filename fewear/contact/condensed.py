@@ -7,11 +7,12 @@ thickness). Since the bushing is linear elastic, the nodal displacements are
 
     U = G f,      G = N K^-1 N^T      (the bore's nodal compliance, m per N/m),
 
-with K the clamped elastic stiffness and N the evaluation of the S2 field at the bore nodes. G is
-computed once per mesh geometry: one LU factorisation of K (MUMPS) and one solve with the ``2 n``
-columns of N^T as a dense multiple right-hand side (``Mat.matSolve``). N itself depends only on
-the reference coordinates of the bore nodes in their cells, so it is evaluated once per mesh
-topology and kept when the mesh moves (:meth:`CondensedBushingContact.update_geometry`).
+with K the clamped elastic stiffness and N the evaluation of the S2 field at the bore nodes. N is
+zero off the bore dofs B, so G = N (K^-1)_BB N^T: G is computed once per mesh geometry from one LU
+factorisation of K (MUMPS) and the block (K^-1)_BB of selected entries of its inverse (MUMPS
+ICNTL(30)). N itself is the element's reference basis at the bore nodes' reference coordinates in
+their cells, tabulated once per mesh topology and kept when the mesh moves
+(:meth:`CondensedBushingContact.update_geometry`).
 
 What is left per load step is the small nonlinear problem
 
@@ -45,12 +46,14 @@ multiplied by the width L for the result (N).
 
 from __future__ import annotations
 
+import ctypes
 import math
 
 import numpy as np
 from dolfinx import fem
 from mpi4py import MPI
 from petsc4py import PETSc
+from scipy import sparse
 
 from fewear.contact.admissible import (
     ContactLoadError,
@@ -107,8 +110,8 @@ class CondensedBushingContact:
 
         ``keep_compliance``: keep the G of the geometry it was built on (its rows and columns
         follow the bore nodes, should their angular order change) and update the rest: G costs
-        one dense multiple-right-hand-side solve with 2n columns (about a second on the
-        reference mesh), the rest milliseconds. An approximation the caller bounds by how far
+        an LU factorisation and the selected inverse entries (0.3 s on the reference mesh), the
+        rest milliseconds. An approximation the caller bounds by how far
         the bore moved since G was built (:class:`fewear.loop.bushing.WornBushing`)."""
         node_ids = self.solver.bore.global_ids.copy()
         if update_solver:
@@ -130,7 +133,7 @@ class CondensedBushingContact:
 
     def _bore_dofs(self):
         """Local indices (unrolled) of the S2 dofs on the bore, their columns in the gathered,
-        sorted list of global dof numbers, and that list's length."""
+        sorted list of global dof numbers, and that list."""
         solver = self.solver
         V = solver.V
         tdim = solver.mesh.topology.dim
@@ -139,32 +142,37 @@ class CondensedBushingContact:
         local = np.concatenate([2 * blocks, 2 * blocks + 1])
         global_ids = np.concatenate([2 * global_blocks, 2 * global_blocks + 1])
         all_ids = np.unique(np.concatenate(self.comm.allgather(global_ids)))
-        return local, np.searchsorted(all_ids, global_ids), all_ids.size
+        return local, np.searchsorted(all_ids, global_ids), all_ids
 
     def _nodal_evaluation(self) -> np.ndarray:
         """N_local (2 n_local_nodes, n_columns): the S2 basis functions of the bore dofs at the
-        local bore nodes, rows (node, direction). The nodes sit at fixed reference coordinates
-        of their cells (vertices, edge midpoints), so N does not change when the mesh moves: it
-        is evaluated once, with one probe per dof pair (x and y of a node block)."""
+        local bore nodes, rows (node, direction). A bore node is a node of the 9-node geometry, so
+        it sits at a fixed reference point X_k of its cell (a vertex or an edge midpoint: the
+        coordinate element's k-th point) and, the S2 element being mapped by the identity
+        (phi_j(x(X)) = phi_j(X)), its row holds the reference basis phi_j(X_k) of the cell's dofs.
+        The basis is tabulated once at the 9 points, so N costs no point search and does not
+        change when the mesh moves. Only the bore dofs' basis functions are kept: the others vanish
+        on the bore (the trace of an H1 element on a facet is spanned by the facet's dofs)."""
         solver, bore = self.solver, self.solver.bore
-        local_dofs, columns, n_columns = self._dofs
-        probe = fem.Function(solver.V)
-        points = np.zeros((bore.local_nodes.size, 3))
-        points[:, :2] = solver.mesh.geometry.x[bore.local_nodes, :2]
-        table = np.zeros((2 * bore.local_nodes.size, n_columns))
-        for pair in range(0, n_columns, 2):  # columns 2j, 2j+1: x and y of one dof block
-            probe.x.array[:] = 0.0
-            probe.x.array[local_dofs[(columns == pair) | (columns == pair + 1)]] = 1.0
-            if bore.local_nodes.size:
-                values = probe.eval(points, bore.local_node_cells)
-                table[0::2, pair] = values[:, 0]
-                table[1::2, pair + 1] = values[:, 1]
+        local_dofs, columns, all_ids = self._dofs
+        index_map = solver.V.dofmap.index_map
+        column = np.full(2 * (index_map.size_local + index_map.num_ghosts), -1)
+        column[local_dofs] = columns
+        basis = reference_basis_at_geometry_nodes(solver.mesh, solver.V)
+        geometry = solver.mesh.geometry.dofmap
+        table = np.zeros((2 * bore.local_nodes.size, all_ids.size))
+        for row, (node, cell) in enumerate(zip(bore.local_nodes, bore.local_node_cells)):
+            values = basis[np.flatnonzero(geometry.links(cell) == node)[0]]
+            for direction in range(2):
+                cell_columns = column[2 * solver.V.dofmap.cell_dofs(cell) + direction]
+                on_bore = cell_columns >= 0
+                table[2 * row + direction, cell_columns[on_bore]] = values[on_bore]
         return table
 
     def _gathered_evaluation(self) -> np.ndarray:
         """N (2n, n_columns) in the gathered node order, the same on every rank."""
         bore = self.solver.bore
-        n_columns = self._dofs[2]
+        n_columns = self._dofs[2].size
         rows = (2 * bore.local_index[:, None] + np.arange(2)[None, :]).reshape(-1)
         local = np.zeros((2 * bore.global_ids.size, n_columns))
         local[rows] = self._table
@@ -174,28 +182,20 @@ class CondensedBushingContact:
                 / self.comm.allreduce(count, op=MPI.SUM)[:, None])
 
     def _nodal_compliance(self) -> np.ndarray:
-        """G = N K^-1 N^T with K the clamped elastic stiffness: one MUMPS LU factorisation of K
-        and one multiple-right-hand-side solve K X = N^T (``Mat.matSolve`` with the 2n columns
-        of N^T as a dense matrix); each rank then adds N X over the bore dofs it owns."""
+        """G = N (K^-1)_BB N^T with K the clamped elastic stiffness and B the bore dofs (N is
+        zero elsewhere): one MUMPS LU factorisation of K and the block (K^-1)_BB of selected
+        entries of its inverse (MUMPS ICNTL(30), :func:`inverse_block`). MUMPS prunes both
+        triangular solves to the bore's entries; a solve with the 2n columns of N^T as dense
+        right-hand sides computes the whole of K^-1 N^T and costs about 5 times as much. N, with
+        at most 3 nonzeros per row, multiplies as a sparse matrix."""
         solver = self.solver
-        local_dofs, columns, _ = self._dofs
-        owned = local_dofs < solver.V.dofmap.index_map.size_local * 2
-        N = self._gathered_evaluation()
         ksp = solver._make_lu_solver()
         ksp.setOperators(solver._K_elastic)
         ksp.setUp()
-        sizes = (solver._K_elastic.getSizes()[0], (None, N.shape[0]))
-        loads = PETSc.Mat().createDense(sizes, comm=self.comm)
-        loads.setUp()
-        loads.getDenseArray()[local_dofs[owned], :] = N[:, columns[owned]].T
-        loads.assemble()
-        displacements = loads.duplicate()
-        ksp.getPC().getFactorMatrix().matSolve(loads, displacements)
-        at_owned_dofs = displacements.getDenseArray()[local_dofs[owned], :]
-        G = self.comm.allreduce(N[:, columns[owned]] @ at_owned_dofs, op=MPI.SUM)
-        for matrix in (loads, displacements, ksp):
-            matrix.destroy()
-        return G
+        inverse = inverse_block(ksp.getPC().getFactorMatrix(), self._dofs[2], self.comm)
+        ksp.destroy()
+        N = sparse.csr_matrix(self._gathered_evaluation())  # a few nonzeros per row
+        return (N @ (N @ inverse).T).T
 
     # -- the per-step problem ----------------------------------------------------------------
     def solve(self, force_N, rotation_increment_rad: float = 0.0,
@@ -374,3 +374,46 @@ class CondensedBushingContact:
         """<R_p - |X + U - c|>_+ at the bore nodes (m)."""
         d = self.points + self._U.reshape(-1, 2) - self.pin_centre_m
         return np.maximum(self.problem.geometry.pin_radius_m - np.hypot(d[:, 0], d[:, 1]), 0.0)
+
+
+def reference_basis_at_geometry_nodes(mesh, V) -> np.ndarray:
+    """phi_j(X_k) (k, j): the reference basis of V's scalar element (the Basix element FFCx
+    compiles V's forms with) at the reference points X_k of the coordinate element's nodes, in
+    the order of the geometry dofmap."""
+    from ffcx.element_interface import create_element
+
+    element = create_element(V.ufl_element().sub_elements()[0]).element
+    nodes = create_element(mesh.ufl_domain().ufl_coordinate_element()).sub_element.element
+    return element.tabulate(0, nodes.points)[0, :, :, 0]
+
+
+def inverse_block(factor: PETSc.Mat, dofs: np.ndarray, comm) -> np.ndarray:
+    """The dense block (A^-1)[dofs, dofs] of a MUMPS-factorised A, the same on every rank.
+
+    MUMPS computes selected entries of A^-1 (ICNTL(30)) from the sparsity pattern of a matrix on
+    the host that lists them transposed (row j: the entries A^-1[i, j]), and overwrites its values;
+    PETSc 3.18 calls this ``MatMumpsGetInverseTranspose``, which petsc4py 3.18 does not wrap. It is
+    called here through ctypes, on the PETSc library petsc4py's extension module is linked with."""
+    n = factor.getSize()[0]
+    host = comm.rank == 0
+    local = n if host else 0  # the host holds all rows and columns of the pattern
+    counts = np.zeros(local, dtype=PETSc.IntType)
+    if host:
+        counts[dofs] = dofs.size
+    indptr = np.concatenate([[0], np.cumsum(counts)]).astype(PETSc.IntType)
+    indices = np.tile(dofs, dofs.size if host else 0).astype(PETSc.IntType)
+    pattern = PETSc.Mat().createAIJ(((local, n), (local, n)), comm=comm,
+                                    csr=(indptr, indices, np.zeros(indices.size)))
+    _petsc_call("MatMumpsGetInverseTranspose", factor, pattern)
+    block = pattern.getValuesCSR()[2].reshape(dofs.size, dofs.size).T if host else None
+    pattern.destroy()
+    return comm.bcast(block, root=0)
+
+
+def _petsc_call(name: str, *objects) -> None:
+    """Call the PETSc C function ``name`` with the handles of the petsc4py ``objects``."""
+    function = getattr(ctypes.CDLL(PETSc.__file__), name)
+    function.argtypes = [ctypes.c_void_p] * len(objects)
+    error = function(*(item.handle for item in objects))
+    if error:
+        raise RuntimeError(f"PETSc {name} failed with error code {error}")

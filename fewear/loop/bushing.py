@@ -54,12 +54,12 @@ class WornBushing:
     motion); ``counts``: the case's counts, which the moves and the contact's fallbacks add to;
     ``last_quality``: after the last move.
 
-    ``compliance_update``: when the bore compliance G of the contact operator (one dense solve
-    with 2n right-hand sides, the dearest part of a move) is built: ``"move"`` after every move,
-    ``"remesh"`` once per mesh, on the mesh as made, and kept (reordered) while the mesh moves:
-    the re-mesh limit on the bore's motion (half the bore element's height by default) bounds
-    how far the geometry of G lags behind the worn bore. Both restore exactly from a checkpoint
-    (the mesh as made is in it).
+    ``compliance_update``: when the bore compliance G of the contact operator (an LU
+    factorisation and the bore block of its inverse, the dearest part of a move) is built:
+    ``"move"`` after every move, ``"remesh"`` once per mesh, on the mesh as made, and kept
+    (reordered) while the mesh moves: the re-mesh limit on the bore's motion (half the bore
+    element's height by default) bounds how far the geometry of G lags behind the worn bore.
+    Both restore exactly from a checkpoint (the mesh as made is in it).
     """
 
     def __init__(self, problem: ContactProblem, comm, counts: LoopCounts | None = None,
