@@ -1,10 +1,11 @@
 """The decorator of fewear's compiled kernels: ``@compiled`` = ``numba.njit(cache=True)``.
 
-Compiled are the multibody dynamics (:mod:`fewear.mbd`, the whole step loop) and, next, the
-contact Newton's kernels (:mod:`fewear.contact`). The machine code is cached on disk, so only the
+Compiled are the multibody dynamics (:mod:`fewear.mbd`, the whole step loop) and the contact
+Newton's kernels (:mod:`fewear.contact`: the free region's corners and vertices, gaps, the
+condensed path's linearisation and Newton step). The machine code is cached on disk, so only the
 first process after a change of the sources pays the compile (see README, "Dynamics");
-:func:`fewear.mbd.slider_crank.compile_dynamics` compiles before worker processes start, so
-that they load the code instead of each compiling it.
+:func:`compile_kernels` compiles before worker processes start, so that they load the code
+instead of each compiling it.
 
 numba keys each function's cache on its own source file only, but a compiled caller inlines its
 callees from other files (the integrator's step loop holds the whole dynamics), so a change of
@@ -76,3 +77,15 @@ def _use_cache_dir() -> None:
 
 _use_cache_dir()
 compiled = numba.njit(cache=True)
+
+
+
+def compile_kernels() -> None:
+    """Compile, or load from the cache, the kernels of a wear run: the dynamics'
+    (:func:`fewear.mbd.slider_crank.compile_dynamics`) and the contact's
+    (:func:`fewear.contact.condensed.compile_contact`)."""
+    from fewear.contact.condensed import compile_contact
+    from fewear.mbd.slider_crank import compile_dynamics
+
+    compile_dynamics()
+    compile_contact()

@@ -65,6 +65,7 @@ from fewear.contact.admissible import (
 from fewear.contact.newton import (
     ContactNewton,
     ContactNotConverged,
+    compile_shared_kernels,
     contact_direction,
     pairwise_sum,
 )
@@ -210,6 +211,22 @@ def penalty_energy(points: np.ndarray, U: np.ndarray, g: np.ndarray, centre: np.
     penetration = penetrations(points, U, centre, pin_radius)
     return (0.5 * np.dot(g, U.reshape(-1)) + 0.5 * penalty * np.dot(weights_m, penetration**2)
             - (load[0] * centre[0] + load[1] * centre[1]))
+
+
+def compile_contact() -> None:
+    """Compile, or load from numba's cache (:mod:`fewear.jit`), the contact Newton's kernels:
+    each called once on a small bore (16 nodes on a circle, the pin pressed into two) with the
+    argument types of a solve, so that worker processes started afterwards load them instead
+    of each compiling them (tests/contact/test_newton.py checks that a solve adds no
+    signature)."""
+    points, weights, pin_radius, penalty, load, centre = compile_shared_kernels()
+    size = points.shape[0]
+    U, g = np.zeros((size, 2)), np.zeros(2 * size)
+    f, WM, active, _, _ = linearised_forces(points, U, centre, pin_radius, penalty, 0.1,
+                                            weights, load)
+    newton_step(np.eye(2 * size), g, U, f, WM, active, np.eye(2), load)
+    nodal_forces(points, U, centre, pin_radius, penalty, 0.0, weights)
+    penalty_energy(points, U, g, centre, pin_radius, penalty, weights, load)
 
 
 class CondensedBushingContact:

@@ -517,6 +517,33 @@ def following_centre(points: np.ndarray, centre: np.ndarray, contact: np.ndarray
     return np.array([centre[0] + mean * normal_x / length, centre[1] + mean * normal_y / length])
 
 
+def compile_shared_kernels():
+    """Call each kernel of this module that :class:`ContactNewton` calls once, on a small bore
+    (16 nodes on a circle of radius 1 m, the pin of radius 0.9 m pressed into two of them),
+    so that numba compiles it or loads it from the cache; return the bore for the
+    discretisation's kernels (:func:`fewear.contact.condensed.compile_contact`): points,
+    weights, pin radius, penalty stiffness, load and the pressed pin's centre."""
+    angles = np.linspace(0.0, 2.0 * math.pi, 16, endpoint=False)
+    points = np.column_stack([np.cos(angles), np.sin(angles)])
+    weights, pin_radius, penalty = np.full(16, 0.4), 0.9, 1e3
+    direction = unit(-0.5 * math.pi)
+    load = 10.0 * direction
+    norm(load)
+    corner, pair, _ = free_corner(points, direction, pin_radius)
+    wedge_press(points, corner, pair, direction, 10.0, penalty, weights)
+    centre = first_touch_centre(points, np.zeros(2), direction, pin_radius) + 0.01 * direction
+    base_gaps = gaps(points, centre, pin_radius)
+    contact, at, normals = contact_normals(points, centre, base_gaps)
+    dc = 0.001 * unit(0.0)
+    trial = pin_update(centre, dc, 0.2)
+    slide_limit(centre, dc, 0.4, 1.0)
+    entering_limit(base_gaps, gaps(points, trial, pin_radius), 1.0, weights, 10.0, penalty)
+    following_centre(points, trial, contact, at, normals, base_gaps[contact], centre,
+                     pin_radius)
+    load_penetration(10.0, penalty, weights[pair[0]] + weights[pair[1]])
+    return points, weights, pin_radius, penalty, load, centre
+
+
 class NewtonControl:
     """The stopping test and the cap on the step against active-set cycling.
 
