@@ -109,6 +109,7 @@ def _on_ranks(rods, config: dict, out_dir, resumed: dict, world) -> dict:
     """The ranks of ``world`` split into one sub-communicator per group of rods; the cases
     gathered on rank 0 (the other ranks get an empty dict). An input error in one group is
     raised on every rank, after the other groups have finished."""
+    import fewear.contact.condensed  # noqa: F401 (PETSc starts on every rank, collectively)
     from fewear.jit import compile_kernels
 
     if world.rank == 0:
