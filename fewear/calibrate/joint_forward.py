@@ -145,14 +145,14 @@ def simulate_wears(requests: list[tuple[dict, str]]) -> list[WearHistory]:
     memo. Serial under ``mpirun`` (the ranks share each run) or on one core."""
     from mpi4py import MPI
 
-    from fewear.mbd.slider_crank import compile_dynamics
+    from fewear.jit import compile_kernels
     from fewear.parallel import usable_cores, worker_pool
 
     missing = list({_key(config): (config, label) for config, label in requests
                     if _key(config) not in _RUNS}.values())
     jobs = min(len(missing), usable_cores())
     if jobs > 1 and MPI.COMM_WORLD.size == 1:
-        compile_dynamics()  # once here, not in every worker at once on an empty cache
+        compile_kernels()  # once here, not in every worker at once on an empty cache
         with worker_pool(jobs) as pool:
             histories = pool.starmap(simulate_wear, missing)
         _RUNS.update({_key(config): history

@@ -37,8 +37,12 @@ pocket's flank), else it starts as the full path does. Both paths converge to
 the same solution; the tests and the benchmark check nodal pressures and pin centre to 1e-6
 (measured: ~2e-7 and below, on 200 load steps of a crank cycle).
 Per step this costs O(n |A|) per iteration for the update of U and a dense solve of size
-2|A| + 2, |A| the nodes in contact. Under MPI, G is built collectively and every rank solves the
-small problem redundantly, so all ranks hold the same result.
+2|A| + 2, |A| the nodes in contact; the arithmetic on these small arrays is compiled (numba,
+:mod:`fewear.jit`: :func:`linearised_forces`, :func:`newton_step`, :func:`penalty_energy`, with
+the shared kernels of :mod:`fewear.contact.newton`), in NumPy's order of operations (sums
+pairwise, dot products by BLAS), so that it gives the NumPy formulas' results to the bit.
+Under MPI, G is built collectively and every rank solves the small problem redundantly, so all
+ranks hold the same result.
 
 Displacements, pin centre and forces are per unit thickness as in the full path; forces are
 multiplied by the width L for the result (N).
@@ -61,7 +65,13 @@ from fewear.contact.admissible import (
     cosine_law_nodal_forces,
     displacement_limit_m,
 )
-from fewear.contact.newton import ContactNewton, ContactNotConverged, contact_direction
+from fewear.contact.newton import (
+    ContactNewton,
+    ContactNotConverged,
+    compile_shared_kernels,
+    contact_direction,
+    pairwise_sum,
+)
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.contact.solver import (
@@ -70,6 +80,7 @@ from fewear.contact.solver import (
     checked_rotation,
     nodal_result,
 )
+from fewear.jit import compiled
 from fewear.mesh.bore import bore_node_weights
 from fewear.mesh.bushing import BORE_TAG
 
@@ -77,6 +88,148 @@ from fewear.mesh.bushing import BORE_TAG
 # where the turned nodes did to this fraction of the last solution's penetration or largest
 # displacement (whichever is larger: an error of the start the Newton corrects in a few steps).
 TURN_TOLERANCE = 0.1
+
+
+@compiled
+def nodal_forces(points: np.ndarray, U: np.ndarray, centre: np.ndarray, pin_radius: float,
+                 penalty: float, friction_value: float, weights_m: np.ndarray):
+    """Nodal forces f = w p (n + mu s t) (n, 2), pressures p = k <R_p - r>_+ (n,), normals
+    n = d / r (n, 2) and distances r = |d| (n,) of the bore nodes X (``points``) with nodal
+    displacements U and the pin centre c, d = X + U - c, t = (-n_y, n_x)."""
+    size = points.shape[0]
+    f, p = np.empty((size, 2)), np.empty(size)
+    normal, r = np.empty((size, 2)), np.empty(size)
+    for q in range(size):
+        d_x = points[q, 0] + U[q, 0] - centre[0]
+        d_y = points[q, 1] + U[q, 1] - centre[1]
+        r[q] = math.hypot(d_x, d_y)
+        normal[q, 0], normal[q, 1] = d_x / r[q], d_y / r[q]
+        p[q] = penalty * max(pin_radius - r[q], 0.0)
+        wp = weights_m[q] * p[q]
+        f[q, 0] = wp * (normal[q, 0] + friction_value * -normal[q, 1])
+        f[q, 1] = wp * (normal[q, 1] + friction_value * normal[q, 0])
+    return f, p, normal, r
+
+
+@compiled
+def penetrations(points: np.ndarray, U: np.ndarray, centre: np.ndarray,
+                 pin_radius: float) -> np.ndarray:
+    """<R_p - |X + U - c|>_+ at the bore nodes (m)."""
+    result = np.empty(points.shape[0])
+    for q in range(points.shape[0]):
+        result[q] = max(pin_radius - math.hypot(points[q, 0] + U[q, 0] - centre[0],
+                                                points[q, 1] + U[q, 1] - centre[1]), 0.0)
+    return result
+
+
+@compiled
+def jacobian_blocks(active: np.ndarray, p: np.ndarray, normal: np.ndarray, r: np.ndarray,
+                    penalty: float, friction_value: float, weights_m: np.ndarray) -> np.ndarray:
+    """w dT/dd (|A|, 2, 2) at the active nodes A, T = p (n + mu s t), p = k (R_p - |d|):
+    dT/dd = -k n n^T + p/r P + mu s (-k t n^T + p/r R P), P = I - n n^T, R the turn by
+    90 degrees (t = R n)."""
+    blocks = np.empty((active.size, 2, 2))
+    for a, q in enumerate(active):
+        n = normal[q]
+        t = np.array([-n[1], n[0]])
+        p_r = p[q] / r[q]
+        for i in range(2):
+            for j in range(2):
+                projector = (1.0 if i == j else 0.0) - n[i] * n[j]
+                # (R P)_ij: row 0 is -P_1j, row 1 is P_0j
+                other = 1 - i
+                turned = (-1.0 if i == 0 else 1.0) * ((1.0 if other == j else 0.0)
+                                                      - n[other] * n[j])
+                dT = (-penalty * (n[i] * n[j]) + p_r * projector
+                      + friction_value * (-penalty * (t[i] * n[j]) + p_r * turned))
+                blocks[a, i, j] = weights_m[q] * dT
+    return blocks
+
+
+@compiled
+def linearised_forces(points: np.ndarray, U: np.ndarray, centre: np.ndarray, pin_radius: float,
+                      penalty: float, friction_value: float, weights_m: np.ndarray,
+                      load: np.ndarray):
+    """The nodal forces f (:func:`nodal_forces`), the Jacobian blocks W M at the active nodes A
+    (p > 0, :func:`jacobian_blocks`), A, the pin residual sum f - F/L (N/m) and the active
+    length sum_A w (m)."""
+    f, p, normal, r = nodal_forces(points, U, centre, pin_radius, penalty, friction_value,
+                                   weights_m)
+    active = np.flatnonzero(p > 0.0)
+    residual = np.zeros(2)
+    for q in range(f.shape[0]):
+        residual += f[q]
+    return (f, jacobian_blocks(active, p, normal, r, penalty, friction_value, weights_m),
+            active, residual - load, pairwise_sum(weights_m[active]))
+
+
+@compiled
+def newton_step(compliance: np.ndarray, g: np.ndarray, U: np.ndarray, f: np.ndarray,
+                WM: np.ndarray, active: np.ndarray, basis: np.ndarray, load: np.ndarray):
+    """One Newton step (module docstring) on the active nodes A with the pin update
+    dc = basis dz: the bordered system
+
+        [I - W M G_AA   W M basis] [g'_A]   [f_A - W M U_A]
+        [basis^T ...    0        ] [dz  ] = [basis^T F/L  ]
+
+    (the last rows sum the nodal forces), and the updates dg = g' - g of the nodal forces (g'
+    zero off A), dU = G dg (only the columns of G on the old and new support) and dc."""
+    m, k = active.size, basis.shape[1]
+    system = np.zeros((2 * m + k, 2 * m + k))
+    rhs = np.empty(2 * m + k)
+    for a in range(m):
+        rows = 2 * active[a]
+        for i in range(2):
+            for b in range(m):
+                for j in range(2):
+                    column = 2 * active[b] + j
+                    system[2 * a + i, 2 * b + j] = (1.0 if a == b and i == j else 0.0) - (
+                        WM[a, i, 0] * compliance[rows, column]
+                        + WM[a, i, 1] * compliance[rows + 1, column])
+            for c in range(k):
+                system[2 * a + i, 2 * m + c] = WM[a, i, 0] * basis[0, c] + WM[a, i, 1] * basis[1, c]
+                system[2 * m + c, 2 * a + i] = basis[i, c]
+            rhs[2 * a + i] = f[active[a], i] - (WM[a, i, 0] * U[active[a], 0]
+                                                + WM[a, i, 1] * U[active[a], 1])
+    for c in range(k):
+        rhs[2 * m + c] = basis[0, c] * load[0] + basis[1, c] * load[1]
+    solution = np.linalg.solve(system, rhs)
+    dg = -g
+    for a in range(m):
+        for i in range(2):
+            dg[2 * active[a] + i] += solution[2 * a + i]
+    support = np.flatnonzero(dg)
+    dU = np.dot(compliance[:, support], dg[support])
+    dc = np.zeros(2)
+    for c in range(k):
+        dc += basis[:, c] * solution[2 * m + c]
+    return dg, dU, dc
+
+
+@compiled
+def penalty_energy(points: np.ndarray, U: np.ndarray, g: np.ndarray, centre: np.ndarray,
+                   pin_radius: float, penalty: float, weights_m: np.ndarray,
+                   load: np.ndarray) -> float:
+    """Pi = 1/2 g.U + sum_q w_q k/2 <-gap_q>^2 - F/L . c (J/m), with U = G g."""
+    penetration = penetrations(points, U, centre, pin_radius)
+    return (0.5 * np.dot(g, U.reshape(-1)) + 0.5 * penalty * np.dot(weights_m, penetration**2)
+            - (load[0] * centre[0] + load[1] * centre[1]))
+
+
+def compile_contact() -> None:
+    """Compile, or load from numba's cache (:mod:`fewear.jit`), the contact Newton's kernels:
+    each called once on a small bore (16 nodes on a circle, the pin pressed into two) with the
+    argument types of a solve, so that worker processes started afterwards load them instead
+    of each compiling them (tests/contact/test_newton.py checks that a solve adds no
+    signature)."""
+    points, weights, pin_radius, penalty, load, centre = compile_shared_kernels()
+    size = points.shape[0]
+    U, g = np.zeros((size, 2)), np.zeros(2 * size)
+    f, WM, active, _, _ = linearised_forces(points, U, centre, pin_radius, penalty, 0.1,
+                                            weights, load)
+    newton_step(np.eye(2 * size), g, U, f, WM, active, np.eye(2), load)
+    nodal_forces(points, U, centre, pin_radius, penalty, 0.0, weights)
+    penalty_energy(points, U, g, centre, pin_radius, penalty, weights, load)
 
 
 class CondensedBushingContact:
@@ -195,7 +348,7 @@ class CondensedBushingContact:
         inverse = inverse_block(ksp.getPC().getFactorMatrix(), self._dofs[2], self.comm)
         ksp.destroy()
         N = sparse.csr_matrix(self._gathered_evaluation())  # a few nonzeros per row
-        return (N @ (N @ inverse).T).T
+        return np.ascontiguousarray((N @ (N @ inverse).T).T)  # C order: the kernels' signature
 
     # -- the per-step problem ----------------------------------------------------------------
     def solve(self, force_N, rotation_increment_rad: float = 0.0,
@@ -246,31 +399,9 @@ class CondensedBushingContact:
         return displacement_limit_m(self.problem) / float(np.hypot(U[:, 0], U[:, 1]).max())
 
     def _nodal_forces(self, U: np.ndarray, c: np.ndarray):
-        """Nodal forces f = w p (n + mu s t) (n, 2), pressures p (n,), normals n (n, 2) and
-        distances r = |X + U - c| (n,) for nodal displacements U and pin centre c."""
-        d = self.points + U - c
-        r = np.hypot(d[:, 0], d[:, 1])
-        normal = d / r[:, None]
-        p = self._k * np.maximum(self.problem.geometry.pin_radius_m - r, 0.0)
-        tangent = np.column_stack([-normal[:, 1], normal[:, 0]])
-        f = (self.weights_m * p)[:, None] * (normal + self._friction_value * tangent)
-        return f, p, normal, r
-
-    def _jacobian_blocks(self, A: np.ndarray, p: np.ndarray, normal: np.ndarray,
-                         r: np.ndarray) -> np.ndarray:
-        """w dT/dd (|A|, 2, 2) at the active nodes A, T = p (n + mu s t), p = k (R_p - |d|):
-        dT/dd = -k n n^T + p/r P + mu s (-k t n^T + p/r R P), P = I - n n^T, R the turn by
-        90 degrees (t = R n)."""
-        n = normal[A]
-        t = np.column_stack([-n[:, 1], n[:, 0]])
-        nn = n[:, :, None] * n[:, None, :]
-        projector = np.eye(2)[None] - nn
-        rotate = np.array([[0.0, -1.0], [1.0, 0.0]])
-        tn = t[:, :, None] * n[:, None, :]
-        p_r = (p[A] / r[A])[:, None, None]
-        μs = self._friction_value
-        dT = -self._k * nn + p_r * projector + μs * (-self._k * tn + p_r * (rotate @ projector))
-        return self.weights_m[A, None, None] * dT
+        """:func:`nodal_forces` for nodal displacements U (n, 2) and pin centre c."""
+        return nodal_forces(self.points, U, c, self.problem.geometry.pin_radius_m, self._k,
+                            self._friction_value, self.weights_m)
 
     # -- the discretisation for ContactNewton --------------------------------------------------
     can_turn_state = True
@@ -314,34 +445,21 @@ class CondensedBushingContact:
     def linearise(self, load: np.ndarray) -> tuple[np.ndarray, float]:
         """Nodal forces and their Jacobian blocks at the current state (kept for the step);
         the pin residual sum f - F/L (N/m) and the active length (m)."""
-        f, p, normal, r = self._nodal_forces(self._U.reshape(-1, 2), self.pin_centre_m)
-        active_nodes = np.flatnonzero(p > 0.0)
-        WM_A = self._jacobian_blocks(active_nodes, p, normal, r)
+        f, WM_A, active_nodes, residual, length = linearised_forces(
+            self.points, self._U.reshape(-1, 2), self.pin_centre_m,
+            self.problem.geometry.pin_radius_m, self._k, self._friction_value, self.weights_m,
+            load)
         self._linear = (f, WM_A, active_nodes)
-        return f.sum(axis=0) - load, float(self.weights_m[active_nodes].sum())
+        return residual, length
 
     def newton_direction(self, pin_residual, load, basis):
         """One Newton step (module docstring) with the pin update dc = basis dz: the update
         (dg, dU = G dg) of the nodal forces and displacements, and dc. Only the columns of G on
         the old and new support are used."""
         f, WM_A, A = self._linear
-        U = self._U.reshape(-1, 2)
-        m, k = A.size, basis.shape[1]
-        rows = (2 * A[:, None] + np.arange(2)[None, :]).reshape(-1)
-        G_AA = self.compliance[np.ix_(rows, rows)]
-        system = np.zeros((2 * m + k, 2 * m + k))
-        blocks_G = np.einsum("kij,kjl->kil", WM_A, G_AA.reshape(m, 2, 2 * m))
-        system[:2 * m, :2 * m] = np.eye(2 * m) - blocks_G.reshape(2 * m, 2 * m)
-        system[:2 * m, 2 * m:] = WM_A.reshape(2 * m, 2) @ basis
-        system[2 * m:, :2 * m] = np.tile(basis.T, m)
-        rhs = np.empty(2 * m + k)
-        rhs[:2 * m] = (f[A] - np.einsum("kij,kj->ki", WM_A, U[A])).reshape(-1)
-        rhs[2 * m:] = basis.T @ load
-        solution = np.linalg.solve(system, rhs)
-        dg = -self._g
-        dg[rows] += solution[:2 * m]
-        support = np.flatnonzero(dg)
-        return (dg, self.compliance[:, support] @ dg[support]), basis @ solution[2 * m:]
+        dg, dU, dc = newton_step(self.compliance, self._g, self._U.reshape(-1, 2), f, WM_A, A,
+                                 basis, load)
+        return (dg, dU), dc
 
     def begin_line_search(self, update, dc, pin_residual) -> float:
         """Slope of Pi along (dg, dU, dc): (g - f) . dU + (sum f - F/L) . dc (J/m)."""
@@ -356,10 +474,9 @@ class CondensedBushingContact:
         self.pin_centre_m = pin_centre
 
     def energy(self, load: np.ndarray) -> float:
-        """Pi = 1/2 g.U + sum_q w_q k/2 <-gap_q>^2 - F/L . c (J/m), with U = G g."""
-        penetration = self._penetrations()
-        return 0.5 * self._g @ self._U + 0.5 * self._k * float(
-            self.weights_m @ penetration**2) - float(load @ self.pin_centre_m)
+        """:func:`penalty_energy` of the current state."""
+        return penalty_energy(self.points, self._U.reshape(-1, 2), self._g, self.pin_centre_m,
+                              self.problem.geometry.pin_radius_m, self._k, self.weights_m, load)
 
     def deformed_points(self) -> np.ndarray:
         return self.points + self._U.reshape(-1, 2)
@@ -372,8 +489,8 @@ class CondensedBushingContact:
 
     def _penetrations(self) -> np.ndarray:
         """<R_p - |X + U - c|>_+ at the bore nodes (m)."""
-        d = self.points + self._U.reshape(-1, 2) - self.pin_centre_m
-        return np.maximum(self.problem.geometry.pin_radius_m - np.hypot(d[:, 0], d[:, 1]), 0.0)
+        return penetrations(self.points, self._U.reshape(-1, 2), self.pin_centre_m,
+                            self.problem.geometry.pin_radius_m)
 
 
 def reference_basis_at_geometry_nodes(mesh, V) -> np.ndarray:

@@ -58,6 +58,16 @@ start in the corner furthest along the contact direction; only where two corners
 the bore displacement could they settle in different ones (not seen in the tests and benchmark).
 
 A load the Newton cannot balance raises :class:`ContactNotConverged`.
+
+The algorithm stays in Python; its arithmetic on the bore nodes is compiled (numba,
+:mod:`fewear.jit`), for both discretisations: the corners and vertices of the free region
+(:func:`free_corner`, :func:`support_vertex`, :func:`wedge_press`), gaps, the line search's
+trials (:func:`pin_update`, :func:`following_centre`, :func:`entering_limit`). The kernels
+repeat NumPy's order of operations (:func:`pairwise_sum`; 2-vectors' lengths as sqrt(v . v)):
+the penalty forces amplify a rounding difference of the pin centre by ~1e5, to 1e-10 of the
+pressures and at times one iteration more or less. They use the C library's trigonometric
+functions, as Python's ``math`` does; NumPy's vectorised ones (``np.arctan2``, ``np.arccos``)
+differ from those in the last bit on CPUs where NumPy dispatches to its SIMD versions (AVX-512).
 """
 
 from __future__ import annotations
@@ -66,6 +76,8 @@ import math
 from typing import Any, Protocol
 
 import numpy as np
+
+from fewear.jit import compiled
 
 # Newton starts from the previous solution when the force turned by less than this (rad).
 WARM_START_MAX_ANGLE_RAD = math.radians(20.0)
@@ -169,8 +181,95 @@ class ContactDiscretisation(Protocol):
         """Largest displacement update and largest displacement (m), max norms."""
 
 
+@compiled
 def unit(angle: float) -> np.ndarray:
     return np.array([math.cos(angle), math.sin(angle)])
+
+
+def norm(vector: np.ndarray) -> float:
+    """The Euclidean length sqrt(v . v) of a short vector: ``np.linalg.norm`` without its
+    overhead (and so, unlike ``math.hypot``, to the same bits)."""
+    return math.sqrt(vector @ vector)
+
+
+@compiled
+def _block_sum(values: np.ndarray, start: int, size: int) -> float:
+    """NumPy's sum of a block of at most 128 values: sequential below 8, else 8 partial sums
+    over blocks of 8, added pairwise, then the rest sequentially."""
+    if size < 8:
+        result = 0.0
+        for i in range(start, start + size):
+            result += values[i]
+        return result
+    partial = values[start:start + 8].copy()
+    tail = size - size % 8
+    for block in range(start + 8, start + tail, 8):
+        for j in range(8):
+            partial[j] += values[block + j]
+    result = (((partial[0] + partial[1]) + (partial[2] + partial[3]))
+              + ((partial[4] + partial[5]) + (partial[6] + partial[7])))
+    for i in range(start + tail, start + size):
+        result += values[i]
+    return result
+
+
+@compiled
+def _halving_sum(values: np.ndarray, begin: int, count: int) -> float:
+    """NumPy's pairwise sum of ``values[begin:begin + count]``: blocks of at most 128 values
+    (:func:`_block_sum`), larger ones split at the multiple of 8 nearest below half and the
+    halves' sums added; the halving walked with a stack (numba's cache does not load recursive
+    functions reliably)."""
+    starts, sizes = np.full(64, begin), np.full(64, count)
+    split = np.zeros(64, np.bool_)
+    sums = np.empty(64)
+    top, done = 0, 0
+    while top >= 0:
+        start, size = starts[top], sizes[top]
+        if size <= 128:
+            sums[done] = _block_sum(values, start, size)
+            done += 1
+            top -= 1
+        elif split[top]:  # both halves summed: left, right
+            sums[done - 2] += sums[done - 1]
+            done -= 1
+            top -= 1
+        else:
+            split[top] = True
+            half = size // 2 - (size // 2) % 8
+            starts[top + 1], sizes[top + 1], split[top + 1] = start + half, size - half, False
+            starts[top + 2], sizes[top + 2], split[top + 2] = start, half, False
+            top += 2
+    return sums[0]
+
+
+@compiled
+def pairwise_sum(values: np.ndarray) -> float:
+    """The sum of the contiguous array ``values`` in NumPy's order (``np.add.reduce``: the
+    pairwise sums (:func:`_halving_sum`) of buffers of 8192 values, added in turn), so that the
+    compiled kernels give the NumPy formulas' results to the bit: the contact's penalty forces
+    amplify a rounding difference of the pin centre by ~1e5, so sums in another order would
+    change the iterates at 1e-10 and, at times, the number of iterations."""
+    total = 0.0
+    for begin in range(0, values.size, 8192):
+        total += _halving_sum(values, begin, min(8192, values.size - begin))
+    return total
+
+
+@compiled
+def load_penetration(load_size: float, penalty: float, weight_m: float) -> float:
+    """The penetration (m) at which nodes of total weight w carry the load |F/L| (N/m) with the
+    penalty stiffness k (Pa/m): |F/L| / (k w)."""
+    return load_size / (penalty * weight_m)
+
+
+@compiled
+def gaps(points: np.ndarray, centre: np.ndarray, pin_radius: float) -> np.ndarray:
+    """Gaps |X_q - c| - R_p of the (deformed) bore nodes X (n, 2) to the pin (m), negative in
+    contact."""
+    result = np.empty(points.shape[0])
+    for q in range(points.shape[0]):
+        result[q] = math.hypot(points[q, 0] - centre[0], points[q, 1] - centre[1]) - pin_radius
+    return result
 
 
 def contact_direction(force: np.ndarray, friction_value: float) -> np.ndarray:
@@ -180,6 +279,7 @@ def contact_direction(force: np.ndarray, friction_value: float) -> np.ndarray:
     return unit(math.atan2(force[1], force[0]) - math.atan(friction_value))
 
 
+@compiled
 def first_touch_centre(points: np.ndarray, centre: np.ndarray, direction: np.ndarray,
                        pin_radius: float) -> np.ndarray:
     """Move the pin from ``centre`` along ``direction`` until its circle first meets ``points``.
@@ -187,14 +287,17 @@ def first_touch_centre(points: np.ndarray, centre: np.ndarray, direction: np.nda
     For a point q (relative to the centre) outside the circle, |q - s d| = R_p at
     s = q.d - sqrt((q.d)^2 - |q|^2 + R_p^2); the smallest such s over the points is the touch.
     """
-    q = points - centre
-    qd = q @ direction
-    disc = qd**2 - np.einsum("ij,ij->i", q, q) + pin_radius**2
-    s = np.where(disc >= 0.0, qd - np.sqrt(np.maximum(disc, 0.0)), np.inf)
-    s = s[s >= 0.0]
-    return centre + (s.min() if s.size else 0.0) * direction
+    nearest = np.inf
+    for i in range(points.shape[0]):
+        qx, qy = points[i, 0] - centre[0], points[i, 1] - centre[1]
+        qd = qx * direction[0] + qy * direction[1]
+        disc = qd**2 - (qx * qx + qy * qy) + pin_radius**2
+        if disc >= 0.0 and 0.0 <= qd - math.sqrt(disc) < nearest:
+            nearest = qd - math.sqrt(disc)
+    return centre + (nearest if nearest < np.inf else 0.0) * direction
 
 
+@compiled
 def support_vertex(points: np.ndarray, direction: np.ndarray,
                    pin_radius: float) -> tuple[np.ndarray, tuple[int, int]]:
     """The pin centre furthest along ``direction`` d in the contact-free region of a bore that
@@ -211,38 +314,58 @@ def support_vertex(points: np.ndarray, direction: np.ndarray,
     """
     centre = first_touch_centre(points, np.zeros(2), direction, pin_radius)
     for _ in range(points.shape[0]):
-        d = points - centre
-        distance = np.hypot(d[:, 0], d[:, 1])
+        distance = gaps(points, centre, 0.0)
         touching = np.flatnonzero(distance <= pin_radius * (1.0 + VERTEX_TOLERANCE))
-        best, node, sense = 0.0, -1, 0.0
-        for q in touching:
-            radial = (centre - points[q]) / pin_radius
-            for s in (1.0, -1.0):
-                tangent = s * np.array([-radial[1], radial[0]])
-                rate = float(tangent @ direction)
-                if rate > best and np.all(-d[touching] @ tangent >= -VERTEX_TOLERANCE * pin_radius):
-                    best, node, sense = rate, int(q), s
+        node, sense = _steepest_slide(points, centre, touching, direction, pin_radius)
         if node < 0:
             nearest = touching[np.argsort(distance[touching])]
-            return centre, (int(nearest[0]), int(nearest[min(1, nearest.size - 1)]))
+            return centre, (nearest[0], nearest[min(1, nearest.size - 1)])
         # the intersections of this node's circle with the others', as angles about the node
-        radial = centre - points[node]
-        α = math.atan2(radial[1], radial[0])
-        chord = points - points[node]
-        distance = np.hypot(chord[:, 0], chord[:, 1])
-        candidates = np.flatnonzero((distance > 0.0) & (distance < 2.0 * pin_radius))
-        base = np.arctan2(chord[candidates, 1], chord[candidates, 0])
-        half_angle = np.arccos(distance[candidates] / (2.0 * pin_radius))
-        travel = np.stack([np.mod(sense * (base + sign * half_angle - α), 2.0 * math.pi)
-                           for sign in (1.0, -1.0)])
-        travel[travel < VERTEX_TOLERANCE] = np.inf
-        step = float(travel.min())
-        if not np.isfinite(step):
+        α = math.atan2(centre[1] - points[node, 1], centre[0] - points[node, 0])
+        step = np.inf
+        for q in range(points.shape[0]):
+            chord_x, chord_y = points[q, 0] - points[node, 0], points[q, 1] - points[node, 1]
+            chord = math.hypot(chord_x, chord_y)
+            if 0.0 < chord < 2.0 * pin_radius:
+                base = math.atan2(chord_y, chord_x)
+                half_angle = math.acos(chord / (2.0 * pin_radius))
+                for sign in (1.0, -1.0):
+                    travel = (sense * (base + sign * half_angle - α)) % (2.0 * math.pi)
+                    if VERTEX_TOLERANCE <= travel < step:
+                        step = travel
+        if step == np.inf:
             break
         centre = points[node] + pin_radius * unit(α + sense * step)
     raise ValueError("no vertex of the contact-free region found along the direction")
 
 
+@compiled
+def _steepest_slide(points: np.ndarray, centre: np.ndarray, touching: np.ndarray,
+                    direction: np.ndarray, pin_radius: float) -> tuple[int, float]:
+    """The touched node q and sense s (+-1) of the slide along q's circle, tangent
+    s (-r_y, r_x) with r = (c - X_q) / R_p, that increases c . d most and leads away from every
+    touched node; (-1, 0) if none does (:func:`support_vertex`)."""
+    best, node, sense = 0.0, -1, 0.0
+    for q in touching:
+        radial_x = (centre[0] - points[q, 0]) / pin_radius
+        radial_y = (centre[1] - points[q, 1]) / pin_radius
+        for s in (1.0, -1.0):
+            tangent_x, tangent_y = -s * radial_y, s * radial_x
+            rate = tangent_x * direction[0] + tangent_y * direction[1]
+            if rate <= best:
+                continue
+            away = True
+            for t in touching:
+                if ((centre[0] - points[t, 0]) * tangent_x + (centre[1] - points[t, 1])
+                        * tangent_y < -VERTEX_TOLERANCE * pin_radius):
+                    away = False
+                    break
+            if away:
+                best, node, sense = rate, q, s
+    return node, sense
+
+
+@compiled
 def pin_update(centre: np.ndarray, dc: np.ndarray, node_spacing_rad: float) -> np.ndarray:
     """The pin centre after the Newton update dc.
 
@@ -254,25 +377,171 @@ def pin_update(centre: np.ndarray, dc: np.ndarray, node_spacing_rad: float) -> n
     applied as it is, c' = c + dc (the turn would add the radial error (dc.e_t)^2 / (2|c|),
     R_p/|c| times more than the linearised gaps leave out, and lose a light contact).
     """
-    radius = float(np.linalg.norm(centre))
+    radius = math.sqrt(centre[0] * centre[0] + centre[1] * centre[1])
     if radius == 0.0:
         return centre + dc
     radial = centre / radius
     tangential = radial[0] * dc[1] - radial[1] * dc[0]
     if abs(tangential) <= radius * node_spacing_rad:
         return centre + dc
-    return (radius + float(radial @ dc)) * unit(math.atan2(radial[1], radial[0])
-                                               + tangential / radius)
+    return (radius + (radial[0] * dc[0] + radial[1] * dc[1])) * unit(
+        math.atan2(radial[1], radial[0]) + tangential / radius)
 
 
-def slide_limit(centre: np.ndarray, dc: np.ndarray, problem) -> float:
+@compiled
+def slide_limit(centre: np.ndarray, dc: np.ndarray, element_size_m: float,
+                bore_radius_m: float) -> float:
     """Step factor that lets the pin turn by at most one bore element, h / R_b, per step."""
-    radius = float(np.linalg.norm(centre))
+    radius = math.sqrt(centre[0] * centre[0] + centre[1] * centre[1])
     if radius == 0.0:
         return 1.0
     tangential = abs(centre[0] * dc[1] - centre[1] * dc[0]) / radius
-    limit = radius * problem.mesh.bore_element_size_m / problem.geometry.inner_radius_m
+    limit = radius * element_size_m / bore_radius_m
     return min(1.0, limit / tangential) if tangential > 0.0 else 1.0
+
+
+@compiled
+def free_corner(points: np.ndarray, direction: np.ndarray,
+                pin_radius: float) -> tuple[np.ndarray, tuple[int, int], bool]:
+    """The corner of the contact-free region of the pin centre furthest along ``direction`` d,
+    the two nodes it touches, and whether the bore is non-convex there.
+
+    On a convex bore the region is the polygon of the corners c_j of neighbouring nodes j, j+1
+    (X = ``points``, the pin centre at R_p from both): with the chord's midpoint m_j, half
+    length h_j and outward normal o_j, c_j = m_j - sqrt(R_p^2 - h_j^2) o_j; the corner is the
+    c_j furthest along d. Should it lie closer than R_p (1 - ``CORNER_TOLERANCE``) to another
+    node (a non-convex, worn bore), it is the vertex of the free region furthest along d
+    (:func:`support_vertex`) and its two nodes instead, and the flag is True.
+    """
+    n = points.shape[0]
+    best, corner, pair = -np.inf, np.zeros(2), (-1, -1)
+    for j in range(n):
+        ahead = (j + 1) % n
+        middle_x = 0.5 * (points[j, 0] + points[ahead, 0])
+        middle_y = 0.5 * (points[j, 1] + points[ahead, 1])
+        chord_x, chord_y = points[ahead, 0] - points[j, 0], points[ahead, 1] - points[j, 1]
+        half = 0.5 * math.hypot(chord_x, chord_y)
+        outward_x, outward_y = chord_y / (2.0 * half), -chord_x / (2.0 * half)
+        side = np.sign(outward_x * middle_x + outward_y * middle_y)
+        depth = math.sqrt(pin_radius**2 - half**2)
+        corner_x = middle_x - depth * (side * outward_x)
+        corner_y = middle_y - depth * (side * outward_y)
+        along = corner_x * direction[0] + corner_y * direction[1]
+        if along > best:
+            best, pair = along, (j, ahead)
+            corner = np.array([corner_x, corner_y])
+    if gaps(points, corner, 0.0).min() < pin_radius * (1.0 - CORNER_TOLERANCE):
+        vertex, nodes = support_vertex(points, direction, pin_radius)
+        return vertex, nodes, True
+    return corner, pair, False
+
+
+@compiled
+def wedge_press(points: np.ndarray, corner: np.ndarray, pair: tuple[int, int],
+                direction: np.ndarray, load_size: float, penalty: float,
+                weights_m: np.ndarray) -> tuple[bool, np.ndarray]:
+    """The pin's move (m) from a vertex ``corner`` of the free region into its two nodes
+    ``pair`` (at ``points``) that makes them carry the load |F/L| (N/m) together:
+    |F/L| d = a_1 n_1 + a_2 n_2 with a_q >= 0 on their normals n_q, penetrations
+    delta_q = a_q / (k w_q), and the move dc with n_q . dc = delta_q. (False, 0) where the
+    normals are closer to parallel than ``WEDGE_MIN_SINE`` or d is not between them."""
+    normals = np.empty((2, 2))
+    weights = np.empty(2)
+    for row in range(2):
+        chord_x = points[pair[row], 0] - corner[0]
+        chord_y = points[pair[row], 1] - corner[1]
+        length = math.hypot(chord_x, chord_y)
+        normals[row, 0], normals[row, 1] = chord_x / length, chord_y / length
+        weights[row] = weights_m[pair[row]]
+    if abs(normals[0, 0] * normals[1, 1] - normals[0, 1] * normals[1, 0]) < WEDGE_MIN_SINE:
+        return False, np.zeros(2)
+    shares = np.linalg.solve(normals.T.copy(), load_size * direction)
+    if shares[0] < 0.0 or shares[1] < 0.0:
+        return False, np.zeros(2)
+    return True, np.linalg.solve(normals, shares / (penalty * weights))
+
+
+@compiled
+def entering_limit(gaps0: np.ndarray, gaps: np.ndarray, step: float, weights_m: np.ndarray,
+                   load_size: float, penalty: float) -> float:
+    """The step at which the first node that enters contact between step 0 (gaps ``gaps0``) and
+    ``step`` (``gaps``) reaches the penetration at which it would carry the load |F/L| alone
+    (:func:`load_penetration`), with the gaps linear in the step; ``step`` if no node enters."""
+    limit, entering = np.inf, False
+    for q in range(gaps.size):
+        if gaps0[q] >= 0.0 and gaps[q] < 0.0:
+            entering = True
+            closing_rate = (gaps0[q] - gaps[q]) / step
+            needed = load_penetration(load_size, penalty, weights_m[q])
+            limit = min(limit, (gaps0[q] + needed) / closing_rate)
+    return limit if entering else step
+
+
+@compiled
+def contact_normals(points: np.ndarray, centre: np.ndarray,
+                    gaps: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The nodes in contact (gap < 0), their positions ``points`` (m) and unit normals
+    (X_q - c) / |X_q - c|."""
+    contact = np.flatnonzero(gaps < 0.0)
+    at = np.empty((contact.size, 2))
+    normals = np.empty((contact.size, 2))
+    for a, q in enumerate(contact):
+        at[a] = points[q]
+        distance = math.hypot(points[q, 0] - centre[0], points[q, 1] - centre[1])
+        normals[a, 0] = (points[q, 0] - centre[0]) / distance
+        normals[a, 1] = (points[q, 1] - centre[1]) / distance
+    return contact, at, normals
+
+
+@compiled
+def following_centre(points: np.ndarray, centre: np.ndarray, contact: np.ndarray,
+                     base_points: np.ndarray, normals: np.ndarray, base_gaps: np.ndarray,
+                     base_centre: np.ndarray, pin_radius: float) -> np.ndarray:
+    """The pin centre c corrected to second order: the nodes ``contact`` in contact at the base
+    of the line search (positions ``base_points``, normals n_q, gaps, pin at ``base_centre``)
+    are now at X_q (``points``) and move off the pin by more than their linearised gaps
+    g_q + n_q . (dX_q - dc) predict (gaps curve with 1/R_p); the pin follows them by the mean
+    of that excess |X_q - c| - R_p - (g_q + n_q . (dX_q - dc)) along their mean normal."""
+    excess = np.empty(contact.size)
+    normal_x, normal_y = 0.0, 0.0
+    for a, q in enumerate(contact):
+        moved = (normals[a, 0] * (points[q, 0] - base_points[a, 0] - (centre[0] - base_centre[0]))
+                 + normals[a, 1] * (points[q, 1] - base_points[a, 1]
+                                    - (centre[1] - base_centre[1])))
+        excess[a] = math.hypot(points[q, 0] - centre[0], points[q, 1] - centre[1]) - pin_radius - (
+            base_gaps[a] + moved)
+        normal_x += normals[a, 0]
+        normal_y += normals[a, 1]
+    mean = pairwise_sum(excess) / contact.size
+    length = math.sqrt(normal_x * normal_x + normal_y * normal_y)
+    return np.array([centre[0] + mean * normal_x / length, centre[1] + mean * normal_y / length])
+
+
+def compile_shared_kernels():
+    """Call each kernel of this module that :class:`ContactNewton` calls once, on a small bore
+    (16 nodes on a circle of radius 1 m, the pin of radius 0.9 m pressed into two of them),
+    so that numba compiles it or loads it from the cache; return the bore for the
+    discretisation's kernels (:func:`fewear.contact.condensed.compile_contact`): points,
+    weights, pin radius, penalty stiffness, load and the pressed pin's centre."""
+    angles = np.linspace(0.0, 2.0 * math.pi, 16, endpoint=False)
+    points = np.column_stack([np.cos(angles), np.sin(angles)])
+    weights, pin_radius, penalty = np.full(16, 0.4), 0.9, 1e3
+    direction = unit(-0.5 * math.pi)
+    load = 10.0 * direction
+    norm(load)
+    corner, pair, _ = free_corner(points, direction, pin_radius)
+    wedge_press(points, corner, pair, direction, 10.0, penalty, weights)
+    centre = first_touch_centre(points, np.zeros(2), direction, pin_radius) + 0.01 * direction
+    base_gaps = gaps(points, centre, pin_radius)
+    contact, at, normals = contact_normals(points, centre, base_gaps)
+    dc = 0.001 * unit(0.0)
+    trial = pin_update(centre, dc, 0.2)
+    slide_limit(centre, dc, 0.4, 1.0)
+    entering_limit(base_gaps, gaps(points, trial, pin_radius), 1.0, weights, 10.0, penalty)
+    following_centre(points, trial, contact, at, normals, base_gaps[contact], centre,
+                     pin_radius)
+    load_penetration(10.0, penalty, weights[pair[0]] + weights[pair[1]])
+    return points, weights, pin_radius, penalty, load, centre
 
 
 class NewtonControl:
@@ -347,7 +616,7 @@ def solve_by_contact_angle(inner, pin_residual, direction: np.ndarray, load: np.
     iterations.
     """
     total = 0
-    tolerance = 1e-9 * float(np.linalg.norm(load))
+    tolerance = 1e-9 * norm(load)
 
     def tangential_residual(ψ: float) -> float:
         nonlocal total
@@ -356,7 +625,7 @@ def solve_by_contact_angle(inner, pin_residual, direction: np.ndarray, load: np.
 
     ψ0 = math.atan2(direction[1], direction[0])
     τ0 = tangential_residual(ψ0)
-    step = -math.copysign(max(abs(τ0) / float(np.linalg.norm(load)), 1e-4), τ0)
+    step = -math.copysign(max(abs(τ0) / norm(load), 1e-4), τ0)
     # the rays that press the pin into the bore: a . F > 0, with a margin
     φ = math.atan2(load[1], load[0])
     reach = 0.5 * math.pi - RAY_MARGIN_RAD
@@ -415,9 +684,13 @@ class ContactNewton:
         self.last_direction: np.ndarray | None = None
         self.last_contact_nodes = 0
         self.last_load = 0.0
-        elements = path.problem.mesh.circumferential_element_count(
-            path.problem.geometry.inner_radius_m)
+        problem = path.problem
+        elements = problem.mesh.circumferential_element_count(problem.geometry.inner_radius_m)
         self.node_spacing_rad = math.pi / elements  # two bore nodes per element
+        self.pin_radius_m = problem.geometry.pin_radius_m
+        self.bore_radius_m = problem.geometry.inner_radius_m
+        self.element_size_m = problem.mesh.bore_element_size_m
+        self.penalty = problem.penalty_stiffness_Pa_per_m()
 
     def forget(self) -> None:
         self.last_direction = None
@@ -438,7 +711,7 @@ class ContactNewton:
             iterations = spent + self._solve_by_contact_angle(load, direction)
         self.last_direction = direction
         self.last_contact_nodes = int(np.count_nonzero(self._gaps() < 0.0))
-        self.last_load = float(np.linalg.norm(load))
+        self.last_load = norm(load)
         return iterations
 
     def _solve_by_contact_angle(self, load: np.ndarray, direction: np.ndarray) -> int:
@@ -461,14 +734,13 @@ class ContactNewton:
         path = self.path
         penetration = max(-self._gaps().min(), self._load_penetration(
             load, 2.0 * path.weights_m.max()))
-        touch = first_touch_centre(path.deformed_points(), np.zeros(2), a,
-                                   path.problem.geometry.pin_radius_m)
+        touch = first_touch_centre(path.deformed_points(), np.zeros(2), a, self.pin_radius_m)
         path.pin_centre_m = touch + penetration * a
 
     def _load_penetration(self, load: np.ndarray, weight_m: float) -> float:
-        """The penetration (m) at which nodes of total weight w carry |F/L|: |F/L| / (k w)."""
-        return float(np.linalg.norm(load)) / (self.path.problem.penalty_stiffness_Pa_per_m()
-                                              * weight_m)
+        """The penetration (m) at which nodes of total weight w carry |F/L|
+        (:func:`load_penetration`)."""
+        return load_penetration(norm(load), self.penalty, weight_m)
 
     def _start(self, direction: np.ndarray, load: np.ndarray) -> bool:
         """Without a previous solution: the corner start (:meth:`_corner_start`). Else, if the
@@ -484,7 +756,7 @@ class ContactNewton:
         is the last solution left as it is by a discretisation that could not turn it (a worn
         bore), which :meth:`solve` retries from the corner start should it not settle."""
         last, path = self.last_direction, self.path
-        size = float(np.linalg.norm(load))
+        size = norm(load)
         untouched = last is not None and path.can_turn_state
         light = (self.last_contact_nodes <= LIGHT_CONTACT_NODES
                  and size <= LIGHT_LOAD_GROWTH * self.last_load)
@@ -513,50 +785,22 @@ class ContactNewton:
         region of the pin centre is the polygon of these corners), pressed in along d by the
         penetration |F/L| / (k (w_j + w_j+1)) that two nodes of weight w need to carry the load.
         Should c_j lie closer than R_p to another node (a non-convex, worn bore), the vertex of
-        the free region furthest along d (:func:`support_vertex`) and its two nodes instead,
-        pressed into both where their normals are far apart (:meth:`_wedge_press`)."""
+        the free region furthest along d (:func:`support_vertex`) and its two nodes instead
+        (:func:`free_corner`), pressed into both where their normals are far apart
+        (:func:`wedge_press`: a pin bridging a pocket rests on rims whose normals are far apart,
+        a wedge; pressed along d alone, it would leave one rim and start on the other alone,
+        whence the Newton slides it along that rim, a single contact on a convex rim being no
+        stable equilibrium, instead of into the wedge)."""
         path = self.path
         X = path.deformed_points()
-        ahead = np.roll(X, -1, axis=0)
-        middle = 0.5 * (X + ahead)
-        chord = ahead - X
-        half = 0.5 * np.hypot(chord[:, 0], chord[:, 1])
-        outward = np.column_stack([chord[:, 1], -chord[:, 0]]) / (2.0 * half[:, None])
-        outward *= np.sign(np.einsum("ij,ij->i", outward, middle))[:, None]
-        R_p = path.problem.geometry.pin_radius_m
-        corners = middle - np.sqrt(R_p**2 - half**2)[:, None] * outward
-        j = int(np.argmax(corners @ direction))
-        pair = (j, (j + 1) % len(X))
-        corner = corners[j]
-        d = X - corner
-        if np.hypot(d[:, 0], d[:, 1]).min() < R_p * (1.0 - CORNER_TOLERANCE):
-            # a non-convex (worn) bore: the corner of the neighbours lies beyond other nodes
-            corner, pair = support_vertex(X, direction, R_p)
-            press = self._wedge_press(X, corner, pair, direction, load)
-            if press is not None:
+        corner, pair, vertex = free_corner(X, direction, self.pin_radius_m)
+        if vertex:
+            pressed, press = wedge_press(X, corner, pair, direction, norm(load), self.penalty,
+                                         path.weights_m)
+            if pressed:
                 return corner + press
         weight = path.weights_m[pair[0]] + path.weights_m[pair[1]]
         return corner + self._load_penetration(load, weight) * direction
-
-    def _wedge_press(self, X: np.ndarray, corner: np.ndarray, pair: tuple[int, int],
-                     direction: np.ndarray, load: np.ndarray) -> np.ndarray | None:
-        """The pin's move (m) from a vertex ``corner`` of the free region into its two nodes
-        ``pair`` (at ``X``) that makes them carry the load together: |F/L| d =
-        a_1 n_1 + a_2 n_2 with a_q >= 0 on their normals n_q, penetrations
-        delta_q = a_q / (k w_q), and the move dc with n_q . dc = delta_q. A pin bridging a pocket
-        rests on rims whose normals are far apart (a wedge): pressed along d alone, it would
-        leave one rim and start on the other alone, whence the Newton slides it along that rim
-        (a single contact on a convex rim is no stable equilibrium) instead of into the wedge.
-        None where the normals are nearly parallel or d is not between them."""
-        chords = X[list(pair)] - corner
-        normals = chords / np.hypot(chords[:, 0], chords[:, 1])[:, None]
-        if abs(normals[0, 0] * normals[1, 1] - normals[0, 1] * normals[1, 0]) < WEDGE_MIN_SINE:
-            return None
-        shares = np.linalg.solve(normals.T, float(np.linalg.norm(load)) * direction)
-        if np.any(shares < 0.0):
-            return None
-        return np.linalg.solve(normals, shares / (
-            self.path.problem.penalty_stiffness_Pa_per_m() * self.path.weights_m[list(pair)]))
 
     def _coupled_newton(self, load, direction, basis, max_iterations) -> int | None:
         """Semi-smooth Newton on (displacement, c) with c moving in the span of ``basis``
@@ -576,16 +820,16 @@ class ContactNewton:
                     self._onto_ray(direction, load)
                 control, last_step = NewtonControl(path.problem), None
                 continue
-            residual = float(np.linalg.norm(basis.T @ pin_residual))
+            residual = norm(basis.T @ pin_residual)
             if last_step is not None and control.converged(
-                    *last_step, residual, float(np.linalg.norm(load)), active):
+                    *last_step, residual, norm(load), active):
                 return iteration
             cap = control.step_cap(active)
             if iteration == max_iterations or (cap < CYCLE_CAP and basis.shape[1] == 2):
                 return None
             update, dc = path.newton_direction(pin_residual, load, basis)
             self._line_search(update, dc, pin_residual, load, cap)
-            last_step = (float(np.linalg.norm(dc)), *self._sizes(update))
+            last_step = (norm(dc), *self._sizes(update))
         return None
 
     def _sizes(self, update) -> tuple[float, float, float]:
@@ -594,39 +838,41 @@ class ContactNewton:
 
     def _gaps(self) -> np.ndarray:
         """Gaps |X + U - c| - R_p at the bore nodes (m), negative in contact."""
-        d = self.path.deformed_points() - self.path.pin_centre_m
-        return np.hypot(d[:, 0], d[:, 1]) - self.path.problem.geometry.pin_radius_m
+        return gaps(self.path.deformed_points(), self.path.pin_centre_m, self.pin_radius_m)
 
     def _line_search(self, update, dc, pin_residual, load, cap: float) -> float:
         """Step length along the Newton direction; leaves the state there and returns it.
 
         Starts from the smaller of ``cap``, :func:`slide_limit` and the step at which the first
-        node entering contact could carry the load alone (:meth:`_entering_limit`). Then halves
+        node entering contact could carry the load alone (:func:`entering_limit`). Then halves
         the step while the trial loses all contact, and, for a descent direction, backtracks
         (Armijo, at most ``BACKTRACK_RANGE`` below the first contact-keeping step) on the
         penalty potential. At rounding level near convergence, or with friction (not a
         potential), the first contact-keeping step is taken.
         """
         path = self.path
-        gaps0 = self._gaps()
-        base = _LineBase(path.pin_centre_m.copy(), path.deformed_points(), gaps0)
+        base = _LineBase(path.pin_centre_m.copy(), path.deformed_points(), self.pin_radius_m)
+        gaps0 = base.all_gaps
         slope = path.begin_line_search(update, dc, pin_residual)
         # With friction Pi is no potential of the equations; without, it is a sum of terms of
         # size |F/L| |c| and a decrease below ENERGY_ROUNDING of that is noise: in both cases
         # the first contact-keeping step is taken as for a non-descent direction
-        descent = path.frictionless() and -slope > ENERGY_ROUNDING * float(
-            np.linalg.norm(load) * np.linalg.norm(base.centre))
+        load_size = norm(load)
+        descent = path.frictionless() and -slope > ENERGY_ROUNDING * (
+            load_size * norm(base.centre))
         energy0 = path.energy(load) if descent else math.nan
-        step = min(cap, slide_limit(base.centre, dc, path.problem))
+        step = min(cap, slide_limit(base.centre, dc, self.element_size_m, self.bore_radius_m))
         keeps_contact = None
         while step >= SMALLEST_STEP:
             self._try(step, base, dc)
-            gaps = self._gaps()
-            if step > (limit := self._entering_limit(gaps0, gaps, step, load)):
+            trial_gaps = self._gaps()
+            limit = entering_limit(gaps0, trial_gaps, step, path.weights_m, load_size,
+                                   self.penalty)
+            if step > limit:
                 step = limit
                 self._try(step, base, dc)
-                gaps = self._gaps()
-            if gaps.min() >= 0.0:
+                trial_gaps = self._gaps()
+            if trial_gaps.min() >= 0.0:
                 step *= 0.5
                 continue
             if keeps_contact is None:
@@ -643,21 +889,6 @@ class ContactNewton:
         self._try(keeps_contact, base, dc)
         return keeps_contact
 
-    def _entering_limit(self, gaps0: np.ndarray, gaps: np.ndarray, step: float,
-                        load: np.ndarray) -> float:
-        """The step at which the first node that enters contact between step 0 and ``step``
-        reaches the penetration at which it would carry the load alone (:meth:`_load_penetration`),
-        with the gaps linear in the step; ``step`` if no node enters. The pin's sliding mode is
-        soft against the active set (nearly free when it holds one or two nodes), so a Newton
-        step may slide the pin far past the node that stops it."""
-        entering = (gaps0 >= 0.0) & (gaps < 0.0)
-        if not np.any(entering):
-            return step
-        closing_rate = (gaps0[entering] - gaps[entering]) / step
-        needed = np.array([self._load_penetration(load, w)
-                           for w in self.path.weights_m[entering]])
-        return float(np.min((gaps0[entering] + needed) / closing_rate))
-
     def _try(self, step: float, base: _LineBase, dc: np.ndarray) -> None:
         """Set the state to the trial ``step`` along (update, dc), the pin by :func:`pin_update`
         plus a second-order correction: the nodes in contact at the base move off the pin by
@@ -667,25 +898,20 @@ class ContactNewton:
         path = self.path
         centre = pin_update(base.centre, step * dc, self.node_spacing_rad)
         path.try_step(step, centre)
-        if not base.normals.size:
+        if not base.contact.size:
             return
-        X = path.deformed_points()[base.contact]
-        moved = np.einsum("qi,qi->q", base.normals, X - base.points - (centre - base.centre))
-        d = X - centre
-        excess = np.hypot(d[:, 0], d[:, 1]) - path.problem.geometry.pin_radius_m - (
-            base.gaps + moved)
-        mean_normal = base.normals.sum(axis=0)
-        path.try_step(step, centre + excess.mean() * mean_normal / np.linalg.norm(mean_normal))
+        path.try_step(step, following_centre(path.deformed_points(), centre, base.contact,
+                                             base.points, base.normals, base.gaps, base.centre,
+                                             self.pin_radius_m))
 
 
 class _LineBase:
-    """The state at the start of a line search: pin centre, the nodes in contact (indices),
-    their positions X + U, normals and gaps."""
+    """The state at the start of a line search: pin centre, the gaps of all nodes, the nodes
+    in contact (indices), their positions X + U, normals and gaps."""
 
-    def __init__(self, centre: np.ndarray, deformed_points: np.ndarray, gaps: np.ndarray):
+    def __init__(self, centre: np.ndarray, deformed_points: np.ndarray, pin_radius_m: float):
         self.centre = centre
-        self.contact = np.flatnonzero(gaps < 0.0)
-        self.points = deformed_points[self.contact]
-        d = self.points - centre
-        self.normals = d / np.hypot(d[:, 0], d[:, 1])[:, None]
-        self.gaps = gaps[self.contact]
+        self.all_gaps = gaps(deformed_points, centre, pin_radius_m)
+        self.contact, self.points, self.normals = contact_normals(deformed_points, centre,
+                                                                  self.all_gaps)
+        self.gaps = self.all_gaps[self.contact]

@@ -91,12 +91,12 @@ def _run_in_worker(rods, config: dict, out_dir, resumed: dict) -> dict:
 def _in_processes(rods, config: dict, out_dir, resumed: dict, jobs: int) -> dict:
     """One worker process per group of rods (``jobs`` of them, :func:`fewear.parallel.
     worker_pool`); a worker's error stops the others at once (their checkpoints stay)."""
-    from fewear.mbd.slider_crank import compile_dynamics
+    from fewear.jit import compile_kernels
     from fewear.parallel import worker_pool
 
     groups = [rods[index::jobs] for index in range(jobs)]
     cases = {}
-    compile_dynamics()  # once here, not in every worker at once on an empty cache
+    compile_kernels()  # once here, not in every worker at once on an empty cache
     with worker_pool(jobs) as pool:
         results = [pool.apply_async(_run_in_worker, (group, config, out_dir, {
             rod: resumed[rod] for rod in group if rod in resumed})) for group in groups]
@@ -109,10 +109,11 @@ def _on_ranks(rods, config: dict, out_dir, resumed: dict, world) -> dict:
     """The ranks of ``world`` split into one sub-communicator per group of rods; the cases
     gathered on rank 0 (the other ranks get an empty dict). An input error in one group is
     raised on every rank, after the other groups have finished."""
-    from fewear.mbd.slider_crank import compile_dynamics
+    import fewear.contact.condensed  # noqa: F401 (PETSc starts on every rank, collectively)
+    from fewear.jit import compile_kernels
 
     if world.rank == 0:
-        compile_dynamics()  # the other ranks then load it instead of compiling it at once
+        compile_kernels()  # the other ranks then load it instead of compiling it at once
     world.Barrier()
     groups = min(world.size, len(rods))
     color = world.rank % groups

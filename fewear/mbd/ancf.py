@@ -66,7 +66,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fewear.errors import FewearInputError
-from fewear.mbd.jit import compiled
+from fewear.jit import compiled
 
 COORDINATES_PER_NODE = 4
 COORDINATES_PER_ELEMENT = 12

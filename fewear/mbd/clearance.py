@@ -36,6 +36,7 @@ from collections import namedtuple
 
 import numpy as np
 
+from fewear.jit import compiled
 from fewear.mbd.contact import (
     ClearanceProfile,
     ContactLaw,
@@ -44,7 +45,6 @@ from fewear.mbd.contact import (
     friction_factor,
     normal_force,
 )
-from fewear.mbd.jit import compiled
 from fewear.mbd.points import (
     POINT_COORDINATES,
     add_point_force,

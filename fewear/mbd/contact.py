@@ -36,7 +36,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 
 from fewear.errors import FewearInputError
-from fewear.mbd.jit import compiled
+from fewear.jit import compiled
 
 CONTACT_LAWS = ("lankarani-nikravesh", "hunt-crossley", "flores", "tabulated")
 

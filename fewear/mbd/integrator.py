@@ -56,12 +56,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from fewear.errors import FewearInputError
+from fewear.jit import compiled
 from fewear.mbd.clearance import begin_step, end_step, step_error
 from fewear.mbd.constraints import (
     add_constraint_hessian,
     constraint_values_and_jacobian,
 )
-from fewear.mbd.jit import compiled
 from fewear.mbd.system import system_forces
 
 REUSE_CONTRACTION = 0.25  # modified Newton: rebuild when |dq| shrinks by less than this

@@ -26,7 +26,7 @@ import math
 
 import numpy as np
 
-from fewear.mbd.jit import compiled
+from fewear.jit import compiled
 
 
 class GroundPoint:

@@ -359,7 +359,7 @@ def compile_dynamics() -> None:
     """Compile, or load from numba's cache, every kernel a dynamics run calls (the same for both
     rods and joints: the arrays only change size) by a few steps of the default clearance
     mechanism; worker processes started afterwards load the cached code instead of each compiling
-    it (:mod:`fewear.mbd.jit`)."""
+    it (:mod:`fewear.jit`)."""
     inputs = dynamics_inputs_from_config(load_config(None, SECTIONS))
     model = SliderCrankModel(replace(inputs.crank, joint="clearance"), inputs.joint)
     integrator = GeneralizedAlpha(model.system, inputs.integrator)

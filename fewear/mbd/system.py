@@ -22,10 +22,10 @@ from collections import namedtuple
 import numpy as np
 
 from fewear.errors import FewearInputError
+from fewear.jit import compiled
 from fewear.mbd.ancf import add_beam_forces
 from fewear.mbd.clearance import ClearanceJoint, add_joint_forces, joint_data
 from fewear.mbd.constraints import ConstraintSet
-from fewear.mbd.jit import compiled
 
 SystemData = namedtuple("SystemData", [
     "mass", "inverse_mass", "gravity_forces",  # (n, n), (n, n), (n,)

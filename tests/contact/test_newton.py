@@ -63,3 +63,22 @@ def test_turned_state_is_the_solution_of_the_turned_force(fast):
     assert np.linalg.norm(result.pin_centre_m - turned_centre) < 1e-9 * np.linalg.norm(
         turned_centre)
     assert np.abs(turned_pressure - result.pressure_Pa).max() < 1e-6 * result.max_pressure_Pa
+
+
+def test_compile_contact_covers_the_argument_types_of_a_solve(fast):
+    """compile_contact (run before worker processes start) calls each kernel with the argument
+    types of a solve: after it and a solve with friction, no kernel holds a second signature
+    (a worker would compile that one itself)."""
+    from numba.core.registry import CPUDispatcher
+
+    from fewear.contact import condensed, newton
+
+    condensed.compile_contact()
+    fast.newton.forget()
+    fast.solve((300.0, -2000.0), 0.01, friction=True)
+    fast.solve((350.0, -2100.0), 0.01, friction=False)
+    kernels = {name: kernel for module in (newton, condensed)
+               for name, kernel in vars(module).items() if isinstance(kernel, CPUDispatcher)}
+    assert len(kernels) >= 15
+    assert {name: len(kernel.signatures) for name, kernel in kernels.items()
+            if len(kernel.signatures) > 1} == {}
