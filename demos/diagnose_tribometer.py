@@ -25,7 +25,7 @@
 # $V \propto F^a$; ``mild_to_severe``, a jump above a load or $p v$ threshold; steady ``thermal``,
 # an Arrhenius rate rising with the frictional power). Causes join one at a time while each
 # predicts held-out tests significantly better (module docstring of
-# ``fewear.calibrate.diagnose``).
+# ``fewear.diagnose.tribometer.diagnose``).
 #
 # Two data sets:
 #
@@ -46,11 +46,11 @@ from pathlib import Path
 
 import numpy as np
 
-from fewear.calibrate.diagnose import diagnose, readings_from_measured
-from fewear.calibrate.measured import read_measured_wear
-from fewear.calibrate.report import write_outputs
 from fewear.data import RUNNING_IN_SYNTHETIC_CSV as SYNTHETIC
 from fewear.data import SINGH2016_AL_SIC_CSV as REAL
+from fewear.diagnose.tribometer.diagnose import diagnose, readings_from_measured
+from fewear.diagnose.tribometer.measured import read_measured_wear
+from fewear.diagnose.tribometer.report import write_outputs
 
 OUT = Path(os.environ.get("FEWEAR_DEMO_OUT", "out/demos/diagnose_tribometer"))
 

@@ -29,7 +29,7 @@ from itertools import product
 import numpy as np
 import pytest
 
-from fewear.calibrate.diagnose import diagnose
+from fewear.diagnose.tribometer.diagnose import diagnose
 from tests.calibrate.generators import (
     CAUSES,
     GENERATORS,

@@ -15,8 +15,8 @@ import dataclasses
 import numpy as np
 import pytest
 
-from fewear.calibrate.diagnose import DiagnoseSettings, diagnose, readings_from_columns
-from fewear.calibrate.forward import grid_campaign, hidden_case, simulate_campaign
+from fewear.diagnose.tribometer.diagnose import DiagnoseSettings, diagnose, readings_from_columns
+from fewear.diagnose.tribometer.forward import grid_campaign, hidden_case, simulate_campaign
 from fewear.wear.extensions import RunningIn
 from tests.calibrate.generators import (
     CAUSES,

@@ -1,4 +1,4 @@
-"""The joint diagnosis's candidate runs and resolution (fewear.calibrate.joint_diagnose), on
+"""The joint diagnosis's candidate runs and resolution (fewear.diagnose.joint.diagnose), on
 constructed wear histories: runs that stop before the data are left out, halving the blocks
 halves what the extrapolation settings allow, a 'none' whose misfit lies within what the
 model's blocks resolve says so, running-in's time map and form are those of the data, and a
@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from fewear.calibrate.joint_diagnose import (
+from fewear.diagnose.joint.diagnose import (
     REFINEMENTS,
     RUNNING_IN_FORMS,
     Candidate,
@@ -29,7 +29,7 @@ from fewear.calibrate.joint_diagnose import (
     fit_cause,
     running_in_time_map,
 )
-from fewear.calibrate.joint_forward import WearHistory, with_halved_blocks
+from fewear.diagnose.joint.forward import WearHistory, with_halved_blocks
 from fewear.errors import FewearInputError
 
 
@@ -390,7 +390,7 @@ def _k_level_world(monkeypatch, truth_k_scale: float, friction_rate_factor: floa
     """Forward runs as linear wear whose rate scales with the config's constant k; a run with
     the friction changed wears at ``friction_rate_factor`` times the believed rate (whatever its
     k). Returns the believed config, the believed run and data from a k level ``truth_k_scale``."""
-    from fewear.calibrate import joint_diagnose
+    from fewear.diagnose.joint import diagnose as joint_diagnose
 
     angle = np.linspace(0.0, 2.0 * math.pi, 48, endpoint=False)
     base = _linear_run(angle, np.full(48, 0.01))

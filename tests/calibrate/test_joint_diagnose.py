@@ -1,5 +1,5 @@
-"""The joint diagnosis finds an effect hidden in measured joint wear (fewear.calibrate.
-joint_diagnose): each cause of the catalogue switched on in the wear loop at random parameters,
+"""The joint diagnosis finds an effect hidden in measured joint wear (fewear.diagnose.
+joint.diagnose): each cause of the catalogue switched on in the wear loop at random parameters,
 measured by an independent profilometer model (unknown angular origin, 0.5 um noise), diagnosed
 without the answer; the believed model's own data give no cause.
 
@@ -17,10 +17,10 @@ import json
 import numpy as np
 import pytest
 
-from fewear.calibrate.joint_diagnose import JointDiagnoseSettings, diagnose_joint
-from fewear.calibrate.joint_measured import write_joint_profiles, write_max_wear
-from fewear.calibrate.joint_structure import MAX_LISTED_IMPACTS
 from fewear.cli import main
+from fewear.diagnose.joint.diagnose import JointDiagnoseSettings, diagnose_joint
+from fewear.diagnose.joint.measured import write_joint_profiles, write_max_wear
+from fewear.diagnose.joint.structure import MAX_LISTED_IMPACTS
 from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
 from tests.calibrate.joint_cases import believed_text, hidden_joint_case

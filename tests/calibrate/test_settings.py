@@ -4,8 +4,8 @@ import dataclasses
 
 import pytest
 
-from fewear.calibrate.diagnose import DiagnoseSettings, diagnose, readings_from_columns
-from fewear.calibrate.forward import grid_campaign, hidden_case
+from fewear.diagnose.tribometer.diagnose import DiagnoseSettings, diagnose, readings_from_columns
+from fewear.diagnose.tribometer.forward import grid_campaign, hidden_case
 from fewear.errors import FewearInputError
 
 

@@ -11,7 +11,7 @@ plain Archard (the seed's eq. 10 integrated over a test, k = e^c) with one wear 
 *material group* g (tests that share their material and every other declared categorical factor)
 and multiplicative scatter: independent scatter of each reading (weighing, profilometry: readings
 that dip below the previous one are data) and test-to-test scatter of k. The causes of
-:mod:`fewear.calibrate.catalogue` add ln m: *shape* laws bend the wear curve along sliding
+:mod:`fewear.diagnose.tribometer.catalogue` add ln m: *shape* laws bend the wear curve along sliding
 (ln S_eff / s), *level* laws change k with load, pressure or p v.
 
 The data decide how the causes are tested:
@@ -63,7 +63,7 @@ from typing import Any
 import numpy as np
 from scipy import optimize, stats
 
-from fewear.calibrate.catalogue import CAUSES, Context, Form, ShapeLaw, forms_of
+from fewear.diagnose.tribometer.catalogue import CAUSES, Context, Form, ShapeLaw, forms_of
 from fewear.errors import FewearInputError
 from fewear.io.config import load_config
 from fewear.wear.coefficient import ConstantWearCoefficient, RbfWearCoefficient, wear_section
@@ -266,7 +266,7 @@ def _optional(value):
 
 
 def readings_from_measured(data) -> Readings:
-    """Readings from :class:`fewear.calibrate.measured.MeasuredWear`."""
+    """Readings from :class:`fewear.diagnose.tribometer.measured.MeasuredWear`."""
     columns = {"test_id": data.test_id, "sliding_distance_m": data.sliding_distance_m,
                "wear_volume_m3": data.wear_volume_m3}
     for name in OPTIONAL_COLUMNS:
@@ -703,7 +703,7 @@ class Diagnosis:
 
 def diagnose(readings: Readings, settings: DiagnoseSettings | None = None) -> Diagnosis:
     """The diagnosis of ``readings`` (module docstring for the method)."""
-    from fewear.calibrate.report import summarise
+    from fewear.diagnose.tribometer.report import summarise
 
     settings = settings or DiagnoseSettings.default()
     if readings.n_tests < 3:

@@ -1,7 +1,7 @@
 """``fewear diagnose MEASURED.csv [--config FILE.toml] [--out DIR]``: what plain Archard gets wrong
 on measured pin-on-disc data, the cause, the extended model and its gain (see
-:mod:`fewear.calibrate.diagnose`). Writes DIR/diagnosis.json, DIR/report.md (with PNG figures) and
-DIR/extended_wear.toml, all or nothing.
+:mod:`fewear.diagnose.tribometer.diagnose`). Writes DIR/diagnosis.json, DIR/report.md (with PNG
+figures) and DIR/extended_wear.toml, all or nothing.
 """
 
 from __future__ import annotations
@@ -9,19 +9,19 @@ from __future__ import annotations
 import argparse
 import sys
 
-from fewear.calibrate.diagnose import DiagnoseSettings, diagnose, readings_from_measured
-from fewear.calibrate.measured import read_measured_wear
-from fewear.calibrate.report import write_outputs
+from fewear.diagnose.tribometer.diagnose import DiagnoseSettings, diagnose, readings_from_measured
+from fewear.diagnose.tribometer.measured import read_measured_wear
+from fewear.diagnose.tribometer.report import write_outputs
 from fewear.errors import FewearInputError
 from fewear.io.config import load_config
 from fewear.io.output import staged_output
 
 
 def main(args: argparse.Namespace) -> int:
-    from fewear.calibrate.joint_measured import joint_data_kind
+    from fewear.diagnose.joint.measured import joint_data_kind
 
     if joint_data_kind(args.measured[0]) is not None:
-        from fewear.calibrate.joint_command import main as diagnose_joint_data
+        from fewear.diagnose.joint.command import main as diagnose_joint_data
 
         return diagnose_joint_data(args)
     if len(args.measured) != 1:

@@ -1,6 +1,6 @@
 """``fewear diagnose PROFILES.csv [MAX_WEAR.csv ...] --config MODEL.toml [--out DIR]`` on wear
 measured on the joint: the believed model's misses, the cause, the extended config and its gain
-(:mod:`fewear.calibrate.joint_diagnose`). Writes DIR/diagnosis.json, DIR/report.md,
+(:mod:`fewear.diagnose.joint.diagnose`). Writes DIR/diagnosis.json, DIR/report.md,
 DIR/joint_fits.png and DIR/extended.toml (the config lines that differ from the default), all or
 nothing.
 """
@@ -12,8 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
-from fewear.calibrate.joint_diagnose import JointDiagnoseSettings, diagnose_joint
-from fewear.calibrate.joint_measured import read_joint_measurements
+from fewear.diagnose.joint.diagnose import JointDiagnoseSettings, diagnose_joint
+from fewear.diagnose.joint.measured import read_joint_measurements
 from fewear.io.config import default_config, load_config
 from fewear.io.output import staged_output, write_json
 from fewear.wear.coefficient import wear_section_toml

@@ -1,5 +1,5 @@
-"""Figures of a wear diagnosis (:mod:`fewear.calibrate.diagnose`): measurement against baseline
-and extended model, the baseline's residuals against every measured variable, the causes'
+"""Figures of a wear diagnosis (:mod:`fewear.diagnose.tribometer.diagnose`): measurement against
+baseline and extended model, the baseline's residuals against every measured variable, the causes'
 held-out errors. matplotlib with the Agg backend; each function writes one PNG and returns its path.
 """
 
@@ -29,7 +29,7 @@ def plot_fits(diagnosis, path: str | Path) -> Path:
     plt = _pyplot()
     if diagnosis.form == "table":
         return _plot_table_fits(diagnosis, path, plt)
-    from fewear.calibrate.diagnose import predict_log_volume
+    from fewear.diagnose.tribometer.diagnose import predict_log_volume
 
     d = diagnosis
     r = d.readings
@@ -78,7 +78,7 @@ def _test_title(r, j: int) -> str:
 
 
 def _plot_table_fits(diagnosis, path, plt) -> Path:
-    from fewear.calibrate.diagnose import predict_log_volume
+    from fewear.diagnose.tribometer.diagnose import predict_log_volume
 
     r = diagnosis.readings
     result = diagnosis.reading_stage

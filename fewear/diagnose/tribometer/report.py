@@ -11,8 +11,8 @@ from typing import Any
 
 import numpy as np
 
-from fewear.calibrate.catalogue import MEANINGS
-from fewear.calibrate.structure import residual_structure
+from fewear.diagnose.tribometer.catalogue import MEANINGS
+from fewear.diagnose.tribometer.structure import residual_structure
 from fewear.io.output import write_json
 from fewear.wear.coefficient import wear_section_toml
 
@@ -24,7 +24,8 @@ FIGURES = {"fits": "fits.png", "residuals": "residuals.png", "candidates": "cand
 
 
 def summarise(readings, settings, form: str, stages, causes, extended) -> dict[str, Any]:
-    """The JSON-ready summary of a diagnosis (see :func:`fewear.calibrate.diagnose.diagnose`)."""
+    """The JSON-ready summary of a diagnosis
+    (see :func:`fewear.diagnose.tribometer.diagnose.diagnose`)."""
     reading_stage = stages[0]
     across = stages[1] if len(stages) > 1 else None
     before = residual_structure(readings, reading_stage.baseline.residuals,
@@ -35,7 +36,7 @@ def summarise(readings, settings, form: str, stages, causes, extended) -> dict[s
     baseline_error = scored.baseline_rms
     extended_error = scored.final_rms
     test_group, group_names = readings.test_groups()
-    from fewear.calibrate.diagnose import log_k_per_test, untestable_causes
+    from fewear.diagnose.tribometer.diagnose import log_k_per_test, untestable_causes
 
     log_k = log_k_per_test(readings, reading_stage.stage, reading_stage.baseline)
     return {
@@ -155,7 +156,7 @@ def _confounded(stages, readings, settings) -> list[dict[str, Any]]:
     """Per stage: causes accepted at the first step that the held-out errors do not tell apart
     from the one chosen first (paired p >= significance that the chosen predicts the held-out
     tests better)."""
-    from fewear.calibrate.diagnose import paired_improvement_p
+    from fewear.diagnose.tribometer.diagnose import paired_improvement_p
 
     groups = []
     for result in stages:
@@ -201,7 +202,7 @@ def _structural_reason(readings, names: set[str]) -> str:
 def _prediction(readings, result, settings) -> dict[str, Any]:
     """Wear after ``prediction_distance_factor`` x each test's own final distance (and time),
     extended over baseline model (both fitted on all readings)."""
-    from fewear.calibrate.diagnose import predict_log_volume
+    from fewear.diagnose.tribometer.diagnose import predict_log_volume
 
     factor = settings.prediction_distance_factor
     s = factor * readings.final_per_test(readings.distance_m)
@@ -226,7 +227,7 @@ def _prediction(readings, result, settings) -> dict[str, Any]:
 
 def write_outputs(diagnosis, folder: Path) -> dict[str, Path]:
     """Write every output of ``diagnosis`` into ``folder``; returns their paths by name."""
-    from fewear.plot.diagnosis import plot_candidates, plot_fits, plot_residuals
+    from fewear.diagnose.tribometer.figures import plot_candidates, plot_fits, plot_residuals
 
     folder = Path(folder)
     paths = {

@@ -1,7 +1,7 @@
 """What the believed joint model gets wrong on measured joint wear, which cause explains it, and
 how much better the extended model predicts the later measurements (life prediction).
 
-Data (:mod:`fewear.calibrate.joint_measured`): bore profiles h(theta) at cycle counts N and/or the
+Data (:mod:`fewear.diagnose.joint.measured`): bore profiles h(theta) at cycle counts N and/or the
 growth of the maximum depth. The instrument's angular origin is unknown: every model is fitted
 with an offset phi (measured angle + phi = bushing angle). The cycle counts are split in time:
 the earlier ones train, the later ``held_out_fraction`` are held out.
@@ -11,7 +11,7 @@ the bore):
 
 .. math::  h(\\theta, N) = H_\\text{cause}\\big(\\theta + \\phi,\\ s\\,\\tau(N)\\big),
 
-H the wear loop's worn bore (:mod:`fewear.calibrate.joint_forward`) for the believed config with
+H the wear loop's worn bore (:mod:`fewear.diagnose.joint.forward`) for the believed config with
 the cause switched on, s the wear coefficient's level (Archard's depth is a function of k N
 along the loop: scaling k scales the cycle axis, exactly, the geometry feedback included), and
 tau(N) = N except for running-in. The catalogue (every cause has s free, so each must beat
@@ -90,8 +90,8 @@ from typing import Any
 import numpy as np
 from scipy import optimize, stats
 
-from fewear.calibrate import joint_structure as structure
-from fewear.calibrate.joint_forward import (
+from fewear.diagnose.joint import structure
+from fewear.diagnose.joint.forward import (
     WearHistory,
     cycle_on_worn_bore,
     impact_measures_per_cycle,
@@ -101,7 +101,7 @@ from fewear.calibrate.joint_forward import (
     with_halved_blocks,
     worn_volume_per_cycle_m3,
 )
-from fewear.calibrate.joint_measured import JointMeasurements
+from fewear.diagnose.joint.measured import JointMeasurements
 from fewear.errors import FewearInputError
 from fewear.mesh.profile import periodic_linear
 from fewear.wear.extensions import (
@@ -982,7 +982,7 @@ def cycle_structure(data: JointMeasurements, config: dict, obs: Observations, ba
     """The believed model's misses against cycle count and bore angle, against the crank cycle
     and the impacts (the last profile, read through the believed model's dynamics on its own
     worn bore at that count), and its measured traces against the simulated ones
-    (:mod:`fewear.calibrate.joint_structure`)."""
+    (:mod:`fewear.diagnose.joint.structure`)."""
     def worn_cycle(cycles: float):
         return cycle_on_worn_bore(config, base.angle_rad, base.nodal_depth_m(cycles))
 
@@ -1015,7 +1015,7 @@ def forward_resolution(config: dict, base: WearHistory, obs: Observations,
                        scatter_m: float | None) -> dict[str, Any]:
     """What the measurements and the believed model can resolve: the instrument's scatter
     ``scatter_m`` (robust, from neighbouring profile points of the baseline's residuals:
-    :func:`fewear.calibrate.joint_structure.scatter_estimate_m`) and how far the
+    :func:`fewear.diagnose.joint.structure.scatter_estimate_m`) and how far the
     believed model's worn bore moves when its wear blocks are halved (RMS over the bore nodes
     at the measured cycle counts; the loop's discretisation error, roughly). A cause that moves
     the bore by less than the latter cannot be told from the block size."""
