@@ -48,8 +48,9 @@ import numpy as np
 
 from fewear.data import RUNNING_IN_SYNTHETIC_CSV as SYNTHETIC
 from fewear.data import SINGH2016_AL_SIC_CSV as REAL
-from fewear.diagnose.tribometer.diagnose import diagnose, readings_from_measured
+from fewear.diagnose.tribometer.diagnose import diagnose
 from fewear.diagnose.tribometer.measured import read_measured_wear
+from fewear.diagnose.tribometer.readings import readings_from_measured
 from fewear.diagnose.tribometer.report import write_outputs
 
 OUT = Path(os.environ.get("FEWEAR_DEMO_OUT", "out/demos/diagnose_tribometer"))

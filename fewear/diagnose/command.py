@@ -9,9 +9,11 @@ from __future__ import annotations
 import argparse
 import sys
 
-from fewear.diagnose.tribometer.diagnose import DiagnoseSettings, diagnose, readings_from_measured
+from fewear.diagnose.tribometer.diagnose import diagnose
 from fewear.diagnose.tribometer.measured import read_measured_wear
+from fewear.diagnose.tribometer.readings import readings_from_measured
 from fewear.diagnose.tribometer.report import write_outputs
+from fewear.diagnose.tribometer.settings import DiagnoseSettings
 from fewear.errors import FewearInputError
 from fewear.io.config import load_config
 from fewear.io.output import staged_output

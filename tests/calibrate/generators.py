@@ -17,7 +17,6 @@ from pathlib import Path
 
 import numpy as np
 
-from fewear.diagnose.tribometer.diagnose import Readings, readings_from_measured
 from fewear.diagnose.tribometer.forward import (
     grid_campaign,
     hidden_case,
@@ -25,6 +24,7 @@ from fewear.diagnose.tribometer.forward import (
     write_measured_csv,
 )
 from fewear.diagnose.tribometer.measured import read_measured_wear
+from fewear.diagnose.tribometer.readings import Readings, readings_from_measured
 from tests.calibrate.independent_generator import make_dataset, write_csv
 
 GENERATORS = ("fewear", "independent")

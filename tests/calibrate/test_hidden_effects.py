@@ -15,8 +15,10 @@ import dataclasses
 import numpy as np
 import pytest
 
-from fewear.diagnose.tribometer.diagnose import DiagnoseSettings, diagnose, readings_from_columns
+from fewear.diagnose.tribometer.diagnose import diagnose
 from fewear.diagnose.tribometer.forward import grid_campaign, hidden_case, simulate_campaign
+from fewear.diagnose.tribometer.readings import readings_from_columns
+from fewear.diagnose.tribometer.settings import DiagnoseSettings
 from fewear.wear.extensions import RunningIn
 from tests.calibrate.generators import (
     CAUSES,

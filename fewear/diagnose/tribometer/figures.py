@@ -9,6 +9,8 @@ from pathlib import Path
 
 import numpy as np
 
+from fewear.diagnose.tribometer.stages import predict_log_volume
+
 MAX_PANELS = 12
 
 
@@ -29,8 +31,6 @@ def plot_fits(diagnosis, path: str | Path) -> Path:
     plt = _pyplot()
     if diagnosis.form == "table":
         return _plot_table_fits(diagnosis, path, plt)
-    from fewear.diagnose.tribometer.diagnose import predict_log_volume
-
     d = diagnosis
     r = d.readings
     result = d.reading_stage
@@ -78,8 +78,6 @@ def _test_title(r, j: int) -> str:
 
 
 def _plot_table_fits(diagnosis, path, plt) -> Path:
-    from fewear.diagnose.tribometer.diagnose import predict_log_volume
-
     r = diagnosis.readings
     result = diagnosis.reading_stage
     measured = 1e9 * r.volume_m3

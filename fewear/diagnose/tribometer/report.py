@@ -12,6 +12,9 @@ from typing import Any
 import numpy as np
 
 from fewear.diagnose.tribometer.catalogue import MEANINGS
+from fewear.diagnose.tribometer.figures import plot_candidates, plot_fits, plot_residuals
+from fewear.diagnose.tribometer.fitting import paired_improvement_p
+from fewear.diagnose.tribometer.stages import log_k_per_test, predict_log_volume, untestable_causes
 from fewear.diagnose.tribometer.structure import residual_structure
 from fewear.io.output import write_json
 from fewear.wear.coefficient import wear_section_toml
@@ -36,8 +39,6 @@ def summarise(readings, settings, form: str, stages, causes, extended) -> dict[s
     baseline_error = scored.baseline_rms
     extended_error = scored.final_rms
     test_group, group_names = readings.test_groups()
-    from fewear.diagnose.tribometer.diagnose import log_k_per_test, untestable_causes
-
     log_k = log_k_per_test(readings, reading_stage.stage, reading_stage.baseline)
     return {
         "source": readings.source,
@@ -156,8 +157,6 @@ def _confounded(stages, readings, settings) -> list[dict[str, Any]]:
     """Per stage: causes accepted at the first step that the held-out errors do not tell apart
     from the one chosen first (paired p >= significance that the chosen predicts the held-out
     tests better)."""
-    from fewear.diagnose.tribometer.diagnose import paired_improvement_p
-
     groups = []
     for result in stages:
         if not result.chosen:
@@ -202,8 +201,6 @@ def _structural_reason(readings, names: set[str]) -> str:
 def _prediction(readings, result, settings) -> dict[str, Any]:
     """Wear after ``prediction_distance_factor`` x each test's own final distance (and time),
     extended over baseline model (both fitted on all readings)."""
-    from fewear.diagnose.tribometer.diagnose import predict_log_volume
-
     factor = settings.prediction_distance_factor
     s = factor * readings.final_per_test(readings.distance_m)
     per_test = {}
@@ -227,8 +224,6 @@ def _prediction(readings, result, settings) -> dict[str, Any]:
 
 def write_outputs(diagnosis, folder: Path) -> dict[str, Path]:
     """Write every output of ``diagnosis`` into ``folder``; returns their paths by name."""
-    from fewear.diagnose.tribometer.figures import plot_candidates, plot_fits, plot_residuals
-
     folder = Path(folder)
     paths = {
         "fits": plot_fits(diagnosis, folder / FIGURES["fits"]),
