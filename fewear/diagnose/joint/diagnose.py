@@ -88,8 +88,10 @@ from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
 import numpy as np
-from scipy import optimize, stats
+from scipy import optimize
 
+from fewear.diagnose.core.evidence import AcceptanceRule, Evidence
+from fewear.diagnose.core.statistics import aicc, bonferroni_threshold, nested_f_test_p
 from fewear.diagnose.joint import structure
 from fewear.diagnose.joint.forward import (
     WearHistory,
@@ -180,6 +182,14 @@ class JointDiagnoseSettings:
         if not self.max_k_scale > 1.0:
             raise FewearInputError(
                 f"[joint_diagnose] max_k_scale = {self.max_k_scale!r}: expected > 1")
+
+    def acceptance(self, forms_tried: int) -> AcceptanceRule:
+        """The rule a cause must meet when ``forms_tried`` forms were fitted: p below the
+        Bonferroni threshold, a held-out gain of at least ``min_held_out_gain``, AICc at least
+        ``min_aicc_improvement`` lower."""
+        return AcceptanceRule(max_p=bonferroni_threshold(self.significance, forms_tried),
+                              min_gain=self.min_held_out_gain, gain_strictly_above=False,
+                              min_aicc_improvement=self.min_aicc_improvement)
 
     @classmethod
     def from_config(cls, section: dict) -> JointDiagnoseSettings:
@@ -276,8 +286,8 @@ class Fit:
 
     @property
     def aicc(self) -> float:
-        n, p = self.n_train, self.n_params
-        return n * math.log(self.sse_train / n) + 2 * p + 2 * p * (p + 1) / max(n - p - 1, 1)
+        """AICc on the training data (the small-sample correction's denominator clamped to 1)."""
+        return aicc(self.sse_train, self.n_train, self.n_params, clamp_correction=True)
 
 
 def _mixed_depth(candidate: Candidate, position: float, scale: float,
@@ -650,26 +660,21 @@ def _grid_parameter(cause: str, form: str) -> str | None:
 
 
 def f_test_p(nested: Fit, fuller: Fit) -> float:
-    """Extra-sum-of-squares F-test of two nested least-squares fits (Seber & Wild 1989)."""
-    extra = fuller.n_params - nested.n_params
-    dof = fuller.n_train - fuller.n_params
-    if extra <= 0 or dof <= 0 or fuller.sse_train <= 0.0:
-        return 1.0
-    statistic = (nested.sse_train - fuller.sse_train) / extra / (fuller.sse_train / dof)
-    return float(stats.f.sf(max(statistic, 0.0), extra, dof))
+    """Extra-sum-of-squares F-test of two nested least-squares fits on the training data."""
+    return nested_f_test_p(nested.sse_train, fuller.sse_train, fuller.n_params - nested.n_params,
+                           fuller.n_train - fuller.n_params)
 
 
 def verdict(fit_: Fit, reference: Fit, settings: JointDiagnoseSettings, tried: int) -> dict:
     """The evidence for a cause against the reference model and whether it is accepted."""
-    p = f_test_p(reference, fit_)
-    gain = 1.0 - fit_.held_out_rms_m / reference.held_out_rms_m
-    d_aicc = reference.aicc - fit_.aicc
-    accepted = (p < settings.significance / tried and gain >= settings.min_held_out_gain
-                and d_aicc >= settings.min_aicc_improvement)
-    return {"cause": fit_.name, "form": fit_.form, "against": reference.name, "p_value": p,
-            "held_out_rms_m": fit_.held_out_rms_m, "training_rms_m": fit_.train_rms_m,
-            "held_out_gain": gain, "aicc_improvement": d_aicc, "accepted": bool(accepted),
-            "params": fit_.params}
+    evidence = Evidence(p_value=f_test_p(reference, fit_),
+                        gain=1.0 - fit_.held_out_rms_m / reference.held_out_rms_m,
+                        aicc_improvement=reference.aicc - fit_.aicc)
+    return {"cause": fit_.name, "form": fit_.form, "against": reference.name,
+            "p_value": evidence.p_value, "held_out_rms_m": fit_.held_out_rms_m,
+            "training_rms_m": fit_.train_rms_m, "held_out_gain": evidence.gain,
+            "aicc_improvement": evidence.aicc_improvement,
+            "accepted": settings.acceptance(tried).accepts(evidence), "params": fit_.params}
 
 
 # --- the candidates as runs of the wear loop ----------------------------------------------------

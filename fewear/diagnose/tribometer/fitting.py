@@ -4,13 +4,14 @@ method is in :mod:`fewear.diagnose.tribometer.diagnose`)."""
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from scipy import optimize, stats
+from scipy import optimize
 
+from fewear.diagnose.core.evidence import AcceptanceRule, Evidence
+from fewear.diagnose.core.statistics import aicc, nested_f_test_p, paired_improvement_p
 from fewear.diagnose.tribometer.catalogue import Context, Form, forms_of
 from fewear.diagnose.tribometer.settings import DiagnoseSettings
 
@@ -46,6 +47,11 @@ class StageFit:
     @property
     def n_parameters(self) -> int:
         return sum(v.size for v in self.x)
+
+    @property
+    def rss(self) -> float:
+        """The residual sum of squares."""
+        return float(np.sum(self.residuals**2))
 
 
 def _log_model(stage: Stage, forms, xs) -> tuple[np.ndarray, tuple]:
@@ -116,46 +122,6 @@ def held_out_errors(stage: Stage, fit: StageFit) -> np.ndarray:
     return errors
 
 
-def aicc(residuals: np.ndarray, n_parameters: int) -> float:
-    """Corrected Akaike criterion of a least-squares fit (Hurvich & Tsai 1989)."""
-    n = residuals.size
-    rss = float(np.sum(residuals**2))
-    if n - n_parameters - 1 <= 0 or rss <= 0.0:
-        return float("nan")
-    return (n * math.log(rss / n) + 2 * n_parameters
-            + 2 * n_parameters * (n_parameters + 1) / (n - n_parameters - 1))
-
-
-def extra_sum_of_squares_p(nested: StageFit, fuller: StageFit, n_nested: int) -> float:
-    """p-value of the extra-sum-of-squares F-test of ``fuller`` against ``nested`` (n_nested
-    parameters, intercepts included): F = ((RSS0 - RSS1) / q) / (RSS1 / (n - n_nested - q))
-    (e.g. Seber & Wild, *Nonlinear Regression*, 1989, sec. 5.3)."""
-    q = fuller.n_parameters - nested.n_parameters
-    n = nested.residuals.size
-    dof = n - n_nested - q
-    rss0, rss1 = float(np.sum(nested.residuals**2)), float(np.sum(fuller.residuals**2))
-    if dof <= 0 or rss1 <= 0.0:
-        return 1.0
-    f = max(rss0 - rss1, 0.0) / q / (rss1 / dof)
-    return float(stats.f.sf(f, q, dof))
-
-
-def paired_improvement_p(before: np.ndarray, after: np.ndarray) -> float:
-    """One-sided p-value that ``after`` predicts the held-out tests better than ``before``: a
-    paired t-test (Student) of the per-test log ratios ln(e_before / e_after) of the mean squared
-    held-out errors, a comparison of predictive accuracy in the manner of Diebold & Mariano,
-    J. Bus. Econ. Stat. 13 (1995) 253-263, on the log scale where a ratio of two error variances
-    is near-symmetric. 1 with fewer than two tests."""
-    d = np.log(before / after)
-    d = d[np.isfinite(d)]
-    if d.size < 2:
-        return 1.0
-    sd = float(np.std(d, ddof=1))
-    if sd == 0.0:
-        return 0.0 if d.mean() > 0.0 else 1.0
-    return float(stats.t.sf(d.mean() / (sd / np.sqrt(d.size)), d.size - 1))
-
-
 # ---------------------------------------------------------------------------------------------
 # Forward selection in a stage
 
@@ -200,11 +166,10 @@ def select_causes(stage: Stage, causes: tuple[str, ...], settings: DiagnoseSetti
                    if (entry := _try_cause(stage, current, current_errors, cause)) is not None]
         if not entries:
             break
-        threshold = settings.significance / sum(entry["forms_tried"] for entry in entries)
+        rule = settings.acceptance(sum(entry["forms_tried"] for entry in entries))
         for entry in entries:
-            entry["accepted"] = bool(entry["p_value"] < threshold and entry["gain"] > 0.0 and
-                                     entry["aicc_change"] <= -settings.min_aicc_improvement)
-            entry["verdict"] = _verdict(entry, threshold, settings)
+            entry["accepted"] = rule.accepts(_evidence(entry))
+            entry["verdict"] = _verdict(entry, rule)
         steps.append(tuple(entries))
         accepted = [e for e in entries if e["accepted"]]
         if not accepted:
@@ -239,9 +204,11 @@ def _try_cause(stage: Stage, current: StageFit, current_errors: np.ndarray,
     forms_tried = len(fits)
     errors = held_out_errors(stage, fit)
     n_base = current.n_parameters + stage.n_groups
+    n_fuller = n_base + fit.x[-1].size
     one_row_per_unit = np.unique(stage.unit).size == stage.unit.size
     if one_row_per_unit:
-        test, p_value = "F", extra_sum_of_squares_p(current, fit, n_base)
+        test, p_value = "F", nested_f_test_p(current.rss, fit.rss, n_fuller - n_base,
+                                             stage.y.size - n_fuller)
     else:
         test, p_value = "paired t", paired_improvement_p(current_errors, errors)
     return {
@@ -253,22 +220,27 @@ def _try_cause(stage: Stage, current: StageFit, current_errors: np.ndarray,
         "test": test, "p_value": p_value, "forms_tried": forms_tried,
         "tests_improved": f"{int(np.sum(errors < current_errors))} of "
                           f"{int(np.sum(np.isfinite(errors)))}",
-        "aicc_change": aicc(fit.residuals, n_base + fit.x[-1].size) - aicc(current.residuals,
-                                                                           n_base),
+        "aicc_change": aicc(fit.rss, stage.y.size, n_fuller) - aicc(current.rss,
+                                                                     stage.y.size, n_base),
         "training_error": float(np.sqrt(np.mean(fit.residuals**2))),
         "_fit": fit, "_errors": errors,
     }
 
 
-def _verdict(entry: dict[str, Any], threshold: float, settings: DiagnoseSettings) -> str:
+def _evidence(entry: dict[str, Any]) -> Evidence:
+    """An entry's evidence (its AICc change, cause minus current model, with the sign turned)."""
+    return Evidence(entry["p_value"], entry["gain"], -entry["aicc_change"])
+
+
+def _verdict(entry: dict[str, Any], rule: AcceptanceRule) -> str:
     evidence = (f"{entry['test']} p = {entry['p_value']:.2g}, held-out tests improved "
                 f"{entry['tests_improved']}, held-out gain {entry['gain']:+.0%}")
     if entry["accepted"]:
-        return f"accepted: {evidence} (p < {threshold:.2g}), AICc {entry['aicc_change']:+.1f}"
-    if entry["p_value"] >= threshold:
-        return f"rejected: not significant ({evidence}; needs p < {threshold:.2g})"
-    if entry["gain"] <= 0.0:
+        return f"accepted: {evidence} (p < {rule.max_p:.2g}), AICc {entry['aicc_change']:+.1f}"
+    if entry["p_value"] >= rule.max_p:
+        return f"rejected: not significant ({evidence}; needs p < {rule.max_p:.2g})"
+    if not rule.predicts_better(_evidence(entry)):
         return f"rejected: predicts held-out tests no better ({evidence})"
     return (f"rejected: AICc {entry['aicc_change']:+.1f} (needs <= "
-            f"-{settings.min_aicc_improvement:g}): the extra parameters do not pay for "
+            f"-{rule.min_aicc_improvement:g}): the extra parameters do not pay for "
             "themselves in the fit")

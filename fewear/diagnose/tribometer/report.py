@@ -11,9 +11,9 @@ from typing import Any
 
 import numpy as np
 
+from fewear.diagnose.core.statistics import paired_improvement_p
 from fewear.diagnose.tribometer.catalogue import MEANINGS
 from fewear.diagnose.tribometer.figures import plot_candidates, plot_fits, plot_residuals
-from fewear.diagnose.tribometer.fitting import paired_improvement_p
 from fewear.diagnose.tribometer.stages import log_k_per_test, predict_log_volume, untestable_causes
 from fewear.diagnose.tribometer.structure import residual_structure
 from fewear.io.output import write_json

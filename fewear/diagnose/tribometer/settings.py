@@ -6,6 +6,8 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+from fewear.diagnose.core.evidence import AcceptanceRule
+from fewear.diagnose.core.statistics import bonferroni_threshold
 from fewear.diagnose.tribometer.catalogue import CAUSES
 from fewear.errors import FewearInputError
 from fewear.io.config import load_config
@@ -46,6 +48,13 @@ class DiagnoseSettings:
             raise FewearInputError(
                 f"{where} prediction_distance_factor = {self.prediction_distance_factor!r}: "
                 "expected a number > 1")
+
+    def acceptance(self, forms_tried: int) -> AcceptanceRule:
+        """The rule a cause must meet at a step where ``forms_tried`` forms were fitted: p below
+        the Bonferroni threshold, a held-out gain above 0, AICc ``min_aicc_improvement`` lower."""
+        return AcceptanceRule(max_p=bonferroni_threshold(self.significance, forms_tried),
+                              min_gain=0.0, gain_strictly_above=True,
+                              min_aicc_improvement=self.min_aicc_improvement)
 
     @classmethod
     def from_config(cls, section: dict[str, Any]) -> DiagnoseSettings:
