@@ -100,7 +100,8 @@ def test_the_instruments_scatter_is_found_under_a_smooth_misfit(shape_m):
 
 
 def test_a_large_misfit_without_a_cause_is_reported_unexplained():
-    from fewear.diagnose.joint.diagnose import Fit, _unexplained
+    from fewear.diagnose.joint.diagnose import _unexplained
+    from fewear.diagnose.joint.fitting import Fit
 
     for shape_m, expected in ((0.0, 0), (20e-6, 1)):
         angle, residual, cycles = profiles_with(shape_m, 0.5e-6)

@@ -12,8 +12,9 @@ from pathlib import Path
 
 import numpy as np
 
-from fewear.diagnose.joint.diagnose import JointDiagnoseSettings, diagnose_joint
+from fewear.diagnose.joint.diagnose import diagnose_joint
 from fewear.diagnose.joint.measured import read_joint_measurements
+from fewear.diagnose.joint.settings import JointDiagnoseSettings
 from fewear.io.config import default_config, load_config
 from fewear.io.output import staged_output, write_json
 from fewear.wear.coefficient import wear_section_toml
