@@ -89,6 +89,7 @@ from typing import Any
 
 import numpy as np
 
+from fewear.diagnose.core import report
 from fewear.diagnose.core.evidence import Evidence
 from fewear.diagnose.core.statistics import nested_f_test_p
 from fewear.diagnose.joint import structure
@@ -454,12 +455,8 @@ def _summary(data, config, base, obs, settings, baseline, fits, evidence, causes
                      "angle_offset_deg": float(baseline.x[0])},
         "candidates": evidence,
         "untestable": untestable,
-        "causes": list(causes),
-        "cause": causes[0] if causes else "none",
-        "cause_meaning": CAUSES[causes[0]].meaning if causes else NONE_MEANING,
-        "confounded": confounded,
-        "gain": 1.0 - ext_error / base_error if causes else 0.0,
-        "held_out_error": {"baseline": base_error, "extended": ext_error if causes else base_error},
+        **report.verdict(causes, CAUSES[causes[0]].meaning if causes else NONE_MEANING,
+                         confounded, base_error, ext_error),
         "prediction": {"baseline": _prediction(obs, baseline),
                        "extended": _prediction(obs, final_fit)},
         "residual_structure": cycle_structure(data, config, obs, baseline, base),

@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from fewear.diagnose.core.report import verdict
 from fewear.diagnose.core.statistics import paired_improvement_p
 from fewear.diagnose.tribometer.catalogue import MEANINGS
 from fewear.diagnose.tribometer.figures import plot_candidates, plot_fits, plot_residuals
@@ -64,13 +65,8 @@ def summarise(readings, settings, form: str, stages, causes, extended) -> dict[s
         "candidates": [_clean(entry) for st in stages for entry in (st.steps[0] if st.steps
                                                                      else ())],
         "untestable": untestable_causes(readings, settings),
-        "causes": list(causes),
-        "cause": causes[0] if causes else "none",
-        "cause_meaning": MEANINGS[causes[0]] if causes else _none_meaning(after),
-        "confounded": _confounded(stages, readings, settings),
-        "gain": 1.0 - extended_error / baseline_error if causes else 0.0,
-        "held_out_error": {"baseline": baseline_error,
-                           "extended": extended_error if causes else baseline_error},
+        **verdict(causes, MEANINGS[causes[0]] if causes else _none_meaning(after),
+                  _confounded(stages, readings, settings), baseline_error, extended_error),
         "prediction": _prediction(readings, reading_stage, settings),
         "residual_structure": before,
         "unexplained": after["unexplained"],
