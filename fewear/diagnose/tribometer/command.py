@@ -13,7 +13,7 @@ from fewear.diagnose.core.report import print_verdict
 from fewear.diagnose.tribometer.diagnose import diagnose
 from fewear.diagnose.tribometer.measured import read_measured_wear
 from fewear.diagnose.tribometer.readings import readings_from_measured
-from fewear.diagnose.tribometer.report import write_outputs
+from fewear.diagnose.tribometer.report import summarise, write_outputs
 from fewear.diagnose.tribometer.settings import DiagnoseSettings
 from fewear.errors import FewearInputError
 from fewear.io.config import load_config
@@ -35,9 +35,9 @@ def run(args: argparse.Namespace) -> int:
           f"{path}: fitting plain Archard and the causes "
           f"({', '.join(settings.candidates)})", file=sys.stderr, flush=True)
     diagnosis = diagnose(readings, settings)
+    summary = summarise(diagnosis)
     with staged_output(args.out) as stage:
-        write_outputs(diagnosis, stage)
-    summary = diagnosis.summary
+        write_outputs(diagnosis, summary, stage)
     print_verdict(summary, args.out, unit="", confounded=[
         f"confounded {' / '.join(group['causes'])}: {group['reason']}"
         for group in summary["confounded"]])

@@ -64,7 +64,6 @@ import numpy as np
 from fewear.diagnose.tribometer.catalogue import ShapeLaw
 from fewear.diagnose.tribometer.fitting import StageResult, select_causes
 from fewear.diagnose.tribometer.readings import Readings
-from fewear.diagnose.tribometer.report import summarise
 from fewear.diagnose.tribometer.settings import DiagnoseSettings
 from fewear.diagnose.tribometer.stages import (
     across_stage,
@@ -79,14 +78,15 @@ from fewear.wear.extensions import NoExtension, extension_to_config
 
 @dataclass(frozen=True)
 class Diagnosis:
-    """Everything :func:`diagnose` found; ``summary`` is JSON-ready."""
+    """Everything :func:`diagnose` found: the stages (their fits and the causes tried), the
+    causes named (by held-out gain) and the extended model's [wear] section
+    (:func:`fewear.diagnose.tribometer.report.summarise` makes the JSON-ready summary)."""
 
     readings: Readings
     settings: DiagnoseSettings
     form: str
     stages: tuple[StageResult, ...]
     causes: tuple[str, ...]
-    summary: dict[str, Any] = field(repr=False)
     extended_section: dict[str, Any] = field(repr=False)
 
     @property
@@ -118,8 +118,7 @@ def diagnose(readings: Readings, settings: DiagnoseSettings | None = None) -> Di
     gains = {name: gain for stage in stages for name, gain in stage.gains.items()}
     causes = tuple(sorted(gains, key=lambda name: -gains[name]))
     extended = extended_wear_section(readings, stages[0], settings)
-    summary = summarise(readings, settings, form, stages, causes, extended)
-    return Diagnosis(readings, settings, form, tuple(stages), causes, summary, extended)
+    return Diagnosis(readings, settings, form, tuple(stages), causes, extended)
 
 
 def extended_wear_section(readings: Readings, result: StageResult,

@@ -103,12 +103,12 @@ def _plot_table_fits(diagnosis, path, plt) -> Path:
     return Path(path)
 
 
-def plot_residuals(diagnosis, path: str | Path) -> Path:
+def plot_residuals(diagnosis, summary: dict, path: str | Path) -> Path:
     """The baseline's residuals against every measured variable: per reading (within tests for
     histories) and, for histories, each test's level; grey points, black binned means with
     standard errors (quartiles)."""
     plt = _pyplot()
-    structure = diagnosis.summary["residual_structure"]
+    structure = summary["residual_structure"]
     r = diagnosis.readings
     panels = [(entry, _variable(r, entry["variable"], per_test=False),
                diagnosis.reading_stage.baseline.residuals, "ln V residual")
@@ -142,12 +142,12 @@ def plot_residuals(diagnosis, path: str | Path) -> Path:
     return Path(path)
 
 
-def plot_candidates(diagnosis, path: str | Path) -> Path:
+def plot_candidates(diagnosis, summary: dict, path: str | Path) -> Path:
     """Held-out RMS error of each stage's baseline and of every cause tried at its first step
     (accepted ones in red)."""
     plt = _pyplot()
     names, errors, colours = [], [], []
-    for stage in diagnosis.summary["stages"]:
+    for stage in summary["stages"]:
         names.append(f"{stage['name']}: baseline")
         errors.append(stage["baseline_held_out_error"])
         colours.append("tab:blue")

@@ -4,7 +4,7 @@ method is in :mod:`fewear.diagnose.tribometer.diagnose`)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -126,10 +126,44 @@ def held_out_errors(stage: Stage, fit: StageFit) -> np.ndarray:
 # Forward selection in a stage
 
 
+@dataclass(frozen=True, eq=False)
+class Trial:
+    """One cause tried at a step of a stage: its best ``form`` (of ``forms_tried``) fitted jointly
+    with the current model (``fit``, the form's ``params``), each test's held-out mean squared
+    error (``errors``) and the current model's RMS one (``held_out_error_before``), the nested
+    ``test`` ("F" or "paired t") and the evidence, whether it is ``accepted`` and why
+    (``verdict``)."""
+
+    cause: str
+    form: str
+    stage: str
+    params: dict[str, float]
+    fit: StageFit
+    errors: np.ndarray
+    held_out_error_before: float
+    test: str
+    forms_tried: int
+    tests_improved: str
+    training_error: float
+    evidence: Evidence
+    accepted: bool = False
+    verdict: str = ""
+
+    @property
+    def held_out_error(self) -> float:
+        """RMS held-out error over the tests that could be predicted."""
+        return held_out_rms(self.errors)
+
+    @property
+    def aicc_change(self) -> float:
+        """AICc of the cause's fit minus the current model's (negative favours the cause)."""
+        return -self.evidence.aicc_improvement
+
+
 @dataclass(frozen=True)
 class StageResult:
     """What a stage found: its baseline and final fits with their held-out errors per test, the
-    chosen causes (in the order they joined), every step's candidate entries and each chosen
+    chosen causes (in the order they joined), every step's trials and each chosen
     cause's held-out gain when it joined."""
 
     stage: Stage
@@ -138,7 +172,7 @@ class StageResult:
     final: StageFit
     final_errors: np.ndarray
     chosen: tuple[str, ...]
-    steps: tuple[tuple[dict[str, Any], ...], ...]
+    steps: tuple[tuple[Trial, ...], ...]
     gains: dict[str, float]
 
     @property
@@ -162,23 +196,21 @@ def select_causes(stage: Stage, causes: tuple[str, ...], settings: DiagnoseSetti
                    and any(form in stage.forms for form in forms_of(c))]
         if not untried:
             break
-        entries = [entry for cause in untried
-                   if (entry := _try_cause(stage, current, current_errors, cause)) is not None]
-        if not entries:
+        tried = [trial for cause in untried
+                 if (trial := _try_cause(stage, current, current_errors, cause)) is not None]
+        if not tried:
             break
-        rule = settings.acceptance(sum(entry["forms_tried"] for entry in entries))
-        for entry in entries:
-            entry["accepted"] = rule.accepts(_evidence(entry))
-            entry["verdict"] = _verdict(entry, rule)
-        steps.append(tuple(entries))
-        accepted = [e for e in entries if e["accepted"]]
+        rule = settings.acceptance(sum(trial.forms_tried for trial in tried))
+        judged = tuple(_judged(trial, rule) for trial in tried)
+        steps.append(judged)
+        accepted = [trial for trial in judged if trial.accepted]
         if not accepted:
             break
-        best = min(accepted, key=lambda e: e["aicc_change"] if e["test"] == "F"
-                   else e["held_out_error"])
-        gains[best["name"]] = best["gain"]
-        chosen.append(best["name"])
-        current, current_errors = best["_fit"], best["_errors"]
+        best = min(accepted, key=lambda trial: trial.aicc_change if trial.test == "F"
+                   else trial.held_out_error)
+        gains[best.cause] = best.evidence.gain
+        chosen.append(best.cause)
+        current, current_errors = best.fit, best.errors
     return StageResult(stage, baseline, baseline_errors, current, current_errors, tuple(chosen),
                        tuple(steps), gains)
 
@@ -189,7 +221,7 @@ def held_out_rms(errors: np.ndarray) -> float:
 
 
 def _try_cause(stage: Stage, current: StageFit, current_errors: np.ndarray,
-               cause: str) -> dict[str, Any] | None:
+               cause: str) -> Trial | None:
     """The cause's best form fitted jointly with ``current``, its held-out errors and evidence
     (None when no form has a start, e.g. a threshold without two distinct values)."""
     fits = []
@@ -201,7 +233,6 @@ def _try_cause(stage: Stage, current: StageFit, current_errors: np.ndarray,
     if not fits:
         return None
     fit = min(fits, key=lambda f: float(np.sum(f.residuals**2)))
-    forms_tried = len(fits)
     errors = held_out_errors(stage, fit)
     n_base = current.n_parameters + stage.n_groups
     n_fuller = n_base + fit.x[-1].size
@@ -211,36 +242,35 @@ def _try_cause(stage: Stage, current: StageFit, current_errors: np.ndarray,
                                              stage.y.size - n_fuller)
     else:
         test, p_value = "paired t", paired_improvement_p(current_errors, errors)
-    return {
-        "name": cause, "form": fit.forms[-1].name, "stage": stage.name,
-        "params": fit.laws[-1].params(),
-        "held_out_error": held_out_rms(errors),
-        "held_out_error_before": held_out_rms(current_errors),
-        "gain": 1.0 - held_out_rms(errors) / held_out_rms(current_errors),
-        "test": test, "p_value": p_value, "forms_tried": forms_tried,
-        "tests_improved": f"{int(np.sum(errors < current_errors))} of "
-                          f"{int(np.sum(np.isfinite(errors)))}",
-        "aicc_change": aicc(fit.rss, stage.y.size, n_fuller) - aicc(current.rss,
-                                                                     stage.y.size, n_base),
-        "training_error": float(np.sqrt(np.mean(fit.residuals**2))),
-        "_fit": fit, "_errors": errors,
-    }
+    aicc_change = aicc(fit.rss, stage.y.size, n_fuller) - aicc(current.rss, stage.y.size, n_base)
+    return Trial(
+        cause=cause, form=fit.forms[-1].name, stage=stage.name, params=fit.laws[-1].params(),
+        fit=fit, errors=errors, held_out_error_before=held_out_rms(current_errors), test=test,
+        forms_tried=len(fits),
+        tests_improved=f"{int(np.sum(errors < current_errors))} of "
+                       f"{int(np.sum(np.isfinite(errors)))}",
+        training_error=float(np.sqrt(np.mean(fit.residuals**2))),
+        evidence=Evidence(p_value=p_value,
+                          gain=1.0 - held_out_rms(errors) / held_out_rms(current_errors),
+                          aicc_improvement=-aicc_change))
 
 
-def _evidence(entry: dict[str, Any]) -> Evidence:
-    """An entry's evidence (its AICc change, cause minus current model, with the sign turned)."""
-    return Evidence(entry["p_value"], entry["gain"], -entry["aicc_change"])
+def _judged(trial: Trial, rule: AcceptanceRule) -> Trial:
+    """``trial`` accepted or not by ``rule``, with the verdict in words."""
+    judged = replace(trial, accepted=rule.accepts(trial.evidence))
+    return replace(judged, verdict=_verdict(judged, rule))
 
 
-def _verdict(entry: dict[str, Any], rule: AcceptanceRule) -> str:
-    evidence = (f"{entry['test']} p = {entry['p_value']:.2g}, held-out tests improved "
-                f"{entry['tests_improved']}, held-out gain {entry['gain']:+.0%}")
-    if entry["accepted"]:
-        return f"accepted: {evidence} (p < {rule.max_p:.2g}), AICc {entry['aicc_change']:+.1f}"
-    if entry["p_value"] >= rule.max_p:
-        return f"rejected: not significant ({evidence}; needs p < {rule.max_p:.2g})"
-    if not rule.predicts_better(_evidence(entry)):
-        return f"rejected: predicts held-out tests no better ({evidence})"
-    return (f"rejected: AICc {entry['aicc_change']:+.1f} (needs <= "
+def _verdict(trial: Trial, rule: AcceptanceRule) -> str:
+    evidence = trial.evidence
+    shown = (f"{trial.test} p = {evidence.p_value:.2g}, held-out tests improved "
+             f"{trial.tests_improved}, held-out gain {evidence.gain:+.0%}")
+    if trial.accepted:
+        return f"accepted: {shown} (p < {rule.max_p:.2g}), AICc {trial.aicc_change:+.1f}"
+    if evidence.p_value >= rule.max_p:
+        return f"rejected: not significant ({shown}; needs p < {rule.max_p:.2g})"
+    if not rule.predicts_better(evidence):
+        return f"rejected: predicts held-out tests no better ({shown})"
+    return (f"rejected: AICc {trial.aicc_change:+.1f} (needs <= "
             f"-{rule.min_aicc_improvement:g}): the extra parameters do not pay for "
             "themselves in the fit")

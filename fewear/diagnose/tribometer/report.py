@@ -14,7 +14,9 @@ import numpy as np
 from fewear.diagnose.core.report import verdict
 from fewear.diagnose.core.statistics import paired_improvement_p
 from fewear.diagnose.tribometer.catalogue import MEANINGS
+from fewear.diagnose.tribometer.diagnose import Diagnosis
 from fewear.diagnose.tribometer.figures import plot_candidates, plot_fits, plot_residuals
+from fewear.diagnose.tribometer.fitting import Trial
 from fewear.diagnose.tribometer.stages import log_k_per_test, predict_log_volume, untestable_causes
 from fewear.diagnose.tribometer.structure import residual_structure
 from fewear.io.output import write_json
@@ -27,9 +29,10 @@ FIGURES = {"fits": "fits.png", "residuals": "residuals.png", "candidates": "cand
 # The summary
 
 
-def summarise(readings, settings, form: str, stages, causes, extended) -> dict[str, Any]:
-    """The JSON-ready summary of a diagnosis
-    (see :func:`fewear.diagnose.tribometer.diagnose.diagnose`)."""
+def summarise(diagnosis: Diagnosis) -> dict[str, Any]:
+    """The JSON-ready summary of a diagnosis (``diagnosis.json``)."""
+    readings, settings, form = diagnosis.readings, diagnosis.settings, diagnosis.form
+    stages, causes, extended = diagnosis.stages, diagnosis.causes, diagnosis.extended_section
     reading_stage = stages[0]
     across = stages[1] if len(stages) > 1 else None
     before = residual_structure(readings, reading_stage.baseline.residuals,
@@ -62,8 +65,8 @@ def summarise(readings, settings, form: str, stages, causes, extended) -> dict[s
             "k_per_test_m2_N": {label: float(np.exp(value))
                                 for label, value in zip(readings.test_labels, log_k)},
         },
-        "candidates": [_clean(entry) for st in stages for entry in (st.steps[0] if st.steps
-                                                                     else ())],
+        "candidates": [trial_entry(trial) for st in stages
+                       for trial in (st.steps[0] if st.steps else ())],
         "untestable": untestable_causes(readings, settings),
         **verdict(causes, MEANINGS[causes[0]] if causes else _none_meaning(after),
                   _confounded(stages, readings, settings), baseline_error, extended_error),
@@ -79,8 +82,18 @@ def _rms(values: np.ndarray) -> float:
     return float(np.sqrt(np.mean(values**2)))
 
 
-def _clean(entry: dict[str, Any]) -> dict[str, Any]:
-    return {key: value for key, value in entry.items() if not key.startswith("_")}
+def trial_entry(trial: Trial) -> dict[str, Any]:
+    """A cause tried, as ``diagnosis.json`` lists it (``aicc_change``: the cause's AICc minus the
+    current model's, negative favours the cause)."""
+    return {
+        "name": trial.cause, "form": trial.form, "stage": trial.stage, "params": trial.params,
+        "held_out_error": trial.held_out_error,
+        "held_out_error_before": trial.held_out_error_before,
+        "gain": trial.evidence.gain, "test": trial.test, "p_value": trial.evidence.p_value,
+        "forms_tried": trial.forms_tried, "tests_improved": trial.tests_improved,
+        "aicc_change": trial.aicc_change, "training_error": trial.training_error,
+        "accepted": trial.accepted, "verdict": trial.verdict,
+    }
 
 
 def _stage_summary(result) -> dict[str, Any]:
@@ -91,7 +104,7 @@ def _stage_summary(result) -> dict[str, Any]:
             "chosen": list(result.chosen),
             "final_params": {form.cause: law.params()
                              for form, law in zip(result.final.forms, result.final.laws)},
-            "steps": [[_clean(entry) for entry in step] for step in result.steps]}
+            "steps": [[trial_entry(trial) for trial in step] for step in result.steps]}
 
 
 def _form_notes(readings, form: str) -> list[str]:
@@ -158,24 +171,25 @@ def _confounded(stages, readings, settings) -> list[dict[str, Any]]:
         if not result.chosen:
             continue
         first = result.steps[0]
-        best = next(e for e in first if e["name"] == result.chosen[0])
-        others = [e for e in first if e["accepted"] and e["name"] != best["name"]
-                  and paired_improvement_p(e["_errors"], best["_errors"]) >= settings.significance]
+        best = next(trial for trial in first if trial.cause == result.chosen[0])
+        others = [trial for trial in first if trial.accepted and trial.cause != best.cause
+                  and paired_improvement_p(trial.errors, best.errors) >= settings.significance]
         if others:
             groups.append(_confounded_group(best, others, readings, settings))
     return groups
 
 
-def _confounded_group(best, others, readings, settings) -> dict[str, Any]:
-    names = {best["name"]} | {e["name"] for e in others}
+def _confounded_group(best: Trial, others: list[Trial], readings, settings) -> dict[str, Any]:
+    names = {best.cause} | {trial.cause for trial in others}
     return {
-        "causes": [best["name"]] + [e["name"] for e in others],
+        "causes": [best.cause] + [trial.cause for trial in others],
         "reason": _structural_reason(readings, names) or (
             "their held-out errors do not differ significantly (paired p >= "
             f"{settings.significance:g})"),
-        "evidence": {e["name"]: {"held_out_error": e["held_out_error"], "gain": e["gain"],
-                                 "p_value": e["p_value"], "params": e["params"]}
-                     for e in [best] + others},
+        "evidence": {trial.cause: {"held_out_error": trial.held_out_error,
+                                   "gain": trial.evidence.gain,
+                                   "p_value": trial.evidence.p_value, "params": trial.params}
+                     for trial in [best] + others},
         "to_separate": "tests at different sliding speeds (with distance and time both read)"
         if {"running_in", "time_transient"} <= names
         else "tests that vary the variable that drives one cause but not the other",
@@ -218,25 +232,27 @@ def _prediction(readings, result, settings) -> dict[str, Any]:
 # Files
 
 
-def write_outputs(diagnosis, folder: Path) -> dict[str, Path]:
-    """Write every output of ``diagnosis`` into ``folder``; returns their paths by name."""
+def write_outputs(diagnosis: Diagnosis, summary: dict[str, Any], folder: Path) -> dict[str, Path]:
+    """Write every output of ``diagnosis`` (its ``summary``: :func:`summarise`) into
+    ``folder``; returns their paths by name."""
     folder = Path(folder)
     paths = {
         "fits": plot_fits(diagnosis, folder / FIGURES["fits"]),
-        "residuals": plot_residuals(diagnosis, folder / FIGURES["residuals"]),
-        "candidates": plot_candidates(diagnosis, folder / FIGURES["candidates"]),
+        "residuals": plot_residuals(diagnosis, summary, folder / FIGURES["residuals"]),
+        "candidates": plot_candidates(diagnosis, summary, folder / FIGURES["candidates"]),
     }
     paths["json"] = folder / "diagnosis.json"
-    write_json(paths["json"], diagnosis.summary)
+    write_json(paths["json"], summary)
     paths["toml"] = folder / "extended_wear.toml"
-    paths["toml"].write_text(extended_toml(diagnosis))
+    paths["toml"].write_text(extended_toml(diagnosis, summary))
     paths["report"] = folder / "report.md"
-    paths["report"].write_text(report_markdown(diagnosis.summary))
+    paths["report"].write_text(report_markdown(summary))
     return paths
 
 
-def extended_toml(diagnosis) -> str:
-    s = diagnosis.summary
+def extended_toml(diagnosis: Diagnosis, s: dict[str, Any]) -> str:
+    """``extended_wear.toml``: the extended model's [wear] section under a header saying where
+    it comes from (``s``: the summary)."""
     header = (f"# The extended wear model from `fewear diagnose {s['source']}`.\n"
               f"# Causes: {', '.join(s['causes']) or 'none'} ({s['cause_meaning']}).\n"
               f"# Held-out error: baseline {s['held_out_error']['baseline']:.3g}, extended "
