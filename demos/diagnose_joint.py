@@ -5,7 +5,7 @@
 # profilometer after 4,000, 8,000, 12,000 and 16,000 crank cycles. `fewear diagnose` fits each
 # cause of its catalogue (wear coefficient level, link flexibility, friction, impact wear,
 # running-in) to the earlier profiles, judges it on how it predicts the later ones, and names the
-# cause that earns its place (`fewear/calibrate/joint_diagnose.py` has the method).
+# cause that earns its place (`fewear/diagnose/joint/diagnose.py` has the method).
 #
 # Here the "measured" data are made by the wear loop with a flexible rod and a profilometer's
 # noise (0.5 um, a trace every 3 deg, an angular origin 8 deg off the bushing's); the diagnosis
@@ -24,9 +24,9 @@ from pathlib import Path
 
 import numpy as np
 
-from fewear.calibrate.joint_forward import model_config, simulate_wear
-from fewear.calibrate.joint_measured import MeasuredProfile, write_joint_profiles
 from fewear.cli import main
+from fewear.diagnose.joint.forward import model_config, simulate_wear
+from fewear.diagnose.joint.measured import MeasuredProfile, write_joint_profiles
 from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
 

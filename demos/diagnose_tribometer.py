@@ -25,7 +25,7 @@
 # $V \propto F^a$; ``mild_to_severe``, a jump above a load or $p v$ threshold; steady ``thermal``,
 # an Arrhenius rate rising with the frictional power). Causes join one at a time while each
 # predicts held-out tests significantly better (module docstring of
-# ``fewear.calibrate.diagnose``).
+# ``fewear.diagnose.tribometer.diagnose``).
 #
 # Two data sets:
 #
@@ -46,11 +46,12 @@ from pathlib import Path
 
 import numpy as np
 
-from fewear.calibrate.diagnose import diagnose, readings_from_measured
-from fewear.calibrate.measured import read_measured_wear
-from fewear.calibrate.report import write_outputs
 from fewear.data import RUNNING_IN_SYNTHETIC_CSV as SYNTHETIC
 from fewear.data import SINGH2016_AL_SIC_CSV as REAL
+from fewear.diagnose.tribometer.diagnose import diagnose
+from fewear.diagnose.tribometer.measured import read_measured_wear
+from fewear.diagnose.tribometer.readings import readings_from_measured
+from fewear.diagnose.tribometer.report import summarise, write_outputs
 
 OUT = Path(os.environ.get("FEWEAR_DEMO_OUT", "out/demos/diagnose_tribometer"))
 
@@ -78,16 +79,17 @@ def show(summary):
 # Nine tests (3 pressures x 3 speeds), ten cumulative readings each, 3 % noise per reading.
 
 synthetic = diagnose(readings_from_measured(read_measured_wear(SYNTHETIC)))
-show(synthetic.summary)
+synthetic_summary = summarise(synthetic)
+show(synthetic_summary)
 print("fitted:", synthetic.shape_law.params() if synthetic.shape_law else None)
 (OUT / "synthetic").mkdir(parents=True, exist_ok=True)
-write_outputs(synthetic, OUT / "synthetic")
+write_outputs(synthetic, synthetic_summary, OUT / "synthetic")
 
 # The header of the file says R = 5, S0 = 150 m: the fitted running-in should be close, and
 # the prediction after twice each test's distance lower than plain Archard's (which takes the
 # high early wear rate for the steady one):
 
-prediction = synthetic.summary["prediction"]
+prediction = synthetic_summary["prediction"]
 print(f"{prediction['what']}: extended / baseline = "
       f"{prediction['median_extended_over_baseline']:.2f} (median)")
 
@@ -100,16 +102,17 @@ print(f"{prediction['what']}: extended / baseline = "
 # out: an effect of distance cannot be told from an effect of speed here.
 
 real = diagnose(readings_from_measured(read_measured_wear(REAL)))
-for note in real.summary["notes"]:
+real_summary = summarise(real)
+for note in real_summary["notes"]:
     print("note:", note)
-show(real.summary)
+show(real_summary)
 (OUT / "singh2016").mkdir(parents=True, exist_ok=True)
-write_outputs(real, OUT / "singh2016")
+write_outputs(real, real_summary, OUT / "singh2016")
 
 # The wear coefficient of each material group under plain Archard (m$^2$/N, geometric mean over
 # its tests):
 
-k = np.array(list(real.summary["baseline"]["k_per_test_m2_N"].values()))
+k = np.array(list(real_summary["baseline"]["k_per_test_m2_N"].values()))
 test_group, group_names = real.readings.test_groups()
 for number, name in enumerate(group_names):
     print(f"{name:55s} k = {np.exp(np.mean(np.log(k[test_group == number]))):.3g} m^2/N")

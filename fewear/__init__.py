@@ -6,7 +6,7 @@ Stages (one subpackage each, data passed between them as frozen dataclasses in S
 - :mod:`fewear.contact`    bushing contact model (DOLFINx + PETSc), pressures and slips on the bore
 - :mod:`fewear.wear`       Archard wear law and the wear coefficient k(p, v)
 - :mod:`fewear.mesh`       bushing meshes (gmsh), ALE motion and re-meshing
-- :mod:`fewear.calibrate`  measured data, diagnosis of what the model gets wrong
+- :mod:`fewear.diagnose`   measured data, diagnosis of what the model gets wrong
 - :mod:`fewear.io`         configuration, outputs
 - :mod:`fewear.plot`       figures (matplotlib; PyVista imported lazily)
 

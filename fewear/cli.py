@@ -29,7 +29,7 @@ HANDLERS = {
     "config": "fewear.cli:print_default_config",
     "contact": "fewear.contact.command:main",
     "dynamics": "fewear.mbd.command:main",
-    "diagnose": "fewear.calibrate.command:main",
+    "diagnose": "fewear.diagnose.command:main",
     "run": "fewear.loop.command:main",
     "plot": "fewear.plot.worn_bushing:main",
 }

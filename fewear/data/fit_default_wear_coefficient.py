@@ -11,8 +11,8 @@ from __future__ import annotations
 import textwrap
 from pathlib import Path
 
-from fewear.calibrate.measured import read_measured_wear, wear_coefficient_samples
 from fewear.data import STANDIN_PIN_ON_DISC_CSV
+from fewear.diagnose.tribometer.measured import read_measured_wear, wear_coefficient_samples
 from fewear.wear.coefficient import RbfWearCoefficient, toml_value
 
 OUTPUT = Path(__file__).resolve().parent.parent / "defaults" / "wear.toml"

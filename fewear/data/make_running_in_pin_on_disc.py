@@ -4,12 +4,12 @@ it bit for bit with::
 
     python -m fewear.data.make_running_in_pin_on_disc
 
-Made by the forward model :func:`fewear.calibrate.forward.simulate_campaign`: CuZn25Al6Fe3Mn3 pin
-(diameter 6 mm) on a 42CrMo disc, 3 pressures x 3 speeds (one test each, shuffled order), 10
-cumulative readings per test every 200 m to 2000 m, k = 2e-13 m^2/N times a running-in
-k(s) = k [1 + (R - 1) exp(-s / S0)] with R = K_INITIAL_OVER_STEADY, S0 = DISTANCE_SCALE_m;
-3 % relative noise per reading (readings that dip are kept), lognormal scatter 0.10 per test on
-k; friction coefficient 0.3 x lognormal(0.1) per test.
+Made by the forward model :func:`fewear.diagnose.tribometer.forward.simulate_campaign`:
+CuZn25Al6Fe3Mn3 pin (diameter 6 mm) on a 42CrMo disc, 3 pressures x 3 speeds (one test each,
+shuffled order), 10 cumulative readings per test every 200 m to 2000 m, k = 2e-13 m^2/N times a
+running-in k(s) = k [1 + (R - 1) exp(-s / S0)] with R = K_INITIAL_OVER_STEADY,
+S0 = DISTANCE_SCALE_m; 3 % relative noise per reading (readings that dip are kept), lognormal
+scatter 0.10 per test on k; friction coefficient 0.3 x lognormal(0.1) per test.
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fewear.calibrate.forward import grid_campaign, simulate_campaign, write_measured_csv
+from fewear.diagnose.tribometer.forward import grid_campaign, simulate_campaign, write_measured_csv
 from fewear.wear.extensions import RunningIn
 
 SEED = 20240611
@@ -30,7 +30,7 @@ HEADER = (
     "CuZn25Al6Fe3Mn3 pin (6 mm) on 42CrMo disc; 3 pressures x 3 speeds, 10 cumulative readings\n"
     "every 200 m.\n"
     f"Made by fewear/data/make_running_in_pin_on_disc.py (numpy default_rng({SEED})) with the\n"
-    "forward model fewear.calibrate.forward: k(s) = k [1 + (R - 1) exp(-s / S0)],\n"
+    "forward model fewear.diagnose.tribometer.forward: k(s) = k [1 + (R - 1) exp(-s / S0)],\n"
     f"R = {K_INITIAL_OVER_STEADY:g}, S0 = {DISTANCE_SCALE_m:g} m (running-in); 3 % noise per "
     "reading (dips kept),\nlognormal scatter 0.10 per test. Used by demos/diagnose_tribometer.py; "
     "SI units in the\ncolumn names."

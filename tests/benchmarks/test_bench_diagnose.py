@@ -29,7 +29,8 @@ from itertools import product
 import numpy as np
 import pytest
 
-from fewear.calibrate.diagnose import diagnose
+from fewear.diagnose.tribometer.diagnose import diagnose
+from fewear.diagnose.tribometer.report import summarise
 from tests.calibrate.generators import (
     CAUSES,
     GENERATORS,
@@ -50,16 +51,16 @@ def run_cell(generator, sampling, scale, noise, folder):
     first named) and the causes of the false positives."""
     counts, misses, false_positives = Counter(), Counter(), []
     for cause, seed in product(CAUSES, range(SEEDS)):
-        summary = diagnose(dataset(generator, cause, 100 + seed, folder, scale=scale,
-                                   noise=noise, sampling=sampling)).summary
+        summary = summarise(diagnose(dataset(generator, cause, 100 + seed, folder, scale=scale,
+                                   noise=noise, sampling=sampling)))
         counts["first"] += summary["cause"] == cause
         counts["named"] += named(summary, cause)
         counts["family"] += named_as_power_law(summary, cause)
         if not named(summary, cause):
             misses[f"{cause}->{summary['cause']}"] += 1
     for seed in range(NULL_SEEDS):
-        summary = diagnose(dataset(generator, "none", 500 + seed, folder, scale=scale,
-                                   noise=noise, sampling=sampling)).summary
+        summary = summarise(diagnose(dataset(generator, "none", 500 + seed, folder, scale=scale,
+                                   noise=noise, sampling=sampling)))
         if summary["causes"]:
             false_positives.append(summary["cause"])
     n = len(CAUSES) * SEEDS

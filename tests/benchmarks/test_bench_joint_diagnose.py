@@ -12,7 +12,8 @@ import time
 
 import pytest
 
-from fewear.calibrate.joint_diagnose import CAUSES, diagnose_joint
+from fewear.diagnose.joint.catalogue import CAUSES
+from fewear.diagnose.joint.diagnose import diagnose_joint
 from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
 from tests.calibrate.joint_cases import believed_text, hidden_joint_case

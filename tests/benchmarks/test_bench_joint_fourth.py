@@ -14,7 +14,7 @@ import time
 
 import pytest
 
-from fewear.calibrate.joint_measured import read_joint_measurements
+from fewear.diagnose.joint.measured import read_joint_measurements
 from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
 from tests.calibrate.fourth_joint_generator import (
@@ -29,7 +29,7 @@ SEEDS = int(os.environ.get("FEWEAR_BENCH_JOINT_FOURTH_SEEDS", "2"))
 
 
 def test_diagnose_fourth_generator(tmp_path):
-    from fewear.calibrate.joint_diagnose import diagnose_joint
+    from fewear.diagnose.joint.diagnose import diagnose_joint
 
     rows, config, start = [], None, time.perf_counter()
     print("\ncause | seed | first named | named | gain | wall s | unexplained | profile counts | "

@@ -37,8 +37,8 @@ def _truth_text(params: dict) -> str:
 
 
 def test_independent_joint_diagnosis(tmp_path):
-    from fewear.calibrate.joint_diagnose import diagnose_joint
-    from fewear.calibrate.joint_measured import read_joint_measurements
+    from fewear.diagnose.joint.diagnose import diagnose_joint
+    from fewear.diagnose.joint.measured import read_joint_measurements
     from fewear.io.config import load_config
     from fewear.loop.settings import run_sections
 

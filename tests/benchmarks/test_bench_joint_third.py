@@ -17,7 +17,7 @@ import time
 
 import pytest
 
-from fewear.calibrate.joint_measured import read_joint_measurements
+from fewear.diagnose.joint.measured import read_joint_measurements
 from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
 from tests.calibrate.third_joint_generator import CAUSES, data_set_seed, write_data_set
@@ -33,7 +33,7 @@ def _truth_text(params: dict) -> str:
 
 
 def test_diagnose_third_generator(tmp_path):
-    from fewear.calibrate.joint_diagnose import diagnose_joint
+    from fewear.diagnose.joint.diagnose import diagnose_joint
 
     rows, config, start = [], None, time.perf_counter()
     print("\ncause | seed | first named | named | gain | wall s | unexplained | profile counts"

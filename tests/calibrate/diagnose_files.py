@@ -5,8 +5,8 @@
 def diagnose_data_set(data) -> dict:
     """The diagnosis summary (the keys of ``diagnosis.json``) of ``data`` against its believed
     config."""
-    from fewear.calibrate.joint_diagnose import diagnose_joint
-    from fewear.calibrate.joint_measured import read_joint_measurements
+    from fewear.diagnose.joint.diagnose import diagnose_joint
+    from fewear.diagnose.joint.measured import read_joint_measurements
     from fewear.io.config import load_config
     from fewear.loop.settings import run_sections
 

@@ -202,8 +202,8 @@ from pathlib import Path
 
 import numpy as np
 
-from fewear.calibrate.joint_forward import WearHistory, model_config
-from fewear.calibrate.joint_measured import MeasuredProfile, write_joint_profiles, write_max_wear
+from fewear.diagnose.joint.forward import WearHistory, model_config
+from fewear.diagnose.joint.measured import MeasuredProfile, write_joint_profiles, write_max_wear
 from fewear.errors import FewearInputError
 from fewear.wear.extensions import SlidingState
 

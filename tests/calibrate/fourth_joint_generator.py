@@ -1,8 +1,8 @@
 """A fourth, separately designed generator of "measured" joint-wear data with a hidden cause.
 
 Each data set is the wear of the rod-slider clearance joint of the seed paper's slider-crank as a
-lab would measure it, made by this workbench's own forward model (:mod:`fewear.calibrate.
-joint_forward`, :mod:`fewear.loop`) with one hidden departure from the model the user
+lab would measure it, made by this workbench's own forward model (:mod:`fewear.diagnose.
+joint.forward`, :mod:`fewear.loop`) with one hidden departure from the model the user
 believes, then passed through a model of the lab's instrument. The generator was written without
 reading the diagnosis it is meant to test; its laws, ranges and instrument differ on purpose from
 those of the earlier generators (see "Not used here" below).
@@ -165,8 +165,8 @@ from pathlib import Path
 
 import numpy as np
 
-from fewear.calibrate.joint_forward import WearHistory, model_config, simulate_wear
-from fewear.calibrate.joint_measured import write_max_wear
+from fewear.diagnose.joint.forward import WearHistory, model_config, simulate_wear
+from fewear.diagnose.joint.measured import write_max_wear
 
 CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in", "none")
 BELIEVED_TOML = """\
@@ -406,7 +406,7 @@ def layered_run(config: dict, last_cycles: int, friction: dict | None = None,
     - ``impact_volume_m3`` > 0: V_ref of the impact wear of :func:`impact_depth_per_cycle_m`,
       added to every block's depth per cycle.
 
-    With neither, it is the believed loop (:func:`fewear.calibrate.joint_forward.simulate_wear`)
+    With neither, it is the believed loop (:func:`fewear.diagnose.joint.forward.simulate_wear`)
     block for block. Memoised."""
     key = json.dumps([config, last_cycles, friction, impact_volume_m3], sort_keys=True,
                      default=str)

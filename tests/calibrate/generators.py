@@ -1,7 +1,7 @@
 """Two independently written generators of synthetic tribometer data behind one interface, for the
 tests and the benchmark of the diagnosis.
 
-- ``fewear``: :mod:`fewear.calibrate.forward` (written with the diagnosis);
+- ``fewear``: :mod:`fewear.diagnose.tribometer.forward` (written with the diagnosis);
 - ``independent``: ``tests/calibrate/independent_generator.py``, written by another author without
   seeing the diagnosis (its own functional forms, scales, noise, column names and DOE layout).
 
@@ -17,9 +17,14 @@ from pathlib import Path
 
 import numpy as np
 
-from fewear.calibrate.diagnose import Readings, readings_from_measured
-from fewear.calibrate.forward import grid_campaign, hidden_case, table_campaign, write_measured_csv
-from fewear.calibrate.measured import read_measured_wear
+from fewear.diagnose.tribometer.forward import (
+    grid_campaign,
+    hidden_case,
+    table_campaign,
+    write_measured_csv,
+)
+from fewear.diagnose.tribometer.measured import read_measured_wear
+from fewear.diagnose.tribometer.readings import Readings, readings_from_measured
 from tests.calibrate.independent_generator import make_dataset, write_csv
 
 GENERATORS = ("fewear", "independent")
@@ -38,7 +43,7 @@ def dataset(generator: str, cause: str, seed: int, folder: Path, *, scale: float
         campaign = (grid_campaign(rng=rng, **options) if sampling == "histories"
                     else table_campaign(rng=rng, **options))
         columns, _, _ = hidden_case(cause, seed, campaign, effect_scale=scale)
-        write_measured_csv(path, columns, "SYNTHETIC (fewear.calibrate.forward)")
+        write_measured_csv(path, columns, "SYNTHETIC (fewear.diagnose.tribometer.forward)")
     elif generator == "independent":
         columns, _ = make_dataset(cause, seed, scale=scale, noise=noise,
                                   sampling="doe" if sampling == "table" else sampling)

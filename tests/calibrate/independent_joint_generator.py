@@ -3,9 +3,9 @@
 For a cause of the catalogue and a seed, :func:`hidden_truth` draws the real joint (a config
 changed from the believed one, or the believed run plus our own post-processing) and
 :func:`write_data_set` measures it with :class:`LabInstruments` into the CSV schemas of
-``fewear/calibrate/joint_measured.py``. Nothing here comes from ``fewear/calibrate/
+``fewear/diagnose/joint/measured.py``. Nothing here comes from ``fewear/calibrate/
 joint_diagnose.py`` or the project's own hidden-cause generator; the forward model is the wear loop
-(:func:`fewear.calibrate.joint_forward.simulate_wear`).
+(:func:`fewear.diagnose.joint.forward.simulate_wear`).
 
 The hidden causes (numpy ``default_rng(seed)``; ranges chosen here):
 
@@ -66,7 +66,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fewear.calibrate.joint_forward import WearHistory, model_config, simulate_wear
+from fewear.diagnose.joint.forward import WearHistory, model_config, simulate_wear
 
 CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in", "none")
 BELIEVED_TOML = """\
@@ -213,7 +213,7 @@ def gauge_readings(history: WearHistory, lab: LabInstruments,
 
 def write_measurements(history: WearHistory, lab: LabInstruments, rng: np.random.Generator,
                        profiles_csv: Path, max_wear_csv: Path) -> None:
-    """Both CSV files of a data set (schemas of ``fewear/calibrate/joint_measured.py``)."""
+    """Both CSV files of a data set (schemas of ``fewear/diagnose/joint/measured.py``)."""
     lines = ["# roundness tester, depth relative to the unworn reference trace",
              "cycles,angle_deg,wear_depth_m"]
     for cycles in lab.profile_cycles:

@@ -1,5 +1,5 @@
 """Joint wear data with a hidden cause, as a profilometer would give them: the wear loop run with
-the effect switched on at random parameters (:mod:`fewear.calibrate.joint_forward`), measured by
+the effect switched on at random parameters (:mod:`fewear.diagnose.joint.forward`), measured by
 the independent instrument model of :mod:`tests.calibrate.profilometer` (random sampling step,
 unknown angular origin, 0.5 um noise, 0.01 um resolution, stylus filter)."""
 
@@ -10,14 +10,14 @@ import math
 
 import numpy as np
 
-from fewear.calibrate.joint_forward import (
+from fewear.diagnose.joint.forward import (
     cycle_on_worn_bore,
     impact_measures_per_cycle,
     model_config,
     simulate_wear,
     worn_volume_per_cycle_m3,
 )
-from fewear.calibrate.joint_measured import ForceTrace, JointMeasurements
+from fewear.diagnose.joint.measured import ForceTrace, JointMeasurements
 from tests.calibrate.profilometer import max_wear_growth, measure_profile
 
 PROFILE_CYCLES = (4000, 8000, 12000, 16000)

@@ -2,7 +2,7 @@
 profile of a bushing's bore, and a simulated gauge of the maximum wear depth.
 
 Written from its specification only (numpy; it builds a
-:class:`fewear.calibrate.joint_measured.MeasuredProfile`), independently of the diagnosis.
+:class:`fewear.diagnose.joint.measured.MeasuredProfile`), independently of the diagnosis.
 
 The instrument, in order:
 
@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fewear.calibrate.joint_measured import MeasuredProfile
+from fewear.diagnose.joint.measured import MeasuredProfile
 
 NOISE_m = 0.5e-6
 RESOLUTION_m = 0.01e-6

@@ -8,8 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fewear.calibrate.forward import hidden_case, write_measured_csv
 from fewear.cli import main
+from fewear.diagnose.tribometer.forward import hidden_case, write_measured_csv
 from fewear.io.config import DEFAULTS_DIR, load_config
 from fewear.wear.coefficient import wear_coefficient_from_config
 from fewear.wear.extensions import RunningIn, wear_extension_from_config

@@ -9,9 +9,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fewear.calibrate.measured import read_measured_wear
 from fewear.data import SINGH2016_AL_SIC_CSV
 from fewear.data import make_running_in_pin_on_disc as made
+from fewear.diagnose.tribometer.measured import read_measured_wear
 from fewear.io.config import load_config
 from fewear.wear.extensions import RunningIn, wear_extension_from_config
 
@@ -81,7 +81,7 @@ def test_real_table_answer_matches_the_demo_text(outputs):
 def test_shipped_data_set_is_what_its_script_makes(tmp_path):
     """The shipped CSV is reproducible from its script (the header says how it was made)."""
     regenerated = tmp_path / "again.csv"
-    from fewear.calibrate.forward import write_measured_csv
+    from fewear.diagnose.tribometer.forward import write_measured_csv
 
     write_measured_csv(regenerated, made.make(), made.HEADER)
     assert regenerated.read_text() == made.OUTPUT.read_text()

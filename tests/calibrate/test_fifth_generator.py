@@ -8,8 +8,8 @@ import math
 import numpy as np
 import pytest
 
-from fewear.calibrate.joint_forward import WearHistory, model_config, simulate_wear
-from fewear.calibrate.joint_measured import (
+from fewear.diagnose.joint.forward import WearHistory, model_config, simulate_wear
+from fewear.diagnose.joint.measured import (
     read_joint_measurements,
     write_joint_profiles,
     write_max_wear,
@@ -115,7 +115,7 @@ def test_k_scale_of_two_doubles_the_cycle_wear_at_fixed_geometry(believed):
     depth (and volume) of the cycle, to rounding."""
     from mpi4py import MPI
 
-    from fewear.calibrate.joint_forward import cycle_on_worn_bore
+    from fewear.diagnose.joint.forward import cycle_on_worn_bore
     from fewear.loop.block import new_bushing
     from fewear.loop.stages import cycle_wear, load_steps
 

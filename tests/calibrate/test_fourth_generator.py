@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from fewear.calibrate.joint_measured import read_joint_measurements
+from fewear.diagnose.joint.measured import read_joint_measurements
 from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
 from fewear.mbd.history import JointHistory, classify_modes
@@ -368,7 +368,7 @@ def test_written_files_parse_with_the_workbench_reader(tmp_path):
 def test_layered_run_without_effect_is_the_believed_run(believed):
     """The layered loop, with no effect and with a friction held at the believed 0.1 (the FE
     bushing rebuilt and restored at every block), reproduces simulate_wear block for block."""
-    from fewear.calibrate.joint_forward import model_config, simulate_wear
+    from fewear.diagnose.joint.forward import model_config, simulate_wear
 
     run = simulate_wear(model_config(believed, "rigid", 12000))
     plain = gen.layered_run(believed, 12000)

@@ -15,8 +15,11 @@ import dataclasses
 import numpy as np
 import pytest
 
-from fewear.calibrate.diagnose import DiagnoseSettings, diagnose, readings_from_columns
-from fewear.calibrate.forward import grid_campaign, hidden_case, simulate_campaign
+from fewear.diagnose.tribometer.diagnose import diagnose
+from fewear.diagnose.tribometer.forward import grid_campaign, hidden_case, simulate_campaign
+from fewear.diagnose.tribometer.readings import readings_from_columns
+from fewear.diagnose.tribometer.report import summarise
+from fewear.diagnose.tribometer.settings import DiagnoseSettings
 from fewear.wear.extensions import RunningIn
 from tests.calibrate.generators import (
     CAUSES,
@@ -37,7 +40,7 @@ NULL_SEEDS = (11, 12, 13)
 def test_hidden_cause_is_named_at_the_grid_centre(generator, cause, sampling, seed, tmp_path):
     """Named (or confounded with the first cause named); heating and a p v threshold count as one
     law family (generators.named_as_power_law: the benchmark prints the strict figure too)."""
-    summary = diagnose(dataset(generator, cause, seed, tmp_path, sampling=sampling)).summary
+    summary = summarise(diagnose(dataset(generator, cause, seed, tmp_path, sampling=sampling)))
     assert named_as_power_law(summary, cause), (seed, summary["causes"], summary["candidates"])
     assert summary["gain"] > 0.2
 
@@ -49,8 +52,8 @@ def test_plain_archard_gives_no_cause_at_the_grid_centre(generator, tmp_path):
     false_positives = []
     for sampling in SAMPLINGS:
         for seed in NULL_SEEDS:
-            summary = diagnose(dataset(generator, "none", seed, tmp_path,
-                                       sampling=sampling)).summary
+            summary = summarise(diagnose(dataset(generator, "none", seed, tmp_path,
+                                       sampling=sampling)))
             if summary["causes"]:
                 false_positives.append((sampling, seed, summary["causes"]))
                 continue
@@ -77,7 +80,7 @@ def test_single_speed_confounds_running_in_and_time_transient():
     campaign = grid_campaign(pressures_Pa=(0.5e6, 1e6, 2e6, 3e6, 4e6, 6e6), velocities_m_s=(0.5,),
                              rng=rng)
     columns = simulate_campaign(RunningIn(5.0, 150.0), campaign, rng)
-    summary = diagnose(readings_from_columns(columns)).summary
+    summary = summarise(diagnose(readings_from_columns(columns)))
     assert summary["cause"] in ("running_in", "time_transient")
     assert len(summary["confounded"]) == 1
     group = summary["confounded"][0]
@@ -91,7 +94,7 @@ def test_single_speed_confounds_running_in_and_time_transient():
 def test_missing_time_and_speed_leave_time_driven_causes_untested():
     columns, _, _ = hidden_case("running_in", 31)
     kept = {k: v for k, v in columns.items() if k not in ("time_s", "velocity_m_s")}
-    summary = diagnose(readings_from_columns(kept)).summary
+    summary = summarise(diagnose(readings_from_columns(kept)))
     assert summary["causes"] == ["running_in"]
     untested = {entry["name"]: entry["message"] for entry in summary["untestable"]}
     assert set(untested) == {"time_transient", "thermal"}
@@ -106,7 +109,7 @@ def test_material_groups_get_their_own_k():
     brass = np.isin(columns["test_id"], ["T01", "T02", "T03", "T04"])
     columns["wear_volume_m3"] = np.where(brass, 1.0, 4.0) * columns["wear_volume_m3"]
     material = {"material": np.where(brass, "brass", "bronze")}
-    summary = diagnose(readings_from_columns(columns, factors=material)).summary
+    summary = summarise(diagnose(readings_from_columns(columns, factors=material)))
     assert summary["causes"] == []
     assert summary["material_groups"] == {"material brass": 4, "material bronze": 5}
     k = np.array(list(summary["baseline"]["k_per_test_m2_N"].values()))
@@ -121,7 +124,7 @@ def test_what_no_cause_explains_is_said_not_called_noise():
     s = columns["sliding_distance_m"]
     columns["wear_volume_m3"] = columns["wear_volume_m3"] * (1.0 + s / 500.0)
     del columns["friction_coefficient"]
-    summary = diagnose(readings_from_columns(columns)).summary
+    summary = summarise(diagnose(readings_from_columns(columns)))
     assert "running_in" not in summary["causes"]
     assert "within their noise" not in summary["cause_meaning"]
     assert any("rise with sliding distance" in text for text in summary["unexplained"])
@@ -130,7 +133,7 @@ def test_what_no_cause_explains_is_said_not_called_noise():
 def test_fewer_candidates_are_respected():
     columns, _, _ = hidden_case("load_exponent", 8)
     settings = dataclasses.replace(DiagnoseSettings.default(), candidates=("running_in",))
-    summary = diagnose(readings_from_columns(columns), settings).summary
+    summary = summarise(diagnose(readings_from_columns(columns), settings))
     assert summary["causes"] == []
     assert {c["name"] for c in summary["candidates"]} == {"running_in"}
 
@@ -145,7 +148,7 @@ def test_scatter_correlated_along_tests_makes_no_cause(cause):
         campaign = grid_campaign(rng=rng, interval_scatter=0.25, reading_scatter=0.02,
                                  spacing="geometric")
         columns, _, _ = hidden_case(cause, seed, campaign)
-        causes = diagnose(readings_from_columns(columns)).summary["causes"]
+        causes = summarise(diagnose(readings_from_columns(columns)))["causes"]
         assert causes == ([] if cause == "none" else ["running_in"]), (seed, causes)
 
 
@@ -154,7 +157,7 @@ def test_one_load_leaves_load_laws_untestable_but_not_heating():
     heating can (its frictional power still varies between tests)."""
     campaign = grid_campaign(pressures_Pa=(2e6,), velocities_m_s=(0.2, 0.5, 1.2, 2.0))
     columns, _, _ = hidden_case("none", 9, campaign)
-    summary = diagnose(readings_from_columns(columns)).summary
+    summary = summarise(diagnose(readings_from_columns(columns)))
     untested = {entry["name"]: entry["message"] for entry in summary["untestable"]}
     assert set(untested) == {"load_exponent"}
     assert "varies between tests" in untested["load_exponent"]

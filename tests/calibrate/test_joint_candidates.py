@@ -1,4 +1,4 @@
-"""The joint diagnosis's candidate runs and resolution (fewear.calibrate.joint_diagnose), on
+"""The joint diagnosis's candidate runs and resolution (fewear.diagnose.joint.diagnose), on
 constructed wear histories: runs that stop before the data are left out, halving the blocks
 halves what the extrapolation settings allow, a 'none' whose misfit lies within what the
 model's blocks resolve says so, running-in's time map and form are those of the data, and a
@@ -9,27 +9,18 @@ per test). By default the form is told from data of the exponential form; the sl
 (`make slow`) tells it from data of the other two forms too."""
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
 
-from fewear.calibrate.joint_diagnose import (
-    REFINEMENTS,
-    RUNNING_IN_FORMS,
-    Candidate,
-    Fit,
-    JointDiagnoseSettings,
-    Observations,
-    _confirm,
-    _lasting,
-    _select,
-    _unexplained,
-    fit,
-    fit_candidate,
-    fit_cause,
-    running_in_time_map,
-)
-from fewear.calibrate.joint_forward import WearHistory, with_halved_blocks
+from fewear.diagnose.joint.candidates import RUNNING_IN_FORMS, Candidate, lasting
+from fewear.diagnose.joint.catalogue import CAUSES
+from fewear.diagnose.joint.diagnose import _confirm, _select, _unexplained
+from fewear.diagnose.joint.fitting import Fit, Observations, fit, fit_candidate, running_in_time_map
+from fewear.diagnose.joint.forward import WearHistory, with_halved_blocks
+from fewear.diagnose.joint.refinement import REFINEMENTS, fit_cause
+from fewear.diagnose.joint.settings import JointDiagnoseSettings
 from fewear.errors import FewearInputError
 
 
@@ -42,16 +33,16 @@ def _run(last_cycles: float, stopped: str = "") -> WearHistory:
 
 def test_runs_that_stop_before_the_needed_cycles_are_left_out():
     runs = (_run(20000), _run(20000), _run(3000, "worn through"), _run(12000, "worn through"))
-    kept, = _lasting(Candidate("impact_wear", runs, (0.0, 1.0, 2.0, 3.0)), needed_cycles=8000)
+    kept, = lasting(Candidate("impact_wear", runs, (0.0, 1.0, 2.0, 3.0)), needed_cycles=8000)
     assert kept.grid == (0.0, 1.0, 3.0)  # the one stopped at 3,000 < 8,000 cycles is out
     assert kept.runs == (runs[0], runs[1], runs[3])
 
 
 def test_a_grid_cause_with_only_the_believed_run_left_is_untestable():
     runs = (_run(20000), _run(3000, "worn through"))
-    assert _lasting(Candidate("friction", runs, (0.1, 0.3)), needed_cycles=8000) == ()
+    assert lasting(Candidate("friction", runs, (0.1, 0.3)), needed_cycles=8000) == ()
     # a discrete choice keeps a single lasting run: it is still a different model
-    kept, = _lasting(Candidate("flexible_link", runs, (1.0, 1.1), discrete=True), 8000)
+    kept, = lasting(Candidate("flexible_link", runs, (1.0, 1.1), discrete=True), 8000)
     assert kept.runs == (runs[0],)
 
 
@@ -101,13 +92,13 @@ def test_none_with_a_late_misfit_says_the_effect_shows_only_after_the_training_c
 
 def test_a_grid_with_a_non_positive_value_is_a_clear_error():
     with pytest.raises(FewearInputError, match=r"friction_grid = \[0.0, 0.3\]: expected a non"):
-        JointDiagnoseSettings(friction_grid=(0.0, 0.3))
+        replace(JointDiagnoseSettings.default(), friction_grid=(0.0, 0.3))
 
 
 def test_an_unknown_impact_form_is_a_clear_error():
     with pytest.raises(FewearInputError, match=r"impact_forms = \['momentum'\]: expected"):
-        JointDiagnoseSettings(impact_forms=("momentum",))
-    assert JointDiagnoseSettings(impact_forms=["energy", "impulse"]).impact_forms
+        replace(JointDiagnoseSettings.default(), impact_forms=("momentum",))
+    assert replace(JointDiagnoseSettings.default(), impact_forms=["energy", "impulse"]).impact_forms
 
 
 # --- running-in: the time map of each form, and the form told from the data ---------------------
@@ -174,8 +165,8 @@ def test_running_in_fit_names_the_form_of_the_data_and_its_parameters(form):
     r, scale, key = ((3.0, 2000.0, "scale_cycles") if form == "cycles"
                      else (3.0, 20.0, "distance_scale_m"))
     obs = _running_in_observations(run, form, r, scale, offset_deg=7.0)
-    forms = tuple(Candidate("running_in", (run,), form=name) for name in RUNNING_IN_FORMS)
-    result = fit_candidate(forms, obs, 5.0, JointDiagnoseSettings())
+    forms = tuple(CAUSES["running_in"].candidate(run, name) for name in RUNNING_IN_FORMS)
+    result = fit_candidate(forms, obs, 5.0, JointDiagnoseSettings.default())
     assert result.form == form and result.forms_tried == len(RUNNING_IN_FORMS)
     assert result.params["angle_offset_deg"] == pytest.approx(7.0, abs=0.05)
     assert result.params["k_initial_over_steady"] == pytest.approx(r, rel=0.02)
@@ -248,9 +239,9 @@ def test_running_in_refined_on_runs_at_its_fitted_parameters_fits_better_when_ru
     run_at = _young_bore_world(angle)
     counts = np.array([2000.0, 4500.0, 8000.0, 14000.0, 20000.0])  # three train, two held out
     obs = _observed(run_at(1.3, "exponential", 4.0, 30.0), counts, held_from=12000.0)
-    settings = JointDiagnoseSettings()
+    settings = JointDiagnoseSettings.default()
     baseline = _baseline(run_at(1.0), obs)
-    forms = tuple(Candidate("running_in", (run_at(1.0),), form=name) for name in RUNNING_IN_FORMS)
+    forms = tuple(CAUSES["running_in"].candidate(run_at(1.0), name) for name in RUNNING_IN_FORMS)
     runs = []  # (form, params) of every run asked for, the first of a form at its mapped fit
 
     def run_of(candidate: Candidate, fitted: Fit) -> WearHistory:
@@ -297,14 +288,14 @@ def _baseline(believed: WearHistory, obs: Observations) -> Fit:
 def _friction_grid(run_at, obs: Observations) -> tuple[Fit, Candidate]:
     """The believed model at mu = 0.1 fitted to ``obs``, and friction's runs on its grid."""
     grid = (0.02, 0.05, 0.1, 0.2, 0.3, 0.4)
-    return _baseline(run_at(0.1), obs), Candidate("friction", tuple(map(run_at, grid)), grid)
+    return _baseline(run_at(0.1), obs), CAUSES["friction"].candidate(map(run_at, grid), grid)
 
 
 def test_a_grid_fit_refined_with_the_run_at_its_value_lands_on_the_truth():
     angle = np.linspace(0.0, 2.0 * math.pi, 36, endpoint=False)
     run_at = _widening_world(angle)
     obs = _observed(run_at(0.14))
-    settings = JointDiagnoseSettings()
+    settings = JointDiagnoseSettings.default()
     baseline, friction = _friction_grid(run_at, obs)
     asked = []
 
@@ -338,7 +329,7 @@ def test_a_grid_fit_the_runs_leave_between_them_is_taken_on_the_best_run_made():
         made.append((fitted.params["friction_coefficient"], fitted.params["k_scale"]))
         return run_at(*made[-1])
 
-    refined = fit_cause((friction,), obs, baseline, JointDiagnoseSettings(), run_of)
+    refined = fit_cause((friction,), obs, baseline, JointDiagnoseSettings.default(), run_of)
     assert len(made) == REFINEMENTS
     on = [i for i, (mu, k) in enumerate(made)
           if mu == pytest.approx(refined.params["friction_coefficient"], rel=1e-12)
@@ -370,7 +361,7 @@ def test_a_k_level_refined_on_the_run_at_its_level_fits_as_that_run():
     obs = _observed(run_at(1.6))
     believed = Candidate("wear_coefficient", (run_at(1.0),))
     baseline = _baseline(believed.runs[0], obs)
-    settings = JointDiagnoseSettings()
+    settings = JointDiagnoseSettings.default()
     asked = []
 
     def run_of(candidate: Candidate, fitted: Fit) -> WearHistory:
@@ -390,7 +381,7 @@ def _k_level_world(monkeypatch, truth_k_scale: float, friction_rate_factor: floa
     """Forward runs as linear wear whose rate scales with the config's constant k; a run with
     the friction changed wears at ``friction_rate_factor`` times the believed rate (whatever its
     k). Returns the believed config, the believed run and data from a k level ``truth_k_scale``."""
-    from fewear.calibrate import joint_diagnose
+    from fewear.diagnose.joint import diagnose as joint_diagnose
 
     angle = np.linspace(0.0, 2.0 * math.pi, 48, endpoint=False)
     base = _linear_run(angle, np.full(48, 0.01))
@@ -424,7 +415,7 @@ def test_the_first_accepted_cause_whose_full_run_holds_up_is_named(monkeypatch,
     run wears at 0.9 x the believed rate (worse than the believed model: not named, the k level
     is) or at 1.5 x (the data: named)."""
     config, base, obs = _k_level_world(monkeypatch, 1.5, friction_rate_factor)
-    settings = JointDiagnoseSettings()
+    settings = JointDiagnoseSettings.default()
     baseline = _baseline(base, obs)
     fits = {"friction": _fitted("friction", 1.0, friction_coefficient=0.3),
             "wear_coefficient": _fitted("wear_coefficient", 1.5)}
@@ -451,7 +442,7 @@ def test_no_cause_is_named_when_no_full_run_holds_up(monkeypatch):
     baseline = _baseline(base, obs)
     fits = {"friction": _fitted("friction", 1.0, friction_coefficient=0.3)}
     causes, extended, final, depth, not_confirmed = _confirm(
-        config, ["friction"], fits, baseline, obs, JointDiagnoseSettings())
+        config, ["friction"], fits, baseline, obs, JointDiagnoseSettings.default())
     assert causes == [] and final is baseline and extended == config
     assert [e["cause"] for e in not_confirmed] == ["friction"]
 
@@ -470,7 +461,7 @@ def test_no_cause_is_accepted_where_the_believed_model_predicts_within_the_scatt
     held-out data within their scatter); with a scatter of 0.1 um it would be one."""
     baseline = _fit_of("baseline", 1, 0.520e-6, 0.61e-6)
     k_level = {"wear_coefficient": _fit_of("wear_coefficient", 2, 0.512e-6, 0.534e-6)}
-    settings = JointDiagnoseSettings()
+    settings = JointDiagnoseSettings.default()
     accepted, evidence = _select(baseline, k_level, settings, scatter_m=0.5e-6)
     assert accepted == [] and evidence[0]["p_value"] < 1e-10
     assert evidence[0]["held_out_gain"] > settings.min_held_out_gain

@@ -1,5 +1,5 @@
-"""The joint diagnosis finds an effect hidden in measured joint wear (fewear.calibrate.
-joint_diagnose): each cause of the catalogue switched on in the wear loop at random parameters,
+"""The joint diagnosis finds an effect hidden in measured joint wear (fewear.diagnose.
+joint.diagnose): each cause of the catalogue switched on in the wear loop at random parameters,
 measured by an independent profilometer model (unknown angular origin, 0.5 um noise), diagnosed
 without the answer; the believed model's own data give no cause.
 
@@ -17,16 +17,19 @@ import json
 import numpy as np
 import pytest
 
-from fewear.calibrate.joint_diagnose import JointDiagnoseSettings, diagnose_joint
-from fewear.calibrate.joint_measured import write_joint_profiles, write_max_wear
-from fewear.calibrate.joint_structure import MAX_LISTED_IMPACTS
 from fewear.cli import main
+from fewear.diagnose.joint.diagnose import diagnose_joint
+from fewear.diagnose.joint.measured import write_joint_profiles, write_max_wear
+from fewear.diagnose.joint.settings import JointDiagnoseSettings
+from fewear.diagnose.joint.structure import MAX_LISTED_IMPACTS
 from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
 from tests.calibrate.joint_cases import believed_text, hidden_joint_case
 
 SHORT = (1000, 2000, 3000, 4000)
 """The default suite's campaign: profile cycle counts (the full one: joint_cases.PROFILE_CYCLES)."""
+DEFAULT_SECTION = load_config(None, ["joint_diagnose"])["joint_diagnose"]
+"""The embedded [joint_diagnose] section, which ``QUICK`` overrides."""
 QUICK = {"candidates": ["wear_coefficient", "friction"], "friction_grid": [0.05, 0.2, 0.4]}
 """The default suite's [joint_diagnose] section: the level, and friction run at 0.05, 0.2, 0.4 and
 the believed 0.1 (the default grid adds 0.02 and 0.3)."""
@@ -44,7 +47,8 @@ def believed(tmp_path_factory):
 def test_the_hidden_friction_is_named_over_the_level_on_a_short_campaign(believed):
     """The quick catalogue: friction and the k level that is the cheapest explanation of it."""
     data, truth, _ = hidden_joint_case(believed[1], "friction", 13, profile_cycles=SHORT)
-    summary = diagnose_joint(data, believed[1], JointDiagnoseSettings.from_config(QUICK)).summary
+    settings = JointDiagnoseSettings.from_config({**DEFAULT_SECTION, **QUICK})
+    summary = diagnose_joint(data, believed[1], settings).summary
     assert summary["cause"] == "friction", (truth, summary["candidates"])
     assert summary["gain"] > 0.25  # held-out error of the extended run at most 3/4
     assert summary["data_kind"] == "joint"

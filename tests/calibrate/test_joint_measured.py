@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fewear.calibrate.joint_measured import (
+from fewear.diagnose.joint.measured import (
     JointMeasurements,
     MeasuredProfile,
     joint_data_kind,

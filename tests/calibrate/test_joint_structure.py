@@ -1,4 +1,4 @@
-"""The residual structure against the crank cycle (fewear.calibrate.joint_structure) on
+"""The residual structure against the crank cycle (fewear.diagnose.joint.structure) on
 constructed joint histories with known answers: a pin that presses the bore at the crank angle
 itself, two impact episodes, a trace that is the simulated one seen from another time origin."""
 
@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from fewear.calibrate.joint_structure import (
+from fewear.diagnose.joint.structure import (
     crank_angle_table,
     impact_table,
     scatter_estimate_m,
@@ -100,7 +100,8 @@ def test_the_instruments_scatter_is_found_under_a_smooth_misfit(shape_m):
 
 
 def test_a_large_misfit_without_a_cause_is_reported_unexplained():
-    from fewear.calibrate.joint_diagnose import Fit, _unexplained
+    from fewear.diagnose.joint.diagnose import _unexplained
+    from fewear.diagnose.joint.fitting import Fit
 
     for shape_m, expected in ((0.0, 0), (20e-6, 1)):
         angle, residual, cycles = profiles_with(shape_m, 0.5e-6)

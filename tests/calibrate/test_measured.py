@@ -6,7 +6,7 @@ import csv
 import numpy as np
 import pytest
 
-from fewear.calibrate.measured import (
+from fewear.diagnose.tribometer.measured import (
     MeasuredWear,
     read_measured_wear,
     wear_coefficient_samples,

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from fewear.calibrate.joint_measured import read_joint_measurements, write_joint_profiles
+from fewear.diagnose.joint.measured import read_joint_measurements, write_joint_profiles
 from tests.calibrate.profilometer import (
     NOISE_m,
     RESOLUTION_m,

@@ -4,8 +4,10 @@ import dataclasses
 
 import pytest
 
-from fewear.calibrate.diagnose import DiagnoseSettings, diagnose, readings_from_columns
-from fewear.calibrate.forward import grid_campaign, hidden_case
+from fewear.diagnose.tribometer.diagnose import diagnose
+from fewear.diagnose.tribometer.forward import grid_campaign, hidden_case
+from fewear.diagnose.tribometer.readings import readings_from_columns
+from fewear.diagnose.tribometer.settings import DiagnoseSettings
 from fewear.errors import FewearInputError
 
 

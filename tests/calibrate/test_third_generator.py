@@ -11,8 +11,8 @@ import math
 import numpy as np
 import pytest
 
-from fewear.calibrate.joint_forward import model_config, simulate_wear
-from fewear.calibrate.joint_measured import read_joint_measurements
+from fewear.diagnose.joint.forward import model_config, simulate_wear
+from fewear.diagnose.joint.measured import read_joint_measurements
 from tests.calibrate import third_joint_generator as gen
 
 R = 0.010  # bore radius of the default bushing (m)

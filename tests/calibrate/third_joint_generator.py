@@ -9,7 +9,7 @@ Believed model
 --------------
 The user believes ``BELIEVED_TOML``: the defaults with a steel rod (7800 kg/m^3) and a coarse bore
 mesh (48 elements around the 10 mm bore, 4 across the wall), the rigid connecting rod and 40 load
-steps per crank cycle. Its forward run is :func:`fewear.calibrate.joint_forward.simulate_wear`: the
+steps per crank cycle. Its forward run is :func:`fewear.diagnose.joint.forward.simulate_wear`: the
 nodal wear depth h_b(N, theta) after N crank cycles, linear in N between the wear blocks and linear
 in angle between the bore nodes (the model's own definition of the worn surface).
 
@@ -46,7 +46,7 @@ counter-clockwise; h > 0 is removed material), evaluated on a fine grid of 2880 
         d_i(theta) = c (p0 sqrt(1 - (x/b)^2) - p_th)_+^2,   x = R_bore (theta - theta_i),
     smeared by a Gaussian of standard deviation sigma over the angle (the impact point scatters
     from cycle to cycle). The rate per cycle, D(N, theta) = sum_i d_i, comes from one crank cycle
-    (:func:`fewear.calibrate.joint_forward.cycle_on_worn_bore`) on the believed bore worn by N
+    (:func:`fewear.diagnose.joint.forward.cycle_on_worn_bore`) on the believed bore worn by N
     cycles, at the 12 counts N_j = j N_last / 11; between them D is linear in N and the impact
     depth is its integral. h = h_b + integral D. p_th is U[60, 100] MPa (the impacts' peak
     pressures reach 50-320 MPa), sigma U[2, 4] deg; c is sized so the impacts remove the fraction
@@ -399,7 +399,7 @@ def worn_volume_m3(depth_m: np.ndarray, config: dict) -> float:
 
 
 def _run(config: dict, total_cycles: int):
-    from fewear.calibrate.joint_forward import model_config, simulate_wear
+    from fewear.diagnose.joint.forward import model_config, simulate_wear
 
     rod = config["wear_loop"]["rod_models"][0]
     history = simulate_wear(model_config(config, rod, total_cycles), label=f"third {rod}")
@@ -431,7 +431,7 @@ def true_bore(cause: str, params: dict, config: dict, last_cycles: int) -> tuple
 
 
 def _impact_bore(params: dict, config: dict, last_cycles: int) -> tuple[TrueBore, dict]:
-    from fewear.calibrate.joint_forward import cycle_on_worn_bore
+    from fewear.diagnose.joint.forward import cycle_on_worn_bore
 
     history = believed_history(config, last_cycles)
     radius = config["bushing"]["inner_radius_m"]

@@ -52,9 +52,9 @@ def _dynamics_parsed(config, **kwargs):
 @pytest.fixture
 def stubbed(monkeypatch):
     """The commands' work after their input is checked replaced by :func:`_accept`."""
-    import fewear.calibrate.command
-    import fewear.calibrate.joint_command
     import fewear.contact.command
+    import fewear.diagnose.joint.command
+    import fewear.diagnose.tribometer.command
     import fewear.loop.command
     import fewear.mbd.command
 
@@ -62,8 +62,8 @@ def stubbed(monkeypatch):
     monkeypatch.setattr(fewear.mbd.command, "simulate_slider_crank", _dynamics_parsed)
     for name in ("run_cases", "_in_processes", "_on_ranks"):
         monkeypatch.setattr(fewear.loop.command, name, _accept)
-    monkeypatch.setattr(fewear.calibrate.command, "diagnose", _accept)
-    monkeypatch.setattr(fewear.calibrate.joint_command, "diagnose_joint", _accept)
+    monkeypatch.setattr(fewear.diagnose.tribometer.command, "diagnose", _accept)
+    monkeypatch.setattr(fewear.diagnose.joint.command, "diagnose_joint", _accept)
 
 
 def outcome(argv, capsys) -> str:

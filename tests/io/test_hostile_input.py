@@ -150,12 +150,12 @@ def test_a_joint_diagnosis_without_config_says_which_model_it_runs(tmp_path, mon
                                                                    capsys):
     """The embedded default is the paper's full case (minutes per forward run): the diagnosis
     says so before it starts, and the forward runs report their progress."""
-    import fewear.calibrate.joint_command
+    import fewear.diagnose.joint.command
 
     def stop(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(fewear.calibrate.joint_command, "diagnose_joint", stop)
+    monkeypatch.setattr(fewear.diagnose.joint.command, "diagnose_joint", stop)
     path = tmp_path / "profiles.csv"
     path.write_text("cycles,angle_deg,wear_depth_m\n1000,0,1e-6\n1000,90,2e-6\n1000,180,1e-6\n")
     assert main(["diagnose", str(path), "--out", str(tmp_path / "out")]) == 130
@@ -168,7 +168,7 @@ def test_a_joint_diagnosis_without_config_says_which_model_it_runs(tmp_path, mon
 def test_a_forward_run_reports_its_progress(monkeypatch, capsys):
     from types import SimpleNamespace
 
-    import fewear.calibrate.joint_forward as forward
+    import fewear.diagnose.joint.forward as forward
 
     monkeypatch.setattr(forward, "PROGRESS_INTERVAL_S", 0.0)
     progress = forward._BlockProgress("believed model", 40_000, True)

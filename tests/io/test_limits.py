@@ -104,7 +104,7 @@ def test_measured_values_no_instrument_gives_are_input_errors(tmp_path, capsys, 
 
 
 def test_negative_depths_within_the_noise_are_kept():
-    from fewear.calibrate.joint_measured import read_joint_measurements
+    from fewear.diagnose.joint.measured import read_joint_measurements
 
     def depths(path):
         return read_joint_measurements(path)

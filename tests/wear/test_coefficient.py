@@ -6,9 +6,9 @@ import tomllib
 import numpy as np
 import pytest
 
-from fewear.calibrate.measured import read_measured_wear, wear_coefficient_samples
 from fewear.data import STANDIN_PIN_ON_DISC_CSV
 from fewear.data import make_standin_pin_on_disc as standin
+from fewear.diagnose.tribometer.measured import read_measured_wear, wear_coefficient_samples
 from fewear.errors import FewearInputError
 from fewear.io.config import load_config
 from fewear.plot.wear_coefficient import plot_wear_coefficient

@@ -15,6 +15,7 @@ import json
 import math
 import sys
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -25,6 +26,8 @@ from fewear.mesh.profile import periodic_linear
 _RUNS: dict[str, WearHistory] = {}
 PROGRESS_INTERVAL_S = 10.0
 """A long forward run reports its progress on stderr at most this often."""
+DEPTH_REACH = 3.0
+"""A candidate run stops once it is this many times deeper than the deepest measured wear."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -158,6 +161,31 @@ def simulate_wears(requests: list[tuple[dict, str]]) -> list[WearHistory]:
         _RUNS.update({_key(config): history
                       for (config, _), history in zip(missing, histories)})
     return [simulate_wear(config, label) for config, label in requests]
+
+
+RunMaker = Callable[[list[tuple[dict, str]]], list[WearHistory]]
+"""Makes the runs of ``[(config, label), ...]`` (:func:`candidate_runner`)."""
+
+
+def candidate_runner(cycles: int, deepest_m: float) -> RunMaker:
+    """How candidates' configs are run: ``cycles`` long, stopping once they wear
+    :data:`DEPTH_REACH` to twice that times deeper than the deepest measured wear ``deepest_m``
+    (it explains nothing beyond, and an impact-worn pocket that draws ever more impacts would
+    otherwise run on in ever shorter blocks); side by side (:func:`simulate_wears`)."""
+
+    def limited(changed: dict) -> dict:
+        changed = model_config(changed, changed["wear_loop"]["rod_models"][0], cycles)
+        loop, bushing = changed["wear_loop"], changed["bushing"]
+        if deepest_m > 0.0:  # rounded up to a power of 2: data sets of about one depth share runs
+            wall = bushing["outer_radius_m"] - bushing["inner_radius_m"]
+            loop["max_wall_fraction"] = min(loop["max_wall_fraction"], 2.0 ** math.ceil(
+                math.log2(DEPTH_REACH * deepest_m / wall)))
+        return changed
+
+    def run(requests: list[tuple[dict, str]]) -> list[WearHistory]:
+        return simulate_wears([(limited(changed), label) for changed, label in requests])
+
+    return run
 
 
 def _key(config: dict) -> str:

@@ -56,7 +56,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fewear.calibrate.measured import _numeric_column, _read_rows, csv_cells
+from fewear.diagnose.tribometer.measured import _numeric_column, _read_rows, csv_cells
 from fewear.errors import FewearInputError
 from fewear.io.text import read_text_file
 

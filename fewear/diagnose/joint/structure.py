@@ -3,7 +3,7 @@
 A residual of the worn bore (measured minus believed depth) at a bore angle theta was worn there
 at the instants of the crank cycle when the pin pressed on theta. The believed model's dynamics,
 run for one crank cycle on its own worn bore at the profile's cycle count
-(:func:`fewear.calibrate.joint_forward.cycle_on_worn_bore`), give the contact direction
+(:func:`fewear.diagnose.joint.forward.cycle_on_worn_bore`), give the contact direction
 theta_c(phi) = atan2(e_y, e_x) (eccentricity e in the bushing frame), the joint force and the
 contact mode (free, impact, continuous contact: :mod:`fewear.mbd.history`) against the crank
 angle phi. Read through them, the residual profile becomes

@@ -1,5 +1,5 @@
-"""Figures of a wear diagnosis (:mod:`fewear.calibrate.diagnose`): measurement against baseline
-and extended model, the baseline's residuals against every measured variable, the causes'
+"""Figures of a wear diagnosis (:mod:`fewear.diagnose.tribometer.diagnose`): measurement against
+baseline and extended model, the baseline's residuals against every measured variable, the causes'
 held-out errors. matplotlib with the Agg backend; each function writes one PNG and returns its path.
 """
 
@@ -8,6 +8,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+
+from fewear.diagnose.tribometer.stages import predict_log_volume
 
 MAX_PANELS = 12
 
@@ -29,8 +31,6 @@ def plot_fits(diagnosis, path: str | Path) -> Path:
     plt = _pyplot()
     if diagnosis.form == "table":
         return _plot_table_fits(diagnosis, path, plt)
-    from fewear.calibrate.diagnose import predict_log_volume
-
     d = diagnosis
     r = d.readings
     result = d.reading_stage
@@ -78,8 +78,6 @@ def _test_title(r, j: int) -> str:
 
 
 def _plot_table_fits(diagnosis, path, plt) -> Path:
-    from fewear.calibrate.diagnose import predict_log_volume
-
     r = diagnosis.readings
     result = diagnosis.reading_stage
     measured = 1e9 * r.volume_m3
@@ -105,12 +103,12 @@ def _plot_table_fits(diagnosis, path, plt) -> Path:
     return Path(path)
 
 
-def plot_residuals(diagnosis, path: str | Path) -> Path:
+def plot_residuals(diagnosis, summary: dict, path: str | Path) -> Path:
     """The baseline's residuals against every measured variable: per reading (within tests for
     histories) and, for histories, each test's level; grey points, black binned means with
     standard errors (quartiles)."""
     plt = _pyplot()
-    structure = diagnosis.summary["residual_structure"]
+    structure = summary["residual_structure"]
     r = diagnosis.readings
     panels = [(entry, _variable(r, entry["variable"], per_test=False),
                diagnosis.reading_stage.baseline.residuals, "ln V residual")
@@ -144,12 +142,12 @@ def plot_residuals(diagnosis, path: str | Path) -> Path:
     return Path(path)
 
 
-def plot_candidates(diagnosis, path: str | Path) -> Path:
+def plot_candidates(diagnosis, summary: dict, path: str | Path) -> Path:
     """Held-out RMS error of each stage's baseline and of every cause tried at its first step
     (accepted ones in red)."""
     plt = _pyplot()
     names, errors, colours = [], [], []
-    for stage in diagnosis.summary["stages"]:
+    for stage in summary["stages"]:
         names.append(f"{stage['name']}: baseline")
         errors.append(stage["baseline_held_out_error"])
         colours.append("tab:blue")

@@ -11,8 +11,14 @@ from typing import Any
 
 import numpy as np
 
-from fewear.calibrate.catalogue import MEANINGS
-from fewear.calibrate.structure import residual_structure
+from fewear.diagnose.core.report import verdict
+from fewear.diagnose.core.statistics import paired_improvement_p
+from fewear.diagnose.tribometer.catalogue import MEANINGS
+from fewear.diagnose.tribometer.diagnose import Diagnosis
+from fewear.diagnose.tribometer.figures import plot_candidates, plot_fits, plot_residuals
+from fewear.diagnose.tribometer.fitting import Trial
+from fewear.diagnose.tribometer.stages import log_k_per_test, predict_log_volume, untestable_causes
+from fewear.diagnose.tribometer.structure import residual_structure
 from fewear.io.output import write_json
 from fewear.wear.coefficient import wear_section_toml
 
@@ -23,8 +29,10 @@ FIGURES = {"fits": "fits.png", "residuals": "residuals.png", "candidates": "cand
 # The summary
 
 
-def summarise(readings, settings, form: str, stages, causes, extended) -> dict[str, Any]:
-    """The JSON-ready summary of a diagnosis (see :func:`fewear.calibrate.diagnose.diagnose`)."""
+def summarise(diagnosis: Diagnosis) -> dict[str, Any]:
+    """The JSON-ready summary of a diagnosis (``diagnosis.json``)."""
+    readings, settings, form = diagnosis.readings, diagnosis.settings, diagnosis.form
+    stages, causes, extended = diagnosis.stages, diagnosis.causes, diagnosis.extended_section
     reading_stage = stages[0]
     across = stages[1] if len(stages) > 1 else None
     before = residual_structure(readings, reading_stage.baseline.residuals,
@@ -35,8 +43,6 @@ def summarise(readings, settings, form: str, stages, causes, extended) -> dict[s
     baseline_error = scored.baseline_rms
     extended_error = scored.final_rms
     test_group, group_names = readings.test_groups()
-    from fewear.calibrate.diagnose import log_k_per_test, untestable_causes
-
     log_k = log_k_per_test(readings, reading_stage.stage, reading_stage.baseline)
     return {
         "source": readings.source,
@@ -59,16 +65,11 @@ def summarise(readings, settings, form: str, stages, causes, extended) -> dict[s
             "k_per_test_m2_N": {label: float(np.exp(value))
                                 for label, value in zip(readings.test_labels, log_k)},
         },
-        "candidates": [_clean(entry) for st in stages for entry in (st.steps[0] if st.steps
-                                                                     else ())],
+        "candidates": [trial_entry(trial) for st in stages
+                       for trial in (st.steps[0] if st.steps else ())],
         "untestable": untestable_causes(readings, settings),
-        "causes": list(causes),
-        "cause": causes[0] if causes else "none",
-        "cause_meaning": MEANINGS[causes[0]] if causes else _none_meaning(after),
-        "confounded": _confounded(stages, readings, settings),
-        "gain": 1.0 - extended_error / baseline_error if causes else 0.0,
-        "held_out_error": {"baseline": baseline_error,
-                           "extended": extended_error if causes else baseline_error},
+        **verdict(causes, MEANINGS[causes[0]] if causes else _none_meaning(after),
+                  _confounded(stages, readings, settings), baseline_error, extended_error),
         "prediction": _prediction(readings, reading_stage, settings),
         "residual_structure": before,
         "unexplained": after["unexplained"],
@@ -81,8 +82,18 @@ def _rms(values: np.ndarray) -> float:
     return float(np.sqrt(np.mean(values**2)))
 
 
-def _clean(entry: dict[str, Any]) -> dict[str, Any]:
-    return {key: value for key, value in entry.items() if not key.startswith("_")}
+def trial_entry(trial: Trial) -> dict[str, Any]:
+    """A cause tried, as ``diagnosis.json`` lists it (``aicc_change``: the cause's AICc minus the
+    current model's, negative favours the cause)."""
+    return {
+        "name": trial.cause, "form": trial.form, "stage": trial.stage, "params": trial.params,
+        "held_out_error": trial.held_out_error,
+        "held_out_error_before": trial.held_out_error_before,
+        "gain": trial.evidence.gain, "test": trial.test, "p_value": trial.evidence.p_value,
+        "forms_tried": trial.forms_tried, "tests_improved": trial.tests_improved,
+        "aicc_change": trial.aicc_change, "training_error": trial.training_error,
+        "accepted": trial.accepted, "verdict": trial.verdict,
+    }
 
 
 def _stage_summary(result) -> dict[str, Any]:
@@ -93,7 +104,7 @@ def _stage_summary(result) -> dict[str, Any]:
             "chosen": list(result.chosen),
             "final_params": {form.cause: law.params()
                              for form, law in zip(result.final.forms, result.final.laws)},
-            "steps": [[_clean(entry) for entry in step] for step in result.steps]}
+            "steps": [[trial_entry(trial) for trial in step] for step in result.steps]}
 
 
 def _form_notes(readings, form: str) -> list[str]:
@@ -155,31 +166,30 @@ def _confounded(stages, readings, settings) -> list[dict[str, Any]]:
     """Per stage: causes accepted at the first step that the held-out errors do not tell apart
     from the one chosen first (paired p >= significance that the chosen predicts the held-out
     tests better)."""
-    from fewear.calibrate.diagnose import paired_improvement_p
-
     groups = []
     for result in stages:
         if not result.chosen:
             continue
         first = result.steps[0]
-        best = next(e for e in first if e["name"] == result.chosen[0])
-        others = [e for e in first if e["accepted"] and e["name"] != best["name"]
-                  and paired_improvement_p(e["_errors"], best["_errors"]) >= settings.significance]
+        best = next(trial for trial in first if trial.cause == result.chosen[0])
+        others = [trial for trial in first if trial.accepted and trial.cause != best.cause
+                  and paired_improvement_p(trial.errors, best.errors) >= settings.significance]
         if others:
             groups.append(_confounded_group(best, others, readings, settings))
     return groups
 
 
-def _confounded_group(best, others, readings, settings) -> dict[str, Any]:
-    names = {best["name"]} | {e["name"] for e in others}
+def _confounded_group(best: Trial, others: list[Trial], readings, settings) -> dict[str, Any]:
+    names = {best.cause} | {trial.cause for trial in others}
     return {
-        "causes": [best["name"]] + [e["name"] for e in others],
+        "causes": [best.cause] + [trial.cause for trial in others],
         "reason": _structural_reason(readings, names) or (
             "their held-out errors do not differ significantly (paired p >= "
             f"{settings.significance:g})"),
-        "evidence": {e["name"]: {"held_out_error": e["held_out_error"], "gain": e["gain"],
-                                 "p_value": e["p_value"], "params": e["params"]}
-                     for e in [best] + others},
+        "evidence": {trial.cause: {"held_out_error": trial.held_out_error,
+                                   "gain": trial.evidence.gain,
+                                   "p_value": trial.evidence.p_value, "params": trial.params}
+                     for trial in [best] + others},
         "to_separate": "tests at different sliding speeds (with distance and time both read)"
         if {"running_in", "time_transient"} <= names
         else "tests that vary the variable that drives one cause but not the other",
@@ -201,8 +211,6 @@ def _structural_reason(readings, names: set[str]) -> str:
 def _prediction(readings, result, settings) -> dict[str, Any]:
     """Wear after ``prediction_distance_factor`` x each test's own final distance (and time),
     extended over baseline model (both fitted on all readings)."""
-    from fewear.calibrate.diagnose import predict_log_volume
-
     factor = settings.prediction_distance_factor
     s = factor * readings.final_per_test(readings.distance_m)
     per_test = {}
@@ -224,27 +232,27 @@ def _prediction(readings, result, settings) -> dict[str, Any]:
 # Files
 
 
-def write_outputs(diagnosis, folder: Path) -> dict[str, Path]:
-    """Write every output of ``diagnosis`` into ``folder``; returns their paths by name."""
-    from fewear.plot.diagnosis import plot_candidates, plot_fits, plot_residuals
-
+def write_outputs(diagnosis: Diagnosis, summary: dict[str, Any], folder: Path) -> dict[str, Path]:
+    """Write every output of ``diagnosis`` (its ``summary``: :func:`summarise`) into
+    ``folder``; returns their paths by name."""
     folder = Path(folder)
     paths = {
         "fits": plot_fits(diagnosis, folder / FIGURES["fits"]),
-        "residuals": plot_residuals(diagnosis, folder / FIGURES["residuals"]),
-        "candidates": plot_candidates(diagnosis, folder / FIGURES["candidates"]),
+        "residuals": plot_residuals(diagnosis, summary, folder / FIGURES["residuals"]),
+        "candidates": plot_candidates(diagnosis, summary, folder / FIGURES["candidates"]),
     }
     paths["json"] = folder / "diagnosis.json"
-    write_json(paths["json"], diagnosis.summary)
+    write_json(paths["json"], summary)
     paths["toml"] = folder / "extended_wear.toml"
-    paths["toml"].write_text(extended_toml(diagnosis))
+    paths["toml"].write_text(extended_toml(diagnosis, summary))
     paths["report"] = folder / "report.md"
-    paths["report"].write_text(report_markdown(diagnosis.summary))
+    paths["report"].write_text(report_markdown(summary))
     return paths
 
 
-def extended_toml(diagnosis) -> str:
-    s = diagnosis.summary
+def extended_toml(diagnosis: Diagnosis, s: dict[str, Any]) -> str:
+    """``extended_wear.toml``: the extended model's [wear] section under a header saying where
+    it comes from (``s``: the summary)."""
     header = (f"# The extended wear model from `fewear diagnose {s['source']}`.\n"
               f"# Causes: {', '.join(s['causes']) or 'none'} ({s['cause_meaning']}).\n"
               f"# Held-out error: baseline {s['held_out_error']['baseline']:.3g}, extended "

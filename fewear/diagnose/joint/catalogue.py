@@ -1,0 +1,267 @@
+"""The catalogue of the joint diagnosis: the causes the believed model can be extended by, each an
+object that says
+
+- whether the believed config can be extended by it (:meth:`Cause.untestable_because`);
+- which runs of the wear loop it is fitted on, one :class:`Candidate` per form
+  (:meth:`Cause.forms`): the believed run itself (the level of k, running-in's time map) or runs
+  with the cause switched on at a grid of values;
+- what the believed config becomes at a fit's parameters, the level of k included
+  (:meth:`Cause.extended_config`), and how a run of it is labelled in the progress lines.
+
+The method that fits, refines and selects them is in :mod:`fewear.diagnose.joint.diagnose`.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from dataclasses import dataclass
+from typing import Protocol
+
+from fewear.diagnose.joint.candidates import (
+    RUNNING_IN_FORMS,
+    Candidate,
+    lasting,
+    running_in_extension,
+)
+from fewear.diagnose.joint.forward import (
+    RunMaker,
+    WearHistory,
+    impact_measures_per_cycle,
+    model_config,
+    worn_volume_per_cycle_m3,
+)
+from fewear.wear.extensions import extension_to_config
+
+IMPACT_FORMS = {"energy": "impact_wear_coefficient_m3_J",
+                "impulse": "impact_impulse_wear_coefficient_m3_Ns"}
+"""The forms of ``impact_wear``: the [wear] key of each (:mod:`fewear.wear.impact`)."""
+NONE_MEANING = "the believed model predicts the held-out measurements within their scatter"
+"""What naming no cause means."""
+
+
+class RunGrids(Protocol):
+    """What the causes' runs are made at (of the ``[joint_diagnose]`` settings)."""
+
+    friction_grid: tuple[float, ...]
+    rod_modulus_factors: tuple[float, ...]
+    impact_volume_ratios: tuple[float, ...]
+    impact_forms: tuple[str, ...]
+
+
+@dataclass(frozen=True, eq=False)
+class Believed:
+    """The believed model as the causes see it: its ``config`` and its ``run``; ``cycles``, how
+    long a candidate's runs go; ``needed_cycles``, the shortest run a fit can use (a run that
+    stops before is left out); ``make_runs``, how runs are made from ``[(config, label), ...]``."""
+
+    config: dict
+    run: WearHistory
+    cycles: int
+    needed_cycles: float
+    make_runs: RunMaker
+
+
+class Cause:
+    """A departure from the believed model (the base of the catalogue's causes): the level of k
+    is always free, so every cause must beat :class:`WearCoefficient`, the cheapest explanation."""
+
+    name: str
+    meaning: str
+
+    def untestable_because(self, config: dict) -> str | None:
+        """Why the believed ``config`` cannot be extended by this cause (None: it can)."""
+        return None
+
+    def forms(self, believed: Believed, settings: RunGrids) -> tuple[Candidate, ...]:
+        """The runs the cause is fitted on, one candidate per form (none: untestable)."""
+        raise NotImplementedError
+
+    def extended_config(self, config: dict, params: dict, form: str) -> dict:
+        """The believed ``config`` with the cause at a fit's ``params`` (in its ``form``), k
+        scaled by the fitted level."""
+        extended = copy.deepcopy(config)
+        _scale_wear_coefficient(extended, params["k_scale"])
+        return extended
+
+    def run_label(self, params: dict, form: str) -> str:
+        """How a run at a fit's ``params`` is named in the progress lines."""
+        return f"{self.name} refined: k x {params['k_scale']:.3g}"
+
+
+def _scale_wear_coefficient(config: dict, k_scale: float) -> None:
+    """Scale the config's wear coefficient k(p, v) by ``k_scale`` in place."""
+    wear = config["wear"]
+    if wear["coefficient_model"] == "constant":
+        wear["constant_k_m2_N"] = wear["constant_k_m2_N"] * k_scale
+    else:  # the RBF network's ln k has the constant tail[0]
+        wear["rbf"]["tail"] = [wear["rbf"]["tail"][0] + math.log(k_scale),
+                               *wear["rbf"]["tail"][1:]]
+
+
+class WearCoefficient(Cause):
+    """Only the level s of k is off: the believed run with its cycles scaled by s."""
+
+    name = "wear_coefficient"
+    meaning = "only the level of the wear coefficient k is off"
+
+    def forms(self, believed: Believed, settings: RunGrids) -> tuple[Candidate, ...]:
+        return (Candidate(self.name, (believed.run,)),)
+
+
+class RunningIn(Cause):
+    """k falls from r k to k over each node's first metres of sliding or over the first crank
+    cycles: the believed run's cycles mapped node by node, one form per [wear] extension of
+    :data:`RUNNING_IN_FORMS`."""
+
+    name = "running_in"
+    meaning = "the joint runs in: k is higher over the first cycles and falls to its steady value"
+
+    def untestable_because(self, config: dict) -> str | None:
+        extension = config["wear"]["extension"]
+        if extension != "none":
+            return f"the believed model has a [wear] extension ({extension}) already"
+        return None
+
+    def forms(self, believed: Believed, settings: RunGrids) -> tuple[Candidate, ...]:
+        return tuple(self.candidate(believed.run, form) for form in RUNNING_IN_FORMS)
+
+    def candidate(self, run: WearHistory, form: str) -> Candidate:
+        """The form ``form`` on the time map of ``run``."""
+        return Candidate(self.name, (run,), form=form, time_map=True)
+
+    def extended_config(self, config: dict, params: dict, form: str) -> dict:
+        extended = super().extended_config(config, params, form)
+        extended["wear"].update(extension_to_config(running_in_extension(form, params)))
+        return extended
+
+    def run_label(self, params: dict, form: str) -> str:
+        law = running_in_extension(form, params).params()
+        return (f"running-in ({form}), "
+                + ", ".join(f"{key} = {value:.3g}" for key, value in law.items())
+                + f", k x {params['k_scale']:.3g}")
+
+
+class GridCause(Cause):
+    """A cause fitted on runs with it switched on at a grid of values of one parameter, the runs
+    interpolated between (or, ``discrete``, one of them chosen); ``parameter_scales_with_level``:
+    the fitted level s scales the parameter too (it is a wear rate)."""
+
+    parameter: str
+    discrete = False
+    parameter_scales_with_level = False
+
+    def parameter_of(self, form: str) -> str:
+        """The name of the parameter the runs of ``form`` are on (as in a fit's ``params``)."""
+        return self.parameter
+
+    def switched_on(self, config: dict, value: float, form: str = "") -> dict:
+        """The believed ``config`` with the cause at ``value``."""
+        raise NotImplementedError
+
+    def candidate(self, runs, grid, form: str = "") -> Candidate:
+        """The form ``form`` on ``runs`` made at the parameter values ``grid``."""
+        return Candidate(self.name, tuple(runs), tuple(grid), form, discrete=self.discrete,
+                         parameter=self.parameter_of(form),
+                         parameter_scales_with_level=self.parameter_scales_with_level)
+
+    def extended_config(self, config: dict, params: dict, form: str) -> dict:
+        changed = self.switched_on(config, params[self.parameter_of(form)], form)
+        return super().extended_config(changed, params, form)
+
+    def run_label(self, params: dict, form: str) -> str:
+        key = self.parameter_of(form)
+        return f"{super().run_label(params, form)}, {key} = {params[key]:.3g}"
+
+
+class FlexibleLink(GridCause):
+    """The believed rigid rod is a flexible ANCF rod, its Young's modulus one of a grid of
+    factors on the believed one: the worn bore does not follow the modulus smoothly, so the runs
+    are not interpolated; the best on the training data is taken (a discrete choice)."""
+
+    name = "flexible_link"
+    meaning = ("the connecting rod modelled rigid is flexible: its compliance changes the "
+               "impacts and the continuous-contact sliding in the joint")
+    parameter = "rod_youngs_modulus_factor"
+    discrete = True
+
+    def untestable_because(self, config: dict) -> str | None:
+        if config["wear_loop"]["rod_models"][0] == "flexible":
+            return "the believed model's rod is flexible"
+        return None
+
+    def switched_on(self, config: dict, value: float, form: str = "") -> dict:
+        changed = copy.deepcopy(config)
+        changed["wear_loop"]["rod_models"] = ["flexible"]
+        changed["mechanism"]["rod_youngs_modulus_Pa"] *= float(value)
+        return changed
+
+    def forms(self, believed: Believed, settings: RunGrids) -> tuple[Candidate, ...]:
+        grid = sorted(settings.rod_modulus_factors)
+        runs = believed.make_runs([(self.switched_on(believed.config, f),
+                                    f"flexible rod, E x {f:g}") for f in grid])
+        return lasting(self.candidate(runs, grid), believed.needed_cycles)
+
+
+class Friction(GridCause):
+    """The friction coefficient differs: runs on a grid of mu (the believed one is the believed
+    run), the worn bore interpolated linearly between neighbouring runs."""
+
+    name = "friction"
+    meaning = "the friction coefficient in the joint differs from the assumed one"
+    parameter = "friction_coefficient"
+
+    def switched_on(self, config: dict, value: float, form: str = "") -> dict:
+        changed = copy.deepcopy(config)
+        changed["joint"]["friction_coefficient"] = float(value)
+        return changed
+
+    def forms(self, believed: Believed, settings: RunGrids) -> tuple[Candidate, ...]:
+        assumed = believed.config["joint"]["friction_coefficient"]
+        grid = sorted(set(settings.friction_grid) | {assumed})
+        others = iter(believed.make_runs([(self.switched_on(believed.config, mu), f"mu = {mu:g}")
+                                          for mu in grid if mu != assumed]))
+        runs = [believed.run if mu == assumed else next(others) for mu in grid]
+        return lasting(self.candidate(runs, grid), believed.needed_cycles)
+
+
+class ImpactWear(GridCause):
+    """The impacts wear too (:mod:`fewear.wear.impact`), by energy or by impulse (one form each,
+    :data:`IMPACT_FORMS`): runs at coefficients such that the impact volume is a set multiple of
+    the sliding volume on the unworn joint, interpolated. The level s scales both wear rates, so
+    the coefficient reported and written to the extended config is s times the grid's."""
+
+    name = "impact_wear"
+    meaning = ("the impacts remove material too (wear in proportion to the energy the contact "
+               "dissipates or to the impacts' impulse), not only the sliding")
+    parameter_scales_with_level = True
+
+    def parameter_of(self, form: str) -> str:
+        return IMPACT_FORMS[form]
+
+    def switched_on(self, config: dict, value: float, form: str = "") -> dict:
+        changed = copy.deepcopy(config)
+        changed["wear"][IMPACT_FORMS[form]] = float(value)
+        return changed
+
+    def forms(self, believed: Believed, settings: RunGrids) -> tuple[Candidate, ...]:
+        config, base = believed.config, believed.run
+        rod = config["wear_loop"]["rod_models"][0]
+        volume = worn_volume_per_cycle_m3(base, config)
+        measures = impact_measures_per_cycle(model_config(config, rod, believed.cycles))
+        forms = []
+        for form in settings.impact_forms:
+            key = IMPACT_FORMS[form]
+            assumed = config["wear"].get(key, 0.0)
+            per_unit = volume / max(measures[form], 1e-300)
+            grid = [assumed] + [assumed + ratio * per_unit
+                                for ratio in sorted(settings.impact_volume_ratios)]
+            runs = [base] + believed.make_runs([(self.switched_on(config, c, form),
+                                                 f"{key} = {c:.3g}") for c in grid[1:]])
+            forms += lasting(self.candidate(runs, grid, form), believed.needed_cycles)
+        return tuple(forms)
+
+
+CAUSES: dict[str, Cause] = {cause.name: cause for cause in (
+    WearCoefficient(), FlexibleLink(), Friction(), ImpactWear(), RunningIn())}
+"""The catalogue, by name, in the order the causes are listed."""

@@ -1,0 +1,298 @@
+"""Fitting a cause's runs of the wear loop to the measured depths (the joint diagnosis,
+:mod:`fewear.diagnose.joint.diagnose`): the observations, a cause's form as runs
+(:class:`Candidate`), its fit (:class:`Fit`: angle offset, level of k, its own parameters) by
+least squares on the training data, scored on the held-out data.
+
+A model of the depths is h(theta, N) = H(theta + phi, s tau(N)) (the method's module docstring):
+a level-only candidate maps one run's cycles by s; a grid candidate interpolates between its runs
+(or, ``discrete``, chooses one); a running-in candidate maps the cycles node by node through its
+form's effective distance (:func:`running_in_time_map`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+from scipy import optimize
+
+from fewear.diagnose.core.statistics import aicc
+from fewear.diagnose.joint.candidates import (
+    RUNNING_IN_FORMS,
+    Candidate,
+    grid_value,
+)
+from fewear.diagnose.joint.forward import WearHistory
+from fewear.diagnose.joint.measured import JointMeasurements
+from fewear.diagnose.joint.settings import JointDiagnoseSettings
+from fewear.errors import FewearInputError
+from fewear.mesh.profile import periodic_linear
+from fewear.wear.extensions import (
+    NoExtension,
+    RunningInCycles,
+    distance_at_effective_m,
+)
+
+RUNNING_IN_REACH = 3
+"""The believed model runs this many times further than the other candidates (running-in)."""
+
+
+@dataclass(frozen=True, eq=False)
+class Observations:
+    """The measured depths as one vector: profile points (angle in the instrument's frame) and
+    maximum depths (angle NaN), each with its cycle count and whether it trains."""
+
+    cycles: np.ndarray
+    angle_rad: np.ndarray
+    depth_m: np.ndarray
+    train: np.ndarray
+
+    @property
+    def is_profile(self) -> np.ndarray:
+        return np.isfinite(self.angle_rad)
+
+
+def observations(data: JointMeasurements, held_out_fraction: float) -> Observations:
+    """Stack the profiles and maximum depths; the last ``held_out_fraction`` of the cycle counts
+    (at least one, leaving at least one) are held out."""
+    counts = sorted(set(data.cycle_counts) - {0})
+    if len(counts) < 2:
+        raise FewearInputError(
+            f"joint wear data at {len(counts)} cycle count(s) > 0: a life-prediction diagnosis "
+            "needs measurements at >= 2 cycle counts (the later ones are held out)")
+    n_held = min(max(1, round(held_out_fraction * len(counts))), len(counts) - 1)
+    first_held = counts[len(counts) - n_held]
+    cycles, angle, depth = [], [], []
+    for profile in data.profiles:
+        cycles.append(np.full(profile.angle_rad.size, float(profile.cycles)))
+        angle.append(profile.angle_rad)
+        depth.append(profile.depth_m)
+    if data.max_wear is not None:
+        cycles.append(np.asarray(data.max_wear[0], dtype=float))
+        angle.append(np.full(len(data.max_wear[0]), np.nan))
+        depth.append(np.asarray(data.max_wear[1], dtype=float))
+    cycles = np.concatenate(cycles)
+    keep = cycles > 0
+    cycles = cycles[keep]
+    return Observations(cycles, np.concatenate(angle)[keep], np.concatenate(depth)[keep],
+                        cycles < first_held)
+
+
+@dataclass(frozen=True, eq=False)
+class Fit:
+    """A model fitted on the training data: parameters x = (phi_deg[, ln s, extra...])."""
+
+    name: str
+    x: np.ndarray
+    n_params: int
+    sse_train: float
+    n_train: int
+    held_out_rms_m: float
+    train_rms_m: float
+    residuals_m: np.ndarray
+    params: dict = field(default_factory=dict)
+    form: str | None = None
+    forms_tried: int = 1
+
+    @property
+    def aicc(self) -> float:
+        """AICc on the training data (the small-sample correction's denominator clamped to 1)."""
+        return aicc(self.sse_train, self.n_train, self.n_params, clamp_correction=True)
+
+
+def _mixed_depth(candidate: Candidate, position: float, scale: float,
+                 cycles: float) -> np.ndarray:
+    """The worn bore at level ``scale`` after ``cycles``, interpolated at ``position`` between
+    the runs (each run's cycles mapped by the ratio of the levels: Archard's depth along the loop
+    is a function of k N)."""
+    runs = candidate.runs
+    if len(runs) == 1:
+        return runs[0].nodal_depth_m(scale / candidate.k_scale(0) * cycles)
+    position = float(np.clip(position, 0.0, len(runs) - 1))
+    k = min(int(position), len(runs) - 2)
+    w = position - k
+    return ((1 - w) * runs[k].nodal_depth_m(scale / candidate.k_scale(k) * cycles)
+            + w * runs[k + 1].nodal_depth_m(scale / candidate.k_scale(k + 1) * cycles))
+
+
+def running_in_time_map(cycles: float, run: WearHistory, form: str, extra: float,
+                        scale: float, k_scale: float = 1.0,
+                        run_extension=None, run_k_scale: float = 1.0) -> np.ndarray:
+    """Per node a, the cycles of ``run`` after which the node has worn what the model with the
+    running-in ``form`` (r - 1 = ``extra``, s0 or N0 = ``scale``) and the wear coefficient's
+    level s = ``k_scale`` wears after ``cycles`` N: s S_eff(N d_a) = s_run S_eff,run(N' d_a),
+    N' = S_eff,run^-1(s S_eff(N d_a) / s_run) / d_a, with d_a the node's advance per cycle on the
+    form's axis (:func:`_advance_per_cycle`) and the run made with level s_run = ``run_k_scale``
+    and running-in ``run_extension`` of the same form (None: the believed run, N' = s tau_a(N),
+    tau_a of the module docstring)."""
+    per_cycle = _advance_per_cycle(run, form)
+    extension = _on_node_axis(RUNNING_IN_FORMS[form](1.0 + extra, scale))
+    effective = k_scale / run_k_scale * extension.effective_distance_m(cycles * per_cycle)
+    return distance_at_effective_m(_on_node_axis(run_extension or NoExtension()),
+                                   effective) / per_cycle
+
+
+def _advance_per_cycle(run: WearHistory, form: str) -> np.ndarray:
+    """How far each node moves per crank cycle along the axis the running-in ``form`` falls on:
+    its sliding distance (m), or one cycle for ``running_in_cycles``."""
+    if RUNNING_IN_FORMS[form] is RunningInCycles:
+        return np.ones_like(run.sliding_m_per_cycle)
+    return np.maximum(run.sliding_m_per_cycle, 1e-300)
+
+
+def _on_node_axis(extension):
+    """The extension as a law of the node's advance along its axis: ``running_in_cycles`` is
+    the exponential law of :class:`RunningIn` with the cycles for the sliding distance."""
+    if isinstance(extension, RunningInCycles):
+        return extension.on_cycle_axis()
+    return extension
+
+
+def _nodal_prediction(candidate: Candidate, x: np.ndarray, cycles: float) -> np.ndarray:
+    """The cause's nodal depth after ``cycles`` at the parameters x (s tau(N) on the runs)."""
+    if x.size < 2:
+        return candidate.runs[0].nodal_depth_m(cycles)
+    scale = math.exp(x[1])
+    if candidate.time_map:
+        run = candidate.runs[0]
+        return run.nodal_depth_each_m(running_in_time_map(
+            cycles, run, candidate.form, math.exp(x[2]), math.exp(x[3]), scale,
+            candidate.run_extension, candidate.k_scale(0)))
+    position = x[2] if candidate.n_extra == 1 else 0.0
+    return _mixed_depth(candidate, position, scale, cycles)
+
+
+def predict(obs: Observations, x: np.ndarray, candidate: Candidate) -> np.ndarray:
+    """The model's depth at every observation for the parameters x."""
+    out = np.empty(obs.depth_m.size)
+    angles = candidate.runs[0].angle_rad
+    for cycles in np.unique(obs.cycles):
+        nodal = _nodal_prediction(candidate, x, cycles)
+        at = obs.cycles == cycles
+        profile = at & obs.is_profile
+        out[profile] = periodic_linear(angles, nodal)(obs.angle_rad[profile] + math.radians(x[0]))
+        out[at & ~obs.is_profile] = nodal.max()
+    return out
+
+
+def _sse(x, obs: Observations, candidate: Candidate, mask: np.ndarray, bounds) -> float:
+    clipped = np.clip(x, bounds[:, 0], bounds[:, 1])
+    r = obs.depth_m[mask] - predict(obs, clipped, candidate)[mask]
+    return float(r @ r) * (1.0 + float(np.sum((x - clipped) ** 2)))
+
+
+def fit(name: str, candidate: Candidate, obs: Observations, starts: list[np.ndarray],
+        bounds: np.ndarray) -> Fit:
+    """Least squares on the training observations from each start; scored on the held-out."""
+    best = None
+    for start in starts:
+        result = optimize.minimize(_sse, start, args=(obs, candidate, obs.train, bounds),
+                                   method="Nelder-Mead",
+                                   options={"xatol": 1e-4, "fatol": 1e-24, "maxiter": 2000})
+        if best is None or result.fun < best.fun:
+            best = result
+    x = np.clip(best.x, bounds[:, 0], bounds[:, 1])
+    residuals = obs.depth_m - predict(obs, x, candidate)
+    train, held = residuals[obs.train], residuals[~obs.train]
+    return Fit(name, x, x.size, float(train @ train), int(train.size),
+               float(np.sqrt(np.mean(held**2))), float(np.sqrt(np.mean(train**2))), residuals)
+
+
+def offset_start(obs: Observations, base: Candidate, max_offset_deg: float) -> float:
+    """The offset (deg) that best aligns the training profiles with the believed model scaled to
+    the measured depth (a scan in 1 deg steps)."""
+    offsets = np.arange(-max_offset_deg, max_offset_deg + 0.5, 1.0)
+    profile = obs.train & obs.is_profile
+    if not profile.any():
+        return 0.0
+    errors = []
+    for offset in offsets:
+        model = predict(obs, np.array([offset]), base)[profile]
+        scale = float(model @ obs.depth_m[profile]) / max(float(model @ model), 1e-300)
+        errors.append(np.sum((obs.depth_m[profile] - scale * model) ** 2))
+    return float(offsets[int(np.argmin(errors))])
+
+
+def fit_candidate(forms: tuple[Candidate, ...], obs: Observations, offset_deg: float,
+                  settings: JointDiagnoseSettings) -> Fit:
+    """Fit a cause (s free, plus its own parameters) from a few starts, in each of its
+    ``forms``; the best on the training data is kept."""
+    return best_form([fit_form(form, obs, offset_deg, settings) for form in forms])
+
+
+def best_form(fits: list[Fit]) -> Fit:
+    """The form's fit best on the training data, counting the forms tried."""
+    return replace(min(fits, key=lambda f: f.sse_train), forms_tried=len(fits))
+
+
+def fit_form(candidate: Candidate, obs: Observations, offset_deg: float,
+              settings: JointDiagnoseSettings) -> Fit:
+    """:func:`fit_candidate` for one form."""
+    bounds, extra_starts = bounds_and_starts(candidate, obs, settings)
+    levels = (0.0, -0.5, 0.5)
+    if candidate.discrete:
+        result = best_run(candidate, obs, [np.array([offset_deg, s]) for s in levels], bounds)
+    else:
+        starts = [np.array([offset_deg, ln_s, *extra]) for ln_s in levels
+                  for extra in extra_starts]
+        result = fit(candidate.name, candidate, obs, starts, bounds)
+    return with_params(result, candidate)
+
+
+def bounds_and_starts(candidate: Candidate, obs: Observations,
+                       settings: JointDiagnoseSettings) -> tuple[np.ndarray, list[tuple]]:
+    """The bounds of x = (phi_deg, ln s, extra...) and the starts of the extra parameters."""
+    last_train = float(obs.cycles[obs.train].max())
+    ln_max = math.log(settings.max_k_scale)
+    phi = settings.max_offset_deg
+    bounds = [(-phi, phi), (-ln_max, ln_max)]
+    extra_starts: list[tuple[float, ...]] = [()]
+    if candidate.time_map:
+        advance = _advance_per_cycle(candidate.runs[0], candidate.form)
+        typical = float(np.median(advance[advance > 1e-300])) * last_train  # m slid or cycles
+        bounds += [(math.log(0.05), math.log(2.0 * RUNNING_IN_REACH - 1.0)),
+                   (math.log(1e-3 * typical), math.log(10.0 * typical))]
+        extra_starts = [(math.log(r), math.log(f * typical)) for r in (0.5, 3.0)
+                        for f in (0.03, 0.3)]
+    elif candidate.n_extra == 1:
+        top = len(candidate.runs) - 1.0
+        bounds += [(0.0, top)]
+        extra_starts = [(p,) for p in np.linspace(0.0, top, len(candidate.runs))]
+    return np.array(bounds), extra_starts
+
+
+def best_run(candidate: Candidate, obs: Observations, starts, bounds) -> Fit:
+    """The discrete choice: each run fitted alone (offset and level), the best on the training
+    data kept; its x gets the run's index, and the choice counts as one parameter."""
+    best, best_index = None, 0
+    for index, run in enumerate(candidate.runs):
+        alone = Candidate(candidate.name, (run,), k_scales=(candidate.k_scale(index),))
+        result = fit(candidate.name, alone, obs, starts, np.array(bounds[:2]))
+        if best is None or result.sse_train < best.sse_train:
+            best, best_index = result, index
+    return replace(best, x=np.append(best.x, float(best_index)), n_params=best.n_params + 1)
+
+
+def with_params(result: Fit, candidate: Candidate) -> Fit:
+    """``result`` with its parameters by name (``params``) and its form."""
+    x = result.x
+    params = {"angle_offset_deg": float(x[0])}
+    if x.size > 1:
+        params["k_scale"] = float(math.exp(x[1]))
+    if candidate.time_map:
+        params.update(RUNNING_IN_FORMS[candidate.form](1.0 + float(math.exp(x[2])),
+                                                       float(math.exp(x[3]))).params())
+    elif candidate.n_extra == 1:
+        value = grid_value(candidate, float(x[2]))
+        if candidate.parameter_scales_with_level:  # s rescales the cycle axis: all wear
+            value *= params["k_scale"]
+        params[candidate.parameter] = value
+    return replace(result, params=params, form=candidate.form or None)
+
+
+def needed_cycles(obs: Observations, settings: JointDiagnoseSettings) -> float:
+    """The shortest time axis a fit needs: the last count / max_k_scale."""
+    return float(obs.cycles.max()) / settings.max_k_scale
+
+

@@ -1,0 +1,72 @@
+"""The settings of the joint diagnosis: the ``[joint_diagnose]`` section of the config (its
+defaults and why each value: ``fewear/defaults/diagnose.toml``)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from fewear.diagnose.core.evidence import AcceptanceRule
+from fewear.diagnose.core.statistics import bonferroni_threshold
+from fewear.diagnose.joint.catalogue import CAUSES, IMPACT_FORMS
+from fewear.errors import FewearInputError
+from fewear.io.config import load_config
+
+
+@dataclass(frozen=True)
+class JointDiagnoseSettings:
+    """The ``[joint_diagnose]`` section (``fewear/defaults/diagnose.toml`` says why each value)."""
+
+    candidates: tuple[str, ...]
+    significance: float
+    min_aicc_improvement: float
+    min_held_out_gain: float
+    held_out_fraction: float
+    max_k_scale: float
+    friction_grid: tuple[float, ...]
+    rod_modulus_factors: tuple[float, ...]
+    impact_volume_ratios: tuple[float, ...]
+    impact_forms: tuple[str, ...]
+    max_offset_deg: float
+
+    def __post_init__(self):
+        unknown = [c for c in self.candidates if c not in CAUSES]
+        if unknown or not self.candidates:
+            raise FewearInputError(
+                f"[joint_diagnose] candidates = {list(self.candidates)!r}: expected a non-empty "
+                f"list of {', '.join(CAUSES)}")
+        if not 0.0 < self.held_out_fraction < 1.0:
+            raise FewearInputError(
+                f"[joint_diagnose] held_out_fraction = {self.held_out_fraction!r}: expected a "
+                "fraction in (0, 1)")
+        for name in ("rod_modulus_factors", "friction_grid", "impact_volume_ratios"):
+            values = getattr(self, name)
+            if not values or min(values) <= 0.0:
+                raise FewearInputError(f"[joint_diagnose] {name} = {list(values)!r}: expected a "
+                                       "non-empty list of positive numbers")
+        if not self.impact_forms or not set(self.impact_forms) <= set(IMPACT_FORMS):
+            raise FewearInputError(
+                f"[joint_diagnose] impact_forms = {list(self.impact_forms)!r}: expected a "
+                f"non-empty list of {', '.join(map(repr, IMPACT_FORMS))}")
+        if not self.max_k_scale > 1.0:
+            raise FewearInputError(
+                f"[joint_diagnose] max_k_scale = {self.max_k_scale!r}: expected > 1")
+
+    def acceptance(self, forms_tried: int) -> AcceptanceRule:
+        """The rule a cause must meet when ``forms_tried`` forms were fitted: p below the
+        Bonferroni threshold, a held-out gain of at least ``min_held_out_gain``, AICc at least
+        ``min_aicc_improvement`` lower."""
+        return AcceptanceRule(max_p=bonferroni_threshold(self.significance, forms_tried),
+                              min_gain=self.min_held_out_gain, gain_strictly_above=False,
+                              min_aicc_improvement=self.min_aicc_improvement)
+
+    @classmethod
+    def from_config(cls, section: dict) -> JointDiagnoseSettings:
+        """From a ``[joint_diagnose]`` section (as :func:`fewear.io.config.load_config` returns
+        it)."""
+        values = {key: tuple(v) if isinstance(v, list) else v for key, v in section.items()}
+        return cls(**values)
+
+    @classmethod
+    def default(cls) -> JointDiagnoseSettings:
+        """The embedded defaults (``fewear/defaults/diagnose.toml``)."""
+        return cls.from_config(load_config(None, sections=["joint_diagnose"])["joint_diagnose"])
