@@ -1,11 +1,14 @@
-"""The decorator of fewear's compiled kernels: ``@compiled`` = ``numba.njit(cache=True)``.
+"""The decorator of fewear's compiled kernels: ``@compiled`` = ``numba.njit(cache=True,
+nogil=True)``.
 
 Compiled are the multibody dynamics (:mod:`fewear.mbd`, the whole step loop) and the contact
 Newton's kernels (:mod:`fewear.contact`: the free region's corners and vertices, gaps, the
 condensed path's linearisation and Newton step). The machine code is cached on disk, so only the
 first process after a change of the sources pays the compile (see README, "Dynamics");
 :func:`compile_kernels` compiles before worker processes start, so that they load the code
-instead of each compiling it.
+instead of each compiling it. The kernels release Python's global interpreter lock
+(``nogil``): the wear loop runs the next block's dynamics in a thread while this block's mesh
+stage and checkpoint run (:func:`fewear.loop.block.predict_case`).
 
 numba keys each function's cache on its own source file only, but a compiled caller inlines its
 callees from other files (the integrator's step loop holds the whole dynamics), so a change of
@@ -76,7 +79,7 @@ def _use_cache_dir() -> None:
 
 
 _use_cache_dir()
-compiled = numba.njit(cache=True)
+compiled = numba.njit(cache=True, nogil=True)
 
 
 

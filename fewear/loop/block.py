@@ -4,6 +4,8 @@ blocks of a case until its total cycles."""
 from __future__ import annotations
 
 import math
+import time
+from concurrent.futures import Executor, Future, ThreadPoolExecutor
 from dataclasses import replace
 
 import numpy as np
@@ -33,34 +35,60 @@ def smoothed_block_wear(per_cycle: CycleSliding, state: WearState, extension, cy
     return np.maximum(smoothed_periodic(increment, step, width_rad), 0.0), sliding
 
 
-def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
-              added_depth_per_cycle=None) -> None:
-    """One wear block of ``case`` (stages 1-5), updating it in place. ``added_depth_per_cycle``
-    (history, state) -> depth per cycle (m, per bore node), optional: a wear source of another
-    law added to the block's impact wear (a given source of the block step, like it)."""
+def block_dynamics(rod: str, inputs: RunInputs, state: WearState, mechanism):
+    """Stage 1 of a block: the clearance-joint dynamics of ``rod`` on the worn clearance of
+    ``state``, warm-started from ``mechanism`` (None: the ideal mechanism, settling
+    ``[mechanism] settling_cycles``; else ``warm_settling_cycles``). Returns (the
+    :func:`fewear.mbd.slider_crank.simulate` result, its wall time in s), or the
+    :class:`FewearInputError` of a mechanism the integrator cannot carry (returned, not raised,
+    so that a block run ahead in a thread reports it when its block comes)."""
     from fewear.mbd.slider_crank import UNINTEGRABLE_HINT, simulate
 
-    loop, times = inputs.loop, case.stage_wall_time_s
-    state = case.state
+    loop = inputs.loop
     crank = replace(inputs.dynamics.crank, rod=rod, joint="clearance",
                     recorded_cycles=loop.recorded_cycles_per_block,
                     settling_cycles=(inputs.dynamics.crank.settling_cycles
-                                     if case.mechanism is None else loop.warm_settling_cycles))
+                                     if mechanism is None else loop.warm_settling_cycles))
     joint = replace(inputs.dynamics.joint,
                     profile=state.clearance_profile(inputs.contact.geometry.inner_radius_m,
                                                     inputs.contact.geometry.pin_radius_m))
-    with timed(times, "dynamics"):
-        try:
-            history, _, case.mechanism = simulate(
-                replace(inputs.dynamics, crank=crank, joint=joint), start=case.mechanism)
-        except RuntimeError as exc:  # the integrator's step size collapsed
-            raise FewearInputError(
-                f"{rod} rod, block {state.blocks + 1} at {state.cycles:,} cycles: the dynamics "
-                f"on the worn clearance failed ({exc}): a smaller [integrator] min_step_s, a "
-                "larger gap_tolerance_m or a wider [wear_loop] wear_smoothing_width_deg may get "
-                "past it"
-                + ("" if state.blocks else f"; on the unworn clearance, {UNINTEGRABLE_HINT}")
-            ) from None
+    start = time.perf_counter()
+    try:
+        result = simulate(replace(inputs.dynamics, crank=crank, joint=joint), start=mechanism)
+    except RuntimeError as exc:  # the integrator's step size collapsed
+        return FewearInputError(
+            f"{rod} rod, block {state.blocks + 1} at {state.cycles:,} cycles: the dynamics "
+            f"on the worn clearance failed ({exc}): a smaller [integrator] min_step_s, a "
+            "larger gap_tolerance_m or a wider [wear_loop] wear_smoothing_width_deg may get "
+            "past it"
+            + ("" if state.blocks else f"; on the unworn clearance, {UNINTEGRABLE_HINT}")
+        ), time.perf_counter() - start
+    return result, time.perf_counter() - start
+
+
+def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
+              added_depth_per_cycle=None, dynamics: Future | None = None,
+              ahead: Executor | None = None) -> Future | None:
+    """One wear block of ``case`` (stages 1-5), updating it in place. ``added_depth_per_cycle``
+    (history, state) -> depth per cycle (m, per bore node), optional: a wear source of another
+    law added to the block's impact wear (a given source of the block step, like it).
+
+    ``dynamics``: this block's stage 1 already under way (the future of :func:`block_dynamics`,
+    as returned by the previous block), else it runs here. ``ahead``: an executor on which the
+    next block's stage 1 is started as soon as this block's wear is known, beside the mesh stage;
+    its future is returned (None without ``ahead`` or after the last block). The dynamics depend
+    only on the wear state and the mechanism's last state, so the result is the same either
+    way."""
+    loop, times = inputs.loop, case.stage_wall_time_s
+    state = case.state
+    if dynamics is None:
+        outcome, seconds = block_dynamics(rod, inputs, state, case.mechanism)
+    else:
+        outcome, seconds = dynamics.result()
+    times["dynamics"] += seconds
+    if isinstance(outcome, FewearInputError):
+        raise outcome
+    history, _, case.mechanism = outcome
     with timed(times, "contact"):
         steps = load_steps(history, loop.load_steps_per_cycle * loop.recorded_cycles_per_block,
                            inputs.dynamics.joint.law)
@@ -92,6 +120,9 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
         geometry = inputs.contact.geometry
         worn.checked_against_wall(geometry.inner_radius_m, geometry.outer_radius_m,
                                   loop.max_wall_fraction)
+    following = None
+    if ahead is not None and worn.cycles < loop.total_cycles:
+        following = ahead.submit(block_dynamics, rod, inputs, worn, case.mechanism)
     with timed(times, "mesh"):
         bushing.move_to(worn)
         snapshot = bushing.snapshot()
@@ -104,6 +135,7 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
         worn.cycles, cycles, worn.depth_m.copy(), history.peak_contact_force_N, history.impacts,
         float(wear.pressure_Pa.max()),
         float((per_cycle.depth_m + per_cycle.impact_depth_m).max())))
+    return following
 
 
 def new_case(bushing) -> CaseProgress:
@@ -137,9 +169,12 @@ def restored_bushing(inputs: RunInputs, case: CaseProgress, comm):
 
 def predict_case(rod: str, inputs: RunInputs, bushing, case: CaseProgress, after_block) -> None:
     """Wear blocks until ``total_cycles``; ``after_block(case)`` runs after each (checkpoint,
-    progress)."""
-    while case.state.cycles < inputs.loop.total_cycles:
-        run_block(rod, inputs, bushing, case)
-        after_block(case)
-
-
+    progress). Each block's dynamics runs in a thread from the moment the previous block's wear
+    is known, beside that block's mesh stage and ``after_block`` (:func:`run_block`; the compiled
+    dynamics release the interpreter lock): on a free core the mesh stage costs no wall time.
+    Stage times then overlap."""
+    with ThreadPoolExecutor(max_workers=1, thread_name_prefix=f"fewear-{rod}-dynamics") as ahead:
+        following = None
+        while case.state.cycles < inputs.loop.total_cycles:
+            following = run_block(rod, inputs, bushing, case, dynamics=following, ahead=ahead)
+            after_block(case)
