@@ -14,6 +14,7 @@ import pytest
 
 from fewear.diagnose.joint.catalogue import CAUSES
 from fewear.diagnose.joint.diagnose import diagnose_joint
+from fewear.diagnose.joint.report import summarise
 from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
 from tests.calibrate.joint_cases import believed_text, hidden_joint_case
@@ -32,7 +33,7 @@ def test_identification_accuracy_and_cost(tmp_path):
         for seed in range(SEEDS):
             data, truth, _ = hidden_joint_case(config, cause, 1000 + 17 * seed)
             start = time.perf_counter()
-            summary = diagnose_joint(data, config).summary
+            summary = summarise(diagnose_joint(data, config))
             times.append(time.perf_counter() - start)
             hit = summary["cause"] == cause
             named[cause] += hit

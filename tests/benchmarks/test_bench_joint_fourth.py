@@ -30,6 +30,7 @@ SEEDS = int(os.environ.get("FEWEAR_BENCH_JOINT_FOURTH_SEEDS", "2"))
 
 def test_diagnose_fourth_generator(tmp_path):
     from fewear.diagnose.joint.diagnose import diagnose_joint
+    from fewear.diagnose.joint.report import summarise
 
     rows, config, start = [], None, time.perf_counter()
     print("\ncause | seed | first named | named | gain | wall s | unexplained | profile counts | "
@@ -42,7 +43,7 @@ def test_diagnose_fourth_generator(tmp_path):
                 config = load_config(data.believed_toml, run_sections())
             measured = read_joint_measurements([data.profiles_csv, data.max_wear_csv])
             began = time.perf_counter()
-            summary = diagnose_joint(measured, config).summary
+            summary = summarise(diagnose_joint(measured, config))
             wall = time.perf_counter() - began
             row = (cause, seed, summary["cause"] or "", ",".join(summary["causes"]),
                    float(summary["gain"] or 0.0), wall,

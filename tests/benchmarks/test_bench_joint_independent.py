@@ -39,6 +39,7 @@ def _truth_text(params: dict) -> str:
 def test_independent_joint_diagnosis(tmp_path):
     from fewear.diagnose.joint.diagnose import diagnose_joint
     from fewear.diagnose.joint.measured import read_joint_measurements
+    from fewear.diagnose.joint.report import summarise
     from fewear.io.config import load_config
     from fewear.loop.settings import run_sections
 
@@ -52,7 +53,7 @@ def test_independent_joint_diagnosis(tmp_path):
             data = write_data_set(cause, seed, tmp_path / f"{cause}_{seed}")
             config = config or load_config(data.believed_toml, run_sections())
             measured = read_joint_measurements([data.profiles_csv, data.max_wear_csv])
-            summary = diagnose_joint(measured, config).summary
+            summary = summarise(diagnose_joint(measured, config))
             wall_s = time.perf_counter() - start
             named[cause] += summary["cause"] == cause
             if summary["cause"] != cause:

@@ -7,12 +7,13 @@ def diagnose_data_set(data) -> dict:
     config."""
     from fewear.diagnose.joint.diagnose import diagnose_joint
     from fewear.diagnose.joint.measured import read_joint_measurements
+    from fewear.diagnose.joint.report import summarise
     from fewear.io.config import load_config
     from fewear.loop.settings import run_sections
 
     config = load_config(data.believed_toml, run_sections())
     measured = read_joint_measurements([data.profiles_csv, data.max_wear_csv])
-    return diagnose_joint(measured, config).summary
+    return summarise(diagnose_joint(measured, config))
 
 
 def missed(cause: str, reason: str):

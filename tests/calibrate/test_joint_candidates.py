@@ -427,8 +427,8 @@ def test_the_first_accepted_cause_whose_full_run_holds_up_is_named(monkeypatch,
     if named == ["wear_coefficient"]:
         assert extended["wear"]["constant_k_m2_N"] == pytest.approx(1.5e-15)
         assert extended["joint"]["friction_coefficient"] == 0.1
-        assert [e["cause"] for e in not_confirmed] == ["friction"]
-        assert not_confirmed[0]["full_run_held_out_gain"] < 0.0
+        assert [e.cause for e in not_confirmed] == ["friction"]
+        assert not_confirmed[0].full_run_held_out_gain < 0.0
         sentence, = _unexplained(baseline, final, causes, {"instrument_scatter_m": None,
                                                            "halved_blocks_rms_m": 0.0},
                                  not_confirmed)
@@ -444,7 +444,7 @@ def test_no_cause_is_named_when_no_full_run_holds_up(monkeypatch):
     causes, extended, final, depth, not_confirmed = _confirm(
         config, ["friction"], fits, baseline, obs, JointDiagnoseSettings.default())
     assert causes == [] and final is baseline and extended == config
-    assert [e["cause"] for e in not_confirmed] == ["friction"]
+    assert [e.cause for e in not_confirmed] == ["friction"]
 
 
 def _fit_of(name: str, n_params: int, train_rms_m: float, held_out_rms_m: float) -> Fit:
@@ -462,7 +462,7 @@ def test_no_cause_is_accepted_where_the_believed_model_predicts_within_the_scatt
     baseline = _fit_of("baseline", 1, 0.520e-6, 0.61e-6)
     k_level = {"wear_coefficient": _fit_of("wear_coefficient", 2, 0.512e-6, 0.534e-6)}
     settings = JointDiagnoseSettings.default()
-    accepted, evidence = _select(baseline, k_level, settings, scatter_m=0.5e-6)
-    assert accepted == [] and evidence[0]["p_value"] < 1e-10
-    assert evidence[0]["held_out_gain"] > settings.min_held_out_gain
+    accepted, verdicts = _select(baseline, k_level, settings, scatter_m=0.5e-6)
+    assert accepted == [] and verdicts[0].evidence.p_value < 1e-10
+    assert verdicts[0].evidence.gain > settings.min_held_out_gain
     assert _select(baseline, k_level, settings, scatter_m=0.1e-6)[0] == ["wear_coefficient"]

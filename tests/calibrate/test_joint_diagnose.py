@@ -20,6 +20,7 @@ import pytest
 from fewear.cli import main
 from fewear.diagnose.joint.diagnose import diagnose_joint
 from fewear.diagnose.joint.measured import write_joint_profiles, write_max_wear
+from fewear.diagnose.joint.report import summarise
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
 from fewear.diagnose.joint.structure import MAX_LISTED_IMPACTS
 from fewear.io.config import load_config
@@ -48,7 +49,7 @@ def test_the_hidden_friction_is_named_over_the_level_on_a_short_campaign(believe
     """The quick catalogue: friction and the k level that is the cheapest explanation of it."""
     data, truth, _ = hidden_joint_case(believed[1], "friction", 13, profile_cycles=SHORT)
     settings = JointDiagnoseSettings.from_config({**DEFAULT_SECTION, **QUICK})
-    summary = diagnose_joint(data, believed[1], settings).summary
+    summary = summarise(diagnose_joint(data, believed[1], settings))
     assert summary["cause"] == "friction", (truth, summary["candidates"])
     assert summary["gain"] > 0.25  # held-out error of the extended run at most 3/4
     assert summary["data_kind"] == "joint"
@@ -65,7 +66,7 @@ def test_the_hidden_friction_is_named_over_the_level_on_a_short_campaign(believe
     ("running_in", 15)])
 def test_the_hidden_cause_is_named_and_the_prediction_improves(believed, cause, seed):
     data, truth, offset = hidden_joint_case(believed[1], cause, seed)
-    summary = diagnose_joint(data, believed[1]).summary
+    summary = summarise(diagnose_joint(data, believed[1]))
     assert summary["cause"] == cause, (truth, summary["candidates"])
     assert summary["gain"] > 0.25  # held-out error of the extended run at most 3/4
     assert summary["data_kind"] == "joint"
@@ -140,7 +141,7 @@ def test_the_believed_models_own_data_give_no_cause_and_the_origin_is_found(
 def test_the_believed_models_own_data_give_no_cause_against_the_full_catalogue(believed, seed):
     data, _, offset = hidden_joint_case(believed[1], "none", seed,
                                         force_start_deg=FORCE_START_DEG)
-    assert_no_cause_and_the_origin_found(diagnose_joint(data, believed[1]).summary, offset)
+    assert_no_cause_and_the_origin_found(summarise(diagnose_joint(data, believed[1])), offset)
 
 
 def test_fewear_diagnose_reads_joint_files_and_writes_its_outputs(null_by_the_command):

@@ -12,7 +12,7 @@ import sys
 from fewear.diagnose.core.report import print_verdict
 from fewear.diagnose.joint.diagnose import diagnose_joint
 from fewear.diagnose.joint.measured import read_joint_measurements
-from fewear.diagnose.joint.report import write_joint_outputs
+from fewear.diagnose.joint.report import summarise, write_joint_outputs
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
 from fewear.io.config import load_config
 from fewear.io.output import staged_output
@@ -28,9 +28,9 @@ def run(args) -> int:
     data = read_joint_measurements(args.measured)
     print(f"fewear diagnose: {believed_model(args.config, config)}", file=sys.stderr, flush=True)
     diagnosis = diagnose_joint(data, config, settings)
+    summary = summarise(diagnosis)
     with staged_output(args.out) as stage:
-        write_joint_outputs(diagnosis, stage)
-    summary = diagnosis.summary
+        write_joint_outputs(diagnosis, summary, stage)
     print_verdict(summary, args.out, unit=" m", confounded=[
         f"also accepted (confounded): {group['cause']}" for group in summary["confounded"]])
     return 0

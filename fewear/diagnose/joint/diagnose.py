@@ -84,17 +84,16 @@ from __future__ import annotations
 
 import copy
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 
-from fewear.diagnose.core import report
 from fewear.diagnose.core.evidence import Evidence
 from fewear.diagnose.core.statistics import nested_f_test_p
 from fewear.diagnose.joint import structure
 from fewear.diagnose.joint.candidates import Candidate
-from fewear.diagnose.joint.catalogue import CAUSES, NONE_MEANING, Believed
+from fewear.diagnose.joint.catalogue import CAUSES, Believed
 from fewear.diagnose.joint.fitting import (
     RUNNING_IN_REACH,
     Fit,
@@ -126,16 +125,39 @@ def f_test_p(nested: Fit, fuller: Fit) -> float:
                            fuller.n_train - fuller.n_params)
 
 
-def verdict(fit_: Fit, reference: Fit, settings: JointDiagnoseSettings, tried: int) -> dict:
+@dataclass(frozen=True, eq=False)
+class CauseVerdict:
+    """One cause's ``fit`` (its form, fitted parameters and errors) judged against the model
+    named ``against``: the ``evidence`` and whether the cause is ``accepted``."""
+
+    fit: Fit
+    against: str
+    evidence: Evidence
+    accepted: bool
+
+    @property
+    def cause(self) -> str:
+        """The cause's name."""
+        return self.fit.name
+
+
+@dataclass(frozen=True)
+class Unconfirmed:
+    """An accepted ``cause`` whose extended model, run in full, predicted the held-out data
+    ``full_run_held_out_gain`` better than the believed model: below the criterion."""
+
+    cause: str
+    full_run_held_out_gain: float
+
+
+def verdict(fit_: Fit, reference: Fit, settings: JointDiagnoseSettings,
+            tried: int) -> CauseVerdict:
     """The evidence for a cause against the reference model and whether it is accepted."""
     evidence = Evidence(p_value=f_test_p(reference, fit_),
                         gain=1.0 - fit_.held_out_rms_m / reference.held_out_rms_m,
                         aicc_improvement=reference.aicc - fit_.aicc)
-    return {"cause": fit_.name, "form": fit_.form, "against": reference.name,
-            "p_value": evidence.p_value, "held_out_rms_m": fit_.held_out_rms_m,
-            "training_rms_m": fit_.train_rms_m, "held_out_gain": evidence.gain,
-            "aicc_improvement": evidence.aicc_improvement,
-            "accepted": settings.acceptance(tried).accepts(evidence), "params": fit_.params}
+    return CauseVerdict(fit_, reference.name, evidence,
+                        settings.acceptance(tried).accepts(evidence))
 
 
 def testable(config: dict, settings: JointDiagnoseSettings) -> tuple[list[str], list[dict]]:
@@ -152,14 +174,37 @@ def testable(config: dict, settings: JointDiagnoseSettings) -> tuple[list[str], 
 
 @dataclass(frozen=True, eq=False)
 class JointDiagnosis:
-    """A diagnosis: the summary (``diagnosis.json``), the extended config, and what the
-    figures need (observations, the believed and the extended predictions)."""
+    """Everything :func:`diagnose_joint` found (:func:`fewear.diagnose.joint.report.summarise`
+    makes the JSON-ready summary): the ``data`` and ``settings``, the ``observations``, the
+    believed model's ``baseline`` fit, the ``verdicts`` on every cause tried, the ``accepted``
+    causes in the order they are to be named, the ``causes`` named (none or one), those
+    ``confounded`` with it, those ``not_confirmed`` by their full run and the ``untestable`` ones
+    (cause, why); the extended model (``extended_config``, its ``extended_fit`` and its
+    ``extended_depth_m`` at the observations), the believed model's ``residual_structure``
+    (:func:`cycle_structure`), the ``resolution`` (:func:`forward_resolution`) and what stays
+    ``unexplained``, in sentences."""
 
-    summary: dict[str, Any]
-    extended_config: dict
+    data: JointMeasurements
+    settings: JointDiagnoseSettings
     observations: Observations
-    baseline_depth_m: np.ndarray
+    baseline: Fit
+    verdicts: tuple[CauseVerdict, ...]
+    accepted: tuple[str, ...]
+    causes: tuple[str, ...]
+    confounded: tuple[CauseVerdict, ...]
+    not_confirmed: tuple[Unconfirmed, ...]
+    untestable: tuple[dict[str, str], ...]
+    extended_config: dict
+    extended_fit: Fit
     extended_depth_m: np.ndarray
+    residual_structure: dict[str, Any]
+    resolution: dict[str, Any]
+    unexplained: tuple[str, ...]
+
+    @property
+    def baseline_depth_m(self) -> np.ndarray:
+        """The believed model's depths at the observations."""
+        return self.observations.depth_m - self.baseline.residuals_m
 
 
 def diagnose_joint(data: JointMeasurements, config: dict,
@@ -189,15 +234,19 @@ def diagnose_joint(data: JointMeasurements, config: dict,
     fits = {name: fit_cause(forms, obs, baseline, settings, run_at)
             for name, forms in candidates.items()}
     scatter = structure.scatter_estimate_m(obs.angle_rad, baseline.residuals_m, obs.cycles)
-    accepted, evidence = _select(baseline, fits, settings, scatter)
+    accepted, verdicts = _select(baseline, fits, settings, scatter)
     causes, extended, final_fit, extended_depth, not_confirmed = _confirm(
         config, accepted, fits, baseline, obs, settings)
-    confounded = _confounded(evidence, accepted, causes)
     resolution = forward_resolution(config, base, obs, scatter)
-    summary = _summary(data, config, base, obs, settings, baseline, fits, evidence, causes,
-                       confounded, untestable, final_fit, resolution, not_confirmed)
-    return JointDiagnosis(summary, extended, obs, obs.depth_m - baseline.residuals_m,
-                          extended_depth)
+    return JointDiagnosis(
+        data=data, settings=settings, observations=obs, baseline=baseline,
+        verdicts=tuple(verdicts), accepted=tuple(accepted), causes=tuple(causes),
+        confounded=_confounded(verdicts, accepted, causes), not_confirmed=tuple(not_confirmed),
+        untestable=tuple(untestable), extended_config=extended, extended_fit=final_fit,
+        extended_depth_m=extended_depth,
+        residual_structure=cycle_structure(data, config, obs, baseline, base),
+        resolution=resolution,
+        unexplained=tuple(_unexplained(baseline, final_fit, causes, resolution, not_confirmed)))
 
 
 def _check_run_length(data, obs, believed_config: dict) -> None:
@@ -232,9 +281,9 @@ def _refinement_runs(config: dict, make_runs: RunMaker) -> RunAt:
 
 
 def _select(baseline: Fit, fits: dict[str, Fit], settings,
-            scatter_m: float | None = None) -> tuple[list[str], list[dict]]:
+            scatter_m: float | None = None) -> tuple[list[str], list[CauseVerdict]]:
     """The accepted causes in the order they are to be named (the richer ones by held-out
-    error, then ``wear_coefficient``) and the evidence for every cause tried. None is accepted
+    error, then ``wear_coefficient``) and the verdict on every cause tried. None is accepted
     when the believed model already predicts the held-out data within
     :data:`UNEXPLAINED_SCATTERS` times the instrument's scatter ``scatter_m`` (what 'none'
     means): a relative gain on an error at the noise is no evidence of a cause."""
@@ -242,22 +291,22 @@ def _select(baseline: Fit, fits: dict[str, Fit], settings,
     at_noise = scatter_m is not None and (
         baseline.held_out_rms_m <= UNEXPLAINED_SCATTERS * scatter_m)
 
-    def judged(fit_: Fit, reference: Fit) -> dict:
+    def judged(fit_: Fit, reference: Fit) -> CauseVerdict:
         entry = verdict(fit_, reference, settings, tried)
-        return {**entry, "accepted": entry["accepted"] and not at_noise}
+        return replace(entry, accepted=entry.accepted and not at_noise)
 
-    evidence = []
+    verdicts = []
     reference = baseline
     chosen: list[str] = []
     if "wear_coefficient" in fits:
         entry = judged(fits["wear_coefficient"], baseline)
-        evidence.append(entry)
-        if entry["accepted"]:
+        verdicts.append(entry)
+        if entry.accepted:
             reference, chosen = fits["wear_coefficient"], ["wear_coefficient"]
     richer = [judged(f, reference) for name, f in fits.items() if name != "wear_coefficient"]
-    evidence += richer
-    accepted = sorted((e for e in richer if e["accepted"]), key=lambda e: e["held_out_rms_m"])
-    return [e["cause"] for e in accepted] + chosen, evidence
+    verdicts += richer
+    accepted = sorted((e for e in richer if e.accepted), key=lambda e: e.fit.held_out_rms_m)
+    return [e.cause for e in accepted] + chosen, verdicts
 
 
 def _confirm(config: dict, accepted: list[str], fits: dict[str, Fit], baseline: Fit,
@@ -274,16 +323,16 @@ def _confirm(config: dict, accepted: list[str], fits: dict[str, Fit], baseline: 
         gain = 1.0 - final.held_out_rms_m / baseline.held_out_rms_m
         if gain >= settings.min_held_out_gain:
             return [cause], extended, final, depth, not_confirmed
-        not_confirmed.append({"cause": cause, "full_run_held_out_gain": gain})
+        not_confirmed.append(Unconfirmed(cause, gain))
     return ([], copy.deepcopy(config), baseline, obs.depth_m - baseline.residuals_m,
             not_confirmed)
 
 
-def _confounded(evidence: list[dict], accepted: list[str], causes: list[str]) -> list[dict]:
-    """The richer causes accepted after the named one (not run in full)."""
+def _confounded(verdicts: list[CauseVerdict], accepted: list[str],
+                causes: list[str]) -> tuple[CauseVerdict, ...]:
+    """The verdicts on the richer causes accepted after the named one (not run in full)."""
     later = accepted[accepted.index(causes[0]) + 1:] if causes else []
-    return [{"cause": e["cause"], "held_out_rms_m": e["held_out_rms_m"]} for e in evidence
-            if e["cause"] in later and e["cause"] != "wear_coefficient"]
+    return tuple(e for e in verdicts if e.cause in later and e.cause != "wear_coefficient")
 
 
 def _extended_config(config: dict, cause: str, fitted: Fit) -> dict:
@@ -299,14 +348,6 @@ def _verify(extended: dict, baseline: Fit, obs: Observations, settings):
     final = fit("extended", Candidate("extended", (run,)), obs, [np.array([baseline.x[0]])],
                 np.array([(-phi, phi)]))
     return final, obs.depth_m - final.residuals_m
-
-
-def _prediction(obs: Observations, fit_: Fit) -> dict[str, float]:
-    """Measured and predicted maximum depth at the last cycle count."""
-    last = obs.cycles == obs.cycles.max()
-    predicted = obs.depth_m[last] - fit_.residuals_m[last]
-    return {"cycles": int(obs.cycles.max()), "measured_max_depth_m": float(obs.depth_m[last].max()),
-            "predicted_max_depth_m": float(predicted.max())}
 
 
 def residual_structure(obs: Observations, residuals: np.ndarray,
@@ -391,11 +432,11 @@ shrinkage, grow with it); impact wear that shows only at the held-out count gave
 
 
 def _unexplained(baseline: Fit, final_fit: Fit, causes, resolution: dict,
-                 not_confirmed: list[dict]) -> list[str]:
+                 not_confirmed: list[Unconfirmed]) -> list[str]:
     """What the named causes (or none) leave unexplained, in sentences."""
     base_error, ext_error = baseline.held_out_rms_m, final_fit.held_out_rms_m
-    sentences = [f"{entry['cause']} was accepted on its fitted runs, but its extended model run "
-                 f"in full predicts the held-out data {entry['full_run_held_out_gain']:+.0%} "
+    sentences = [f"{entry.cause} was accepted on its fitted runs, but its extended model run "
+                 f"in full predicts the held-out data {entry.full_run_held_out_gain:+.0%} "
                  "better than the believed model (below the criterion), so it is not named"
                  for entry in not_confirmed]
     if causes:
@@ -434,33 +475,3 @@ def _misfit_without_cause(baseline: Fit, scatter_m: float) -> tuple[float, str] 
                             "counts between those would show it")
     return None
 
-
-def _summary(data, config, base, obs, settings, baseline, fits, evidence, causes, confounded,
-             untestable, final_fit, resolution, not_confirmed) -> dict[str, Any]:
-    base_error, ext_error = baseline.held_out_rms_m, final_fit.held_out_rms_m
-    return {
-        "source": ", ".join(data.sources),
-        "data_kind": "joint",
-        "notes": list(data.notes),
-        "cycle_counts": sorted(int(c) for c in np.unique(obs.cycles)),
-        "holdout": {"strategy": "later cycle counts",
-                    "held_out_cycles": sorted(int(c) for c in np.unique(obs.cycles[~obs.train])),
-                    "why": "life prediction: the model is fitted on the earlier measurements and "
-                           "judged on how it predicts the later ones"},
-        "criterion": (f"F-test p < {settings.significance:g} / forms tried, held-out RMS at "
-                      f"least {settings.min_held_out_gain:.0%} lower, AICc at least "
-                      f"{settings.min_aicc_improvement:g} lower"),
-        "baseline": {"model": "the believed config", "held_out_error": base_error,
-                     "training_error": baseline.train_rms_m,
-                     "angle_offset_deg": float(baseline.x[0])},
-        "candidates": evidence,
-        "untestable": untestable,
-        **report.verdict(causes, CAUSES[causes[0]].meaning if causes else NONE_MEANING,
-                         confounded, base_error, ext_error),
-        "prediction": {"baseline": _prediction(obs, baseline),
-                       "extended": _prediction(obs, final_fit)},
-        "residual_structure": cycle_structure(data, config, obs, baseline, base),
-        "resolution": resolution,
-        "not_confirmed": not_confirmed,
-        "unexplained": _unexplained(baseline, final_fit, causes, resolution, not_confirmed),
-    }

@@ -1,13 +1,20 @@
-"""Outputs of a joint diagnosis: ``diagnosis.json`` (the summary), ``report.md``,
-``extended.toml`` (the config lines of the extended model that differ from the default, usable
-as ``--config``) and the figure ``joint_fits.png``.
+"""Outputs of a joint diagnosis: the summary (:func:`summarise`, ``diagnosis.json``),
+``report.md``, ``extended.toml`` (the config lines of the extended model that differ from the
+default, usable as ``--config``) and the figure ``joint_fits.png``.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
+import numpy as np
+
+from fewear.diagnose.core import report
+from fewear.diagnose.joint.catalogue import CAUSES, NONE_MEANING
+from fewear.diagnose.joint.diagnose import CauseVerdict, JointDiagnosis
 from fewear.diagnose.joint.figures import plot_joint_fits
+from fewear.diagnose.joint.fitting import Fit, Observations
 from fewear.io.config import default_config
 from fewear.io.output import write_json
 from fewear.wear.coefficient import wear_section_toml
@@ -25,16 +32,68 @@ def config_differences(config: dict) -> str:
     return "\n".join(blocks)
 
 
-def write_joint_outputs(diagnosis, folder: Path) -> None:
-    """Write every output of ``diagnosis`` into ``folder``."""
-    s = diagnosis.summary
-    write_json(folder / "diagnosis.json", s)
-    error = s["held_out_error"]
-    header = (f"# The extended model from `fewear diagnose` on {s['source']}: causes "
-              f"{', '.join(s['causes']) or 'none'}; held-out error {error['baseline']:.3g} -> "
-              f"{error['extended']:.3g} m. Use it as `--config`.\n\n")
+def summarise(diagnosis: JointDiagnosis) -> dict[str, Any]:
+    """The JSON-ready summary of ``diagnosis`` (``diagnosis.json``)."""
+    d, obs, settings = diagnosis, diagnosis.observations, diagnosis.settings
+    causes = list(d.causes)
+    return {
+        "source": ", ".join(d.data.sources),
+        "data_kind": "joint",
+        "notes": list(d.data.notes),
+        "cycle_counts": sorted(int(c) for c in np.unique(obs.cycles)),
+        "holdout": {"strategy": "later cycle counts",
+                    "held_out_cycles": sorted(int(c) for c in np.unique(obs.cycles[~obs.train])),
+                    "why": "life prediction: the model is fitted on the earlier measurements and "
+                           "judged on how it predicts the later ones"},
+        "criterion": (f"F-test p < {settings.significance:g} / forms tried, held-out RMS at "
+                      f"least {settings.min_held_out_gain:.0%} lower, AICc at least "
+                      f"{settings.min_aicc_improvement:g} lower"),
+        "baseline": {"model": "the believed config", "held_out_error": d.baseline.held_out_rms_m,
+                     "training_error": d.baseline.train_rms_m,
+                     "angle_offset_deg": float(d.baseline.x[0])},
+        "candidates": [_candidate(entry) for entry in d.verdicts],
+        "untestable": list(d.untestable),
+        **report.verdict(causes, CAUSES[causes[0]].meaning if causes else NONE_MEANING,
+                         [{"cause": e.cause, "held_out_rms_m": e.fit.held_out_rms_m}
+                          for e in d.confounded],
+                         d.baseline.held_out_rms_m, d.extended_fit.held_out_rms_m),
+        "prediction": {"baseline": _prediction(obs, d.baseline),
+                       "extended": _prediction(obs, d.extended_fit)},
+        "residual_structure": d.residual_structure,
+        "resolution": d.resolution,
+        "not_confirmed": [{"cause": e.cause, "full_run_held_out_gain": e.full_run_held_out_gain}
+                          for e in d.not_confirmed],
+        "unexplained": list(d.unexplained),
+    }
+
+
+def _candidate(entry: CauseVerdict) -> dict[str, Any]:
+    """A cause's verdict as a summary entry."""
+    fit_, evidence = entry.fit, entry.evidence
+    return {"cause": fit_.name, "form": fit_.form, "against": entry.against,
+            "p_value": evidence.p_value, "held_out_rms_m": fit_.held_out_rms_m,
+            "training_rms_m": fit_.train_rms_m, "held_out_gain": evidence.gain,
+            "aicc_improvement": evidence.aicc_improvement, "accepted": entry.accepted,
+            "params": fit_.params}
+
+
+def _prediction(obs: Observations, fit_: Fit) -> dict[str, float]:
+    """Measured and predicted maximum depth at the last cycle count."""
+    last = obs.cycles == obs.cycles.max()
+    predicted = obs.depth_m[last] - fit_.residuals_m[last]
+    return {"cycles": int(obs.cycles.max()), "measured_max_depth_m": float(obs.depth_m[last].max()),
+            "predicted_max_depth_m": float(predicted.max())}
+
+
+def write_joint_outputs(diagnosis: JointDiagnosis, summary: dict[str, Any], folder: Path) -> None:
+    """Write every output of ``diagnosis``, its ``summary`` included, into ``folder``."""
+    write_json(folder / "diagnosis.json", summary)
+    error = summary["held_out_error"]
+    header = (f"# The extended model from `fewear diagnose` on {summary['source']}: causes "
+              f"{', '.join(summary['causes']) or 'none'}; held-out error "
+              f"{error['baseline']:.3g} -> {error['extended']:.3g} m. Use it as `--config`.\n\n")
     (folder / "extended.toml").write_text(header + config_differences(diagnosis.extended_config))
-    (folder / "report.md").write_text(report_markdown(s))
+    (folder / "report.md").write_text(report_markdown(summary))
     plot_joint_fits(diagnosis, folder / "joint_fits.png")
 
 
