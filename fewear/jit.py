@@ -82,7 +82,6 @@ _use_cache_dir()
 compiled = numba.njit(cache=True, nogil=True)
 
 
-
 def compile_kernels() -> None:
     """Compile, or load from the cache, the kernels of a wear run: the dynamics'
     (:func:`fewear.mbd.slider_crank.compile_dynamics`) and the contact's

@@ -39,9 +39,9 @@ def block_dynamics(rod: str, inputs: RunInputs, state: WearState, mechanism):
     """Stage 1 of a block: the clearance-joint dynamics of ``rod`` on the worn clearance of
     ``state``, warm-started from ``mechanism`` (None: the ideal mechanism, settling
     ``[mechanism] settling_cycles``; else ``warm_settling_cycles``). Returns (the
-    :func:`fewear.mbd.slider_crank.simulate` result, its wall time in s), or the
-    :class:`FewearInputError` of a mechanism the integrator cannot carry (returned, not raised,
-    so that a block run ahead in a thread reports it when its block comes)."""
+    :func:`fewear.mbd.slider_crank.simulate` result, its wall time in s); a mechanism the
+    integrator cannot carry is a :class:`FewearInputError` (run ahead in a thread, its future
+    raises it when its block comes)."""
     from fewear.mbd.slider_crank import UNINTEGRABLE_HINT, simulate
 
     loop = inputs.loop
@@ -56,13 +56,13 @@ def block_dynamics(rod: str, inputs: RunInputs, state: WearState, mechanism):
     try:
         result = simulate(replace(inputs.dynamics, crank=crank, joint=joint), start=mechanism)
     except RuntimeError as exc:  # the integrator's step size collapsed
-        return FewearInputError(
+        raise FewearInputError(
             f"{rod} rod, block {state.blocks + 1} at {state.cycles:,} cycles: the dynamics "
             f"on the worn clearance failed ({exc}): a smaller [integrator] min_step_s, a "
             "larger gap_tolerance_m or a wider [wear_loop] wear_smoothing_width_deg may get "
             "past it"
             + ("" if state.blocks else f"; on the unworn clearance, {UNINTEGRABLE_HINT}")
-        ), time.perf_counter() - start
+        ) from None
     return result, time.perf_counter() - start
 
 
@@ -82,13 +82,11 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
     loop, times = inputs.loop, case.stage_wall_time_s
     state = case.state
     if dynamics is None:
-        outcome, seconds = block_dynamics(rod, inputs, state, case.mechanism)
+        (history, _, case.mechanism), seconds = block_dynamics(rod, inputs, state,
+                                                                case.mechanism)
     else:
-        outcome, seconds = dynamics.result()
+        (history, _, case.mechanism), seconds = dynamics.result()
     times["dynamics"] += seconds
-    if isinstance(outcome, FewearInputError):
-        raise outcome
-    history, _, case.mechanism = outcome
     with timed(times, "contact"):
         steps = load_steps(history, loop.load_steps_per_cycle * loop.recorded_cycles_per_block,
                            inputs.dynamics.joint.law)

@@ -112,6 +112,7 @@ class BoreMotion:
         self._rhs = self._prescribed.vector.duplicate()
         owned = self.space.dofmap.index_map.size_local
         self._owned_boundary = [dofs[dofs < owned] for dofs in (self.bore_dofs, self.outer_dofs)]
+
     def bore_displacement(self, increment_m: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
         """Displacement (m) of this rank's bore dofs, shape (n, 2): ``increment_m(theta)`` along
         the radial direction at each bore node's angle theta in [0, 2 pi)."""
