@@ -70,6 +70,7 @@ from fewear.contact.newton import (
     ContactNotConverged,
     compile_shared_kernels,
     contact_direction,
+    gaps,
     pairwise_sum,
 )
 from fewear.contact.params import ContactProblem
@@ -114,12 +115,9 @@ def nodal_forces(points: np.ndarray, U: np.ndarray, centre: np.ndarray, pin_radi
 @compiled
 def penetrations(points: np.ndarray, U: np.ndarray, centre: np.ndarray,
                  pin_radius: float) -> np.ndarray:
-    """<R_p - |X + U - c|>_+ at the bore nodes (m)."""
-    result = np.empty(points.shape[0])
-    for q in range(points.shape[0]):
-        result[q] = max(pin_radius - math.hypot(points[q, 0] + U[q, 0] - centre[0],
-                                                points[q, 1] + U[q, 1] - centre[1]), 0.0)
-    return result
+    """<R_p - |X + U - c|>_+ at the bore nodes (m): the negative part of the deformed bore's
+    :func:`fewear.contact.newton.gaps`."""
+    return np.maximum(-gaps(points + U, centre, pin_radius), 0.0)
 
 
 @compiled
