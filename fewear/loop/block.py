@@ -69,20 +69,26 @@ def block_dynamics(rod: str, inputs: RunInputs, state: WearState, mechanism):
 def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
               added_depth_per_cycle=None, dynamics: Future | None = None,
               ahead: Executor | None = None) -> Future | None:
-    """One wear block of ``case`` (stages 1-5), updating it in place. ``added_depth_per_cycle``
-    (history, state) -> depth per cycle (m, per bore node), optional: a wear source of another
-    law added to the block's impact wear (a given source of the block step, like it).
+    """One wear block of ``case``, updating it in place: stage 1 (the dynamics on the worn
+    clearance), then ``[wear_loop] wear_steps_per_block`` wear steps (stages 2-5,
+    :func:`wear_step`) on its recorded cycles, each with the contact solved on the bore the
+    previous step left. The contact and wear respond to the bore within tens of crank cycles
+    (a stiff process: :func:`fewear.wear.archard.block_wear`), the joint's dynamics to the
+    clearance far more slowly; wear steps shorter than the dynamics' block buy accuracy at the
+    price of contact solves, not of dynamics. ``added_depth_per_cycle`` (history, state) ->
+    depth per cycle (m, per bore node), optional: a wear source of another law added to each
+    step's impact wear (a given source of the step, like it).
 
     ``dynamics``: this block's stage 1 already under way (the future of :func:`block_dynamics`,
     as returned by the previous block), else it runs here. ``ahead``: an executor on which the
-    next block's stage 1 is started as soon as this block's wear is known, beside the mesh stage;
-    its future is returned (None without ``ahead`` or after the last block). The dynamics depend
-    only on the wear state and the mechanism's last state, so the result is the same either
-    way."""
+    next block's stage 1 is started as soon as this block's last wear step is known, beside its
+    mesh stage; its future is returned (None without ``ahead`` or after the last block). The
+    dynamics depend only on the wear state and the mechanism's last state, so the result is the
+    same either way."""
     loop, times = inputs.loop, case.stage_wall_time_s
-    state = case.state
+    start = case.state
     if dynamics is None:
-        (history, _, case.mechanism), seconds = block_dynamics(rod, inputs, state,
+        (history, _, case.mechanism), seconds = block_dynamics(rod, inputs, start,
                                                                 case.mechanism)
     else:
         (history, _, case.mechanism), seconds = dynamics.result()
@@ -90,6 +96,43 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
     with timed(times, "contact"):
         steps = load_steps(history, loop.load_steps_per_cycle * loop.recorded_cycles_per_block,
                            inputs.dynamics.joint.law)
+    following, peak_pressure, peak_rate = None, 0.0, 0.0
+    for step in range(loop.wear_steps_per_block):
+        worn, wear, rate = wear_step(rod, inputs, bushing, case.state, history, steps, times,
+                                     added_depth_per_cycle)
+        last = step == loop.wear_steps_per_block - 1 or worn.cycles >= loop.total_cycles
+        if last:
+            worn = replace(worn, blocks=start.blocks + 1)
+            if ahead is not None and worn.cycles < loop.total_cycles:
+                following = ahead.submit(block_dynamics, rod, inputs, worn, case.mechanism)
+        with timed(times, "mesh"):
+            bushing.move_to(worn)
+        case.state = worn
+        case.counts.dropped_steps += wear.dropped_steps
+        peak_pressure = max(peak_pressure, float(wear.pressure_Pa.max()))
+        peak_rate = max(peak_rate, rate)
+        if last:
+            break
+    with timed(times, "mesh"):
+        snapshot = bushing.snapshot()
+    case.node_ids, case.cells, case.meshed_xy_m = (snapshot.node_ids, snapshot.cells,
+                                                   bushing.meshed_xy_m)
+    case.snapshots.append(snapshot.xy_m)
+    case.records.append(BlockRecord(
+        worn.cycles, worn.cycles - start.cycles, worn.depth_m.copy(),
+        history.peak_contact_force_N, history.impacts, peak_pressure, peak_rate))
+    return following
+
+
+def wear_step(rod: str, inputs: RunInputs, bushing, state: WearState, history, steps,
+              times: dict, added_depth_per_cycle=None):
+    """Stages 2-4 of one wear step on the bore of ``state``: the contact at every load step of
+    ``steps`` (cut from ``history``), Archard's law summed into one crank cycle, and the step's
+    A_j cycles extrapolated (:func:`fewear.wear.extrapolation.extrapolate_block`). Returns (the
+    worn state, its ``blocks`` count unchanged; the :class:`CycleWear`; the largest depth per
+    simulated cycle, m), the stage times added to ``times``."""
+    loop = inputs.loop
+    with timed(times, "contact"):
         try:
             wear = cycle_wear(bushing, steps, inputs.wear_coefficient, loop.friction_in_contact,
                               implicit=loop.implicit_wear_step)
@@ -114,26 +157,11 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
                                                math.radians(loop.wear_smoothing_width_deg)),
             bushing.element_height_m, loop.total_cycles - state.cycles)
         worn = WearState(state.angle_rad, state.depth_m + increment, sliding,
-                         state.cycles + cycles, state.blocks + 1)
+                         state.cycles + cycles, state.blocks)
         geometry = inputs.contact.geometry
         worn.checked_against_wall(geometry.inner_radius_m, geometry.outer_radius_m,
                                   loop.max_wall_fraction)
-    following = None
-    if ahead is not None and worn.cycles < loop.total_cycles:
-        following = ahead.submit(block_dynamics, rod, inputs, worn, case.mechanism)
-    with timed(times, "mesh"):
-        bushing.move_to(worn)
-        snapshot = bushing.snapshot()
-    case.state = worn
-    case.node_ids, case.cells, case.meshed_xy_m = (snapshot.node_ids, snapshot.cells,
-                                                   bushing.meshed_xy_m)
-    case.snapshots.append(snapshot.xy_m)
-    case.counts.dropped_steps += wear.dropped_steps
-    case.records.append(BlockRecord(
-        worn.cycles, cycles, worn.depth_m.copy(), history.peak_contact_force_N, history.impacts,
-        float(wear.pressure_Pa.max()),
-        float((per_cycle.depth_m + per_cycle.impact_depth_m).max())))
-    return following
+    return worn, wear, float((per_cycle.depth_m + per_cycle.impact_depth_m).max())
 
 
 def new_case(bushing) -> CaseProgress:

@@ -9,6 +9,8 @@ from fewear.errors import FewearInputError
 from fewear.wear.extrapolation import ExtrapolationSettings
 
 RUN_SECTIONS = ["wear_loop", "wear"]
+MAX_WEAR_STEPS_PER_BLOCK = 64
+"""Each wear step solves the contact of every load step of the recorded cycles once more."""
 
 
 @dataclass(frozen=True)
@@ -21,6 +23,7 @@ class WearLoopSettings:
     friction_in_contact: bool
     extrapolation: ExtrapolationSettings
     recorded_cycles_per_block: int
+    wear_steps_per_block: int
     warm_settling_cycles: int
     max_wall_fraction: float
     implicit_wear_step: bool
@@ -42,6 +45,10 @@ class WearLoopSettings:
             raise FewearInputError(
                 f"[wear_loop] recorded_cycles_per_block = {self.recorded_cycles_per_block}, "
                 f"warm_settling_cycles = {self.warm_settling_cycles}: expected >= 1 and >= 0")
+        if not 1 <= self.wear_steps_per_block <= MAX_WEAR_STEPS_PER_BLOCK:
+            raise FewearInputError(
+                f"[wear_loop] wear_steps_per_block = {self.wear_steps_per_block}: expected 1 to "
+                f"{MAX_WEAR_STEPS_PER_BLOCK} wear steps on each block's recorded cycles")
         if not 0.0 < self.max_wall_fraction < 1.0:
             raise FewearInputError(
                 f"[wear_loop] max_wall_fraction = {self.max_wall_fraction}: expected a fraction "

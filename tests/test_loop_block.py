@@ -1,0 +1,67 @@
+"""A wear block with several wear steps (fewear.loop.block.run_block): the steps are the blocks
+they replace, with the dynamics run once."""
+
+from concurrent.futures import Future
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from mpi4py import MPI
+
+from fewear.io.config import load_config
+from fewear.loop.block import block_dynamics, new_bushing, new_case, run_block
+from fewear.loop.settings import run_inputs_from_config, run_sections
+from tests.test_wear_loop import write_config
+
+
+def done(result) -> Future:
+    future = Future()
+    future.set_result(result)
+    return future
+
+
+@pytest.fixture(scope="module")
+def small_inputs(tmp_path_factory):
+    """The small case of tests/test_wear_loop.py: rigid rod, 40 load steps, A = 2000 per step."""
+    config = load_config(write_config(tmp_path_factory.mktemp("block")), run_sections())
+    config["wear_loop"]["total_cycles"] = 7000
+    return run_inputs_from_config(config)
+
+
+def test_wear_steps_of_one_block_are_the_blocks_they_replace_on_its_history(small_inputs):
+    """Three wear steps on one recorded history leave the bore (depth to the last bit), the
+    cycles and the mesh where three blocks given that same history leave them; the steps count
+    as one block with one record. The last step is cut at total_cycles (2000 + 2000 + 2000,
+    then 1000 in a block of its own)."""
+    stepped = replace(small_inputs, loop=replace(small_inputs.loop, wear_steps_per_block=3))
+    cases = {}
+    for name, inputs in (("steps", stepped), ("blocks", small_inputs)):
+        bushing = new_bushing(inputs, MPI.COMM_SELF)
+        case = new_case(bushing)
+        history = block_dynamics("rigid", inputs, case.state, None)
+        blocks = 3 if name == "blocks" else 1
+        for _ in range(blocks):
+            run_block("rigid", inputs, bushing, case, dynamics=done(history))
+        cases[name] = (case, bushing)
+    (steps, stepped_bushing), (blocks, block_bushing) = cases["steps"], cases["blocks"]
+    assert steps.state.cycles == blocks.state.cycles == 6000
+    np.testing.assert_array_equal(steps.state.depth_m, blocks.state.depth_m)
+    assert steps.state.depth_m.max() > 0.0
+    np.testing.assert_array_equal(stepped_bushing.snapshot().xy_m, block_bushing.snapshot().xy_m)
+    assert (steps.state.blocks, len(steps.records), steps.records[0].block_cycles) == (1, 1, 6000)
+    assert (blocks.state.blocks, len(blocks.records)) == (3, 3)
+    assert steps.counts.ale_moves == blocks.counts.ale_moves == 3
+    run_block("rigid", stepped, stepped_bushing, steps)
+    assert (steps.state.cycles, steps.records[-1].block_cycles, steps.state.blocks) == (7000, 1000,
+                                                                                        2)
+
+
+def test_wear_steps_per_block_outside_1_to_64_is_an_input_error(tmp_path, capsys):
+    from fewear.cli import main
+
+    config = write_config(tmp_path)
+    config.write_text(config.read_text() + "wear_steps_per_block = 0\n")
+    assert main(["run", "--config", str(config), "--out", str(tmp_path / "out")]) == 2
+    error = capsys.readouterr().err
+    assert "wear_steps_per_block = 0: expected 1 to 64" in error
+    assert not (tmp_path / "out").exists()
