@@ -40,7 +40,10 @@ believed.write_text(
     "radial_element_count = 4\n"
     "[wear_loop]\n"
     'rod_models = ["rigid"]\n'
-    "load_steps_per_cycle = 40\n")
+    "load_steps_per_cycle = 40\n"
+    # the coarse model keeps one wear step per block at the former bound (cheap)
+    "max_depth_increment_fraction = 0.25\n"
+    "wear_steps_per_block = 1\n")
 config = load_config(believed, run_sections())
 # -
 

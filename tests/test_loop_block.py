@@ -60,7 +60,8 @@ def test_wear_steps_per_block_outside_1_to_64_is_an_input_error(tmp_path, capsys
     from fewear.cli import main
 
     config = write_config(tmp_path)
-    config.write_text(config.read_text() + "wear_steps_per_block = 0\n")
+    config.write_text(config.read_text().replace("wear_steps_per_block = 1",
+                                                 "wear_steps_per_block = 0"))
     assert main(["run", "--config", str(config), "--out", str(tmp_path / "out")]) == 2
     error = capsys.readouterr().err
     assert "wear_steps_per_block = 0: expected 1 to 64" in error

@@ -23,6 +23,7 @@ load_steps_per_cycle = 40
 total_cycles = 4000
 extrapolation = "fixed"
 extrapolation_factor = 2000.0
+wear_steps_per_block = 1
 implicit_wear_step = {implicit}
 wear_smoothing_width_deg = {smoothing}
 """.format(size=2 * math.pi * R_B / 48 * (1 + 1e-9), implicit="{implicit}",

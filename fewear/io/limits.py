@@ -1,5 +1,5 @@
 """Plausibility limits of the config: values of the right type that are nonsense in physics or
-would cost more than any run can pay (hours of meshing, millions of wear blocks).
+would cost more than any run can pay (hours of meshing, millions of wear steps).
 
 :func:`check_limits` runs on every config a command loads (:func:`fewear.io.config.load_config`),
 on the sections it uses, before any work starts; each violation is a
@@ -38,10 +38,11 @@ DEFAULT_MESH_CELLS, DEFAULT_CONDENSATION_S = 1872, 1.0
 """The default mesh and the wall time of its condensation (the cost estimate's reference)."""
 MAX_LOAD_STEPS_PER_CYCLE = 10_000
 """[wear_loop] load_steps_per_cycle: contact solves per simulated cycle (the seed: 200)."""
-MAX_WEAR_BLOCKS = 10_000
-"""Wear blocks of one run (the default: about 10 to 80; each takes a few seconds)."""
-SECONDS_PER_BLOCK = 3.0
-"""About the wall time of one wear block on the default mesh (the cost estimate)."""
+MAX_WEAR_STEPS = 10_000
+"""Wear steps of one run (the default: about 750 over 400,000 cycles)."""
+SECONDS_PER_WEAR_STEP = 0.5
+"""About the wall time of one wear step on the default mesh, its share of the block's dynamics
+included (the cost estimate)."""
 
 
 def check_limits(config: dict, source: str) -> None:
@@ -167,8 +168,8 @@ def _mesh(config: dict) -> str:
     return ""
 
 
-def wear_blocks(loop: dict) -> int:
-    """The fewest wear blocks a run of the [wear_loop] section makes: total_cycles over the
+def wear_steps(loop: dict) -> int:
+    """The fewest wear steps a run of the [wear_loop] section makes: total_cycles over the
     largest extrapolation factor it may use."""
     factor = (loop["extrapolation_factor"] if loop["extrapolation"] == "fixed"
               else loop["max_extrapolation_factor"])
@@ -190,15 +191,15 @@ def _wear_loop(config: dict) -> str:
                 f"expected at most {MAX_DYNAMICS_CYCLES:,} simulated crank cycles per block")
     if loop["total_cycles"] < 1 or loop["extrapolation"] not in ("fixed", "adaptive"):
         return ""  # the loop's own checks name these
-    blocks = wear_blocks(loop)
-    if blocks > MAX_WEAR_BLOCKS:
+    blocks = wear_steps(loop)
+    if blocks > MAX_WEAR_STEPS:
         key = ("extrapolation_factor" if loop["extrapolation"] == "fixed"
                else "max_extrapolation_factor")
         return (f"[wear_loop] total_cycles = {loop['total_cycles']:,} with {key} = "
-                f"{loop[key]!r} makes at least {blocks:,} wear blocks (about "
-                f"{duration(blocks * SECONDS_PER_BLOCK)}); expected at most "
-                f"{MAX_WEAR_BLOCKS:,}: raise {key} to at least "
-                f"{loop['total_cycles'] / MAX_WEAR_BLOCKS:.3g} or lower total_cycles")
+                f"{loop[key]!r} makes at least {blocks:,} wear steps (about "
+                f"{duration(blocks * SECONDS_PER_WEAR_STEP)}); expected at most "
+                f"{MAX_WEAR_STEPS:,}: raise {key} to at least "
+                f"{loop['total_cycles'] / MAX_WEAR_STEPS:.3g} or lower total_cycles")
     return ""
 
 

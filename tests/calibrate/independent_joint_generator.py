@@ -78,6 +78,10 @@ radial_element_count = 4
 [wear_loop]
 rod_models = ["rigid"]
 load_steps_per_cycle = 40
+# the coarse test model keeps one wear step per block at the former bound (cheap; the wear step's
+# convergence is tests/benchmarks/test_bench_wear_step.py)
+max_depth_increment_fraction = 0.25
+wear_steps_per_block = 1
 """
 """The model the user believes: the coarse rigid-rod wear loop with a steel rod (the density this
 generator was written for; defaults otherwise)."""

@@ -24,11 +24,11 @@ CASES = {
                     ["crank_speed_rpm = 1e+300", "at most 60,000 rpm"]),
     "dynamics_cycles": ("[mechanism]\nsettling_cycles = 100000\n",
                         ["settling_cycles + recorded_cycles = 100,001", "1,000"]),
-    "wear_blocks": ('[wear_loop]\nextrapolation = "fixed"\nextrapolation_factor = 1.0\n',
-                    ["total_cycles = 400,000", "400,000 wear blocks", "days",
+    "wear_steps": ('[wear_loop]\nextrapolation = "fixed"\nextrapolation_factor = 1.0\n',
+                    ["total_cycles = 400,000", "400,000 wear steps", "56 h",
                      "raise extrapolation_factor to at least 40"]),
     "adaptive_blocks": ("[wear_loop]\nmax_extrapolation_factor = 2.0\n",
-                        ["max_extrapolation_factor = 2.0", "200,000 wear blocks"]),
+                        ["max_extrapolation_factor = 2.0", "200,000 wear steps"]),
     "cycles_per_block": ("[wear_loop]\nrecorded_cycles_per_block = 5000\n",
                          ["recorded_cycles_per_block + warm_settling_cycles = 5,001"]),
     "load_steps": ("[wear_loop]\nload_steps_per_cycle = 1000000\n",
@@ -62,7 +62,7 @@ def test_every_limit_is_stated_in_the_default_config():
                    f"at least {limits.MIN_BORE_ELEMENTS} elements",
                    f"{limits.MAX_MESH_CELLS:,} quadrilaterals",
                    f"at most {limits.MAX_LOAD_STEPS_PER_CYCLE:,}",
-                   f"{limits.MAX_WEAR_BLOCKS:,} wear blocks"):
+                   f"{limits.MAX_WEAR_STEPS:,} wear steps"):
         assert stated in text, stated
 
 

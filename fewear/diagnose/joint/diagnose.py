@@ -251,21 +251,21 @@ def diagnose_joint(data: JointMeasurements, config: dict,
 
 def _check_run_length(data, obs, believed_config: dict) -> None:
     """The forward runs go a few times the last measured cycle count: a count that makes them
-    longer than a run may be (:data:`fewear.io.limits.MAX_WEAR_BLOCKS`) is refused before any
-    run, naming the count, the blocks it would take and what would do."""
-    from fewear.io.limits import MAX_WEAR_BLOCKS, SECONDS_PER_BLOCK, duration, wear_blocks
+    longer than a run may be (:data:`fewear.io.limits.MAX_WEAR_STEPS`) is refused before any
+    run, naming the count, the wear steps it would take and what would do."""
+    from fewear.io.limits import MAX_WEAR_STEPS, SECONDS_PER_WEAR_STEP, duration, wear_steps
 
     loop = believed_config["wear_loop"]
-    blocks = wear_blocks(loop)
-    if blocks > MAX_WEAR_BLOCKS:
+    steps = wear_steps(loop)
+    if steps > MAX_WEAR_STEPS:
         key = ("extrapolation_factor" if loop["extrapolation"] == "fixed"
                else "max_extrapolation_factor")
         raise FewearInputError(
             f"{', '.join(data.sources) or 'the measured data'}: the last measured cycle count "
             f"{int(obs.cycles.max()):,} makes each forward run of the believed model go to "
-            f"{loop['total_cycles']:,} cycles, at least {blocks:,} wear blocks (about "
-            f"{duration(blocks * SECONDS_PER_BLOCK)} per run); expected at most "
-            f"{MAX_WEAR_BLOCKS:,}: check the cycles column (crank revolutions), or raise "
+            f"{loop['total_cycles']:,} cycles, at least {steps:,} wear steps (about "
+            f"{duration(steps * SECONDS_PER_WEAR_STEP)} per run); expected at most "
+            f"{MAX_WEAR_STEPS:,}: check the cycles column (crank revolutions), or raise "
             f"[wear_loop] {key} in --config")
 
 
