@@ -4,6 +4,7 @@ method is in :mod:`fewear.diagnose.tribometer.diagnose`)."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -252,7 +253,18 @@ def _try_cause(stage: Stage, current: StageFit, current_errors: np.ndarray,
         training_error=float(np.sqrt(np.mean(fit.residuals**2))),
         evidence=Evidence(p_value=p_value,
                           gain=1.0 - held_out_rms(errors) / held_out_rms(current_errors),
-                          aicc_improvement=-aicc_change))
+                          aicc_improvement=-aicc_change,
+                          effect_over_scatter=effect_over_scatter(current, fit)))
+
+
+def effect_over_scatter(current: StageFit, fit: StageFit) -> float:
+    """The largest change ``fit`` makes to a fitted ln V (the difference of the two fits'
+    residuals on the same rows) over ``fit``'s RMS residual, the scatter of a reading once the
+    cause is in the model (``current``'s residuals hold the effect itself: against them a cause
+    that explains most of the misfit could never stand out)."""
+    scatter = float(np.sqrt(np.mean(fit.residuals**2)))
+    change = float(np.max(np.abs(current.residuals - fit.residuals)))
+    return change / scatter if scatter > 0.0 else math.inf
 
 
 def _judged(trial: Trial, rule: AcceptanceRule) -> Trial:
@@ -271,6 +283,10 @@ def _verdict(trial: Trial, rule: AcceptanceRule) -> str:
         return f"rejected: not significant ({shown}; needs p < {rule.max_p:.2g})"
     if not rule.predicts_better(evidence):
         return f"rejected: predicts held-out tests no better ({shown})"
+    if not rule.resolved(evidence):
+        return (f"rejected: an effect the data do not resolve ({shown}): it changes no fitted "
+                f"reading by more than {evidence.effect_over_scatter:.2g} times the scatter of "
+                f"a reading (needs {rule.min_effect_over_scatter:g})")
     return (f"rejected: AICc {trial.aicc_change:+.1f} (needs <= "
             f"-{rule.min_aicc_improvement:g}): the extra parameters do not pay for "
             "themselves in the fit")

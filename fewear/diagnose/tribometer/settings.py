@@ -23,6 +23,7 @@ class DiagnoseSettings:
     min_conditions_for_network: int
     candidates: tuple[str, ...]
     prediction_distance_factor: float
+    min_effect_over_scatter: float
 
     def __post_init__(self):
         where = "[diagnose]"
@@ -40,6 +41,10 @@ class DiagnoseSettings:
             raise FewearInputError(
                 f"{where} min_conditions_for_network = {self.min_conditions_for_network!r}: "
                 "expected >= 4 (the network needs at least 4 tests)")
+        if not (math.isfinite(self.min_effect_over_scatter)
+                and self.min_effect_over_scatter >= 0.0):
+            raise FewearInputError(f"{where} min_effect_over_scatter = "
+                                   f"{self.min_effect_over_scatter!r}: expected a number >= 0")
         unknown = [name for name in self.candidates if name not in CAUSES]
         if unknown:
             raise FewearInputError(f"{where} candidates: unknown cause(s) {unknown}; the "
@@ -51,10 +56,12 @@ class DiagnoseSettings:
 
     def acceptance(self, forms_tried: int) -> AcceptanceRule:
         """The rule a cause must meet at a step where ``forms_tried`` forms were fitted: p below
-        the Bonferroni threshold, a held-out gain above 0, AICc ``min_aicc_improvement`` lower."""
+        the Bonferroni threshold, a held-out gain above 0, AICc ``min_aicc_improvement`` lower
+        and an effect of at least ``min_effect_over_scatter`` scatters of a reading."""
         return AcceptanceRule(max_p=bonferroni_threshold(self.significance, forms_tried),
                               min_gain=0.0, gain_strictly_above=True,
-                              min_aicc_improvement=self.min_aicc_improvement)
+                              min_aicc_improvement=self.min_aicc_improvement,
+                              min_effect_over_scatter=self.min_effect_over_scatter)
 
     @classmethod
     def from_config(cls, section: dict[str, Any]) -> DiagnoseSettings:
