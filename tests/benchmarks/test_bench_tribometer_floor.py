@@ -1,5 +1,5 @@
 """The tribometer diagnosis's effect floor on data it was not tuned on (issue 23; prints its
-tables, asserts a loose floor).
+tables, asserts the issue's goal of at most 5 % false positives on null data).
 
 tests/calibrate/tribometer_floor_generator.py was written from a brief without reading the
 diagnosis: plain-Archard data (``null``) and data with a SMALL cause (running-in, load exponent,

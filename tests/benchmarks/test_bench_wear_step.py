@@ -4,11 +4,11 @@ The default config's rigid rod to FEWEAR_BENCH_WEAR_STEP_CYCLES (default 50,000)
 with the dynamics of the unworn joint's first block reused for every wear step: the orbit, and
 with it the cycle-to-cycle scatter that makes the full loop's runs differ by a few per cent, is
 the same in every run, so what differs is the wear step and nothing else. The linearly implicit
-step (:func:`fewear.wear.archard.block_wear`) at the adaptive bound f = 0.25 (the default),
-0.125, 0.0625, 0.03125 of the bore element's height per step is compared with explicit steps of
-A = 40 cycles (seed eq. 10 as printed, stable at that A): the reference. The reference's own
-error is shown by a second pair, from the f = 0.0625 state at 20,000 cycles, 4,000 cycles more
-with explicit steps of 40 and of 10 cycles.
+step (:func:`fewear.wear.archard.block_wear`) at the adaptive bound f = 0.25 (the former
+default), 0.125, 0.0625, 0.03125 (the default) of the bore element's height per step is compared
+with explicit steps of A = 40 cycles (seed eq. 10 as printed, stable at that A): the reference.
+The reference's own error is shown by a second pair, from the f = 0.0625 state at 20,000 cycles,
+4,000 cycles more with explicit steps of 40 and of 10 cycles.
 
 Why a reference of small explicit steps: the contact's response to the wear is stiff (time
 constants of tens of cycles over a continuous spectrum) and the implicit step linearises it with
