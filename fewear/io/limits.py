@@ -181,9 +181,9 @@ def _wear_loop(config: dict) -> str:
     loop = config.get("wear_loop")
     if loop is None:
         return ""
-    steps = loop["load_steps_per_cycle"]
-    if steps > MAX_LOAD_STEPS_PER_CYCLE:
-        return (f"[wear_loop] load_steps_per_cycle = {steps:,}: expected at most "
+    load_steps = loop["load_steps_per_cycle"]
+    if load_steps > MAX_LOAD_STEPS_PER_CYCLE:
+        return (f"[wear_loop] load_steps_per_cycle = {load_steps:,}: expected at most "
                 f"{MAX_LOAD_STEPS_PER_CYCLE:,} contact solves per simulated cycle (the seed: 200)")
     per_block = loop["recorded_cycles_per_block"] + loop["warm_settling_cycles"]
     if per_block > MAX_DYNAMICS_CYCLES:
@@ -191,13 +191,13 @@ def _wear_loop(config: dict) -> str:
                 f"expected at most {MAX_DYNAMICS_CYCLES:,} simulated crank cycles per block")
     if loop["total_cycles"] < 1 or loop["extrapolation"] not in ("fixed", "adaptive"):
         return ""  # the loop's own checks name these
-    blocks = wear_steps(loop)
-    if blocks > MAX_WEAR_STEPS:
+    step_count = wear_steps(loop)
+    if step_count > MAX_WEAR_STEPS:
         key = ("extrapolation_factor" if loop["extrapolation"] == "fixed"
                else "max_extrapolation_factor")
         return (f"[wear_loop] total_cycles = {loop['total_cycles']:,} with {key} = "
-                f"{loop[key]!r} makes at least {blocks:,} wear steps (about "
-                f"{duration(blocks * SECONDS_PER_WEAR_STEP)}); expected at most "
+                f"{loop[key]!r} makes at least {step_count:,} wear steps (about "
+                f"{duration(step_count * SECONDS_PER_WEAR_STEP)}); expected at most "
                 f"{MAX_WEAR_STEPS:,}: raise {key} to at least "
                 f"{loop['total_cycles'] / MAX_WEAR_STEPS:.3g} or lower total_cycles")
     return ""

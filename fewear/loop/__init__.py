@@ -13,14 +13,17 @@ flexible). Every wear block j:
 3. **Contact** (:mod:`fewear.contact`): the FE bushing on the worn bore (Q8, outer surface clamped,
    rigid pin on a pilot point) under each step's force: nodal pressures p and slips s.
 4. **Wear** (:mod:`fewear.wear`): Archard's law with k(p, v) (seed eq. 9-10) and the wear law's
-   history multiplier, per node, averaged over the recorded cycles; the block extrapolates it over
-   A_j real cycles (fixed, or adaptive: bounded depth increment per block). Optionally impacts
+   history multiplier, per node, averaged over the recorded cycles; the wear step extrapolates it
+   over A_j real cycles (fixed, or adaptive: bounded depth increment per step). Optionally impacts
    wear too: ``[wear] impact_wear_coefficient_m3_J`` k_imp > 0 adds k_imp times each step's
    hysteresis work of the contact law, spread in proportion to the step's pressure
    (:mod:`fewear.wear.impact`; default 0, none).
-5. **Geometry update**: the bore nodes move by the block's depth increment, the mesh follows (ALE)
-   or is re-meshed from the worn bore, and the contact operator is rebuilt: the next block runs
-   on the worn joint.
+5. **Geometry update**: the bore nodes move by the step's depth increment, the mesh follows (ALE)
+   or is re-meshed from the worn bore, and the contact operator is rebuilt.
+
+Stages 3-5 are one wear step; a block makes ``wear_steps_per_block`` of them on its recorded
+cycles (the contact responds to the worn bore within tens of cycles, the dynamics far more
+slowly), then the next block runs its dynamics on the worn joint.
 
 The worn bore has one source, :class:`fewear.wear.state.WearState`; the dynamics' clearance and the
 mesh's bore are both derived from it. A checkpoint is written after every block

@@ -16,8 +16,9 @@ STAGES = ("dynamics", "contact", "wear", "mesh")
 
 @dataclass(frozen=True)
 class BlockRecord:
-    """One wear block: cycles at its end, its A_j, the depth profile after it (at the state's
-    node angles), and what its simulated cycles saw (the depth per cycle: Archard's plus the
+    """One wear block: cycles at its end, the cycles it covered (the sum of its wear steps'
+    A_j), the depth profile after it (at the state's node angles), and the most its simulated
+    cycles saw over its wear steps (contact pressure; depth per cycle: Archard's plus the
     impacts')."""
 
     cycles: int
