@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 
 import numpy as np
 from scipy import optimize
@@ -27,7 +28,6 @@ from fewear.diagnose.joint.forward import WearHistory
 from fewear.diagnose.joint.measured import JointMeasurements
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
 from fewear.errors import FewearInputError
-from fewear.mesh.profile import periodic_linear
 from fewear.wear.extensions import (
     NoExtension,
     RunningInCycles,
@@ -51,6 +51,18 @@ class Observations:
     @property
     def is_profile(self) -> np.ndarray:
         return np.isfinite(self.angle_rad)
+
+    @cached_property
+    def by_count(self) -> list[tuple[float, np.ndarray, np.ndarray]]:
+        """Per cycle count (ascending): the count, the indices of its profile points and of
+        its maximum depths (computed once: a fit evaluates the model tens of thousands of
+        times)."""
+        groups = []
+        for cycles in np.unique(self.cycles):
+            at = self.cycles == cycles
+            groups.append((float(cycles), np.flatnonzero(at & self.is_profile),
+                           np.flatnonzero(at & ~self.is_profile)))
+        return groups
 
 
 def observations(data: JointMeasurements, held_out_fraction: float) -> Observations:
@@ -109,7 +121,7 @@ def _mixed_depth(candidate: Candidate, position: float, scale: float,
     runs = candidate.runs
     if len(runs) == 1:
         return runs[0].nodal_depth_m(scale / candidate.k_scale(0) * cycles)
-    position = float(np.clip(position, 0.0, len(runs) - 1))
+    position = min(max(float(position), 0.0), len(runs) - 1.0)
     k = min(int(position), len(runs) - 2)
     w = position - k
     return ((1 - w) * runs[k].nodal_depth_m(scale / candidate.k_scale(k) * cycles)
@@ -166,18 +178,18 @@ def _nodal_prediction(candidate: Candidate, x: np.ndarray, cycles: float) -> np.
 def predict(obs: Observations, x: np.ndarray, candidate: Candidate) -> np.ndarray:
     """The model's depth at every observation for the parameters x."""
     out = np.empty(obs.depth_m.size)
-    angles = candidate.runs[0].angle_rad
-    for cycles in np.unique(obs.cycles):
+    angles = candidate.runs[0].angle_rad  # the loop's node angles: a valid periodic table
+    offset_rad = math.radians(x[0])
+    for cycles, profile, maximum in obs.by_count:
         nodal = _nodal_prediction(candidate, x, cycles)
-        at = obs.cycles == cycles
-        profile = at & obs.is_profile
-        out[profile] = periodic_linear(angles, nodal)(obs.angle_rad[profile] + math.radians(x[0]))
-        out[at & ~obs.is_profile] = nodal.max()
+        out[profile] = np.interp(obs.angle_rad[profile] + offset_rad, angles, nodal,
+                                 period=2.0 * math.pi)
+        out[maximum] = nodal.max()
     return out
 
 
 def _sse(x, obs: Observations, candidate: Candidate, mask: np.ndarray, bounds) -> float:
-    clipped = np.clip(x, bounds[:, 0], bounds[:, 1])
+    clipped = np.minimum(np.maximum(x, bounds[:, 0]), bounds[:, 1])
     r = obs.depth_m[mask] - predict(obs, clipped, candidate)[mask]
     return float(r @ r) * (1.0 + float(np.sum((x - clipped) ** 2)))
 

@@ -46,7 +46,7 @@ class WearHistory:
     def nodal_depth_m(self, cycles: float) -> np.ndarray:
         """Depth at the nodes after ``cycles`` (linear between blocks; beyond the last block
         extrapolated with the last block's rate)."""
-        k = int(np.clip(np.searchsorted(self.cycles, cycles) - 1, 0, self.cycles.size - 2))
+        k = min(max(int(np.searchsorted(self.cycles, cycles)) - 1, 0), self.cycles.size - 2)
         span = self.cycles[k + 1] - self.cycles[k]
         weight = (cycles - self.cycles[k]) / span
         return np.maximum((1.0 - weight) * self.depth_m[k] + weight * self.depth_m[k + 1], 0.0)
@@ -54,7 +54,8 @@ class WearHistory:
     def nodal_depth_each_m(self, cycles: np.ndarray) -> np.ndarray:
         """Depth at each node after its own cycle count ``cycles`` (n,) (as
         :meth:`nodal_depth_m`, node by node)."""
-        k = np.clip(np.searchsorted(self.cycles, cycles) - 1, 0, self.cycles.size - 2)
+        k = np.minimum(np.maximum(np.searchsorted(self.cycles, cycles) - 1, 0),
+                       self.cycles.size - 2)
         weight = (cycles - self.cycles[k]) / (self.cycles[k + 1] - self.cycles[k])
         nodes = np.arange(self.angle_rad.size)
         return np.maximum((1.0 - weight) * self.depth_m[k, nodes]
