@@ -281,6 +281,7 @@ class CondensedBushingContact:
         self.zero_displacement()
         self.pin_centre_m = np.zeros(2)
         self.newton.forget()
+        self.newton.geometry_changed()
 
     def _bore_dofs(self):
         """Local indices (unrolled) of the S2 dofs on the bore, their columns in the gathered,

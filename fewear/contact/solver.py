@@ -238,6 +238,7 @@ class BushingContactSolver:
         self._K = self._K_elastic.duplicate(copy=True)
         self.bore.update_geometry()
         self.weights_m = bore_node_weights(self.mesh, self.bore)
+        self.newton.geometry_changed()
 
     # -- solving -----------------------------------------------------------------------------
     def solve(self, force_N, rotation_increment_rad: float = 0.0,
