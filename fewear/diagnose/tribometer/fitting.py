@@ -101,6 +101,43 @@ def fit_stage(stage: Stage, forms: tuple[Form, ...], starts: list[np.ndarray],
     return StageFit(forms, xs, laws, intercepts, z - intercepts[stage.group])
 
 
+def scatter_weights(residuals: np.ndarray, log_volume: np.ndarray,
+                    test: np.ndarray) -> np.ndarray:
+    """Weights 1 / var(ln V_i), mean 1, of readings of the wear volume V along tests (``test``
+    per reading), from a model's ``residuals`` in ln V and fitted ``log_volume`` ln V.
+
+    A weighing or a profile reads V with errors of three sizes: in proportion to V (sd
+    a^1/2 V), of their own size (balance resolution: b^1/2 V_m, V_m the median reading), and in
+    proportion to the test's wear as a whole (debris, a transfer layer, a zero offset of the
+    test: c^1/2 V_T, V_T the test's largest reading). In ln V (delta method)
+    var_i = a + b (V_m / V_i)^2 + c (V_T / V_i)^2: an early reading, or one near the resolution,
+    says little about its test's level. a, b and c by maximum likelihood (Gaussian), with the
+    model's fitted volumes (the measured ones would weight a reading by its own error); b = c = 0
+    gives equal weights. The residuals must be those of a model that holds the shape of the wear
+    curves (else the variance model takes a misfit of the early readings for their scatter)."""
+    residual_sq = residuals**2
+    mean_sq = float(np.mean(residual_sq))
+    if not mean_sq > 0.0:
+        return np.ones(residuals.size)
+    largest = np.full(int(test.max()) + 1, -np.inf)
+    np.maximum.at(largest, test, log_volume)
+    sizes = np.exp(2.0 * np.array([np.zeros(residuals.size), np.median(log_volume) - log_volume,
+                                   largest[test] - log_volume]))
+
+    def variance(theta):
+        return mean_sq * (np.exp(theta) @ sizes)
+
+    def negative_log_likelihood(theta):
+        v = variance(theta)
+        return float(np.sum(np.log(v) + residual_sq / v))
+
+    theta = optimize.minimize(negative_log_likelihood, np.array([0.0, -4.0, -4.0]),
+                              method="L-BFGS-B", bounds=[(-12.0, 3.0), (-30.0, 3.0),
+                                                         (-30.0, 3.0)]).x
+    weight = 1.0 / variance(theta)
+    return weight / weight.mean()
+
+
 def held_out_errors(stage: Stage, fit: StageFit) -> np.ndarray:
     """Leave-one-test-out mean squared error of each unit (NaN where it cannot be predicted).
 

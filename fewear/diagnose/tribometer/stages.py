@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 
 from fewear.diagnose.tribometer.catalogue import Context, Form, ShapeLaw, forms_of
-from fewear.diagnose.tribometer.fitting import Stage, StageFit, StageResult
+from fewear.diagnose.tribometer.fitting import Stage, StageFit, StageResult, scatter_weights
 from fewear.diagnose.tribometer.readings import Readings
 from fewear.diagnose.tribometer.settings import DiagnoseSettings
 
@@ -120,11 +120,26 @@ def reading_stage(readings: Readings, settings: DiagnoseSettings) -> Stage:
                  reading_context(readings), _testable("shape", have, causes))
 
 
+def test_levels(readings: Readings, along: StageResult) -> np.ndarray:
+    """Each test's level under the along-test model (its ln V - ln s - ln S_eff/s), the mean
+    of its readings weighted by their precision (:func:`scatter_weights` on the final model's
+    residuals): an early reading, or one near the instrument's resolution, says little about the
+    test's level. Equally weighted, the scatter of those small readings moved the levels of the
+    tests of small wear (a load exponent named on plain-Archard data: blind floor benchmark,
+    tests/benchmarks/test_bench_tribometer_floor.py)."""
+    final, test = along.final, readings.test_index
+    log_volume = along.stage.y - final.residuals + np.log(readings.distance_m)
+    weight = scatter_weights(final.residuals, log_volume, test)
+    shape_free = final.residuals + final.intercepts[along.stage.group]
+    return (np.bincount(test, weight * shape_free, readings.n_tests)
+            / np.bincount(test, weight, readings.n_tests))
+
+
 def across_stage(readings: Readings, along: StageResult, settings: DiagnoseSettings) -> Stage:
-    """Histories: one row per test, its level under the along-test model minus ln F, one level
-    per material group, the level causes."""
+    """Histories: one row per test, its level under the along-test model (:func:`test_levels`)
+    minus ln F, one level per material group, the level causes."""
     test_group, _ = readings.test_groups()
-    levels = along.final.intercepts - readings.per_test(_log_force(readings))
+    levels = test_levels(readings, along) - readings.per_test(_log_force(readings))
     return Stage("across tests", levels, test_group, np.arange(readings.n_tests),
                  _test_context(readings),
                  _testable("level", available_needs(readings), settings.candidates))
