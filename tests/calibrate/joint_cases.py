@@ -44,7 +44,14 @@ def believed_text() -> str:
 
 
 def truth_config(config: dict, cause: str, rng: np.random.Generator) -> tuple[dict, dict]:
-    """The believed config with ``cause`` switched on at random parameters (and which)."""
+    """The believed config with ``cause`` switched on at random parameters (and which);
+    ``cause`` may join several with '+' (each switched on in turn)."""
+    if "+" in cause:
+        truth, params = config, {}
+        for part in cause.split("+"):
+            truth, more = truth_config(truth, part, rng)
+            params.update(more)
+        return truth, params
     truth = copy.deepcopy(config)
     if cause == "wear_coefficient":
         scale = rng.uniform(1.5, 2.0) if rng.random() < 0.5 else rng.uniform(0.5, 0.67)

@@ -13,12 +13,14 @@ two share their forward runs (memoised by config), under a minute in all. The sl
 """
 
 import json
+from dataclasses import replace
 
 import numpy as np
 import pytest
 
 from fewear.cli import main
 from fewear.diagnose.joint.diagnose import diagnose_joint
+from fewear.diagnose.joint.fitting import Fit
 from fewear.diagnose.joint.measured import write_joint_profiles, write_max_wear
 from fewear.diagnose.joint.report import summarise
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
@@ -34,6 +36,8 @@ DEFAULT_SECTION = load_config(None, ["joint_diagnose"])["joint_diagnose"]
 QUICK = {"candidates": ["wear_coefficient", "friction"], "friction_grid": [0.05, 0.2, 0.4]}
 """The default suite's [joint_diagnose] section: the level, and friction run at 0.05, 0.2, 0.4 and
 the believed 0.1 (the default grid adds 0.02 and 0.3)."""
+FIT = Fit("baseline", np.zeros(1), 1, 1.0, 10, 1.0, 1.0, np.zeros(1))
+"""A fit standing in for a round's (its held-out RMS set per round)."""
 FORCE_START_DEG = 117.0
 """The crank angle at which the load cell's trace starts."""
 
@@ -162,3 +166,65 @@ def test_one_cycle_count_is_a_clear_error(believed, tmp_path, capsys):
     assert ">= 2 cycle counts" in capsys.readouterr().err
     assert not (tmp_path / "out").exists()
     assert np.isfinite(data.profiles[0].depth_m).all()
+
+
+@pytest.mark.slow
+def test_two_hidden_causes_are_named_each_with_the_gain_it_adds(believed):
+    """Friction (mu 0.39) and running-in (r 3.2 over 23 m) hidden together, the short campaign,
+    the catalogue of the level, friction and running-in: the first round names one, the second,
+    on the model it extends, the other (measured: friction, gain 61 %, then running-in, 87 % over
+    the model with friction; 99 s)."""
+    data, truth, _ = hidden_joint_case(believed[1], "friction+running_in", 31,
+                                       profile_cycles=SHORT)
+    settings = JointDiagnoseSettings.from_config(
+        {**DEFAULT_SECTION, **QUICK, "candidates": ["wear_coefficient", "friction", "running_in"]})
+    summary = summarise(diagnose_joint(data, believed[1], settings))
+    assert sorted(summary["causes"]) == ["friction", "running_in"], (truth, summary["candidates"])
+    first, second = summary["cause_gains"]
+    assert first["against"] == "the believed config"
+    assert second["against"] == f"the believed config + {first['cause']}"
+    assert first["held_out_gain"] > 0.25 and second["held_out_gain"] > 0.25
+    # each gain is over its round's reference, the model before run again to the round's horizon
+    assert summary["gain"] == pytest.approx(
+        1.0 - (1.0 - first["held_out_gain"]) * (1.0 - second["held_out_gain"]), abs=0.02)
+
+
+@pytest.mark.parametrize("named_per_round, max_causes, rounds_run, named", [
+    ([("friction",), ("running_in",), ()], 3, 3, ("friction", "running_in")),
+    ([("friction",), ("running_in",), ("impact_wear",)], 2, 2, ("friction", "running_in")),
+    ([(), ("friction",)], 2, 1, ()),
+])
+def test_each_round_starts_from_the_model_the_causes_before_it_extend(
+        monkeypatch, named_per_round, max_causes, rounds_run, named):
+    """The rounds' logic alone (each round's selection replaced by a stand-in): a round runs on
+    the extended config of the one before, with the causes named so far left out, while each
+    names one and fewer than ``max_causes`` are named; the extended model is the last named
+    cause's."""
+    from fewear.diagnose.joint import diagnose as method
+
+    calls = []
+
+    def stand_in_round(data, obs, config, settings, named):
+        index = len(calls)
+        calls.append((config["round"], named))
+        fit_ = replace(FIT, held_out_rms_m=0.5**index)
+        return method.Round(
+            baseline=fit_, base_run=None, scatter_m=None, verdicts=(), accepted=(),
+            named=named_per_round[index], confounded=(), not_confirmed=(), untestable=(),
+            extended_config={"round": index + 1},
+            extended_fit=replace(fit_, name=str(index), held_out_rms_m=0.5**(index + 1)),
+            extended_depth_m=np.zeros(1))
+
+    monkeypatch.setattr(method, "_round", stand_in_round)
+    monkeypatch.setattr(method, "_to_try", lambda config, settings, named: ["a cause"])
+    monkeypatch.setattr(method, "observations", lambda data, fraction: None)
+    monkeypatch.setattr(method, "forward_resolution", lambda *args: {})
+    monkeypatch.setattr(method, "cycle_structure", lambda *args: {})
+    monkeypatch.setattr(method, "_unexplained", lambda *args: [])
+    settings = replace(JointDiagnoseSettings.default(), max_causes=max_causes)
+    diagnosis = method.diagnose_joint(None, {"round": 0}, settings)
+    assert [config for config, _ in calls] == list(range(rounds_run))
+    assert [left_out for _, left_out in calls] == [named[:i] for i in range(rounds_run)]
+    assert diagnosis.causes == named
+    assert diagnosis.gains == pytest.approx([0.5] * len(named))
+    assert diagnosis.extended_fit.name == str(max(len(named) - 1, 0))

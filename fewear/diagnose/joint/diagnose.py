@@ -74,6 +74,15 @@ a grid, the full run is the model the user gets); the gain reported is that of t
 Accepted causes after it are reported as confounded with it, those whose full run did not hold up
 as ``not_confirmed``.
 
+Several causes: once a cause is named, the same selection runs again on the model it extends
+(its full run at the fitted parameters is the new reference), over the causes not yet named
+(``wear_coefficient`` only in the first round: every cause's fit has the level free), while each
+round names one and fewer than ``max_causes`` are named. Each named cause reports the held-out gain
+it adds over the model before it. Measured on the coarse test model, short campaign, catalogue
+level / friction / running-in: hidden friction (mu 0.39) and running-in (r 3.2 over 23 m) are
+named in that order, gains 61 % and then 87 % over the model with friction (99 s); hidden friction
+alone or running-in alone: the second round names nothing.
+
 Resolution (:func:`forward_resolution`): the instrument's scatter, estimated from neighbouring
 profile points, and how far the believed model's worn bore moves when its wear blocks are halved.
 On the coarse test model (blocks of up to 50,000 cycles) the latter is about 10 um at 20,000
@@ -173,33 +182,99 @@ def testable(config: dict, settings: JointDiagnoseSettings) -> tuple[list[str], 
 
 
 @dataclass(frozen=True, eq=False)
-class JointDiagnosis:
-    """Everything :func:`diagnose_joint` found (:func:`fewear.diagnose.joint.report.summarise`
-    makes the JSON-ready summary): the ``data`` and ``settings``, the ``observations``, the
-    believed model's ``baseline`` fit, the ``verdicts`` on every cause tried, the ``accepted``
-    causes in the order they are to be named, the ``causes`` named (none or one), those
-    ``confounded`` with it, those ``not_confirmed`` by their full run and the ``untestable`` ones
-    (cause, why); the extended model (``extended_config``, its ``extended_fit`` and its
-    ``extended_depth_m`` at the observations), the believed model's ``residual_structure``
-    (:func:`cycle_structure`), the ``resolution`` (:func:`forward_resolution`) and what stays
-    ``unexplained``, in sentences."""
+class Round:
+    """One round of the selection on a model (the believed config, or the extended model of the
+    causes named so far): the model's ``baseline`` fit, the ``verdicts`` on every cause tried
+    against it, the ``accepted`` causes in the order they are to be named, the cause ``named``
+    (none or one), those ``confounded`` with it, those ``not_confirmed`` by their full run, the
+    ``untestable`` ones, and the model extended by the named cause (``extended_config``, its
+    ``extended_fit``, ``extended_depth_m`` at the observations and its held-out ``gain`` over
+    the baseline); without a cause the extended model is the round's own."""
 
-    data: JointMeasurements
-    settings: JointDiagnoseSettings
-    observations: Observations
     baseline: Fit
+    base_run: WearHistory
+    scatter_m: float | None
     verdicts: tuple[CauseVerdict, ...]
     accepted: tuple[str, ...]
-    causes: tuple[str, ...]
+    named: tuple[str, ...]
     confounded: tuple[CauseVerdict, ...]
     not_confirmed: tuple[Unconfirmed, ...]
     untestable: tuple[dict[str, str], ...]
     extended_config: dict
     extended_fit: Fit
     extended_depth_m: np.ndarray
+
+    @property
+    def gain(self) -> float:
+        """The named cause's held-out gain over the round's model (0 without one)."""
+        return (1.0 - self.extended_fit.held_out_rms_m / self.baseline.held_out_rms_m
+                if self.named else 0.0)
+
+
+@dataclass(frozen=True, eq=False)
+class JointDiagnosis:
+    """Everything :func:`diagnose_joint` found (:func:`fewear.diagnose.joint.report.summarise`
+    makes the JSON-ready summary): the ``data`` and ``settings``, the ``observations``, the
+    ``rounds`` of the selection (the first on the believed config, each further one on the
+    model the causes named so far extend; the last names none unless ``max_causes`` or the
+    catalogue ended the rounds), the believed model's ``residual_structure``
+    (:func:`cycle_structure`), the ``resolution`` (:func:`forward_resolution`) and what stays
+    ``unexplained``, in sentences. The rest are views of the rounds: the believed model's
+    ``baseline``, every cause's verdict, the ``causes`` named (in the order they joined) with
+    the ``gains`` each added, and the final extended model."""
+
+    data: JointMeasurements
+    settings: JointDiagnoseSettings
+    observations: Observations
+    rounds: tuple[Round, ...]
     residual_structure: dict[str, Any]
     resolution: dict[str, Any]
     unexplained: tuple[str, ...]
+
+    @property
+    def baseline(self) -> Fit:
+        return self.rounds[0].baseline
+
+    @property
+    def verdicts(self) -> tuple[CauseVerdict, ...]:
+        return tuple(entry for r in self.rounds for entry in r.verdicts)
+
+    @property
+    def accepted(self) -> tuple[str, ...]:
+        return tuple(cause for r in self.rounds for cause in r.accepted)
+
+    @property
+    def causes(self) -> tuple[str, ...]:
+        return tuple(cause for r in self.rounds for cause in r.named)
+
+    @property
+    def gains(self) -> tuple[float, ...]:
+        """Each named cause's held-out gain over the model before it."""
+        return tuple(r.gain for r in self.rounds if r.named)
+
+    @property
+    def confounded(self) -> tuple[CauseVerdict, ...]:
+        return tuple(entry for r in self.rounds for entry in r.confounded)
+
+    @property
+    def not_confirmed(self) -> tuple[Unconfirmed, ...]:
+        return tuple(entry for r in self.rounds for entry in r.not_confirmed)
+
+    @property
+    def untestable(self) -> tuple[dict[str, str], ...]:
+        return self.rounds[0].untestable
+
+    @property
+    def extended_config(self) -> dict:
+        return _final(self.rounds).extended_config
+
+    @property
+    def extended_fit(self) -> Fit:
+        return _final(self.rounds).extended_fit
+
+    @property
+    def extended_depth_m(self) -> np.ndarray:
+        return _final(self.rounds).extended_depth_m
 
     @property
     def baseline_depth_m(self) -> np.ndarray:
@@ -209,20 +284,62 @@ class JointDiagnosis:
 
 def diagnose_joint(data: JointMeasurements, config: dict,
                    settings: JointDiagnoseSettings | None = None) -> JointDiagnosis:
-    """The method of the module docstring on ``data`` against the believed ``config``."""
+    """The method of the module docstring on ``data`` against the believed ``config``: a round
+    of selection on it, and, while a round names a cause and fewer than ``max_causes`` are
+    named, another on the model they extend (the causes named left out)."""
     settings = settings or JointDiagnoseSettings.default()
     obs = observations(data, settings.held_out_fraction)
+    rounds = [_round(data, obs, config, settings, named=())]
+    while (rounds[-1].named and len(_named(rounds)) < settings.max_causes
+           and _to_try(rounds[-1].extended_config, settings, _named(rounds))):
+        rounds.append(_round(data, obs, rounds[-1].extended_config, settings, _named(rounds)))
+    first, final = rounds[0], _final(rounds)
+    resolution = forward_resolution(config, first.base_run, obs, first.scatter_m)
+    return JointDiagnosis(
+        data=data, settings=settings, observations=obs, rounds=tuple(rounds),
+        residual_structure=cycle_structure(data, config, obs, first.baseline, first.base_run),
+        resolution=resolution,
+        unexplained=tuple(_unexplained(first.baseline, final.extended_fit, _named(rounds),
+                                       resolution, [e for r in rounds for e in r.not_confirmed])))
+
+
+def _final(rounds) -> Round:
+    """The last round that named a cause (the first round without one): its extended model is
+    the diagnosis's."""
+    return next((r for r in reversed(rounds) if r.named), rounds[0])
+
+
+def _named(rounds: list[Round]) -> tuple[str, ...]:
+    return tuple(cause for r in rounds for cause in r.named)
+
+
+def _to_try(config: dict, settings: JointDiagnoseSettings,
+            named: tuple[str, ...]) -> tuple[list[str], list[dict]]:
+    """The causes a round on ``config`` tries, and why the others cannot be: the testable ones
+    (:func:`testable`) but those ``named`` so far and, after the first round,
+    ``wear_coefficient`` (every cause's fit has the level of k free, so the model a round starts
+    from carries its level already)."""
+    names, untestable = testable(config, settings)
+    return ([name for name in names
+             if name not in named and not (named and name == "wear_coefficient")], untestable)
+
+
+def _round(data: JointMeasurements, obs: Observations, config: dict,
+           settings: JointDiagnoseSettings, named: tuple[str, ...]) -> Round:
+    """One round of selection on the model ``config`` (the believed one, or the one the causes
+    ``named`` so far extend) over the causes :func:`_to_try`."""
     rod = config["wear_loop"]["rod_models"][0]
     horizon = int(math.ceil(settings.max_k_scale * obs.cycles.max()))
     # the believed run goes further: running-in maps N to up to r N cycles of it
     believed_config = model_config(config, rod, RUNNING_IN_REACH * horizon)
     _check_run_length(data, obs, believed_config)
-    base = simulate_wear(believed_config, "believed model")
-    believed = Candidate("baseline", (base,))
+    label = " + ".join(("believed model",) + named)
+    base = simulate_wear(believed_config, label)
+    believed = Candidate("baseline" if not named else label, (base,))
     offset = offset_start(obs, believed, settings.max_offset_deg)
     phi = settings.max_offset_deg
-    baseline = fit("baseline", believed, obs, [np.array([offset])], np.array([(-phi, phi)]))
-    names, untestable = testable(config, settings)
+    baseline = fit(believed.name, believed, obs, [np.array([offset])], np.array([(-phi, phi)]))
+    names, untestable = _to_try(config, settings, named)
     make_runs = candidate_runner(horizon, float(obs.depth_m.max()))
     believed_model = Believed(config, base, horizon, needed_cycles(obs, settings), make_runs)
     candidates = {name: CAUSES[name].forms(believed_model, settings) for name in names}
@@ -237,16 +354,12 @@ def diagnose_joint(data: JointMeasurements, config: dict,
     accepted, verdicts = _select(baseline, fits, settings, scatter)
     causes, extended, final_fit, extended_depth, not_confirmed = _confirm(
         config, accepted, fits, baseline, obs, settings)
-    resolution = forward_resolution(config, base, obs, scatter)
-    return JointDiagnosis(
-        data=data, settings=settings, observations=obs, baseline=baseline,
-        verdicts=tuple(verdicts), accepted=tuple(accepted), causes=tuple(causes),
-        confounded=_confounded(verdicts, accepted, causes), not_confirmed=tuple(not_confirmed),
-        untestable=tuple(untestable), extended_config=extended, extended_fit=final_fit,
-        extended_depth_m=extended_depth,
-        residual_structure=cycle_structure(data, config, obs, baseline, base),
-        resolution=resolution,
-        unexplained=tuple(_unexplained(baseline, final_fit, causes, resolution, not_confirmed)))
+    return Round(baseline=baseline, base_run=base, scatter_m=scatter, verdicts=tuple(verdicts),
+                 accepted=tuple(accepted), named=tuple(causes),
+                 confounded=_confounded(verdicts, accepted, causes),
+                 not_confirmed=tuple(not_confirmed), untestable=tuple(untestable),
+                 extended_config=extended, extended_fit=final_fit,
+                 extended_depth_m=extended_depth)
 
 
 def _check_run_length(data, obs, believed_config: dict) -> None:

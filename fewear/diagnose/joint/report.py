@@ -61,6 +61,9 @@ def summarise(diagnosis: JointDiagnosis) -> dict[str, Any]:
                        "extended": _prediction(obs, d.extended_fit)},
         "residual_structure": d.residual_structure,
         "resolution": d.resolution,
+        "cause_gains": [{"cause": cause, "held_out_gain": gain,
+                         "against": "the believed config" + "".join(f" + {c}" for c in causes[:i])}
+                        for i, (cause, gain) in enumerate(zip(causes, d.gains))],
         "not_confirmed": [{"cause": e.cause, "full_run_held_out_gain": e.full_run_held_out_gain}
                           for e in d.not_confirmed],
         "unexplained": list(d.unexplained),
@@ -109,6 +112,8 @@ def _resolution_line(resolution: dict) -> str:
 def report_markdown(s: dict) -> str:
     lines = [f"# Joint wear diagnosis: {s['source']}", "",
              f"**Cause: {s['cause']}** ({s['cause_meaning']}).", "",
+             *[f"- {e['cause']} adds a held-out gain of {e['held_out_gain']:.0%} to "
+               f"{e['against']}" for e in s["cause_gains"][1:]], "",
              f"Held-out error (cycles {s['holdout']['held_out_cycles']}): believed model "
              f"{s['held_out_error']['baseline']:.3g} m, extended "
              f"{s['held_out_error']['extended']:.3g} m (gain {s['gain']:.0%}). "

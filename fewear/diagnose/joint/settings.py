@@ -27,6 +27,7 @@ class JointDiagnoseSettings:
     impact_volume_ratios: tuple[float, ...]
     impact_forms: tuple[str, ...]
     max_offset_deg: float
+    max_causes: int
 
     def __post_init__(self):
         unknown = [c for c in self.candidates if c not in CAUSES]
@@ -47,6 +48,11 @@ class JointDiagnoseSettings:
             raise FewearInputError(
                 f"[joint_diagnose] impact_forms = {list(self.impact_forms)!r}: expected a "
                 f"non-empty list of {', '.join(map(repr, IMPACT_FORMS))}")
+        if isinstance(self.max_causes, bool) or not (isinstance(self.max_causes, int)
+                                                      and self.max_causes >= 1):
+            raise FewearInputError(
+                f"[joint_diagnose] max_causes = {self.max_causes!r}: expected a whole number "
+                ">= 1")
         if not self.max_k_scale > 1.0:
             raise FewearInputError(
                 f"[joint_diagnose] max_k_scale = {self.max_k_scale!r}: expected > 1")
