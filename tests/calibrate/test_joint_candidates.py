@@ -58,28 +58,33 @@ def test_halving_the_blocks_halves_the_extrapolation_limits():
     assert with_halved_blocks(fixed)["wear_loop"]["extrapolation_factor"] == 2500.0
 
 
+def _resolution(scatter_m, halved_blocks_m, doubled_recorded_m=0.0) -> dict:
+    """A resolution as :func:`fewear.diagnose.joint.diagnose.forward_resolution` gives it."""
+    return {"instrument_scatter_m": scatter_m, "halved_blocks_rms_m": halved_blocks_m,
+            "doubled_recorded_cycles_rms_m": doubled_recorded_m}
+
+
 def _fit(train_rms_m: float) -> Fit:
     return Fit("baseline", np.zeros(1), 1, 0.0, 10, train_rms_m, train_rms_m, np.zeros(10))
 
 
-def test_none_with_a_large_misfit_names_the_block_size_when_that_is_what_limits():
+def test_none_with_a_large_misfit_names_the_model_setting_when_that_is_what_limits():
     baseline = _fit(10e-6)
     # 20 x the instrument's 0.5 um scatter, and the blocks move the bore by 8 um: not resolved
-    sentence, = _unexplained(baseline, baseline, [], {"instrument_scatter_m": 0.5e-6,
-                                                      "halved_blocks_rms_m": 8e-6}, [])
+    sentence, = _unexplained(baseline, baseline, [], _resolution(0.5e-6, 8e-6), [])
     assert "20 times the instrument's scatter" in sentence and "smaller wear blocks" in sentence
     # the same misfit with well-resolved blocks: unexplained, without the block-size remark
-    sentence, = _unexplained(baseline, baseline, [], {"instrument_scatter_m": 0.5e-6,
-                                                      "halved_blocks_rms_m": 0.2e-6}, [])
+    sentence, = _unexplained(baseline, baseline, [], _resolution(0.5e-6, 0.2e-6), [])
     assert "smaller wear blocks" not in sentence
+    # ... but where recording twice the crank cycles moves the bore by 8 um, that is said
+    sentence, = _unexplained(baseline, baseline, [], _resolution(0.5e-6, 0.2e-6, 8e-6), [])
+    assert "smaller wear blocks" not in sentence and "more recorded cycles" in sentence
     # within 3 x the scatter: nothing is unexplained
-    assert _unexplained(_fit(1.2e-6), _fit(1.2e-6), [], {"instrument_scatter_m": 0.5e-6,
-                                                         "halved_blocks_rms_m": 8e-6},
-                        []) == []
+    assert _unexplained(_fit(1.2e-6), _fit(1.2e-6), [], _resolution(0.5e-6, 8e-6), []) == []
 
 
 def test_none_with_a_late_misfit_says_the_effect_shows_only_after_the_training_counts():
-    resolution = {"instrument_scatter_m": 0.5e-6, "halved_blocks_rms_m": 0.2e-6}
+    resolution = _resolution(0.5e-6, 0.2e-6)
     # fits the training data at the scatter, misses the held-out count by 30 x the scatter
     late = Fit("baseline", np.zeros(1), 1, 0.0, 10, 15e-6, 0.6e-6, np.zeros(10))
     sentence, = _unexplained(late, late, [], resolution, [])
@@ -429,9 +434,7 @@ def test_the_first_accepted_cause_whose_full_run_holds_up_is_named(monkeypatch,
         assert extended["joint"]["friction_coefficient"] == 0.1
         assert [e.cause for e in not_confirmed] == ["friction"]
         assert not_confirmed[0].full_run_held_out_gain < 0.0
-        sentence, = _unexplained(baseline, final, causes, {"instrument_scatter_m": None,
-                                                           "halved_blocks_rms_m": 0.0},
-                                 not_confirmed)
+        sentence, = _unexplained(baseline, final, causes, _resolution(None, 0.0), not_confirmed)
         assert sentence.startswith("friction was accepted on its fitted runs")
     else:
         assert extended["joint"]["friction_coefficient"] == 0.3 and not not_confirmed

@@ -84,7 +84,8 @@ named in that order, gains 61 % and then 87 % over the model with friction (99 s
 alone or running-in alone: the second round names nothing.
 
 Resolution (:func:`forward_resolution`): the instrument's scatter, estimated from neighbouring
-profile points, and how far the believed model's worn bore moves when its wear blocks are halved.
+profile points, and how far the believed model's worn bore moves when its wear blocks are halved
+and when twice the crank cycles are recorded per block (its own numerical noise).
 On the coarse test model (blocks of up to 50,000 cycles) the latter is about 10 um at 20,000
 cycles, as large as some causes' effect; blocks of at most 500 cycles bring it to 1-2 um.
 """
@@ -119,6 +120,7 @@ from fewear.diagnose.joint.forward import (
     cycle_on_worn_bore,
     model_config,
     simulate_wear,
+    with_doubled_recorded_cycles,
     with_halved_blocks,
 )
 from fewear.diagnose.joint.measured import JointMeasurements
@@ -519,17 +521,24 @@ def forward_resolution(config: dict, base: WearHistory, obs: Observations,
                        scatter_m: float | None) -> dict[str, Any]:
     """What the measurements and the believed model can resolve: the instrument's scatter
     ``scatter_m`` (robust, from neighbouring profile points of the baseline's residuals:
-    :func:`fewear.diagnose.joint.structure.scatter_estimate_m`) and how far the
-    believed model's worn bore moves when its wear blocks are halved (RMS over the bore nodes
-    at the measured cycle counts; the loop's discretisation error, roughly). A cause that moves
-    the bore by less than the latter cannot be told from the block size."""
+    :func:`fewear.diagnose.joint.structure.scatter_estimate_m`) and the believed model's own
+    numerical noise: how far its worn bore moves when its wear blocks are halved and when twice
+    the crank cycles are recorded per block (RMS over the bore nodes at the measured cycle
+    counts; the loop's discretisation error and the sampling of an orbit that varies from cycle
+    to cycle, roughly). A cause that moves the bore by less than these cannot be told from the
+    model's own settings."""
     rod = config["wear_loop"]["rod_models"][0]
-    finer = simulate_wear(with_halved_blocks(model_config(config, rod, int(obs.cycles.max()) + 1)),
-                          "believed model, blocks halved")
-    moved = np.array([finer.nodal_depth_m(c) - base.nodal_depth_m(c)
-                      for c in np.unique(obs.cycles)])
-    return {"instrument_scatter_m": scatter_m,
-            "halved_blocks_rms_m": float(np.sqrt(np.mean(moved**2)))}
+    believed = model_config(config, rod, int(obs.cycles.max()) + 1)
+    resolution = {"instrument_scatter_m": scatter_m}
+    for key, twin, label in (
+            ("halved_blocks_rms_m", with_halved_blocks, "blocks halved"),
+            ("doubled_recorded_cycles_rms_m", with_doubled_recorded_cycles,
+             "recorded cycles doubled")):
+        finer = simulate_wear(twin(believed), f"believed model, {label}")
+        moved = np.array([finer.nodal_depth_m(c) - base.nodal_depth_m(c)
+                          for c in np.unique(obs.cycles)])
+        resolution[key] = float(np.sqrt(np.mean(moved**2)))
+    return resolution
 
 
 UNEXPLAINED_SCATTERS = 3.0
@@ -562,10 +571,16 @@ def _unexplained(baseline: Fit, final_fit: Fit, causes, resolution: dict,
         return sentences
     misfit_m, sentence = misfit
     blocks = resolution["halved_blocks_rms_m"]
-    if misfit_m <= UNEXPLAINED_SCATTERS * blocks:
-        sentence += (f"; the model's own block size moves its bore by {blocks:.2g} m (blocks "
-                     "halved), so smaller wear blocks ([wear_loop] max_extrapolation_factor, "
-                     "max_depth_increment_fraction) are needed to tell the causes apart")
+    recorded = resolution["doubled_recorded_cycles_rms_m"]
+    if misfit_m <= UNEXPLAINED_SCATTERS * max(blocks, recorded):
+        sentence += (
+            f"; the model's own block size moves its bore by {blocks:.2g} m (blocks "
+            "halved), so smaller wear blocks ([wear_loop] max_extrapolation_factor, "
+            "max_depth_increment_fraction) are needed to tell the causes apart"
+            if blocks >= recorded else
+            f"; the model's own sampling of the crank cycles moves its bore by {recorded:.2g} m "
+            "(twice the recorded cycles), so more recorded cycles ([wear_loop] "
+            "recorded_cycles_per_block) are needed to tell the causes apart")
     return sentences + [sentence]
 
 

@@ -87,6 +87,14 @@ def with_halved_blocks(config: dict) -> dict:
     return changed
 
 
+def with_doubled_recorded_cycles(config: dict) -> dict:
+    """``config`` with twice the crank cycles recorded per block (the wear of a block is their
+    mean: an orbit that varies from cycle to cycle is sampled by more of them)."""
+    changed = copy.deepcopy(config)
+    changed["wear_loop"]["recorded_cycles_per_block"] *= 2
+    return changed
+
+
 def simulate_wear(config: dict, label: str = "", comm=None) -> WearHistory:
     """The wear loop of the config's (single) rod model up to its ``total_cycles``. A run that
     wears through the wall or whose contact fails ends there (``stopped`` says why)."""

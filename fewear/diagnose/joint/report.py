@@ -105,8 +105,10 @@ def _resolution_line(resolution: dict) -> str:
     return ("Resolution: the instrument's scatter "
             + (f"{scatter:.2g} m" if scatter is not None else "(no profiles to estimate it)")
             + "; halving the believed model's wear blocks moves its worn bore by "
-            f"{resolution['halved_blocks_rms_m']:.2g} m RMS at the measured cycle counts (causes "
-            "that move it less cannot be told from the block size).")
+            f"{resolution['halved_blocks_rms_m']:.2g} m RMS at the measured cycle counts, "
+            "recording twice the crank cycles per block by "
+            f"{resolution['doubled_recorded_cycles_rms_m']:.2g} m (causes that move it less "
+            "cannot be told from the model's own settings).")
 
 
 def report_markdown(s: dict) -> str:
