@@ -42,7 +42,8 @@ coefficient_model = "rbf"
 # k = K/H about 2e-13 m^2/N (REFERENCES.md).
 constant_k_m2_N = {CONSTANT_K_m2_N!r}
 # How the wear law departs from plain Archard (fewear.wear.extensions): "none", "running_in",
-# "running_in_power_law", "running_in_cycles", "time_transient" or "thermal"; extension_params
+# "running_in_power_law", "running_in_cycles", "running_in_cycles_power_law", "time_transient"
+# or "thermal"; extension_params
 # holds that extension's fitted parameters.
 extension = "none"
 extension_params = {{}}

@@ -24,6 +24,8 @@ frictional power ``theta`` [W/m^2] and the crank cycles ``N`` the joint has run.
   (its asperities are flattened every cycle, whichever bore point they meet) or of the lubricant
   film, the break-in curve plotted against time or cycles as tribometer and bench tests record it
   (Blau 2005). Only a mechanism has cycles: a pin-on-disc test has no closed form for it.
+- ``running_in_cycles_power_law``: m(N) = 1 + (r - 1) / (1 + N / N0), the power-law tail over
+  the crank cycles.
 - ``time_transient``: m(t) = 1 + (r - 1) exp(-t / tau). The same fall driven by time, as when a
   protective oxide or tribofilm grows at a rate set by time at temperature rather than by distance
   (T. F. J. Quinn, "Review of oxidational wear", Tribology International 16 (1983) 257-271 and
@@ -190,7 +192,8 @@ class RunningInPowerLaw:
 class RunningInCycles:
     """m(N) = 1 + (r - 1) exp(-N / N0), N the crank cycles run (Blau 2005), at every bore point
     alike; the wear after N cycles is that of plain Archard after the effective cycles
-    N_eff = N + (r - 1) N0 (1 - exp(-N / N0)) (:meth:`effective_cycles`).
+    N_eff = N + (r - 1) N0 (1 - exp(-N / N0)) (:meth:`effective_cycles`): the law of
+    :meth:`on_cycle_axis` with the crank cycles for the sliding distance.
 
     ``k_initial_over_steady`` r >= 1; ``scale_cycles`` N0 > 0.
     """
@@ -204,8 +207,8 @@ class RunningInCycles:
         _check_ratio(self.k_initial_over_steady)
         _check_positive("scale_cycles", self.scale_cycles, "a positive number of crank cycles")
 
-    def on_cycle_axis(self) -> RunningIn:
-        """The same law as :class:`RunningIn` with the crank cycles for the sliding distance."""
+    def on_cycle_axis(self) -> RunningIn | RunningInPowerLaw:
+        """The law of the sliding distance that this one is of the crank cycles."""
         return RunningIn(self.k_initial_over_steady, self.scale_cycles)
 
     def multiplier(self, state: SlidingState) -> np.ndarray:
@@ -221,12 +224,26 @@ class RunningInCycles:
 
     def effective_distance_m(self, distance_m, time_s=None, power_W_m2=None) -> np.ndarray:
         raise FewearInputError(
-            "running_in_cycles extension: driven by a mechanism's crank cycles; a test at one "
+            f"{self.name} extension: driven by a mechanism's crank cycles; a test at one "
             "sliding speed has none (use running_in or time_transient)")
 
     def params(self) -> dict[str, float]:
         return {"k_initial_over_steady": float(self.k_initial_over_steady),
                 "scale_cycles": float(self.scale_cycles)}
+
+
+@dataclass(frozen=True)
+class RunningInCyclesPowerLaw(RunningInCycles):
+    """m(N) = 1 + (r - 1) / (1 + N / N0) (Blau 2005, hyperbolic break-in) over the crank cycles
+    N, at every bore point alike: N_eff = N + (r - 1) N0 ln(1 + N / N0).
+
+    ``k_initial_over_steady`` r >= 1; ``scale_cycles`` N0 > 0.
+    """
+
+    name = "running_in_cycles_power_law"
+
+    def on_cycle_axis(self) -> RunningInPowerLaw:
+        return RunningInPowerLaw(self.k_initial_over_steady, self.scale_cycles)
 
 
 @dataclass(frozen=True)
@@ -314,7 +331,8 @@ class Thermal:
         return {"beta_m2_W": float(self.beta_m2_W), "time_scale_s": float(self.time_scale_s)}
 
 
-WearExtension = (NoExtension | RunningIn | RunningInPowerLaw | RunningInCycles | TimeTransient
+WearExtension = (NoExtension | RunningIn | RunningInPowerLaw | RunningInCycles
+                 | RunningInCyclesPowerLaw | TimeTransient
                  | Thermal)
 
 EXTENSIONS: dict[str, type] = {
@@ -322,6 +340,7 @@ EXTENSIONS: dict[str, type] = {
     "running_in": RunningIn,
     "running_in_power_law": RunningInPowerLaw,
     "running_in_cycles": RunningInCycles,
+    "running_in_cycles_power_law": RunningInCyclesPowerLaw,
     "time_transient": TimeTransient,
     "thermal": Thermal,
 }

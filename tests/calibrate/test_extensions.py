@@ -11,6 +11,7 @@ from fewear.wear.extensions import (
     NoExtension,
     RunningIn,
     RunningInCycles,
+    RunningInCyclesPowerLaw,
     RunningInPowerLaw,
     SlidingState,
     Thermal,
@@ -89,7 +90,8 @@ def test_limits_of_the_effective_distance():
     assert Thermal(0.0, 10.0).effective_distance_m(123.0, 10.0, POWER_W_m2) == pytest.approx(123.0)
 
 
-@pytest.mark.parametrize("extension", [*EXTENSIONS, RunningInCycles(3.0, 900.0)],
+@pytest.mark.parametrize("extension", [*EXTENSIONS, RunningInCycles(3.0, 900.0),
+                                       RunningInCyclesPowerLaw(3.0, 900.0)],
                          ids=lambda e: e.name)
 def test_config_round_trip(extension):
     assert make_extension(**{"name": extension.name,
@@ -117,16 +119,20 @@ def test_bad_extension_config_names_the_value(name, params, word):
         make_extension(name, params)
 
 
-def test_running_in_by_cycles_falls_with_the_crank_cycles_alike_at_every_point():
-    """m(N) = 1 + (r - 1) exp(-N / N0) whatever each point has slid; its effective cycles are
-    the integral of m, here by the trapezoid rule on 200,001 points; a test at one speed has no
-    cycles, so it has no effective distance."""
-    law = RunningInCycles(k_initial_over_steady=4.0, scale_cycles=700.0)
+@pytest.mark.parametrize("law, fall", [
+    (RunningInCycles(k_initial_over_steady=4.0, scale_cycles=700.0),
+     lambda n: 1.0 + 3.0 * np.exp(-n / 700.0)),
+    (RunningInCyclesPowerLaw(k_initial_over_steady=4.0, scale_cycles=700.0),
+     lambda n: 1.0 + 3.0 / (1.0 + n / 700.0))], ids=lambda item: getattr(item, "name", ""))
+def test_running_in_by_cycles_falls_with_the_crank_cycles_alike_at_every_point(law, fall):
+    """m(N) = 1 + (r - 1) exp(-N / N0), or 1 + (r - 1) / (1 + N / N0), whatever each point has
+    slid; its effective cycles are the integral of m, here by the trapezoid rule on 200,001
+    points; a test at one speed has no cycles, so it has no effective distance."""
     state = law.advance(SlidingState(np.zeros(3), np.zeros(3), np.zeros(3)),
                         np.array([0.0, 0.5, 9.0]), np.ones(3), 0.0, cycles=1400.0)
-    np.testing.assert_allclose(law.multiplier(state), 1.0 + 3.0 * np.exp(-2.0), rtol=1e-14)
+    np.testing.assert_allclose(law.multiplier(state), fall(1400.0), rtol=1e-14)
     n = np.linspace(0.0, 5000.0, 200001)
-    m = 1.0 + 3.0 * np.exp(-n / 700.0)
+    m = fall(n)
     integral = float(np.sum(0.5 * (m[1:] + m[:-1]) * np.diff(n)))
     assert float(law.effective_cycles(5000.0)) == pytest.approx(integral, rel=1e-8)
     with pytest.raises(FewearInputError, match="crank cycles"):

@@ -112,8 +112,12 @@ MULTIPLIERS = {  # m(n) after n cycles of sliding d per cycle for each form, wri
     "exponential": lambda n, d, r, s0: 1.0 + (r - 1.0) * np.exp(-n * d / s0),
     "power_law": lambda n, d, r, s0: 1.0 + (r - 1.0) / (1.0 + n * d / s0),
     "cycles": lambda n, d, r, n0: 1.0 + (r - 1.0) * np.exp(-n / n0),
+    "cycles_power_law": lambda n, d, r, n0: 1.0 + (r - 1.0) / (1.0 + n / n0),
 }
-SCALES = {"exponential": 4.0, "power_law": 4.0, "cycles": 900.0}  # s0 (m) or N0 (cycles)
+SCALES = {"exponential": 4.0, "power_law": 4.0, "cycles": 900.0,  # s0 (m) or N0 (cycles)
+          "cycles_power_law": 900.0}
+BY_CYCLES = {"cycles", "cycles_power_law"}
+"""The forms whose scale is N0 in crank cycles."""
 
 
 def test_every_running_in_form_has_its_multiplier_written_out_here():
@@ -167,7 +171,7 @@ def test_running_in_fit_names_the_form_of_the_data_and_its_parameters(form):
     angle = np.linspace(0.0, 2.0 * math.pi, 96, endpoint=False)
     run = _linear_run(angle, 0.01 * (1.0 + 0.5 * np.sin(angle)))
     # k three times its steady value, over 2,000 cycles of 0.01 m (or 2,000 cycles)
-    r, scale, key = ((3.0, 2000.0, "scale_cycles") if form == "cycles"
+    r, scale, key = ((3.0, 2000.0, "scale_cycles") if form in BY_CYCLES
                      else (3.0, 20.0, "distance_scale_m"))
     obs = _running_in_observations(run, form, r, scale, offset_deg=7.0)
     forms = tuple(CAUSES["running_in"].candidate(run, name) for name in RUNNING_IN_FORMS)
@@ -191,7 +195,7 @@ def test_the_time_map_from_a_run_at_the_models_own_parameters_is_the_identity(fo
     # s S_eff(N d) = 2 s S_eff(N' d) (the node that never slides: N' = N / 2), or for the
     # running-in by cycles s N_eff(N) = 2 s N_eff(N') at every node
     half = running_in_time_map(7000.0, run, form, r - 1.0, s0, k_scale, own, 2.0 * k_scale)
-    if form == "cycles":
+    if form in BY_CYCLES:
         np.testing.assert_allclose(own.effective_cycles(half),
                                    0.5 * own.effective_cycles(7000.0), rtol=1e-11)
         return
@@ -223,7 +227,7 @@ def _young_bore_world(angle: np.ndarray):
 
     def run_at(k_scale: float, form: str | None = None, r: float = 1.0, s0: float = 1.0):
         extra = np.zeros_like(cycles)
-        if form == "cycles":  # s0: N0 in cycles
+        if form in BY_CYCLES:  # s0: N0 in cycles
             extra = RUNNING_IN_FORMS[form](r, s0).effective_cycles(cycles) - cycles
         elif form is not None:
             extension = RUNNING_IN_FORMS[form](r, s0)
@@ -254,7 +258,7 @@ def test_running_in_refined_on_runs_at_its_fitted_parameters_fits_better_when_ru
         return run_with(fitted.form, fitted.params)
 
     def run_with(form: str, p: dict) -> WearHistory:
-        scale = p["scale_cycles"] if form == "cycles" else p["distance_scale_m"]
+        scale = p["scale_cycles"] if form in BY_CYCLES else p["distance_scale_m"]
         return run_at(p["k_scale"], form, p["k_initial_over_steady"], scale)
 
     def real_rms(run: WearHistory) -> np.ndarray:

@@ -9,12 +9,18 @@ from dataclasses import dataclass, fields, replace
 import numpy as np
 
 from fewear.diagnose.joint.forward import WearHistory
-from fewear.wear.extensions import RunningIn, RunningInCycles, RunningInPowerLaw
+from fewear.wear.extensions import (
+    RunningIn,
+    RunningInCycles,
+    RunningInCyclesPowerLaw,
+    RunningInPowerLaw,
+)
 
 RUNNING_IN_FORMS = {"exponential": RunningIn, "power_law": RunningInPowerLaw,
-                    "cycles": RunningInCycles}
+                    "cycles": RunningInCycles, "cycles_power_law": RunningInCyclesPowerLaw}
 """The forms of ``running_in``: the [wear] extension of each (its ``name``); the first two are
-driven by each node's sliding distance, ``cycles`` by the crank cycles."""
+driven by each node's sliding distance, the ``cycles`` ones by the crank cycles (both
+:class:`RunningInCycles`)."""
 
 
 @dataclass(frozen=True, eq=False)

@@ -40,12 +40,14 @@ explanation):
   cycles what the believed run wore after tau_a(N) = S_eff(N d_a) / d_a, S_eff the extension's
   effective distance: N + (r - 1) N0_a (1 - exp(-N / N0_a)) or N + (r - 1) N0_a ln(1 + N / N0_a),
   N0_a = s0 / d_a (exact where the wear of a node follows its own sliding, approximate where the
-  worn geometry couples the nodes). The third form, ``running_in_cycles``, m = 1 + (r - 1)
-  exp(-N / N0), falls with the crank cycles N at every node alike (the pin or the lubricant runs
-  in, not the bore's own surface): tau(N) = N + (r - 1) N0 (1 - exp(-N / N0)) at every node, the
-  exponential form on an axis where every node advances one unit per cycle; exact for sliding
-  wear in the limit of small blocks, the geometry feedback included (k scaled alike everywhere
-  scales the cycle axis; impact wear, which running-in does not scale, breaks it).
+  worn geometry couples the nodes). The third and fourth forms, ``running_in_cycles``,
+  m = 1 + (r - 1) exp(-N / N0), and ``running_in_cycles_power_law``, m = 1 + (r - 1) / (1 +
+  N / N0), fall with the crank cycles N at every node alike (the pin or the lubricant runs in,
+  not the bore's own surface): tau(N) = N + (r - 1) N0 (1 - exp(-N / N0)) or N + (r - 1) N0
+  ln(1 + N / N0) at every node, the distance forms on an axis where every node advances one
+  unit per cycle; exact for sliding wear in the limit of small blocks, the geometry feedback
+  included (k scaled alike everywhere scales the cycle axis; impact wear, which running-in does
+  not scale, breaks it).
 
 A cause with several forms is fitted in each and the best on the training data is taken (as for
 the tribometer catalogue; each form counts as a cause tried in the Bonferroni threshold).

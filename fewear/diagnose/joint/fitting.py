@@ -147,15 +147,15 @@ def running_in_time_map(cycles: float, run: WearHistory, form: str, extra: float
 
 def _advance_per_cycle(run: WearHistory, form: str) -> np.ndarray:
     """How far each node moves per crank cycle along the axis the running-in ``form`` falls on:
-    its sliding distance (m), or one cycle for ``running_in_cycles``."""
-    if RUNNING_IN_FORMS[form] is RunningInCycles:
+    its sliding distance (m), or one cycle for the forms driven by the crank cycles."""
+    if issubclass(RUNNING_IN_FORMS[form], RunningInCycles):
         return np.ones_like(run.sliding_m_per_cycle)
     return np.maximum(run.sliding_m_per_cycle, 1e-300)
 
 
 def _on_node_axis(extension):
-    """The extension as a law of the node's advance along its axis: ``running_in_cycles`` is
-    the exponential law of :class:`RunningIn` with the cycles for the sliding distance."""
+    """The extension as a law of the node's advance along its axis: a form driven by the crank
+    cycles is its law of the sliding distance with the cycles for the distance."""
     if isinstance(extension, RunningInCycles):
         return extension.on_cycle_axis()
     return extension
