@@ -263,9 +263,14 @@ class CondensedBushingContact:
         follow the bore nodes, should their angular order change) and update the rest: G costs
         an LU factorisation and the selected inverse entries (0.3 s on the reference mesh), the
         rest milliseconds. An approximation the caller bounds by how far
-        the bore moved since G was built (:class:`fewear.loop.bushing.WornBushing`)."""
+        the bore moved since G was built (:class:`fewear.loop.bushing.WornBushing`). The full
+        solver's stiffness, which only G is built from, is then not re-assembled either (18 ms
+        per move on the default bushing): the next update without ``keep_compliance``
+        assembles it on the mesh as it is then."""
         node_ids = self.solver.bore.global_ids.copy()
-        if update_solver:
+        if update_solver and keep_compliance:
+            self.solver.update_bore()
+        elif update_solver:
             self.solver.update_geometry()
         bore = self.solver.bore
         self.points = bore.points.copy()

@@ -236,6 +236,12 @@ class BushingContactSolver:
         fem_petsc.assemble_matrix(self._K_elastic, self._a_elastic, bcs=[self._bc])
         self._K_elastic.assemble()
         self._K = self._K_elastic.duplicate(copy=True)
+        self.update_bore()
+
+    def update_bore(self) -> None:
+        """The bore data alone after the mesh geometry changed (the stiffness left as it was
+        assembled: for a caller that does not solve with it until the next
+        :meth:`update_geometry`)."""
         self.bore.update_geometry()
         self.weights_m = bore_node_weights(self.mesh, self.bore)
         self.newton.geometry_changed()

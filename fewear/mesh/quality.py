@@ -117,7 +117,7 @@ class QualityMeter:
         self.cells = np.arange(mesh.topology.index_map(mesh.topology.dim).size_local,
                                dtype=np.int32)
         self._jacobian = fem.Expression(ufl.Jacobian(mesh), REFERENCE_LATTICE)
-        self.orientation = np.sign(np.linalg.det(self._jacobians()).mean(axis=1))
+        self.orientation = np.sign(_determinants(self._jacobians()).mean(axis=1))
         self.bore_nodes, self.row_height_m = bore_row_nodes(mesh, facet_tags)
         self.reference_xy = mesh.geometry.x[self.bore_nodes, :2].copy()
 
@@ -129,7 +129,7 @@ class QualityMeter:
     def measure(self) -> MeshQuality:
         """The worst scaled Jacobian, angle sine and bore motion ratio over all ranks, now."""
         jacobian = self._jacobians()
-        det = np.linalg.det(jacobian) * self.orientation[:, None]
+        det = _determinants(jacobian) * self.orientation[:, None]
         scaled = det.min(axis=1) / np.abs(det).max(axis=1)
         column_lengths = np.linalg.norm(jacobian, axis=2)
         angle_sine = det / (column_lengths[:, :, 0] * column_lengths[:, :, 1])
@@ -142,6 +142,12 @@ class QualityMeter:
             min_angle_sine=comm.allreduce(_extreme(angle_sine, np.min, np.inf), op=MPI.MIN),
             max_bore_motion_ratio=comm.allreduce(_extreme(ratio, np.max, 0.0), op=MPI.MAX),
         )
+
+
+def _determinants(jacobian: np.ndarray) -> np.ndarray:
+    """det J of 2x2 matrices (..., 2, 2) in closed form (``np.linalg.det`` factorises each by
+    LAPACK: 9 ms per mesh of the default bushing against well under 1 ms)."""
+    return jacobian[..., 0, 0] * jacobian[..., 1, 1] - jacobian[..., 0, 1] * jacobian[..., 1, 0]
 
 
 def _extreme(values: np.ndarray, reduce, empty: float) -> float:
