@@ -107,8 +107,9 @@ def cycle_wear(contact_model, steps: LoadSteps, wear_coefficient, friction: bool
     results = [empty if r is None else r for r in results]
     pressure = np.array([r.pressure_Pa for r in results])
     slip = np.array([r.slip_m for r in results])
-    speed = slip / steps.duration_s
-    k = np.where(slip > 0.0, wear_coefficient(pressure, np.maximum(speed, 1e-300)), 0.0)
+    sliding = slip > 0.0  # k is evaluated where it wears only (a few per cent of the entries)
+    k = np.zeros_like(slip)
+    k[sliding] = wear_coefficient(pressure[sliding], slip[sliding] / steps.duration_s)
     sensitivity = None
     if implicit:
         sensitivity = np.zeros((pressure.shape[1], pressure.shape[1]))
