@@ -477,6 +477,9 @@ class CondensedBushingContact:
         self._U = U0 + step * dU
         self.pin_centre_m = pin_centre
 
+    def move_pin(self, pin_centre: np.ndarray) -> None:
+        self.pin_centre_m = pin_centre
+
     def energy(self, load: np.ndarray) -> float:
         """:func:`penalty_energy` of the current state."""
         return penalty_energy(self.points, self._U.reshape(-1, 2), self._g, self.pin_centre_m,

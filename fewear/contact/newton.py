@@ -171,6 +171,9 @@ class ContactDiscretisation(Protocol):
     def try_step(self, step: float, pin_centre: np.ndarray) -> None:
         """Set the state to base + step * update, with the pin at ``pin_centre``."""
 
+    def move_pin(self, pin_centre: np.ndarray) -> None:
+        """Put the pin at ``pin_centre``, the displacement left as it is."""
+
     def energy(self, load: np.ndarray) -> float:
         """The penalty potential Pi (J/m) of the current state."""
 
@@ -927,9 +930,9 @@ class ContactNewton:
         path.try_step(step, centre)
         if not base.contact.size:
             return
-        path.try_step(step, following_centre(path.deformed_points(), centre, base.contact,
-                                             base.points, base.normals, base.gaps, base.centre,
-                                             self.pin_radius_m))
+        path.move_pin(following_centre(path.deformed_points(), centre, base.contact,
+                                       base.points, base.normals, base.gaps, base.centre,
+                                       self.pin_radius_m))
 
 
 class _LineBase:

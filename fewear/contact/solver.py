@@ -347,6 +347,9 @@ class BushingContactSolver:
         self.displacement.vector.axpy(step - taken, du)
         self.displacement.x.scatter_forward()
         self._line = (du, step)
+        self.move_pin(pin_centre)
+
+    def move_pin(self, pin_centre: np.ndarray) -> None:
         self.pin_centre_m = pin_centre
         self.pin_centre.value = pin_centre
 
