@@ -183,7 +183,8 @@ def test_two_hidden_causes_are_named_each_with_the_gain_it_adds(believed):
     data, truth, _ = hidden_joint_case(believed[1], "friction+running_in", 31,
                                        profile_cycles=SHORT)
     settings = JointDiagnoseSettings.from_config(
-        {**DEFAULT_SECTION, **QUICK, "candidates": ["wear_coefficient", "friction", "running_in"]})
+        {**DEFAULT_SECTION, **QUICK, "candidates": ["wear_coefficient", "friction", "running_in"],
+         "max_causes": 2})
     summary = summarise(diagnose_joint(data, believed[1], settings))
     assert sorted(summary["causes"]) == ["friction", "running_in"], (truth, summary["candidates"])
     first, second = summary["cause_gains"]
