@@ -84,8 +84,9 @@ it adds over the model before it. Measured on the coarse test model, short campa
 level / friction / running-in: hidden friction (mu 0.39) and running-in (r 3.2 over 23 m) are
 named in that order, gains 61 % and then 87 % over the model with friction (99 s); hidden friction
 alone or running-in alone: the second round names nothing. On the independent joint generator's
-single-cause data the second round named impact wear beside the right first cause in 2 of 6 sets
-(the extended model's misfit of another model's forms), so ``max_causes`` is 1 by default.
+single-cause data the second round named impact wear beside the right first cause in 2 of the 7
+sets whose first round named a cause (the extended model's misfit of another model's forms), so
+``max_causes`` is 1 by default.
 
 Resolution (:func:`forward_resolution`): the instrument's scatter, estimated from neighbouring
 profile points, and how far the believed model's worn bore moves when its wear blocks are halved
