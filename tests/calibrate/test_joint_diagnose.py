@@ -196,16 +196,18 @@ def test_two_hidden_causes_are_named_each_with_the_gain_it_adds(believed):
         1.0 - (1.0 - first["held_out_gain"]) * (1.0 - second["held_out_gain"]), abs=0.02)
 
 
-@pytest.mark.parametrize("named_per_round, max_causes, rounds_run, named", [
-    ([("friction",), ("running_in",), ()], 3, 3, ("friction", "running_in")),
-    ([("friction",), ("running_in",), ("impact_wear",)], 2, 2, ("friction", "running_in")),
-    ([(), ("friction",)], 2, 1, ()),
+@pytest.mark.parametrize("named_per_round, max_causes, left, rounds_run, named", [
+    ([("friction",), ("running_in",), ()], 3, 3, 3, ("friction", "running_in")),
+    ([("friction",), ("running_in",), ("impact_wear",)], 2, 3, 2, ("friction", "running_in")),
+    ([(), ("friction",)], 2, 3, 1, ()),
+    ([("friction",), ("running_in",), ()], 3, 1, 1, ("friction",)),
 ])
 def test_each_round_starts_from_the_model_the_causes_before_it_extend(
-        monkeypatch, named_per_round, max_causes, rounds_run, named):
+        monkeypatch, named_per_round, max_causes, left, rounds_run, named):
     """The rounds' logic alone (each round's selection replaced by a stand-in): a round runs on
     the extended config of the one before, with the causes named so far left out, while each
-    names one and fewer than ``max_causes`` are named; the extended model is the last named
+    names one, fewer than ``max_causes`` are named and a cause is left to try (``left`` of the
+    catalogue: each named one leaves one fewer); the extended model is the last named
     cause's."""
     from fewear.diagnose.joint import diagnose as method
 
@@ -223,7 +225,8 @@ def test_each_round_starts_from_the_model_the_causes_before_it_extend(
             extended_depth_m=np.zeros(1))
 
     monkeypatch.setattr(method, "_round", stand_in_round)
-    monkeypatch.setattr(method, "_to_try", lambda config, settings, named: ["a cause"])
+    monkeypatch.setattr(method, "_to_try",
+                        lambda config, settings, named: (["a cause"] * (left - len(named)), []))
     monkeypatch.setattr(method, "observations", lambda data, fraction: None)
     monkeypatch.setattr(method, "forward_resolution", lambda *args: {})
     monkeypatch.setattr(method, "cycle_structure", lambda *args: {})

@@ -252,7 +252,7 @@ class JointDiagnosis:
 
     @property
     def causes(self) -> tuple[str, ...]:
-        return tuple(cause for r in self.rounds for cause in r.named)
+        return _named(self.rounds)
 
     @property
     def gains(self) -> tuple[float, ...]:
@@ -298,7 +298,7 @@ def diagnose_joint(data: JointMeasurements, config: dict,
     obs = observations(data, settings.held_out_fraction)
     rounds = [_round(data, obs, config, settings, named=())]
     while (rounds[-1].named and len(_named(rounds)) < settings.max_causes
-           and _to_try(rounds[-1].extended_config, settings, _named(rounds))):
+           and _to_try(rounds[-1].extended_config, settings, _named(rounds))[0]):
         rounds.append(_round(data, obs, rounds[-1].extended_config, settings, _named(rounds)))
     first, final = rounds[0], _final(rounds)
     resolution = forward_resolution(config, first.base_run, obs, first.scatter_m)
@@ -316,7 +316,8 @@ def _final(rounds) -> Round:
     return next((r for r in reversed(rounds) if r.named), rounds[0])
 
 
-def _named(rounds: list[Round]) -> tuple[str, ...]:
+def _named(rounds) -> tuple[str, ...]:
+    """The causes the ``rounds`` named, in order."""
     return tuple(cause for r in rounds for cause in r.named)
 
 
