@@ -13,4 +13,13 @@ Stages (one subpackage each, data passed between them as frozen dataclasses in S
 Only modules that need DOLFINx import it.
 """
 
+import os
+
+# OpenBLAS (installed by .ci/setup) on one thread: fewear spreads its work over processes and MPI
+# ranks, and the wear loop runs a block's dynamics in a thread beside the mesh stage, both calling
+# BLAS/LAPACK; the threaded build is safe for such concurrent calls (the serial build is not: it
+# crashed the dynamics on a run under cProfile), and more than one thread per call would only
+# oversubscribe the cores. Read by OpenBLAS when it loads, i.e. with the first import of numpy.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
 __version__ = "0.1.0"
