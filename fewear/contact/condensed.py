@@ -38,8 +38,8 @@ the same solution; the tests and the benchmark check nodal pressures and pin cen
 (measured: ~2e-7 and below, on 200 load steps of a crank cycle).
 Per step this costs O(n |A|) per iteration for the update of U and a dense solve of size
 2|A| + 2, |A| the nodes in contact; the arithmetic on these small arrays is compiled (numba,
-:mod:`fewear.jit`: :func:`linearised_forces`, :func:`newton_step`, :func:`penalty_energy`, with
-the shared kernels of :mod:`fewear.contact.newton`), in NumPy's order of operations (sums
+:mod:`fewear.jit`: :func:`linearised_forces`, :func:`newton_step`, with the shared kernels of
+:mod:`fewear.contact.newton`, the line search among them), in NumPy's order of operations (sums
 pairwise, dot products by BLAS), so that it gives the NumPy formulas' results to the bit.
 Under MPI, G is built collectively and every rank solves the small problem redundantly, so all
 ranks hold the same result.
@@ -68,6 +68,7 @@ from fewear.contact.admissible import (
 from fewear.contact.newton import (
     ContactNewton,
     ContactNotConverged,
+    LineData,
     compile_shared_kernels,
     contact_direction,
     gaps,
@@ -118,6 +119,32 @@ def penetrations(points: np.ndarray, U: np.ndarray, centre: np.ndarray,
     """<R_p - |X + U - c|>_+ at the bore nodes (m): the negative part of the deformed bore's
     :func:`fewear.contact.newton.gaps`."""
     return np.maximum(-gaps(points + U, centre, pin_radius), 0.0)
+
+
+@compiled
+def turned_forces(g: np.ndarray, points: np.ndarray, U: np.ndarray, centre: np.ndarray,
+                  pin_radius: float, nodes_turned: int, angle: float, tolerance: float):
+    """The nodal forces g (2n,) moved ``nodes_turned`` nodes along the angle-sorted bore nodes
+    (``points``, (n, 2)) and turned by ``angle`` (rad), and whether the bore is invariant on
+    the nodes that carry them: each lies within ``tolerance`` times the larger of the state's
+    penetration and largest displacement (U (n, 2), pin at ``centre``) of where the node its
+    force came from lands when turned."""
+    n = points.shape[0]
+    cosine, sine = math.cos(angle), math.sin(angle)
+    turned = np.zeros_like(g)
+    mismatch = 0.0
+    for q in range(n):
+        source = (q - nodes_turned) % n
+        g_x, g_y = g[2 * source], g[2 * source + 1]
+        if g_x == 0.0 and g_y == 0.0:
+            continue
+        turned[2 * q] = cosine * g_x - sine * g_y
+        turned[2 * q + 1] = sine * g_x + cosine * g_y
+        landed_x = cosine * points[source, 0] - sine * points[source, 1]
+        landed_y = sine * points[source, 0] + cosine * points[source, 1]
+        mismatch = max(mismatch, math.hypot(landed_x - points[q, 0], landed_y - points[q, 1]))
+    scale = max(penetrations(points, U, centre, pin_radius).max(), np.abs(U).max())
+    return mismatch <= tolerance * scale, turned
 
 
 @compiled
@@ -204,16 +231,6 @@ def newton_step(compliance: np.ndarray, g: np.ndarray, U: np.ndarray, f: np.ndar
     return dg, dU, dc
 
 
-@compiled
-def penalty_energy(points: np.ndarray, U: np.ndarray, g: np.ndarray, centre: np.ndarray,
-                   pin_radius: float, penalty: float, weights_m: np.ndarray,
-                   load: np.ndarray) -> float:
-    """Pi = 1/2 g.U + sum_q w_q k/2 <-gap_q>^2 - F/L . c (J/m), with U = G g."""
-    penetration = penetrations(points, U, centre, pin_radius)
-    return (0.5 * np.dot(g, U.reshape(-1)) + 0.5 * penalty * np.dot(weights_m, penetration**2)
-            - (load[0] * centre[0] + load[1] * centre[1]))
-
-
 def compile_contact() -> None:
     """Compile, or load from numba's cache (:mod:`fewear.jit`), the contact Newton's kernels:
     each called once on a small bore (16 nodes on a circle, the pin pressed into two) with the
@@ -227,7 +244,7 @@ def compile_contact() -> None:
                                             weights, load)
     newton_step(np.eye(2 * size), g, U, f, WM, active, np.eye(2), load)
     nodal_forces(points, U, centre, pin_radius, penalty, 0.0, weights)
-    penalty_energy(points, U, g, centre, pin_radius, penalty, weights, load)
+    turned_forces(g, points, U, centre, pin_radius, 2, 0.1, 0.1)
 
 
 class CondensedBushingContact:
@@ -431,18 +448,16 @@ class CondensedBushingContact:
         if elements % (n // 2) == 0:
             return True
         angle = elements * element_rad
+        invariant, g = turned_forces(self._g, self.points, self._U.reshape(-1, 2),
+                                     self.pin_centre_m, self.problem.geometry.pin_radius_m,
+                                     2 * elements, angle, TURN_TOLERANCE)
+        if not invariant:
+            return False
+        self._g = g
+        support = np.flatnonzero(g)  # the nodes in contact
+        self._U = g[support] @ self.compliance[support]  # G symmetric: its rows, contiguous
         rotation = np.array([[math.cos(angle), -math.sin(angle)],
                              [math.sin(angle), math.cos(angle)]])
-        g = np.roll(self._g.reshape(-1, 2), 2 * elements, axis=0) @ rotation.T
-        carrying = np.flatnonzero(np.any(g != 0.0, axis=1))
-        turned = np.roll(self.points, 2 * elements, axis=0)[carrying] @ rotation.T
-        mismatch = np.hypot(*(turned - self.points[carrying]).T)
-        scale = max(self._penetrations().max(), float(np.abs(self._U).max()))
-        if mismatch.size and mismatch.max() > TURN_TOLERANCE * scale:
-            return False
-        self._g = g.reshape(-1)
-        support = np.flatnonzero(self._g)  # the nodes in contact
-        self._U = self.compliance[:, support] @ self._g[support]
         self.pin_centre_m = rotation @ self.pin_centre_m
         return True
 
@@ -465,25 +480,21 @@ class CondensedBushingContact:
                                  basis, load)
         return (dg, dU), dc
 
-    def begin_line_search(self, update, dc, pin_residual) -> float:
-        """Slope of Pi along (dg, dU, dc): (g - f) . dU + (sum f - F/L) . dc (J/m)."""
+    def begin_line_search(self, update, dc, pin_residual) -> LineData:
+        """Slope of Pi along (dg, dU, dc): (g - f) . dU + (sum f - F/L) . dc (J/m); the elastic
+        energy 1/2 g.G g along the line, 1/2 g.U + s g.dU + s^2/2 dg.dU (G symmetric)."""
         f = self._linear[0]
+        dg, dU = update
         self._base = (self._g, self._U, update)
-        return float((self._g - f.reshape(-1)) @ update[1]) + float(pin_residual @ dc)
+        slope = float((self._g - f.reshape(-1)) @ dU) + float(pin_residual @ dc)
+        elastic = np.array([0.5 * (self._g @ self._U), self._g @ dU, 0.5 * (dg @ dU)])
+        return LineData(slope, self.points, self._U.reshape(-1, 2), dU.reshape(-1, 2), elastic)
 
     def try_step(self, step: float, pin_centre: np.ndarray) -> None:
         g0, U0, (dg, dU) = self._base
         self._g = g0 + step * dg
         self._U = U0 + step * dU
         self.pin_centre_m = pin_centre
-
-    def move_pin(self, pin_centre: np.ndarray) -> None:
-        self.pin_centre_m = pin_centre
-
-    def energy(self, load: np.ndarray) -> float:
-        """:func:`penalty_energy` of the current state."""
-        return penalty_energy(self.points, self._U.reshape(-1, 2), self._g, self.pin_centre_m,
-                              self.problem.geometry.pin_radius_m, self._k, self.weights_m, load)
 
     def deformed_points(self) -> np.ndarray:
         return self.points + self._U.reshape(-1, 2)
@@ -493,11 +504,6 @@ class CondensedBushingContact:
 
     def update_sizes(self, update) -> tuple[float, float]:
         return float(np.abs(update[1]).max()), float(np.abs(self._U).max())
-
-    def _penetrations(self) -> np.ndarray:
-        """<R_p - |X + U - c|>_+ at the bore nodes (m)."""
-        return penetrations(self.points, self._U.reshape(-1, 2), self.pin_centre_m,
-                            self.problem.geometry.pin_radius_m)
 
 
 def reference_basis_at_geometry_nodes(mesh, V) -> np.ndarray:

@@ -65,8 +65,10 @@ A load the Newton cannot balance raises :class:`ContactNotConverged`.
 
 The algorithm stays in Python; its arithmetic on the bore nodes is compiled (numba,
 :mod:`fewear.jit`), for both discretisations: the corners and vertices of the free region
-(:func:`free_corner`, :func:`support_vertex`, :func:`wedge_press`), gaps, the line search's
-trials (:func:`pin_update`, :func:`following_centre`, :func:`entering_limit`). The kernels
+(:func:`free_corner`, :func:`support_vertex`, :func:`wedge_press`), gaps, and the whole line
+search (:func:`line_search`: it needs of a discretisation only the bore nodes' displacements
+and updates and the elastic energy along the line, :class:`LineData`, since the displacement
+at the nodes is linear in the step). The kernels
 repeat NumPy's order of operations (:func:`pairwise_sum`; 2-vectors' lengths as sqrt(v . v)):
 the penalty forces amplify a rounding difference of the pin centre by ~1e5, to 1e-10 of the
 pressures and at times one iteration more or less. They use the C library's trigonometric
@@ -77,7 +79,7 @@ differ from those in the last bit on CPUs where NumPy dispatches to its SIMD ver
 from __future__ import annotations
 
 import math
-from typing import Any, Protocol
+from typing import Any, NamedTuple, Protocol
 
 import numpy as np
 
@@ -164,18 +166,13 @@ class ContactDiscretisation(Protocol):
         """The Newton update (displacement part, dc) of the last linearisation, with the pin
         update dc = basis z restricted to the span of ``basis`` (2, k)."""
 
-    def begin_line_search(self, update: Any, dc: np.ndarray, pin_residual: np.ndarray) -> float:
+    def begin_line_search(self, update: Any, dc: np.ndarray,
+                          pin_residual: np.ndarray) -> LineData:
         """Remember the current state as the base of the line search along (update, dc);
-        return the slope dPi/dstep at step 0 (J/m)."""
+        return what :func:`line_search` needs (:class:`LineData`)."""
 
     def try_step(self, step: float, pin_centre: np.ndarray) -> None:
         """Set the state to base + step * update, with the pin at ``pin_centre``."""
-
-    def move_pin(self, pin_centre: np.ndarray) -> None:
-        """Put the pin at ``pin_centre``, the displacement left as it is."""
-
-    def energy(self, load: np.ndarray) -> float:
-        """The penalty potential Pi (J/m) of the current state."""
 
     def frictionless(self) -> bool:
         """Whether the present solve is without friction (then Pi is the potential of the
@@ -547,6 +544,9 @@ def compile_shared_kernels():
     entering_limit(base_gaps, gaps(points, trial, pin_radius), 1.0, weights, 10.0, penalty)
     following_centre(points, trial, contact, at, normals, base_gaps[contact], centre,
                      pin_radius)
+    for descent in (True, False):
+        line_search(points, np.zeros((16, 2)), np.zeros((16, 2)), centre, dc, weights, load, 10.0,
+                    penalty, pin_radius, 0.2, 0.4, 1.0, 1.0, -1.0, descent, np.zeros(3))
     load_penetration(10.0, penalty, weights[pair[0]] + weights[pair[1]])
     return points, weights, pin_radius, penalty, load, centre
 
@@ -858,90 +858,125 @@ class ContactNewton:
             if iteration == max_iterations or (cap < CYCLE_CAP and basis.shape[1] == 2):
                 return None
             update, dc = path.newton_direction(pin_residual, load, basis)
-            self._line_search(update, dc, pin_residual, load, cap)
-            last_step = (norm(dc), *self._sizes(update))
+            trial_gaps = self._line_search(update, dc, pin_residual, load, cap)
+            last_step = (norm(dc), *self._sizes(update, trial_gaps))
         return None
 
-    def _sizes(self, update) -> tuple[float, float, float]:
+    def _sizes(self, update, trial_gaps: np.ndarray) -> tuple[float, float, float]:
+        """The largest displacement update, penetration (from the gaps of the state the line
+        search left) and displacement (m)."""
         displacement_update, displacement = self.path.update_sizes(update)
-        return displacement_update, max(-self._gaps().min(), 0.0), displacement
+        return displacement_update, max(-trial_gaps.min(), 0.0), displacement
 
     def _gaps(self) -> np.ndarray:
         """Gaps |X + U - c| - R_p at the bore nodes (m), negative in contact."""
         return gaps(self.path.deformed_points(), self.path.pin_centre_m, self.pin_radius_m)
 
-    def _line_search(self, update, dc, pin_residual, load, cap: float) -> float:
-        """Step length along the Newton direction; leaves the state there and returns it.
-
-        Starts from the smaller of ``cap``, :func:`slide_limit` and the step at which the first
-        node entering contact could carry the load alone (:func:`entering_limit`). Then halves
-        the step while the trial loses all contact, and, for a descent direction, backtracks
-        (Armijo, at most ``BACKTRACK_RANGE`` below the first contact-keeping step) on the
-        penalty potential. At rounding level near convergence, or with friction (not a
-        potential), the first contact-keeping step is taken.
-        """
+    def _line_search(self, update, dc, pin_residual, load, cap: float) -> np.ndarray:
+        """The step along the Newton direction by :func:`line_search` on the bore nodes; leaves
+        the state there and returns its gaps. The Armijo test (a descent direction without
+        friction) only where the decrease of Pi it asks for is above the rounding level: Pi is
+        a sum of terms of size |F/L| |c|, and a decrease below ``ENERGY_ROUNDING`` of that is
+        noise; with friction Pi is no potential of the equations."""
         path = self.path
-        base = _LineBase(path.pin_centre_m.copy(), path.deformed_points(), self.pin_radius_m)
-        gaps0 = base.all_gaps
-        slope = path.begin_line_search(update, dc, pin_residual)
-        # With friction Pi is no potential of the equations; without, it is a sum of terms of
-        # size |F/L| |c| and a decrease below ENERGY_ROUNDING of that is noise: in both cases
-        # the first contact-keeping step is taken as for a non-descent direction
+        line = path.begin_line_search(update, dc, pin_residual)
         load_size = norm(load)
-        descent = path.frictionless() and -slope > ENERGY_ROUNDING * (
-            load_size * norm(base.centre))
-        energy0 = path.energy(load) if descent else math.nan
-        step = min(cap, slide_limit(base.centre, dc, self.element_size_m, self.bore_radius_m))
-        keeps_contact = None
-        while step >= SMALLEST_STEP:
-            self._try(step, base, dc)
-            trial_gaps = self._gaps()
-            limit = entering_limit(gaps0, trial_gaps, step, path.weights_m, load_size,
-                                   self.penalty)
-            if step > limit:
-                step = limit
-                self._try(step, base, dc)
-                trial_gaps = self._gaps()
-            if trial_gaps.min() >= 0.0:
-                step *= 0.5
-                continue
-            if keeps_contact is None:
-                keeps_contact = step
-                if not descent:
-                    return step
-            if step < keeps_contact * BACKTRACK_RANGE:
-                break
-            if path.energy(load) <= energy0 + ARMIJO * step * slope:
-                return step
+        centre = path.pin_centre_m
+        descent = path.frictionless() and -line.slope > ENERGY_ROUNDING * (
+            load_size * norm(centre))
+        step, trial_centre, trial_gaps = line_search(
+            line.points, line.displacement, line.update, centre, dc, path.weights_m, load,
+            load_size, self.penalty, self.pin_radius_m, self.node_spacing_rad,
+            self.element_size_m, self.bore_radius_m, cap, line.slope, descent, line.elastic)
+        path.try_step(step, trial_centre)
+        return trial_gaps
+
+
+class LineData(NamedTuple):
+    """What :func:`line_search` needs of a discretisation at the start of a line search along
+    (displacement update, dc): the slope dPi/dstep at step 0 (J/m); the bore nodes' reference
+    positions X, displacements U and displacement updates dU (n, 2), m (the trial step s puts
+    the nodes at X + (U + s dU)); and the elastic energy along the line as the coefficients
+    (e0, e1, e2) of e0 + e1 s + e2 s^2 (J/m)."""
+
+    slope: float
+    points: np.ndarray
+    displacement: np.ndarray
+    update: np.ndarray
+    elastic: np.ndarray
+
+
+@compiled
+def _trial(step, points, displacement, update, centre0, dc, contact, base_points, normals,
+           base_gaps, pin_radius, node_spacing_rad):
+    """The pin centre and the nodes' gaps at the trial ``step``: the pin by :func:`pin_update`
+    plus the second-order correction of :func:`following_centre` (the nodes in contact at the
+    base move off the pin by more than their linearised gaps predict: gaps curve with 1/R_p,
+    which at light loads is more than the penetrations)."""
+    centre = pin_update(centre0, step * dc, node_spacing_rad)
+    deformed = points + (displacement + step * update)
+    if contact.size:
+        centre = following_centre(deformed, centre, contact, base_points, normals, base_gaps,
+                                  centre0, pin_radius)
+    return centre, gaps(deformed, centre, pin_radius)
+
+
+@compiled
+def _line_energy(step, elastic, trial_gaps, centre, weights_m, load, penalty):
+    """Pi = e(step) + sum_q w_q k/2 <-gap_q>^2 - F/L . c (J/m) at a trial state."""
+    penetration = np.maximum(-trial_gaps, 0.0)
+    return (elastic[0] + step * (elastic[1] + step * elastic[2])
+            + 0.5 * penalty * np.dot(weights_m, penetration**2)
+            - (load[0] * centre[0] + load[1] * centre[1]))
+
+
+@compiled
+def line_search(points, displacement, update, centre0, dc, weights_m, load, load_size, penalty,
+                pin_radius, node_spacing_rad, element_size_m, bore_radius_m, cap, slope, descent,
+                elastic):
+    """The step length along a Newton direction, on the bore nodes (:class:`LineData`): the
+    step, the pin centre there and the nodes' gaps there.
+
+    Starts from the smaller of ``cap``, :func:`slide_limit` and the step at which the first
+    node entering contact could carry the load alone (:func:`entering_limit`). Then halves the
+    step while the trial loses all contact, and, for a ``descent`` direction, backtracks
+    (Armijo, at most ``BACKTRACK_RANGE`` below the first contact-keeping step) on the penalty
+    potential (:func:`_line_energy`); else the first contact-keeping step is taken. Should every
+    trial lose contact, a step below the smallest tried."""
+    base = points + displacement
+    gaps0 = gaps(base, centre0, pin_radius)
+    contact, base_points, normals = contact_normals(base, centre0, gaps0)
+    base_gaps = gaps0[contact]
+    energy0 = _line_energy(0.0, elastic, gaps0, centre0, weights_m, load, penalty) if descent \
+        else math.nan
+    step = min(cap, slide_limit(centre0, dc, element_size_m, bore_radius_m))
+    keeps_contact = -1.0
+    while step >= SMALLEST_STEP:
+        centre, trial_gaps = _trial(step, points, displacement, update, centre0, dc, contact,
+                                    base_points, normals, base_gaps, pin_radius,
+                                    node_spacing_rad)
+        limit = entering_limit(gaps0, trial_gaps, step, weights_m, load_size, penalty)
+        if step > limit:
+            step = limit
+            centre, trial_gaps = _trial(step, points, displacement, update, centre0, dc, contact,
+                                        base_points, normals, base_gaps, pin_radius,
+                                        node_spacing_rad)
+        if trial_gaps.min() >= 0.0:
             step *= 0.5
-        if keeps_contact is None:
-            keeps_contact = step  # every trial lost contact: a step below the smallest tried
-        self._try(keeps_contact, base, dc)
-        return keeps_contact
-
-    def _try(self, step: float, base: _LineBase, dc: np.ndarray) -> None:
-        """Set the state to the trial ``step`` along (update, dc), the pin by :func:`pin_update`
-        plus a second-order correction: the nodes in contact at the base move off the pin by
-        more than their linearised gaps n_q . (dX_q - dc) predict (gaps curve with 1/R_p, which
-        at light loads is more than the penetrations); the pin follows them by the mean of that
-        excess along their mean normal."""
-        path = self.path
-        centre = pin_update(base.centre, step * dc, self.node_spacing_rad)
-        path.try_step(step, centre)
-        if not base.contact.size:
-            return
-        path.move_pin(following_centre(path.deformed_points(), centre, base.contact,
-                                       base.points, base.normals, base.gaps, base.centre,
-                                       self.pin_radius_m))
-
-
-class _LineBase:
-    """The state at the start of a line search: pin centre, the gaps of all nodes, the nodes
-    in contact (indices), their positions X + U, normals and gaps."""
-
-    def __init__(self, centre: np.ndarray, deformed_points: np.ndarray, pin_radius_m: float):
-        self.centre = centre
-        self.all_gaps = gaps(deformed_points, centre, pin_radius_m)
-        self.contact, self.points, self.normals = contact_normals(deformed_points, centre,
-                                                                  self.all_gaps)
-        self.gaps = self.all_gaps[self.contact]
+            continue
+        if keeps_contact < 0.0:
+            keeps_contact = step
+            if not descent:
+                return step, centre, trial_gaps
+        if step < keeps_contact * BACKTRACK_RANGE:
+            break
+        if _line_energy(step, elastic, trial_gaps, centre, weights_m, load,
+                        penalty) <= energy0 + ARMIJO * step * slope:
+            return step, centre, trial_gaps
+        step *= 0.5
+    if keeps_contact < 0.0:
+        keeps_contact = step
+    centre, trial_gaps = _trial(keeps_contact, points, displacement, update, centre0, dc,
+                                contact, base_points, normals, base_gaps, pin_radius,
+                                node_spacing_rad)
+    return keeps_contact, centre, trial_gaps

@@ -43,7 +43,8 @@ F = 0 exactly: no contact; the pin is returned centred (c = 0), u = 0, zero pres
 
 Newton: :class:`fewear.contact.newton.ContactNewton` (start, active-set steps, step rules,
 stopping test and the contact-angle fallback, shared with the condensed path); this class provides
-its linear algebra (assembly of r and J, the bordered step above, the penalty potential).
+its linear algebra (assembly of r and J, the bordered step above, the bore nodes' displacement
+and the elastic energy along a line search).
 ``newton_iterations`` counts all iterations.
 
 Forms are compiled once per mesh; load, pin centre, penalty and friction are ``fem.Constant``s.
@@ -67,7 +68,12 @@ from fewear.contact.admissible import (
     beyond_small_displacements,
     displacement_limit_m,
 )
-from fewear.contact.newton import ContactNewton, ContactNotConverged, contact_direction
+from fewear.contact.newton import (
+    ContactNewton,
+    ContactNotConverged,
+    LineData,
+    contact_direction,
+)
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.errors import FewearInputError
@@ -173,8 +179,6 @@ class BushingContactSolver:
         pressure = self.contact_pressure(ufl.SpatialCoordinate(msh) + u)
         normal = self._normal(ufl.SpatialCoordinate(msh) + u)
         self._normal_force = [fem.form(pressure * normal[i] * ds(BORE_TAG)) for i in range(2)]
-        penetration = pressure / self.penalty
-        self._penalty_energy = fem.form(0.5 * self.penalty * penetration**2 * ds(BORE_TAG))
         # The cosine-law pressure of a 1 N joint force along load_direction (admissible.py)
         self.load_direction = fem.Constant(msh, np.array([1.0, 0.0], dtype=PETSc.ScalarType))
         x = ufl.SpatialCoordinate(msh)
@@ -333,33 +337,28 @@ class BushingContactSolver:
     def newton_direction(self, pin_residual, load, basis):
         return self._bordered_step(pin_residual, basis)
 
-    def begin_line_search(self, du, dc, pin_residual) -> float:
-        """Slope of Pi along (du, dc): (K_el u + r) . du + r_c . dc (J/m)."""
-        rhs = self._rhs[1]
-        self._K_elastic.mult(self.displacement.vector, rhs)
-        rhs.axpy(1.0, self._r)
-        rhs.array_w[self._bc_local] = 0.0
-        self._line = (du, 0.0)
-        return rhs.dot(du) + float(pin_residual @ dc)
+    def begin_line_search(self, du, dc, pin_residual) -> LineData:
+        """Slope of Pi along (du, dc): (K_el u + r) . du + r_c . dc (J/m); the elastic energy
+        1/2 u.K_el u along the line, 1/2 u.K_el u + s du.K_el u + s^2/2 du.K_el du; the bore
+        nodes' displacement and its update (the evaluation at the nodes is linear in u)."""
+        Ku, Kdu = self._rhs[1], self._rhs[2]
+        u = self.displacement.vector
+        self._K_elastic.mult(u, Ku)
+        self._K_elastic.mult(du, Kdu)
+        elastic = np.array([0.5 * u.dot(Ku), du.dot(Ku), 0.5 * du.dot(Kdu)])
+        Ku.axpy(1.0, self._r)
+        Ku.array_w[self._bc_local] = 0.0
+        slope = Ku.dot(du) + float(pin_residual @ dc)
+        self._line = du
+        self._du.x.scatter_forward()
+        return LineData(slope, self.bore.points, np.ascontiguousarray(self.nodal_displacement()),
+                        np.ascontiguousarray(self._at_bore_nodes(self._du)), elastic)
 
     def try_step(self, step: float, pin_centre: np.ndarray) -> None:
-        du, taken = self._line
-        self.displacement.vector.axpy(step - taken, du)
+        self.displacement.vector.axpy(step, self._line)
         self.displacement.x.scatter_forward()
-        self._line = (du, step)
-        self.move_pin(pin_centre)
-
-    def move_pin(self, pin_centre: np.ndarray) -> None:
         self.pin_centre_m = pin_centre
         self.pin_centre.value = pin_centre
-
-    def energy(self, load: np.ndarray) -> float:
-        """Penalty potential per unit thickness (J/m):
-        Pi = 1/2 u.K_el u + int 1/2 k <-g>_+^2 ds - F/L . c (its gradient is the residual)."""
-        u = self.displacement.vector
-        self._K_elastic.mult(u, self._rhs[2])
-        penalty = self.comm.allreduce(fem.assemble_scalar(self._penalty_energy), op=MPI.SUM)
-        return 0.5 * u.dot(self._rhs[2]) + penalty - float(load @ self.pin_centre_m)
 
     def deformed_points(self) -> np.ndarray:
         return self.bore.points + self.nodal_displacement()
