@@ -95,7 +95,7 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
     times["dynamics"] += seconds
     with timed(times, "contact"):
         steps = load_steps(history, loop.load_steps_per_cycle * loop.recorded_cycles_per_block,
-                           inputs.dynamics.joint.law)
+                           inputs.dynamics.joint.law, inputs.impact_law)
     following, peak_pressure, peak_rate = None, 0.0, 0.0
     for step in range(loop.wear_steps_per_block):
         worn, wear, rate = wear_step(rod, inputs, bushing, case.state, history, steps, times,
@@ -146,8 +146,7 @@ def wear_step(rod: str, inputs: RunInputs, bushing, state: WearState, history, s
     with timed(times, "wear"):
         per_cycle = cycle_sliding(wear, steps, loop.recorded_cycles_per_block,
                                   inputs.contact.contact.friction_coefficient,
-                                  inputs.impact_wear_coefficient_m3_J,
-                                  inputs.impact_impulse_wear_coefficient_m3_Ns)
+                                  inputs.impact_law)
         if added_depth_per_cycle is not None:
             per_cycle = replace(per_cycle, impact_depth_m=per_cycle.impact_depth_m
                                 + added_depth_per_cycle(history, state))

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 from fewear.errors import FewearInputError
 from fewear.wear.extrapolation import ExtrapolationSettings
+from fewear.wear.impact import NO_IMPACT_WEAR, ImpactWearLaw
 
 RUN_SECTIONS = ["wear_loop", "wear"]
 MAX_WEAR_STEPS_PER_BLOCK = 64
@@ -74,8 +75,7 @@ class RunInputs:
     wear_coefficient: object  # k(p, v), fewear.wear.coefficient
     extension: object  # the wear law's history multiplier, fewear.wear.extensions
     loop: WearLoopSettings
-    impact_wear_coefficient_m3_J: float = 0.0  # k_imp, fewear.wear.impact
-    impact_impulse_wear_coefficient_m3_Ns: float = 0.0  # c_J, fewear.wear.impact
+    impact_law: ImpactWearLaw = NO_IMPACT_WEAR  # the impacts' wear (fewear.wear.impact)
 
 
 def run_sections() -> list[str]:
@@ -91,14 +91,9 @@ def run_inputs_from_config(config: dict) -> RunInputs:
     from fewear.mbd.slider_crank import dynamics_inputs_from_config
     from fewear.wear.coefficient import wear_coefficient_from_config
     from fewear.wear.extensions import wear_extension_from_config
-    from fewear.wear.impact import (
-        impact_impulse_wear_coefficient_from_config,
-        impact_wear_coefficient_from_config,
-    )
 
     return RunInputs(dynamics_inputs_from_config(config), contact_problem_from_config(config),
                      wear_coefficient_from_config(config["wear"]),
                      wear_extension_from_config(config["wear"]),
                      WearLoopSettings.from_config(config["wear_loop"]),
-                     impact_wear_coefficient_from_config(config["wear"]),
-                     impact_impulse_wear_coefficient_from_config(config["wear"]))
+                     ImpactWearLaw.from_config(config["wear"]))

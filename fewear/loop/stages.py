@@ -11,7 +11,14 @@ from scipy.integrate import cumulative_trapezoid
 from fewear.contact.admissible import ContactLoadError
 from fewear.mbd.history import JointHistory
 from fewear.wear.archard import CycleSliding, cycle_wear_depth_m
-from fewear.wear.impact import hysteresis_work_J, impact_impulse_N_s, impact_wear_depth_m
+from fewear.wear.impact import (
+    NO_IMPACT_WEAR,
+    ImpactWearLaw,
+    hysteresis_work_J,
+    impact_impulse_N_s,
+    impact_speed_power,
+    impact_wear_depth_m,
+)
 
 DROPPABLE_SHARE = 0.01
 """Load steps that find no contact equilibrium on a worn bore are dropped (counted, no wear)
@@ -28,7 +35,10 @@ class LoadSteps:
     relative to the bushing over the step; ``duration_s``: the length of one step;
     ``hysteresis_work_J`` (n,): the work W_i the contact law's hysteresis dissipates over the step
     (:func:`fewear.wear.impact.hysteresis_work_J`); ``impact_impulse_N_s`` (n,): the normal
-    impulse J_i of the impacts within the step (:func:`fewear.wear.impact.impact_impulse_N_s`).
+    impulse J_i of the impacts within the step (:func:`fewear.wear.impact.impact_impulse_N_s`,
+    those above the impact law's force threshold); ``impact_speed_power`` (n,): the sum S_i of
+    v^n over the impacts that begin within the step
+    (:func:`fewear.wear.impact.impact_speed_power`).
     """
 
     time_s: np.ndarray
@@ -37,6 +47,7 @@ class LoadSteps:
     duration_s: float
     hysteresis_work_J: np.ndarray
     impact_impulse_N_s: np.ndarray
+    impact_speed_power: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -60,7 +71,8 @@ class CycleWear:
     dropped_steps: int = 0
 
 
-def load_steps(history: JointHistory, n_steps: int, law=None) -> LoadSteps:
+def load_steps(history: JointHistory, n_steps: int, law=None,
+               impact: ImpactWearLaw = NO_IMPACT_WEAR) -> LoadSteps:
     """Cut the recorded history into ``n_steps`` equal steps (stage 2).
 
     The force of a step is its mean over the step, the impulse over the step's length (the seed
@@ -70,8 +82,10 @@ def load_steps(history: JointHistory, n_steps: int, law=None) -> LoadSteps:
     steady slip rate whatever n. The relative rotation is the integral of ``rel_omega_rad_s``
     over the step, the hysteresis work W_i that of the dissipated power of ``law`` (the
     clearance joint's :class:`fewear.mbd.contact.ContactLaw`; None: no work and no impacts, as
-    for the ideal joint) and the impact impulse J_i that of F_n over the impacts. All four
-    integrals are trapezoidal on the history, interpolated linearly at the step edges.
+    for the ideal joint) and the impact impulse J_i that of F_n over the impacts (those above
+    ``impact``'s force threshold). All four integrals are trapezoidal on the history,
+    interpolated linearly at the step edges; the impacts' v^n (``impact``'s exponent) are
+    counted in the step of their onset.
     """
     t = history.time_s
     edges = np.linspace(t[0], t[-1], n_steps + 1)
@@ -82,13 +96,17 @@ def load_steps(history: JointHistory, n_steps: int, law=None) -> LoadSteps:
                     axis=0) / duration
     rotation = np.diff(np.interp(edges, t, cumulative_trapezoid(history.rel_omega_rad_s, t,
                                                                 initial=0.0)))
-    work = impulse = np.zeros(n_steps)
+    work = impulse = speed_power = np.zeros(n_steps)
     if law is not None:
         work = np.diff(np.interp(
             edges, t, hysteresis_work_J(law, history.penetration_m, history.normal_force_N)))
-        impulse = np.diff(np.interp(
-            edges, t, impact_impulse_N_s(t, history.normal_force_N, history.mode)))
-    return LoadSteps(middles, force, rotation, duration, work, impulse)
+        impulse = np.diff(np.interp(edges, t, impact_impulse_N_s(
+            t, history.normal_force_N, history.mode, impact.impulse_threshold_N)))
+        onsets = impact_speed_power(t, history.penetration_m, history.mode,
+                                    impact.speed_exponent)
+        step_of = np.minimum(np.searchsorted(edges, t, side="right") - 1, n_steps - 1)
+        speed_power = np.bincount(step_of, np.diff(onsets, prepend=0.0), minlength=n_steps)
+    return LoadSteps(middles, force, rotation, duration, work, impulse, speed_power)
 
 
 def cycle_wear(contact_model, steps: LoadSteps, wear_coefficient, friction: bool,
@@ -140,13 +158,11 @@ def _solve_steps(contact_model, steps: LoadSteps, friction: bool) -> list:
 
 
 def cycle_sliding(wear: CycleWear, steps: LoadSteps, cycles: int, friction_coefficient: float,
-                  impact_wear_coefficient_m3_J: float = 0.0,
-                  impact_impulse_wear_coefficient_m3_Ns: float = 0.0) -> CycleSliding:
+                  impact: ImpactWearLaw = NO_IMPACT_WEAR) -> CycleSliding:
     """What one crank cycle does at each node, averaged over the ``cycles`` recorded cycles:
     Archard depth, sliding distance, time in sliding contact, mean frictional power mu p v, the
-    depth's sensitivity to the wear, and the impact wear depth of k_imp =
-    ``impact_wear_coefficient_m3_J`` on the hysteresis work plus c_J =
-    ``impact_impulse_wear_coefficient_m3_Ns`` on the impact impulse
+    depth's sensitivity to the wear, and the impact wear depth of the ``impact`` law on the
+    steps' hysteresis work, impact impulse and impact speeds
     (:func:`fewear.wear.impact.impact_wear_depth_m`)."""
     sliding = wear.slip_m > 0.0
     distance = wear.slip_m.sum(axis=0) / cycles
@@ -154,8 +170,8 @@ def cycle_sliding(wear: CycleWear, steps: LoadSteps, cycles: int, friction_coeff
     energy = friction_coefficient * (wear.pressure_Pa * wear.slip_m).sum(axis=0) / cycles
     power = np.divide(energy, time_s, out=np.zeros_like(energy), where=time_s > 0.0)
     sensitivity = None if wear.depth_sensitivity is None else wear.depth_sensitivity / cycles
-    impact_volume_m3 = (impact_wear_coefficient_m3_J * steps.hysteresis_work_J
-                        + impact_impulse_wear_coefficient_m3_Ns * steps.impact_impulse_N_s)
+    impact_volume_m3 = impact.volume_m3(steps.hysteresis_work_J, steps.impact_impulse_N_s,
+                                        steps.impact_speed_power)
     impact = impact_wear_depth_m(1.0, impact_volume_m3, steps.force_N, wear.pressure_Pa) / cycles
     return CycleSliding(wear.depth_per_cycle_m / cycles, distance, time_s, power, sensitivity,
                         impact)

@@ -58,15 +58,21 @@ class JointHistory:
         return len(self.impact_episodes())
 
     def impact_episodes(self) -> list[tuple[int, int]]:
-        """(first, last) rows of each impact episode (a maximal run of impact-mode rows)."""
-        impact = np.concatenate([[False], self.mode == 1, [False]])
-        starts = np.flatnonzero(impact[1:] & ~impact[:-1])
-        ends = np.flatnonzero(~impact[1:] & impact[:-1]) - 1
-        return list(zip(starts.tolist(), ends.tolist()))
+        """(first, last) rows of each impact episode (:func:`impact_episodes`)."""
+        return impact_episodes(self.mode)
 
     @property
     def peak_contact_force_N(self) -> float:
         return float(np.max(np.linalg.norm(self.reaction_force_N, axis=1), initial=0.0))
+
+
+def impact_episodes(mode: np.ndarray) -> list[tuple[int, int]]:
+    """(first, last) rows of each impact episode (a maximal run of impact-mode rows, ``mode`` 1)
+    of a ``mode`` array."""
+    impact = np.concatenate([[False], np.asarray(mode) == 1, [False]])
+    starts = np.flatnonzero(impact[1:] & ~impact[:-1])
+    ends = np.flatnonzero(~impact[1:] & impact[:-1]) - 1
+    return list(zip(starts.tolist(), ends.tolist()))
 
 
 def classify_modes(time_s: np.ndarray, normal_force_N: np.ndarray,

@@ -1,6 +1,7 @@
-"""Impact wear: bore material removed by the impacts of the clearance joint, in two forms that
-may act together: by the energy the contact law's hysteresis dissipates, and by the impacts'
-normal impulse.
+"""Impact wear: bore material removed by the impacts of the clearance joint, in three forms that
+may act together: by the energy the contact law's hysteresis dissipates, by the impacts' normal
+impulse (optionally only of impacts whose peak force passes a threshold), and by a power of the
+impact speed.
 
 Energy wear (Fouvry, Liskiewicz, Kapsa & Hannel, Wear 255 (2003) 287-298: the worn volume is
 proportional to the dissipated energy) applied to the impacts of the clearance joint:
@@ -31,20 +32,81 @@ a collision and rebound; the continuous contact's impulse is left out). c_J (m^3
 ``[wear]`` key ``impact_impulse_wear_coefficient_m3_Ns``. The momentum an impact reverses, rather
 than the energy it takes away, sets the damage when the restitution is high and little is
 dissipated (impact wear grows with the number and the severity of the blows, Engel, Impact Wear
-of Materials, Elsevier 1976). A step's impulse J_i is spread over the bore like its work.
+of Materials, Elsevier 1976). A step's impulse J_i is spread over the bore like its work. With
+``[wear] impact_impulse_force_threshold_N`` F_th > 0 only the impacts whose peak normal force
+exceeds F_th count: light taps below the material's damage threshold remove nothing.
+
+Speed form: V_imp = c_v sum_k v_k^n over the impacts k, v_k the normal approach speed at the
+impact's onset (the penetration rate over the step into contact), n = ``impact_speed_exponent``
+(3 by default: the kinetic energy per unit contact area of a Hertzian impact grows with v^(6/5)
+and erosion-type impact wear with v^2-v^3, Engel 1976), c_v =
+``impact_speed_wear_coefficient`` in m^3 / (m/s)^n. Each impact's v_k^n is counted in the load
+step its onset lies in and spread over the bore like the work.
+
+The three coefficients and their options form an :class:`ImpactWearLaw`, parsed once from the
+``[wear]`` section (:meth:`ImpactWearLaw.from_config`); its :meth:`ImpactWearLaw.volume_m3` gives a
+step's impact volume from the step's measures.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.integrate import cumulative_trapezoid
 
 from fewear.errors import FewearInputError
+from fewear.mbd.history import impact_episodes
 
 CONFIG_KEY = "impact_wear_coefficient_m3_J"
 IMPULSE_CONFIG_KEY = "impact_impulse_wear_coefficient_m3_Ns"
+THRESHOLD_CONFIG_KEY = "impact_impulse_force_threshold_N"
+SPEED_CONFIG_KEY = "impact_speed_wear_coefficient"
+EXPONENT_CONFIG_KEY = "impact_speed_exponent"
+MAX_SPEED_EXPONENT = 6.0
+"""The largest ``impact_speed_exponent`` accepted (the forms of the literature lie in 1-3)."""
+
+
+@dataclass(frozen=True)
+class ImpactWearLaw:
+    """The impact wear of a run (module docstring): k_imp (m^3/J) on the hysteresis work, c_J
+    (m^3/(N s)) on the impulse of the impacts whose peak normal force exceeds
+    ``impulse_threshold_N``, c_v (m^3/(m/s)^n) on the n-th power of the impact speeds. All zero:
+    sliding wear only (the default)."""
+
+    energy_m3_J: float = 0.0
+    impulse_m3_Ns: float = 0.0
+    impulse_threshold_N: float = 0.0
+    speed_coefficient: float = 0.0
+    speed_exponent: float = 3.0
+
+    @classmethod
+    def from_config(cls, section: dict) -> ImpactWearLaw:
+        """The law of a ``[wear]`` section; each value checked (:class:`FewearInputError`
+        naming the key, the value and what is allowed)."""
+        exponent = _coefficient(section, EXPONENT_CONFIG_KEY, "(the power n of the impact "
+                                f"speed, at most {MAX_SPEED_EXPONENT:g})", default=3.0)
+        if exponent > MAX_SPEED_EXPONENT:
+            raise FewearInputError(f"[wear] {EXPONENT_CONFIG_KEY} = {exponent!r}: expected a "
+                                   f"number between 0 and {MAX_SPEED_EXPONENT:g}")
+        return cls(impact_wear_coefficient_from_config(section),
+                   impact_impulse_wear_coefficient_from_config(section),
+                   _coefficient(section, THRESHOLD_CONFIG_KEY, "N (the peak normal force an "
+                                "impact must exceed for its impulse to wear; 0 = every impact)"),
+                   _coefficient(section, SPEED_CONFIG_KEY, "m^3 per (m/s)^n (worn volume per "
+                                "impact and n-th power of its approach speed; 0 = none)"),
+                   exponent)
+
+    def volume_m3(self, work_J, impulse_N_s, speed_power) -> np.ndarray:
+        """The impact volume of each load step (m^3): k_imp W_i + c_J J_i + c_v S_i from the
+        steps' hysteresis work, impulse (of the impacts above the threshold) and sum of v^n."""
+        return (self.energy_m3_J * np.asarray(work_J) + self.impulse_m3_Ns * np.asarray(impulse_N_s)
+                + self.speed_coefficient * np.asarray(speed_power))
+
+
+NO_IMPACT_WEAR = ImpactWearLaw()
+"""Sliding wear only (every coefficient zero), the default."""
 
 
 def hysteresis_work_J(law, penetration_m, normal_force_N) -> np.ndarray:
@@ -62,13 +124,31 @@ def hysteresis_work_J(law, penetration_m, normal_force_N) -> np.ndarray:
     return cumulative_trapezoid(damping, delta, initial=0.0)
 
 
-def impact_impulse_N_s(time_s, normal_force_N, mode) -> np.ndarray:
+def impact_impulse_N_s(time_s, normal_force_N, mode, threshold_N: float = 0.0) -> np.ndarray:
     """The normal impulse of the impact episodes from the first sample to each sample (N s,
     (n,)): the trapezoid rule on F_n, counted on the intervals between two impact-mode samples
     (``mode`` 1, :data:`fewear.mbd.history.MODES`) and on those that enter or leave an episode
-    (its force rises from or falls to zero there)."""
+    (its force rises from or falls to zero there); only the episodes whose peak normal force
+    exceeds ``threshold_N``."""
     force = np.where(np.asarray(mode) == 1, np.asarray(normal_force_N, dtype=float), 0.0)
+    if threshold_N > 0.0:
+        for first, last in impact_episodes(mode):
+            if force[first:last + 1].max() <= threshold_N:
+                force[first:last + 1] = 0.0
     return cumulative_trapezoid(force, np.asarray(time_s, dtype=float), initial=0.0)
+
+
+def impact_speed_power(time_s, penetration_m, mode, exponent: float) -> np.ndarray:
+    """sum_k v_k^n over the impacts that began up to each sample ((n_samples,), (m/s)^n): v_k
+    the penetration rate over the step into the impact episode's first sample (from the sample
+    before it, out of contact), counted at that first sample."""
+    time, delta = np.asarray(time_s, dtype=float), np.asarray(penetration_m, dtype=float)
+    onset = np.zeros(time.size)
+    for first, _ in impact_episodes(mode):
+        if first > 0:
+            speed = (delta[first] - delta[first - 1]) / (time[first] - time[first - 1])
+            onset[first] = max(speed, 0.0) ** exponent
+    return np.cumsum(onset)
 
 
 def impact_wear_depth_m(coefficient: float, measure, force_N, pressure_Pa) -> np.ndarray:
@@ -88,19 +168,21 @@ def impact_wear_depth_m(coefficient: float, measure, force_N, pressure_Pa) -> np
 def impact_wear_coefficient_from_config(section: dict) -> float:
     """k_imp (m^3/J) of a ``[wear]`` section: a finite number >= 0 (default 0, no impact wear)."""
     return _coefficient(section, CONFIG_KEY, "m^3/J (worn volume per joule dissipated by the "
-                        "contact law's hysteresis")
+                        "contact law's hysteresis; 0 = no impact wear)")
 
 
 def impact_impulse_wear_coefficient_from_config(section: dict) -> float:
     """c_J (m^3/(N s)) of a ``[wear]`` section: a finite number >= 0 (default 0, none)."""
     return _coefficient(section, IMPULSE_CONFIG_KEY, "m^3/(N s) (worn volume per newton second "
-                        "of the impacts' normal impulse")
+                        "of the impacts' normal impulse; 0 = none)")
 
 
-def _coefficient(section: dict, key: str, meaning: str) -> float:
-    value = section.get(key, 0.0)
+def _coefficient(section: dict, key: str, meaning: str, default: float = 0.0) -> float:
+    """A finite number >= 0 of ``section`` (``default`` if absent); ``meaning``: its unit and
+    what it is, for the message."""
+    value = section.get(key, default)
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
             math.isfinite(value) and value >= 0.0):
         raise FewearInputError(f"[wear] {key} = {value!r}: expected a finite number >= 0 in "
-                               f"{meaning}; 0 = no impact wear)")
+                               f"{meaning}")
     return float(value)

@@ -1,6 +1,7 @@
 """Impact wear (fewear.wear.impact): the hysteresis work against the energy an impact loses,
-the impacts' impulse against the momentum they reverse, the worn volume k_imp W (c_J J) on the
-FE bore, off by default, and the config keys."""
+the impacts' impulse against the momentum they reverse (all, or those above a force threshold),
+the impact speeds' power against the approach speed, the worn volume k_imp W (c_J J, c_v S) on
+the FE bore, off by default, and the config keys."""
 
 import math
 
@@ -18,9 +19,11 @@ from fewear.wear.archard import CycleSliding, block_wear
 from fewear.wear.coefficient import ConstantWearCoefficient
 from fewear.wear.extensions import RunningIn, SlidingState
 from fewear.wear.impact import (
+    ImpactWearLaw,
     hysteresis_work_J,
     impact_impulse_N_s,
     impact_impulse_wear_coefficient_from_config,
+    impact_speed_power,
     impact_wear_coefficient_from_config,
     impact_wear_depth_m,
 )
@@ -136,6 +139,79 @@ def test_impact_impulse_is_the_momentum_the_impact_reverses():
     np.testing.assert_array_equal(steps.impact_impulse_N_s[9:], 0.0)  # the contact episode
 
 
+def _two_impacts(peaks_N, speeds_m_s, duration_s=4e-4, samples=401):
+    """A history of two half-sine impact episodes (mode 1) with the given peak forces, each
+    entered from free flight at the given approach speed (the penetration rising linearly over
+    the step into contact), apart by free flight; the impulse of a half sine is
+    2 F T / pi."""
+    time, force, delta, mode = [0.0], [0.0], [-1e-6], [0]
+    for peak, speed in zip(peaks_N, speeds_m_s):
+        start = time[-1] + 1e-3
+        gap = time[-1] + 1e-3 - 1e-5
+        time += [gap]
+        force += [0.0]
+        delta += [-speed * 1e-5]  # 10 us before contact, at the approach speed
+        mode += [0]
+        local = np.linspace(0.0, duration_s, samples)[1:-1]
+        time += list(start + local)
+        force += list(peak * np.sin(math.pi * local / duration_s))
+        delta += list(speed * duration_s / math.pi * np.sin(math.pi * local / duration_s))
+        mode += [1] * local.size
+        time += [start + duration_s]
+        force += [0.0]
+        delta += [-1e-9]
+        mode += [0]
+    n = len(time)
+    zeros = np.zeros(n)
+    history = JointHistory(np.array(time), zeros, zeros, zeros, np.zeros((n, 2)),
+                           np.array(delta), np.array(force), zeros,
+                           np.column_stack([force, zeros]), zeros, np.array(mode))
+    return history, [2.0 * peak * duration_s / math.pi for peak in peaks_N]
+
+
+def test_the_impulse_counts_only_impacts_above_the_force_threshold():
+    """Two impacts of 800 and 2000 N: without a threshold both impulses (2 F T / pi each),
+    with one at 1000 N only the second's, above 2000 N none."""
+    history, impulses = _two_impacts([800.0, 2000.0], [0.1, 0.2])
+    args = (history.time_s, history.normal_force_N, history.mode)
+    # the trapezoid over the 10 us of the step into contact adds ~1e-4
+    assert impact_impulse_N_s(*args)[-1] == pytest.approx(sum(impulses), rel=1e-3)
+    assert impact_impulse_N_s(*args, 1000.0)[-1] == pytest.approx(impulses[1], rel=1e-3)
+    assert impact_impulse_N_s(*args, 2001.0)[-1] == 0.0
+
+
+@pytest.mark.parametrize("exponent", [1.0, 3.0])
+def test_the_speed_power_sums_the_approach_speeds(exponent):
+    """Impacts entered at 0.1 and 0.25 m/s: sum v^n, each counted once at its onset, and in the
+    load step that holds the onset."""
+    history, _ = _two_impacts([800.0, 2000.0], [0.1, 0.25])
+    total = impact_speed_power(history.time_s, history.penetration_m, history.mode, exponent)
+    # the penetration is a sine, not a line, over the first 1 us of contact: ~1e-6 off
+    assert total[-1] == pytest.approx(0.1**exponent + 0.25**exponent, rel=1e-5)
+    law = ContactLaw("lankarani-nikravesh", K, restitution=0.9)
+    steps = load_steps(history, 8, law, ImpactWearLaw(speed_exponent=exponent))
+    assert steps.impact_speed_power.sum() == pytest.approx(total[-1], rel=1e-12)
+    onsets = [first for first, _ in history.impact_episodes()]
+    edges = np.linspace(history.time_s[0], history.time_s[-1], 9)
+    holding = np.searchsorted(edges, history.time_s[onsets], side="right") - 1
+    np.testing.assert_allclose(steps.impact_speed_power[holding],
+                               [0.1**exponent, 0.25**exponent], rtol=1e-5)
+
+
+def test_the_law_adds_its_three_forms():
+    law = ImpactWearLaw(energy_m3_J=2.0, impulse_m3_Ns=3.0, speed_coefficient=5.0)
+    np.testing.assert_allclose(law.volume_m3([1.0, 0.0], [0.0, 1.0], [1.0, 2.0]), [7.0, 13.0])
+
+
+@pytest.mark.parametrize("key, value", [("impact_impulse_force_threshold_N", -1.0),
+                                        ("impact_speed_wear_coefficient", math.nan),
+                                        ("impact_speed_exponent", 7.0),
+                                        ("impact_speed_exponent", "3")])
+def test_the_impact_options_are_checked(key, value):
+    with pytest.raises(FewearInputError, match=rf"\[wear\] {key} = "):
+        ImpactWearLaw.from_config({key: value})
+
+
 def test_the_impulse_coefficient_is_checked_like_the_energy_one():
     key = "impact_impulse_wear_coefficient_m3_Ns"
     with pytest.raises(FewearInputError, match=rf"\[wear\] {key} = -1.0: .*finite number >= 0"):
@@ -154,10 +230,11 @@ def test_worn_volume_is_k_times_the_work_and_sits_under_the_pressure(coarse_cont
     magnitude = np.array([500.0, 1000.0, 2000.0, 0.0])
     force = magnitude[:, None] * np.column_stack([np.cos(angles), np.sin(angles)])
     work = np.array([1e-3, 2e-3, 5e-4, 4e-3])  # J; the last step has no force: no wear
-    steps = LoadSteps(np.arange(4) * 1e-3, force, np.zeros(4), 1e-3, work, np.zeros(4))
+    steps = LoadSteps(np.arange(4) * 1e-3, force, np.zeros(4), 1e-3, work, np.zeros(4),
+                      np.zeros(4))
     wear = cycle_wear(coarse_contact, steps, ConstantWearCoefficient(2e-13), friction=False)
     k = 1e-12
-    depth = cycle_sliding(wear, steps, 1, 0.1, k).impact_depth_m
+    depth = cycle_sliding(wear, steps, 1, 0.1, ImpactWearLaw(energy_m3_J=k)).impact_depth_m
     np.testing.assert_array_equal(wear.angle_rad, coarse_contact.angles)
     width = coarse_contact.problem.geometry.width_m
     volume = width * float(coarse_contact.weights_m @ depth)
@@ -173,7 +250,7 @@ def test_worn_volume_is_k_times_the_work_and_sits_under_the_pressure(coarse_cont
 def test_without_impact_wear_the_block_is_unchanged():
     """k_imp = 0 (the default) adds exactly nothing, bit for bit; k_imp > 0 adds A_j h_imp,
     not scaled by the sliding-history multiplier of running-in."""
-    assert run_inputs_from_config(_default_config()).impact_wear_coefficient_m3_J == 0.0
+    assert run_inputs_from_config(_default_config()).impact_law == ImpactWearLaw()
     force = np.array([[1000.0, 0.0], [0.0, -500.0]])
     pressure = np.array([[3e7, 1e7, 0.0], [0.0, 2e7, 4e7]])
     assert np.all(impact_wear_depth_m(0.0, [5.0, 7.0], force, pressure) == 0.0)
@@ -266,7 +343,9 @@ def without_impact_wear(tmp_path_factory):
 
 @pytest.mark.parametrize("key, measure", [("impact_wear_coefficient_m3_J", "hysteresis_work_J"),
                                           ("impact_impulse_wear_coefficient_m3_Ns",
-                                           "impact_impulse_N_s")])
+                                           "impact_impulse_N_s"),
+                                          ("impact_speed_wear_coefficient",
+                                           "impact_speed_power")])
 def test_fewear_run_adds_the_coefficient_times_the_cycles_impact_measure(tmp_path, key, measure,
                                                                          without_impact_wear):
     """One block of 2000 cycles with and without impact wear: the same dynamics and sliding

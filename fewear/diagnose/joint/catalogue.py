@@ -34,7 +34,8 @@ from fewear.diagnose.joint.forward import (
 from fewear.wear.extensions import extension_to_config
 
 IMPACT_FORMS = {"energy": "impact_wear_coefficient_m3_J",
-                "impulse": "impact_impulse_wear_coefficient_m3_Ns"}
+                "impulse": "impact_impulse_wear_coefficient_m3_Ns",
+                "speed": "impact_speed_wear_coefficient"}
 """The forms of ``impact_wear``: the [wear] key of each (:mod:`fewear.wear.impact`)."""
 NONE_MEANING = "the believed model predicts the held-out measurements within their scatter"
 """What naming no cause means."""
@@ -226,14 +227,17 @@ class Friction(GridCause):
 
 
 class ImpactWear(GridCause):
-    """The impacts wear too (:mod:`fewear.wear.impact`), by energy or by impulse (one form each,
-    :data:`IMPACT_FORMS`): runs at coefficients such that the impact volume is a set multiple of
-    the sliding volume on the unworn joint, interpolated. The level s scales both wear rates, so
-    the coefficient reported and written to the extended config is s times the grid's."""
+    """The impacts wear too (:mod:`fewear.wear.impact`), by energy, by impulse (above the
+    believed config's force threshold) or by a power of the impact speed (the believed config's
+    exponent; one form each, :data:`IMPACT_FORMS`): runs at coefficients such that the impact
+    volume is a set multiple of the sliding volume on the unworn joint, interpolated. The level
+    s scales both wear rates, so the coefficient reported and written to the extended config is
+    s times the grid's."""
 
     name = "impact_wear"
     meaning = ("the impacts remove material too (wear in proportion to the energy the contact "
-               "dissipates or to the impacts' impulse), not only the sliding")
+               "dissipates, to the impacts' impulse or to a power of their speed), not only the "
+               "sliding")
     parameter_scales_with_level = True
 
     def parameter_of(self, form: str) -> str:

@@ -228,16 +228,19 @@ def cycle_on_worn_bore(config: dict, angle_rad: np.ndarray | None = None,
 def impact_measures_per_cycle(config: dict) -> dict[str, float]:
     """What the impacts of one crank cycle on the unworn joint wear by
     (:mod:`fewear.wear.impact`), from the steps that carry a force: ``energy``, the contact
-    law's hysteresis work (J), and ``impulse``, the impacts' normal impulse (N s)."""
+    law's hysteresis work (J), ``impulse``, the impacts' normal impulse (N s, those above the
+    config's force threshold), and ``speed``, the sum of the impacts' v^n ((m/s)^n, the
+    config's exponent)."""
     from fewear.loop.settings import run_inputs_from_config
     from fewear.loop.stages import load_steps
 
     inputs = run_inputs_from_config(config)
     steps = load_steps(cycle_on_worn_bore(config), inputs.loop.load_steps_per_cycle,
-                       inputs.dynamics.joint.law)
+                       inputs.dynamics.joint.law, inputs.impact_law)
     loaded = np.linalg.norm(steps.force_N, axis=1) > 0.0
     return {"energy": float(steps.hysteresis_work_J[loaded].sum()),
-            "impulse": float(steps.impact_impulse_N_s[loaded].sum())}
+            "impulse": float(steps.impact_impulse_N_s[loaded].sum()),
+            "speed": float(steps.impact_speed_power[loaded].sum())}
 
 
 def worn_volume_per_cycle_m3(history: WearHistory, config: dict) -> float:
