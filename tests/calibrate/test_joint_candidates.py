@@ -106,6 +106,44 @@ def test_an_unknown_impact_form_is_a_clear_error():
     assert replace(JointDiagnoseSettings.default(), impact_forms=["energy", "impulse"]).impact_forms
 
 
+@pytest.mark.parametrize("factors", [(0.0, 3.0), ("3",), (True,)])
+def test_a_bad_rod_damping_factor_is_a_clear_error(factors):
+    with pytest.raises(FewearInputError, match=r"rod_damping_factors = .*positive numbers"):
+        replace(JointDiagnoseSettings.default(), rod_damping_factors=factors)
+
+
+def test_the_flexible_links_damping_form_runs_a_damped_rod_at_the_believed_modulus():
+    """The form "damping" makes the rod flexible and multiplies its damping, the modulus left;
+    the modulus form the reverse; the damping form is run only where its grid is not empty."""
+    from fewear.diagnose.joint.catalogue import Believed
+
+    config = {"wear_loop": {"rod_models": ["rigid"]},
+              "mechanism": {"rod_youngs_modulus_Pa": 2e11, "rod_damping_s": 3e-5}}
+    link = CAUSES["flexible_link"]
+    damped = link.switched_on(config, 4.0, "damping")
+    assert damped["wear_loop"]["rod_models"] == ["flexible"]
+    assert damped["mechanism"] == {"rod_youngs_modulus_Pa": 2e11, "rod_damping_s": 1.2e-4}
+    assert link.switched_on(config, 0.5)["mechanism"] == {"rod_youngs_modulus_Pa": 1e11,
+                                                          "rod_damping_s": 3e-5}
+    assert config["mechanism"]["rod_damping_s"] == 3e-5  # the believed config is left as it is
+    assert link.parameter_of("damping") == "rod_damping_factor"
+    made = []
+
+    def make_runs(jobs):
+        made.extend(label for _, label in jobs)
+        return [_run(1e5) for _ in jobs]
+
+    believed = Believed(config, _run(1e5), 100000, 5e4, make_runs)
+    settings = JointDiagnoseSettings.default()
+    assert [c.form for c in link.forms(believed, settings)] == [""]
+    with_damping = replace(settings, rod_damping_factors=(3.0, 0.3))
+    made.clear()
+    forms = link.forms(believed, with_damping)
+    assert [c.form for c in forms] == ["", "damping"]
+    assert forms[1].grid == (0.3, 3.0) and forms[1].parameter == "rod_damping_factor"
+    assert made[-2:] == ["flexible rod, damping x 0.3", "flexible rod, damping x 3"]
+
+
 # --- running-in: the time map of each form, and the form told from the data ---------------------
 MULTIPLIERS = {  # m(n) after n cycles of sliding d per cycle for each form, written out here
     # (Blau 2005), not taken from the extensions; scale: s0 in m, or N0 in cycles

@@ -46,6 +46,7 @@ class RunGrids(Protocol):
 
     friction_grid: tuple[float, ...]
     rod_modulus_factors: tuple[float, ...]
+    rod_damping_factors: tuple[float, ...]
     impact_volume_ratios: tuple[float, ...]
     impact_forms: tuple[str, ...]
 
@@ -177,14 +178,19 @@ class GridCause(Cause):
 
 class FlexibleLink(GridCause):
     """The believed rigid rod is a flexible ANCF rod, its Young's modulus one of a grid of
-    factors on the believed one: the worn bore does not follow the modulus smoothly, so the runs
-    are not interpolated; the best on the training data is taken (a discrete choice)."""
+    factors on the believed one (the form "", at the believed damping) or, the form "damping",
+    its structural damping ``rod_damping_s`` one of a grid of factors on the believed one (at the
+    believed modulus; only where ``rod_damping_factors`` is not empty): the worn bore does not
+    follow either smoothly, so the runs are not interpolated; the best on the training data is
+    taken (a discrete choice)."""
 
     name = "flexible_link"
     meaning = ("the connecting rod modelled rigid is flexible: its compliance changes the "
                "impacts and the continuous-contact sliding in the joint")
-    parameter = "rod_youngs_modulus_factor"
     discrete = True
+
+    def parameter_of(self, form: str) -> str:
+        return "rod_damping_factor" if form == "damping" else "rod_youngs_modulus_factor"
 
     def untestable_because(self, config: dict) -> str | None:
         if config["wear_loop"]["rod_models"][0] == "flexible":
@@ -194,14 +200,20 @@ class FlexibleLink(GridCause):
     def switched_on(self, config: dict, value: float, form: str = "") -> dict:
         changed = copy.deepcopy(config)
         changed["wear_loop"]["rod_models"] = ["flexible"]
-        changed["mechanism"]["rod_youngs_modulus_Pa"] *= float(value)
+        key = "rod_damping_s" if form == "damping" else "rod_youngs_modulus_Pa"
+        changed["mechanism"][key] *= float(value)
         return changed
 
     def forms(self, believed: Believed, settings: RunGrids) -> tuple[Candidate, ...]:
-        grid = sorted(settings.rod_modulus_factors)
-        runs = believed.make_runs([(self.switched_on(believed.config, f),
-                                    f"flexible rod, E x {f:g}") for f in grid])
-        return lasting(self.candidate(runs, grid), believed.needed_cycles)
+        forms = []
+        for form, grid, label in (("", settings.rod_modulus_factors, "E"),
+                                  ("damping", settings.rod_damping_factors, "damping")):
+            grid = sorted(grid)
+            if grid:
+                runs = believed.make_runs([(self.switched_on(believed.config, f, form),
+                                            f"flexible rod, {label} x {f:g}") for f in grid])
+                forms += lasting(self.candidate(runs, grid, form), believed.needed_cycles)
+        return tuple(forms)
 
 
 class Friction(GridCause):

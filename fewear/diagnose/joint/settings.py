@@ -24,6 +24,7 @@ class JointDiagnoseSettings:
     max_k_scale: float
     friction_grid: tuple[float, ...]
     rod_modulus_factors: tuple[float, ...]
+    rod_damping_factors: tuple[float, ...]
     impact_volume_ratios: tuple[float, ...]
     impact_forms: tuple[str, ...]
     max_offset_deg: float
@@ -44,6 +45,11 @@ class JointDiagnoseSettings:
             if not values or min(values) <= 0.0:
                 raise FewearInputError(f"[joint_diagnose] {name} = {list(values)!r}: expected a "
                                        "non-empty list of positive numbers")
+        if any(isinstance(factor, bool) or not isinstance(factor, (int, float))
+               or not factor > 0.0 for factor in self.rod_damping_factors):
+            raise FewearInputError(
+                f"[joint_diagnose] rod_damping_factors = {list(self.rod_damping_factors)!r}: "
+                "expected a list of positive numbers (empty: the damping form is not tried)")
         if not self.impact_forms or not set(self.impact_forms) <= set(IMPACT_FORMS):
             raise FewearInputError(
                 f"[joint_diagnose] impact_forms = {list(self.impact_forms)!r}: expected a "
