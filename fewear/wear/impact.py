@@ -85,18 +85,19 @@ class ImpactWearLaw:
     def from_config(cls, section: dict) -> ImpactWearLaw:
         """The law of a ``[wear]`` section; each value checked (:class:`FewearInputError`
         naming the key, the value and what is allowed)."""
-        exponent = _coefficient(section, EXPONENT_CONFIG_KEY, "(the power n of the impact "
-                                f"speed, at most {MAX_SPEED_EXPONENT:g})", default=3.0)
-        if exponent > MAX_SPEED_EXPONENT:
+        exponent = section.get(EXPONENT_CONFIG_KEY, 3.0)
+        if isinstance(exponent, bool) or not isinstance(exponent, (int, float)) or not (
+                0.0 <= exponent <= MAX_SPEED_EXPONENT):
             raise FewearInputError(f"[wear] {EXPONENT_CONFIG_KEY} = {exponent!r}: expected a "
-                                   f"number between 0 and {MAX_SPEED_EXPONENT:g}")
+                                   f"number between 0 and {MAX_SPEED_EXPONENT:g} (the power n "
+                                   "of the impact speed that impact wear grows with)")
         return cls(impact_wear_coefficient_from_config(section),
                    impact_impulse_wear_coefficient_from_config(section),
                    _coefficient(section, THRESHOLD_CONFIG_KEY, "N (the peak normal force an "
                                 "impact must exceed for its impulse to wear; 0 = every impact)"),
                    _coefficient(section, SPEED_CONFIG_KEY, "m^3 per (m/s)^n (worn volume per "
                                 "impact and n-th power of its approach speed; 0 = none)"),
-                   exponent)
+                   float(exponent))
 
     def volume_m3(self, work_J, impulse_N_s, speed_power) -> np.ndarray:
         """The impact volume of each load step (m^3): k_imp W_i + c_J J_i + c_v S_i from the
