@@ -102,7 +102,7 @@ def load_steps(history: JointHistory, n_steps: int, law=None,
             edges, t, hysteresis_work_J(law, history.penetration_m, history.normal_force_N)))
         impulse = np.diff(np.interp(edges, t, impact_impulse_N_s(
             t, history.normal_force_N, history.mode, impact.impulse_threshold_N)))
-        onsets = impact_speed_power(t, history.penetration_m, history.mode,
+        onsets = impact_speed_power(t, history.eccentricity_m, history.mode,
                                     impact.speed_exponent)
         step_of = np.minimum(np.searchsorted(edges, t, side="right") - 1, n_steps - 1)
         speed_power = np.bincount(step_of, np.diff(onsets, prepend=0.0), minlength=n_steps)

@@ -37,7 +37,7 @@ of Materials, Elsevier 1976). A step's impulse J_i is spread over the bore like 
 exceeds F_th count: light taps below the material's damage threshold remove nothing.
 
 Speed form: V_imp = c_v sum_k v_k^n over the impacts k, v_k the normal approach speed at the
-impact's onset (the penetration rate over the step into contact), n = ``impact_speed_exponent``
+impact's onset (the rate of |e| over the step into contact), n = ``impact_speed_exponent``
 (3 by default: the kinetic energy per unit contact area of a Hertzian impact grows with v^(6/5)
 and erosion-type impact wear with v^2-v^3, Engel 1976), c_v =
 ``impact_speed_wear_coefficient`` in m^3 / (m/s)^n. Each impact's v_k^n is counted in the load
@@ -139,15 +139,21 @@ def impact_impulse_N_s(time_s, normal_force_N, mode, threshold_N: float = 0.0) -
     return cumulative_trapezoid(force, np.asarray(time_s, dtype=float), initial=0.0)
 
 
-def impact_speed_power(time_s, penetration_m, mode, exponent: float) -> np.ndarray:
-    """sum_k v_k^n over the impacts that began up to each sample ((n_samples,), (m/s)^n): v_k
-    the penetration rate over the step into the impact episode's first sample (from the sample
-    before it, out of contact), counted at that first sample."""
-    time, delta = np.asarray(time_s, dtype=float), np.asarray(penetration_m, dtype=float)
+def impact_speed_power(time_s, eccentricity_m, mode, exponent: float) -> np.ndarray:
+    """sum_k v_k^n over the impacts that began up to each sample ((n_samples,), (m/s)^n),
+    counted at each impact episode's first sample: v_k the rate at which the pin centre's
+    distance from the bushing's, |e| (``eccentricity_m`` (n, 2)), grew over the step into the
+    episode (from the sample before it, in free flight). The recorded penetration cannot give
+    it: it is clipped at 0 out of contact, and the step into contact ends a few tens of
+    nanometres in. The bore's own slope along the pin's path is left out (on a worn bore
+    |e| grows by dc/dtheta dtheta over the step without a normal approach); an episode that
+    begins at the first sample has no step into it and is not counted."""
+    time = np.asarray(time_s, dtype=float)
+    distance = np.hypot(*np.asarray(eccentricity_m, dtype=float).T)
     onset = np.zeros(time.size)
     for first, _ in impact_episodes(mode):
         if first > 0:
-            speed = (delta[first] - delta[first - 1]) / (time[first] - time[first - 1])
+            speed = (distance[first] - distance[first - 1]) / (time[first] - time[first - 1])
             onset[first] = max(speed, 0.0) ** exponent
     return np.cumsum(onset)
 

@@ -106,7 +106,7 @@ def test_an_unknown_impact_form_is_a_clear_error():
     assert replace(JointDiagnoseSettings.default(), impact_forms=["energy", "impulse"]).impact_forms
 
 
-@pytest.mark.parametrize("factors", [(0.0, 3.0), ("3",), (True,)])
+@pytest.mark.parametrize("factors", [(0.0, 3.0), ("3",), (True,), (math.inf,), 3.0])
 def test_a_bad_rod_damping_factor_is_a_clear_error(factors):
     with pytest.raises(FewearInputError, match=r"rod_damping_factors = .*positive numbers"):
         replace(JointDiagnoseSettings.default(), rod_damping_factors=factors)

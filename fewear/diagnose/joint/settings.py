@@ -3,6 +3,7 @@ defaults and why each value: ``fewear/defaults/diagnose.toml``)."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from fewear.diagnose.core.evidence import AcceptanceRule
@@ -10,6 +11,11 @@ from fewear.diagnose.core.statistics import bonferroni_threshold
 from fewear.diagnose.joint.catalogue import CAUSES, IMPACT_FORMS
 from fewear.errors import FewearInputError
 from fewear.io.config import load_config
+
+
+def _listed(value):
+    """A setting's value as the config file wrote it (a tuple back to a list)."""
+    return list(value) if isinstance(value, tuple) else value
 
 
 @dataclass(frozen=True)
@@ -45,10 +51,11 @@ class JointDiagnoseSettings:
             if not values or min(values) <= 0.0:
                 raise FewearInputError(f"[joint_diagnose] {name} = {list(values)!r}: expected a "
                                        "non-empty list of positive numbers")
-        if any(isinstance(factor, bool) or not isinstance(factor, (int, float))
-               or not factor > 0.0 for factor in self.rod_damping_factors):
+        if not isinstance(self.rod_damping_factors, tuple) or any(
+                isinstance(factor, bool) or not isinstance(factor, (int, float))
+                or not 0.0 < factor < math.inf for factor in self.rod_damping_factors):
             raise FewearInputError(
-                f"[joint_diagnose] rod_damping_factors = {list(self.rod_damping_factors)!r}: "
+                f"[joint_diagnose] rod_damping_factors = {_listed(self.rod_damping_factors)!r}: "
                 "expected a list of positive numbers (empty: the damping form is not tried)")
         if not self.impact_forms or not set(self.impact_forms) <= set(IMPACT_FORMS):
             raise FewearInputError(
