@@ -349,14 +349,18 @@ class BushingContactSolver:
         Ku.axpy(1.0, self._r)
         Ku.array_w[self._bc_local] = 0.0
         slope = Ku.dot(du) + float(pin_residual @ dc)
-        self._line = du
+        self._line = (du, 0.0)  # the update and the step taken along it so far
+        if du is not self._du.vector:  # the nodal update is evaluated from the function _du
+            du.copy(self._du.vector)
         self._du.x.scatter_forward()
         return LineData(slope, self.bore.points, np.ascontiguousarray(self.nodal_displacement()),
                         np.ascontiguousarray(self._at_bore_nodes(self._du)), elastic)
 
     def try_step(self, step: float, pin_centre: np.ndarray) -> None:
-        self.displacement.vector.axpy(step, self._line)
+        du, taken = self._line
+        self.displacement.vector.axpy(step - taken, du)
         self.displacement.x.scatter_forward()
+        self._line = (du, step)
         self.pin_centre_m = pin_centre
         self.pin_centre.value = pin_centre
 
