@@ -144,6 +144,32 @@ def test_the_flexible_links_damping_form_runs_a_damped_rod_at_the_believed_modul
     assert made[-2:] == ["flexible rod, damping x 0.3", "flexible rod, damping x 3"]
 
 
+def test_an_impact_form_without_impacts_to_count_is_not_run(monkeypatch):
+    """A form whose measure is zero on the believed model (e.g. an impulse threshold above every
+    impact's peak) has no coefficient that gives a set share of the sliding volume: it is left
+    out, not run at coefficients of 1e300."""
+    import fewear.diagnose.joint.catalogue as catalogue
+
+    monkeypatch.setattr(catalogue, "model_config", lambda config, rod, cycles: config)
+    monkeypatch.setattr(catalogue, "impact_measures_per_cycle",
+                        lambda config: {"energy": 2.0, "impulse": 0.0, "speed": 0.0})
+    monkeypatch.setattr(catalogue, "worn_volume_per_cycle_m3", lambda run, config: 1e-12)
+    config = {"wear_loop": {"rod_models": ["rigid"]}, "wear": {}}
+    made = []
+
+    def make_runs(jobs):
+        made.extend(label for _, label in jobs)
+        return [_run(1e5) for _ in jobs]
+
+    believed = catalogue.Believed(config, _run(1e5), 100000, 5e4, make_runs)
+    settings = replace(JointDiagnoseSettings.default(),
+                       impact_forms=("energy", "impulse", "speed"))
+    forms = CAUSES["impact_wear"].forms(believed, settings)
+    assert [c.form for c in forms] == ["energy"]
+    assert forms[0].grid == (0.0, 0.05e-12, 0.15e-12, 0.5e-12)
+    assert len(made) == 3
+
+
 # --- running-in: the time map of each form, and the form told from the data ---------------------
 MULTIPLIERS = {  # m(n) after n cycles of sliding d per cycle for each form, written out here
     # (Blau 2005), not taken from the extensions; scale: s0 in m, or N0 in cycles

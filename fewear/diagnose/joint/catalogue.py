@@ -267,9 +267,11 @@ class ImpactWear(GridCause):
         measures = impact_measures_per_cycle(model_config(config, rod, believed.cycles))
         forms = []
         for form in settings.impact_forms:
+            if not measures[form] > 0.0:  # no impact the form counts (none above a threshold)
+                continue
             key = IMPACT_FORMS[form]
             assumed = config["wear"].get(key, 0.0)
-            per_unit = volume / max(measures[form], 1e-300)
+            per_unit = volume / measures[form]
             grid = [assumed] + [assumed + ratio * per_unit
                                 for ratio in sorted(settings.impact_volume_ratios)]
             runs = [base] + believed.make_runs([(self.switched_on(config, c, form),
