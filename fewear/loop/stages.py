@@ -105,7 +105,7 @@ def load_steps(history: JointHistory, n_steps: int, law=None,
         onsets = impact_speed_power(t, history.eccentricity_m, history.mode,
                                     impact.speed_exponent)
         step_of = np.minimum(np.searchsorted(edges, t, side="right") - 1, n_steps - 1)
-        speed_power = np.bincount(step_of, np.diff(onsets, prepend=0.0), minlength=n_steps)
+        speed_power = np.bincount(step_of, onsets, minlength=n_steps)
     return LoadSteps(middles, force, rotation, duration, work, impulse, speed_power)
 
 

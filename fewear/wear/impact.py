@@ -140,8 +140,8 @@ def impact_impulse_N_s(time_s, normal_force_N, mode, threshold_N: float = 0.0) -
 
 
 def impact_speed_power(time_s, eccentricity_m, mode, exponent: float) -> np.ndarray:
-    """sum_k v_k^n over the impacts that began up to each sample ((n_samples,), (m/s)^n),
-    counted at each impact episode's first sample: v_k the rate at which the pin centre's
+    """v_k^n of each impact k at its episode's first sample, 0 at the others ((n_samples,),
+    (m/s)^n): v_k the rate at which the pin centre's
     distance from the bushing's, |e| (``eccentricity_m`` (n, 2)), grew over the step into the
     episode (from the sample before it, in free flight). The recorded penetration cannot give
     it: it is clipped at 0 out of contact, and the step into contact ends a few tens of
@@ -155,7 +155,7 @@ def impact_speed_power(time_s, eccentricity_m, mode, exponent: float) -> np.ndar
         if first > 0:
             speed = (distance[first] - distance[first - 1]) / (time[first] - time[first - 1])
             onset[first] = max(speed, 0.0) ** exponent
-    return np.cumsum(onset)
+    return onset
 
 
 def impact_wear_depth_m(coefficient: float, measure, force_N, pressure_Pa) -> np.ndarray:
@@ -184,10 +184,10 @@ def impact_impulse_wear_coefficient_from_config(section: dict) -> float:
                         "of the impacts' normal impulse; 0 = none)")
 
 
-def _coefficient(section: dict, key: str, meaning: str, default: float = 0.0) -> float:
-    """A finite number >= 0 of ``section`` (``default`` if absent); ``meaning``: its unit and
-    what it is, for the message."""
-    value = section.get(key, default)
+def _coefficient(section: dict, key: str, meaning: str) -> float:
+    """A finite number >= 0 of ``section`` (0 if absent); ``meaning``: its unit and what it is,
+    for the message."""
+    value = section.get(key, 0.0)
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
             math.isfinite(value) and value >= 0.0):
         raise FewearInputError(f"[wear] {key} = {value!r}: expected a finite number >= 0 in "
