@@ -512,3 +512,39 @@ def test_the_fallback_starts_where_the_last_one_left_the_pin(deep_paths):
     assert fast.newton.fallback_angle_rad is not None  # this load needs the fallback too
     assert_same(cold, hinted)
     assert hinted.newton_iterations < 0.5 * cold.newton_iterations
+
+
+def pin_carved_pocket(angle_rad, depth_m=2e-4, radius_excess_m=1e-5):
+    """A worn bore's radial depth (m): the pocket a circle ``radius_excess_m`` larger than the
+    pin carves ``depth_m`` deep at 180 degrees, as a bore worn by its pin conforms to it."""
+    geometry = coarse_problem().geometry
+    radius = geometry.pin_radius_m + radius_excess_m
+    offset = geometry.inner_radius_m - radius + depth_m  # the carving circle's centre at (-e, 0)
+    along = -offset * np.cos(angle_rad)
+    reach = along + np.sqrt(np.maximum(radius**2 - offset**2 + along**2, 0.0))
+    return np.maximum(reach - geometry.inner_radius_m, 0.0)
+
+
+@pytest.mark.parametrize("angle_deg, magnitude_N", [(170.0, 2000.0), (175.0, 8000.0)])
+def test_a_conformal_pocket_from_a_cold_start_needs_no_fallback(angle_deg, magnitude_N):
+    """A pin in a pocket that conforms to it (carved by a circle 10 um larger): from the corner
+    start on two nodes the active set grows by a few nodes per step to 16-26 and the coupled
+    Newton settles in 13-14 steps, before the fallback on the pin angle takes over (with 12
+    coupled steps it did, at 76-103 iterations; on the default rigid run's deep pockets 3.9 %
+    of the solves, 66 % of the contact's Newton time). Same solution as the full solve."""
+    from fewear.contact.condensed import CondensedBushingContact
+    from fewear.contact.newton import COUPLED_ITERATIONS
+    from fewear.contact.solver import BushingContactSolver
+    from fewear.mesh.ale import BoreMotion
+
+    full = BushingContactSolver(coarse_problem())
+    fast = CondensedBushingContact(full)
+    BoreMotion(full.mesh, full.facet_tags).move(pin_carved_pocket)
+    fast.update_geometry()
+    angle = math.radians(angle_deg)
+    force = magnitude_N * np.array([math.cos(angle), math.sin(angle)])
+    result = fast.solve(force, 0.01, True)
+    assert fast.newton.fallback_angle_rad is None
+    assert 12 < result.newton_iterations <= COUPLED_ITERATIONS
+    assert np.count_nonzero(result.pressure_Pa > 0.0) > 10
+    assert_same(full.solve(force, 0.01, True), result)
