@@ -85,8 +85,8 @@ compiled = numba.njit(cache=True, nogil=True)
 def compile_kernels() -> None:
     """Compile, or load from the cache, the kernels of a wear run: the dynamics'
     (:func:`fewear.mbd.slider_crank.compile_dynamics`) and the contact's
-    (:func:`fewear.contact.condensed.compile_contact`)."""
-    from fewear.contact.condensed import compile_contact
+    (:func:`fewear.contact.condensed_newton.compile_contact`)."""
+    from fewear.contact.condensed_newton import compile_contact
     from fewear.mbd.slider_crank import compile_dynamics
 
     compile_dynamics()

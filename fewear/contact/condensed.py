@@ -37,9 +37,9 @@ pocket's flank), else it starts as the full path does. Both paths converge to
 the same solution; the tests and the benchmark check nodal pressures and pin centre to 1e-6
 (measured: ~2e-7 and below, on 200 load steps of a crank cycle).
 Per step this costs O(n |A|) per iteration for the update of U and a dense solve of size
-2|A| + 2, |A| the nodes in contact; the arithmetic on these small arrays is compiled (numba,
-:mod:`fewear.jit`: :func:`linearised_forces`, :func:`newton_step`, with the shared kernels of
-:mod:`fewear.contact.newton`, the line search among them), in NumPy's order of operations (sums
+2|A| + 2, |A| the nodes in contact. The arithmetic on these small arrays and the whole coupled
+Newton iteration on them are compiled (numba, :mod:`fewear.contact.condensed_newton`, with the
+shared kernels of :mod:`fewear.contact.newton`), in NumPy's order of operations (sums
 pairwise, dot products by BLAS), so that it gives the NumPy formulas' results to the bit.
 Under MPI, G is built collectively and every rank solves the small problem redundantly, so all
 ranks hold the same result.
@@ -59,21 +59,21 @@ from mpi4py import MPI
 from petsc4py import PETSc
 from scipy import sparse
 
+from fewear.contact import condensed_newton
 from fewear.contact.admissible import (
     ContactLoadError,
     beyond_small_displacements,
     cosine_law_nodal_forces,
     displacement_limit_m,
 )
-from fewear.contact.newton import (
-    ContactNewton,
-    ContactNotConverged,
-    LineData,
-    compile_shared_kernels,
-    contact_direction,
-    gaps,
-    pairwise_sum,
+from fewear.contact.condensed_newton import (
+    new_state,
+    nodal_forces,
+    place_pin,
+    turned_forces,
+    zero_displacement,
 )
+from fewear.contact.newton import ContactNewton, ContactNotConverged, contact_direction
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.contact.solver import (
@@ -82,7 +82,6 @@ from fewear.contact.solver import (
     checked_rotation,
     nodal_result,
 )
-from fewear.jit import compiled
 from fewear.mesh.bore import bore_node_weights
 from fewear.mesh.bushing import BORE_TAG
 
@@ -90,161 +89,6 @@ from fewear.mesh.bushing import BORE_TAG
 # where the turned nodes did to this fraction of the last solution's penetration or largest
 # displacement (whichever is larger: an error of the start the Newton corrects in a few steps).
 TURN_TOLERANCE = 0.1
-
-
-@compiled
-def nodal_forces(points: np.ndarray, U: np.ndarray, centre: np.ndarray, pin_radius: float,
-                 penalty: float, friction_value: float, weights_m: np.ndarray):
-    """Nodal forces f = w p (n + mu s t) (n, 2), pressures p = k <R_p - r>_+ (n,), normals
-    n = d / r (n, 2) and distances r = |d| (n,) of the bore nodes X (``points``) with nodal
-    displacements U and the pin centre c, d = X + U - c, t = (-n_y, n_x)."""
-    size = points.shape[0]
-    f, p = np.empty((size, 2)), np.empty(size)
-    normal, r = np.empty((size, 2)), np.empty(size)
-    for q in range(size):
-        d_x = points[q, 0] + U[q, 0] - centre[0]
-        d_y = points[q, 1] + U[q, 1] - centre[1]
-        r[q] = math.hypot(d_x, d_y)
-        normal[q, 0], normal[q, 1] = d_x / r[q], d_y / r[q]
-        p[q] = penalty * max(pin_radius - r[q], 0.0)
-        wp = weights_m[q] * p[q]
-        f[q, 0] = wp * (normal[q, 0] + friction_value * -normal[q, 1])
-        f[q, 1] = wp * (normal[q, 1] + friction_value * normal[q, 0])
-    return f, p, normal, r
-
-
-@compiled
-def penetrations(points: np.ndarray, U: np.ndarray, centre: np.ndarray,
-                 pin_radius: float) -> np.ndarray:
-    """<R_p - |X + U - c|>_+ at the bore nodes (m): the negative part of the deformed bore's
-    :func:`fewear.contact.newton.gaps`."""
-    return np.maximum(-gaps(points + U, centre, pin_radius), 0.0)
-
-
-@compiled
-def turned_forces(g: np.ndarray, points: np.ndarray, U: np.ndarray, centre: np.ndarray,
-                  pin_radius: float, nodes_turned: int, angle: float, tolerance: float):
-    """The nodal forces g (2n,) moved ``nodes_turned`` nodes along the angle-sorted bore nodes
-    (``points``, (n, 2)) and turned by ``angle`` (rad), and whether the bore is invariant on
-    the nodes that carry them: each lies within ``tolerance`` times the larger of the state's
-    penetration and largest displacement (U (n, 2), pin at ``centre``) of where the node its
-    force came from lands when turned."""
-    n = points.shape[0]
-    cosine, sine = math.cos(angle), math.sin(angle)
-    turned = np.zeros_like(g)
-    mismatch = 0.0
-    for q in range(n):
-        source = (q - nodes_turned) % n
-        g_x, g_y = g[2 * source], g[2 * source + 1]
-        if g_x == 0.0 and g_y == 0.0:
-            continue
-        turned[2 * q] = cosine * g_x - sine * g_y
-        turned[2 * q + 1] = sine * g_x + cosine * g_y
-        landed_x = cosine * points[source, 0] - sine * points[source, 1]
-        landed_y = sine * points[source, 0] + cosine * points[source, 1]
-        mismatch = max(mismatch, math.hypot(landed_x - points[q, 0], landed_y - points[q, 1]))
-    scale = max(penetrations(points, U, centre, pin_radius).max(), np.abs(U).max())
-    return mismatch <= tolerance * scale, turned
-
-
-@compiled
-def jacobian_blocks(active: np.ndarray, p: np.ndarray, normal: np.ndarray, r: np.ndarray,
-                    penalty: float, friction_value: float, weights_m: np.ndarray) -> np.ndarray:
-    """w dT/dd (|A|, 2, 2) at the active nodes A, T = p (n + mu s t), p = k (R_p - |d|):
-    dT/dd = -k n n^T + p/r P + mu s (-k t n^T + p/r R P), P = I - n n^T, R the turn by
-    90 degrees (t = R n)."""
-    blocks = np.empty((active.size, 2, 2))
-    for a, q in enumerate(active):
-        n = normal[q]
-        t = np.array([-n[1], n[0]])
-        p_r = p[q] / r[q]
-        for i in range(2):
-            for j in range(2):
-                projector = (1.0 if i == j else 0.0) - n[i] * n[j]
-                # (R P)_ij: row 0 is -P_1j, row 1 is P_0j
-                other = 1 - i
-                turned = (-1.0 if i == 0 else 1.0) * ((1.0 if other == j else 0.0)
-                                                      - n[other] * n[j])
-                dT = (-penalty * (n[i] * n[j]) + p_r * projector
-                      + friction_value * (-penalty * (t[i] * n[j]) + p_r * turned))
-                blocks[a, i, j] = weights_m[q] * dT
-    return blocks
-
-
-@compiled
-def linearised_forces(points: np.ndarray, U: np.ndarray, centre: np.ndarray, pin_radius: float,
-                      penalty: float, friction_value: float, weights_m: np.ndarray,
-                      load: np.ndarray):
-    """The nodal forces f (:func:`nodal_forces`), the Jacobian blocks W M at the active nodes A
-    (p > 0, :func:`jacobian_blocks`), A, the pin residual sum f - F/L (N/m) and the active
-    length sum_A w (m)."""
-    f, p, normal, r = nodal_forces(points, U, centre, pin_radius, penalty, friction_value,
-                                   weights_m)
-    active = np.flatnonzero(p > 0.0)
-    residual = np.zeros(2)
-    for q in range(f.shape[0]):
-        residual += f[q]
-    return (f, jacobian_blocks(active, p, normal, r, penalty, friction_value, weights_m),
-            active, residual - load, pairwise_sum(weights_m[active]))
-
-
-@compiled
-def newton_step(compliance: np.ndarray, g: np.ndarray, U: np.ndarray, f: np.ndarray,
-                WM: np.ndarray, active: np.ndarray, basis: np.ndarray, load: np.ndarray):
-    """One Newton step (module docstring) on the active nodes A with the pin update
-    dc = basis dz: the bordered system
-
-        [I - W M G_AA   W M basis] [g'_A]   [f_A - W M U_A]
-        [basis^T ...    0        ] [dz  ] = [basis^T F/L  ]
-
-    (the last rows sum the nodal forces), and the updates dg = g' - g of the nodal forces (g'
-    zero off A), dU = G dg (only the columns of G on the old and new support) and dc."""
-    m, k = active.size, basis.shape[1]
-    system = np.zeros((2 * m + k, 2 * m + k))
-    rhs = np.empty(2 * m + k)
-    for a in range(m):
-        rows = 2 * active[a]
-        for i in range(2):
-            for b in range(m):
-                for j in range(2):
-                    column = 2 * active[b] + j
-                    system[2 * a + i, 2 * b + j] = (1.0 if a == b and i == j else 0.0) - (
-                        WM[a, i, 0] * compliance[rows, column]
-                        + WM[a, i, 1] * compliance[rows + 1, column])
-            for c in range(k):
-                system[2 * a + i, 2 * m + c] = WM[a, i, 0] * basis[0, c] + WM[a, i, 1] * basis[1, c]
-                system[2 * m + c, 2 * a + i] = basis[i, c]
-            rhs[2 * a + i] = f[active[a], i] - (WM[a, i, 0] * U[active[a], 0]
-                                                + WM[a, i, 1] * U[active[a], 1])
-    for c in range(k):
-        rhs[2 * m + c] = basis[0, c] * load[0] + basis[1, c] * load[1]
-    solution = np.linalg.solve(system, rhs)
-    dg = -g
-    for a in range(m):
-        for i in range(2):
-            dg[2 * active[a] + i] += solution[2 * a + i]
-    support = np.flatnonzero(dg)
-    dU = np.dot(compliance[:, support], dg[support])
-    dc = np.zeros(2)
-    for c in range(k):
-        dc += basis[:, c] * solution[2 * m + c]
-    return dg, dU, dc
-
-
-def compile_contact() -> None:
-    """Compile, or load from numba's cache (:mod:`fewear.jit`), the contact Newton's kernels:
-    each called once on a small bore (16 nodes on a circle, the pin pressed into two) with the
-    argument types of a solve, so that worker processes started afterwards load them instead
-    of each compiling them (tests/contact/test_newton.py checks that a solve adds no
-    signature)."""
-    points, weights, pin_radius, penalty, load, centre = compile_shared_kernels()
-    size = points.shape[0]
-    U, g = np.zeros((size, 2)), np.zeros(2 * size)
-    f, WM, active, _, _ = linearised_forces(points, U, centre, pin_radius, penalty, 0.1,
-                                            weights, load)
-    newton_step(np.eye(2 * size), g, U, f, WM, active, np.eye(2), load)
-    nodal_forces(points, U, centre, pin_radius, penalty, 0.0, weights)
-    turned_forces(g, points, U, centre, pin_radius, 2, 0.1, 0.1)
 
 
 class CondensedBushingContact:
@@ -266,7 +110,6 @@ class CondensedBushingContact:
         self.problem = solver.problem
         self.comm = solver.comm
         self._k = self.problem.penalty_stiffness_Pa_per_m()
-        self._friction_value = 0.0
         self.newton = ContactNewton(self)
         self._dofs = self._bore_dofs()
         self._table = self._nodal_evaluation()
@@ -300,8 +143,10 @@ class CondensedBushingContact:
             self.compliance = self.compliance[np.ix_(rows, rows)]
         else:
             self.compliance = self._nodal_compliance()
-        self.zero_displacement()
-        self.pin_centre_m = np.zeros(2)
+        self.newton_state = new_state(self.compliance, self.points, self.weights_m, self._k,
+                                      self.problem.geometry.pin_radius_m)
+        self.compliance, self._g, self._U, self._centre, self.points, self.weights_m = (
+            self.newton_state[:6])
         self.newton.forget()
         self.newton.geometry_changed()
 
@@ -377,17 +222,16 @@ class CondensedBushingContact:
         """Solve for the joint force (N) as :meth:`BushingContactSolver.solve` does."""
         force = checked_force(force_N)
         rotation = checked_rotation(rotation_increment_rad)
-        self._friction_value = (self.problem.contact.friction_coefficient * np.sign(rotation)
-                                if friction else 0.0)
+        friction_value = (self.problem.contact.friction_coefficient * np.sign(rotation)
+                          if friction else 0.0)
+        self.newton_state[6][2] = friction_value
         n = self.points.shape[0]
         if not np.any(force):
-            self.zero_displacement()
-            self.pin_centre_m = np.zeros(2)
-            self.newton.forget()
+            self._reset()
             return nodal_result(self.problem, self.points, self.angles, np.zeros((n, 2)),
                                 self.pin_centre_m, force, np.zeros(2), np.zeros(2), rotation, 0)
         L = self.problem.geometry.width_m
-        direction = contact_direction(force, self._friction_value)
+        direction = contact_direction(force, friction_value)
         try:
             iterations = self.newton.solve(force / L, direction)
         except ContactNotConverged:
@@ -401,11 +245,15 @@ class CondensedBushingContact:
                             L * f.sum(axis=0), L * (self.weights_m[:, None] * p[:, None]
                                                     * normal).sum(axis=0), rotation, iterations)
 
+    def _reset(self) -> None:
+        """No displacement, the pin centred; the next solve starts cold."""
+        zero_displacement(self.newton_state)
+        place_pin(self.newton_state, np.zeros(2))
+        self.newton.forget()
+
     def _refuse(self, force: np.ndarray, reason: str) -> None:
         """Raise :class:`ContactLoadError` for ``force`` (N); the next solve starts afresh."""
-        self.zero_displacement()
-        self.pin_centre_m = np.zeros(2)
-        self.newton.forget()
+        self._reset()
         raise ContactLoadError(force, reason, displacement_limit_m(self.problem),
                                self.admissible_force_N(force))
 
@@ -422,14 +270,17 @@ class CondensedBushingContact:
     def _nodal_forces(self, U: np.ndarray, c: np.ndarray):
         """:func:`nodal_forces` for nodal displacements U (n, 2) and pin centre c."""
         return nodal_forces(self.points, U, c, self.problem.geometry.pin_radius_m, self._k,
-                            self._friction_value, self.weights_m)
+                            self.newton_state[6][2], self.weights_m)
 
     # -- the discretisation for ContactNewton --------------------------------------------------
+    operations = condensed_newton  # functions of newton_state (compiled)
+    coupled_newton = staticmethod(condensed_newton.coupled_newton)  # compiled
     can_turn_state = True
 
-    def zero_displacement(self) -> None:
-        self._g = np.zeros(2 * self.points.shape[0])
-        self._U = np.zeros_like(self._g)
+    @property
+    def pin_centre_m(self) -> np.ndarray:
+        """The pin centre c (2,), m: the state's array, which the next solve overwrites."""
+        return self._centre
 
     def turn_state(self, angle_rad: float) -> bool:
         """Turn nodal forces and pin centre by the whole number of bore elements (2 nodes each,
@@ -453,57 +304,13 @@ class CondensedBushingContact:
                                      2 * elements, angle, TURN_TOLERANCE)
         if not invariant:
             return False
-        self._g = g
+        self._g[:] = g
         support = np.flatnonzero(g)  # the nodes in contact
-        self._U = g[support] @ self.compliance[support]  # G symmetric: its rows, contiguous
+        self._U[:] = g[support] @ self.compliance[support]  # G symmetric: its rows, contiguous
         rotation = np.array([[math.cos(angle), -math.sin(angle)],
                              [math.sin(angle), math.cos(angle)]])
-        self.pin_centre_m = rotation @ self.pin_centre_m
+        place_pin(self.newton_state, rotation @ self._centre)
         return True
-
-    def linearise(self, load: np.ndarray) -> tuple[np.ndarray, float]:
-        """Nodal forces and their Jacobian blocks at the current state (kept for the step);
-        the pin residual sum f - F/L (N/m) and the active length (m)."""
-        f, WM_A, active_nodes, residual, length = linearised_forces(
-            self.points, self._U.reshape(-1, 2), self.pin_centre_m,
-            self.problem.geometry.pin_radius_m, self._k, self._friction_value, self.weights_m,
-            load)
-        self._linear = (f, WM_A, active_nodes)
-        return residual, length
-
-    def newton_direction(self, pin_residual, load, basis):
-        """One Newton step (module docstring) with the pin update dc = basis dz: the update
-        (dg, dU = G dg) of the nodal forces and displacements, and dc. Only the columns of G on
-        the old and new support are used."""
-        f, WM_A, A = self._linear
-        dg, dU, dc = newton_step(self.compliance, self._g, self._U.reshape(-1, 2), f, WM_A, A,
-                                 basis, load)
-        return (dg, dU), dc
-
-    def begin_line_search(self, update, dc, pin_residual) -> LineData:
-        """Slope of Pi along (dg, dU, dc): (g - f) . dU + (sum f - F/L) . dc (J/m); the elastic
-        energy 1/2 g.G g along the line, 1/2 g.U + s g.dU + s^2/2 dg.dU (G symmetric)."""
-        f = self._linear[0]
-        dg, dU = update
-        self._base = (self._g, self._U, update)
-        slope = float((self._g - f.reshape(-1)) @ dU) + float(pin_residual @ dc)
-        elastic = np.array([0.5 * (self._g @ self._U), self._g @ dU, 0.5 * (dg @ dU)])
-        return LineData(slope, self.points, self._U.reshape(-1, 2), dU.reshape(-1, 2), elastic)
-
-    def try_step(self, step: float, pin_centre: np.ndarray) -> None:
-        g0, U0, (dg, dU) = self._base
-        self._g = g0 + step * dg
-        self._U = U0 + step * dU
-        self.pin_centre_m = pin_centre
-
-    def deformed_points(self) -> np.ndarray:
-        return self.points + self._U.reshape(-1, 2)
-
-    def frictionless(self) -> bool:
-        return self._friction_value == 0.0
-
-    def update_sizes(self, update) -> tuple[float, float]:
-        return float(np.abs(update[1]).max()), float(np.abs(self._U).max())
 
 
 def reference_basis_at_geometry_nodes(mesh, V) -> np.ndarray:

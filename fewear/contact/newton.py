@@ -36,8 +36,8 @@ through the methods of :class:`ContactDiscretisation`; this module holds the alg
   step at which the next node entering contact could carry the load alone (the pin's sliding
   mode is soft against the active set); a step never loses all contact; without friction, Armijo
   backtracking on the penalty potential, which with friction is no potential of the equations;
-  a step cap that halves when the active set alternates (:class:`NewtonControl`).
-- **Stopping test** (:class:`NewtonControl`), on the state returned: last updates at the Newton
+  a step cap that halves when the active set alternates (:func:`step_cap`).
+- **Stopping test** (:func:`converged`), on the state returned: last updates at the Newton
   tolerance or rounding level, and the pin in force balance to ``FORCE_TOLERANCE`` or, at light
   loads, to the rounding level of the penalty forces.
 - **Retry and contact-angle fallback.** Should the coupled iteration not settle within
@@ -63,12 +63,19 @@ the bore displacement could they settle in different ones (not seen in the tests
 
 A load the Newton cannot balance raises :class:`ContactNotConverged`.
 
-The algorithm stays in Python; its arithmetic on the bore nodes is compiled (numba,
-:mod:`fewear.jit`), for both discretisations: the corners and vertices of the free region
-(:func:`free_corner`, :func:`support_vertex`, :func:`wedge_press`), gaps, and the whole line
-search (:func:`line_search`: it needs of a discretisation only the bore nodes' displacements
-and updates and the elastic energy along the line, :class:`LineData`, since the displacement
-at the nodes is linear in the step). The kernels
+The coupled Newton iteration (:func:`coupled_newton`: linearise, step, line search, stopping
+test, step cap) is written once, in the subset of Python that numba compiles, on a
+discretisation's *operations* (:class:`NewtonOperations`: functions of the discretisation's state,
+bound into the algorithm by :func:`specialised`). The condensed path compiles it (its state is a
+tuple of arrays, its operations compiled kernels: a whole solve runs without the interpreter, which
+had cost 80-110 us per iteration beside 30-40 us of arithmetic); the full path runs the same code
+as Python on its DOLFINx linear algebra. The rest (start, retry, fallback) stays in Python around
+it. The kernels on the bore nodes are compiled (numba, :mod:`fewear.jit`) for both
+discretisations: the corners and vertices of the free region (:func:`free_corner`,
+:func:`support_vertex`, :func:`wedge_press`), gaps, and the whole line search
+(:func:`line_search`: it needs of a discretisation only the bore nodes' displacements and
+updates and the elastic energy along the line, :class:`LineData`, since the displacement at the
+nodes is linear in the step). The kernels
 repeat NumPy's order of operations (:func:`pairwise_sum`; 2-vectors' lengths as sqrt(v . v)):
 the penalty forces amplify a rounding difference of the pin centre by ~1e5, to 1e-10 of the
 pressures and at times one iteration more or less. They use the C library's trigonometric
@@ -79,6 +86,7 @@ differ from those in the last bit on CPUs where NumPy dispatches to its SIMD ver
 from __future__ import annotations
 
 import math
+import types
 from typing import Any, NamedTuple, Protocol
 
 import numpy as np
@@ -88,7 +96,7 @@ from fewear.jit import compiled
 # Newton starts from the previous solution when the force turned by less than this (rad).
 WARM_START_MAX_ANGLE_RAD = math.radians(20.0)
 
-# Relative force residual of the pin at which Newton may stop (see NewtonControl).
+# Relative force residual of the pin at which Newton may stop (see converged).
 FORCE_TOLERANCE = 1e-10
 
 # Force residuals within this many times the rounding level of the penalty forces are noise.
@@ -139,21 +147,65 @@ class ContactNotConverged(RuntimeError):
         super().__init__(f"contact Newton {reason} (load {self.load} N/m)")
 
 
-class ContactDiscretisation(Protocol):
-    """What a discretisation provides to :class:`ContactNewton`.
+class NewtonOperations(Protocol):
+    """What a discretisation provides to the Newton: functions of its ``state`` (the displacement
+    and the pin centre c (2,), m; whatever else its linear algebra needs). The condensed path's are
+    compiled functions of a tuple of arrays (:mod:`fewear.contact.condensed`), the full path's the
+    methods of :class:`fewear.contact.solver.BushingContactSolver`, called on the solver.
+    ``linear`` is what ``linearise`` returns for the step (None where the discretisation keeps
+    it), ``base`` what ``begin_line_search`` returns for ``try_step``."""
 
-    State: the displacement (owned by the discretisation) and ``pin_centre_m`` (2,), m.
-    ``problem`` is the :class:`fewear.contact.params.ContactProblem`, ``weights_m`` (n,) the
-    Gauss-Lobatto weights of the bore nodes (m), in the angle-sorted order of the bore nodes.
-    """
+    def linearise(self, state, load: np.ndarray) -> tuple[np.ndarray, float, Any]:
+        """Evaluate the contact at the current state; return the pin residual R - F/L (N/m), the
+        active length (m, the sum of the weights of the nodes in contact) and ``linear``."""
+
+    def newton_direction(self, state, linear, pin_residual: np.ndarray, load: np.ndarray,
+                         basis: np.ndarray) -> tuple[Any, np.ndarray]:
+        """The Newton update (displacement part, dc) of the linearisation ``linear``, with the pin
+        update dc = basis z restricted to the span of ``basis`` (2, k)."""
+
+    def begin_line_search(self, state, linear, update: Any, dc: np.ndarray,
+                          pin_residual: np.ndarray) -> tuple[LineData, Any]:
+        """What :func:`line_search` needs (:class:`LineData`) along (update, dc), and the
+        current state as the ``base`` of the line search."""
+
+    def try_step(self, state, base, update: Any, step: float, pin_centre: np.ndarray) -> None:
+        """Set the state to base + step * update, with the pin at ``pin_centre``."""
+
+    def update_sizes(self, state, update: Any) -> tuple[float, float]:
+        """Largest displacement update and largest displacement (m), max norms."""
+
+    def zero_displacement(self, state) -> None:
+        """Set the displacement to zero."""
+
+    def deformed_points(self, state) -> np.ndarray:
+        """The bore nodes' current positions X + U (n, 2), m."""
+
+    def node_weights(self, state) -> np.ndarray:
+        """The Gauss-Lobatto weights w_q (n,) of the bore nodes (m), angle-sorted."""
+
+    def pin_position(self, state) -> np.ndarray:
+        """The pin centre c (2,), m."""
+
+    def place_pin(self, state, centre: np.ndarray) -> None:
+        """Put the pin centre at ``centre``."""
+
+    def frictionless(self, state) -> bool:
+        """Whether the present solve is without friction (then Pi is the potential of the
+        equations)."""
+
+
+class ContactDiscretisation(Protocol):
+    """What a discretisation provides to :class:`ContactNewton`: ``problem`` (the
+    :class:`fewear.contact.params.ContactProblem`), its ``operations`` (:class:`NewtonOperations`)
+    and their ``newton_state``, its ``coupled_newton`` (:func:`coupled_newton` on its operations,
+    by :func:`specialised`, compiled or not), and whether it ``can_turn_state``."""
 
     problem: Any
-    weights_m: np.ndarray
+    operations: Any
+    newton_state: Any
+    coupled_newton: Any
     can_turn_state: bool
-    pin_centre_m: np.ndarray
-
-    def zero_displacement(self) -> None:
-        """Set the displacement to zero."""
 
     def turn_state(self, angle_rad: float) -> bool:
         """Turn the state (pin centre and displacement) about the bushing centre by the whole
@@ -161,32 +213,31 @@ class ContactDiscretisation(Protocol):
         return True, or, where the bore is not invariant under that turn (worn), leave the state
         as it is and return False."""
 
-    def linearise(self, load: np.ndarray) -> tuple[np.ndarray, float]:
-        """Evaluate the contact at the current state; return the pin residual R - F/L (N/m)
-        and the active length (m, the sum of the weights of the nodes in contact)."""
 
-    def newton_direction(self, pin_residual: np.ndarray, load: np.ndarray,
-                         basis: np.ndarray) -> tuple[Any, np.ndarray]:
-        """The Newton update (displacement part, dc) of the last linearisation, with the pin
-        update dc = basis z restricted to the span of ``basis`` (2, k)."""
+class NewtonSettings(NamedTuple):
+    """The constants of the coupled Newton for one problem: ``tolerance`` ([contact]
+    newton_tolerance), ``rounding_m`` = eps R_p (the level at which gaps are computed), the
+    penalty stiffness k (Pa/m), R_p, R_b and the bore element size h (m), and the angle between
+    neighbouring bore nodes (rad)."""
 
-    def begin_line_search(self, update: Any, dc: np.ndarray,
-                          pin_residual: np.ndarray) -> LineData:
-        """Remember the current state as the base of the line search along (update, dc);
-        return what :func:`line_search` needs (:class:`LineData`)."""
+    tolerance: float
+    rounding_m: float
+    penalty: float
+    pin_radius_m: float
+    bore_radius_m: float
+    element_size_m: float
+    node_spacing_rad: float
 
-    def try_step(self, step: float, pin_centre: np.ndarray) -> None:
-        """Set the state to base + step * update, with the pin at ``pin_centre``."""
 
-    def frictionless(self) -> bool:
-        """Whether the present solve is without friction (then Pi is the potential of the
-        equations)."""
-
-    def deformed_points(self) -> np.ndarray:
-        """The bore nodes' current positions X + U (n, 2), m."""
-
-    def update_sizes(self, update: Any) -> tuple[float, float]:
-        """Largest displacement update and largest displacement (m), max norms."""
+def newton_settings(problem) -> NewtonSettings:
+    """The :class:`NewtonSettings` of a :class:`fewear.contact.params.ContactProblem`."""
+    geometry = problem.geometry
+    elements = problem.mesh.circumferential_element_count(geometry.inner_radius_m)
+    return NewtonSettings(problem.contact.newton_tolerance,
+                          float(np.finfo(float).eps * geometry.pin_radius_m),
+                          problem.penalty_stiffness_Pa_per_m(), geometry.pin_radius_m,
+                          geometry.inner_radius_m, problem.mesh.bore_element_size_m,
+                          math.pi / elements)  # two bore nodes per element
 
 
 @compiled
@@ -194,10 +245,20 @@ def unit(angle: float) -> np.ndarray:
     return np.array([math.cos(angle), math.sin(angle)])
 
 
+@compiled
 def norm(vector: np.ndarray) -> float:
     """The Euclidean length sqrt(v . v) of a short vector: ``np.linalg.norm`` without its
     overhead (and so, unlike ``math.hypot``, to the same bits)."""
-    return math.sqrt(vector @ vector)
+    return math.sqrt(np.dot(vector, vector))
+
+
+@compiled
+def projected(basis: np.ndarray, vector: np.ndarray) -> np.ndarray:
+    """basis^T v for a basis (2, k) of the pin's moves and a 2-vector v."""
+    result = np.empty(basis.shape[1])
+    for column in range(basis.shape[1]):
+        result[column] = basis[0, column] * vector[0] + basis[1, column] * vector[1]
+    return result
 
 
 @compiled
@@ -529,8 +590,9 @@ def compile_shared_kernels():
     """Call each kernel of this module that :class:`ContactNewton` calls once, on a small bore
     (16 nodes on a circle of radius 1 m, the pin of radius 0.9 m pressed into two of them),
     so that numba compiles it or loads it from the cache; return the bore for the
-    discretisation's kernels (:func:`fewear.contact.condensed.compile_contact`): points,
-    weights, pin radius, penalty stiffness, load and the pressed pin's centre."""
+    discretisation's kernels (:func:`fewear.contact.condensed_newton.compile_contact`): points,
+    weights, pin radius, penalty stiffness, load, the pressed pin's centre and the Newton's
+    settings."""
     angles = np.linspace(0.0, 2.0 * math.pi, 16, endpoint=False)
     points = np.column_stack([np.cos(angles), np.sin(angles)])
     weights, pin_radius, penalty = np.full(16, 0.4), 0.9, 1e3
@@ -551,58 +613,176 @@ def compile_shared_kernels():
     line_search(points, np.zeros((16, 2)), np.zeros((16, 2)), centre, dc, weights, load, 10.0,
                 penalty, pin_radius, 0.2, 0.4, 1.0, 1.0, -1.0, True, np.zeros(3))
     load_penetration(10.0, penalty, weights[pair[0]] + weights[pair[1]])
-    return points, weights, pin_radius, penalty, load, centre
+    corner_centre(points, weights, direction, 10.0, penalty, pin_radius)
+    ray_centre(points, centre, weights, direction, 10.0, penalty, pin_radius)
+    projected(FREE_PIN, load)
+    control = new_control()
+    step_cap(control, 0.8)
+    settings = NewtonSettings(1e-10, 1e-16, penalty, pin_radius, 1.0, 0.4, 0.2)
+    converged(control, settings, 0.0, 0.0, 0.01, 0.0, 1.0, 10.0, 0.8)
+    return points, weights, pin_radius, penalty, load, centre, settings
 
 
-class NewtonControl:
-    """The stopping test and the cap on the step against active-set cycling.
+# The stopping test and the step cap against active-set cycling (compiled; their memory, the
+# ``control`` array of :func:`new_control`: the step cap, the last force residual, the active
+# lengths of the last two iterations and the number of iterations counted).
+#
+# Converged when the last Newton update of the pin centre is below ``newton_tolerance`` times
+# the largest penetration or 64 rounding units of R_p (the level at which gaps are computed),
+# the largest displacement update below 1000 ``newton_tolerance`` times the largest
+# displacement (the LU solves of the penalty-stiffened system are not more accurate) or the
+# same rounding level, and the pin is in force balance at the present state: its force
+# residual below ``FORCE_TOLERANCE`` |F/L|, or, stagnating (not halved by the last step),
+# below ``ROUNDING_FACTOR`` times the rounding level of the penalty forces on the active nodes,
+# k eps R_p sum_A w_q (a gap |X + u - c| - R_p is computed to about eps R_p; at light loads
+# on fine meshes this is the larger bound), or the last pin update was at 8 rounding units
+# (the residual is the noise of the LU solves of the penalty-stiffened full system).
+# Semi-smooth Newton can alternate between two active sets around a node that is just entering
+# contact; when the active set (measured by its length) returns to the one of two iterations
+# before, the step cap is halved, which turns the alternation into a converging bisection; it
+# is lifted again as soon as the active set stays the same (full Newton steps converge then).
 
-    Converged when the last Newton update of the pin centre is below ``newton_tolerance`` times
-    the largest penetration or 64 rounding units of R_p (the level at which gaps are computed),
-    the largest displacement update below 1000 ``newton_tolerance`` times the largest
-    displacement (the LU solves of the penalty-stiffened system are not more accurate) or the
-    same rounding level, and the pin is in force balance at the present state: its force
-    residual below ``FORCE_TOLERANCE`` |F/L|, or, stagnating (not halved by the last step),
-    below ``ROUNDING_FACTOR`` times the rounding level of the penalty forces on the active nodes,
-    k eps R_p sum_A w_q (a gap |X + u - c| - R_p is computed to about eps R_p; at light loads
-    on fine meshes this is the larger bound), or the last pin update was at 8 rounding units
-    (the residual is the noise of the LU solves of the penalty-stiffened full system).
-    Semi-smooth Newton can alternate between two active sets around a node that is just entering
-    contact; when the active set (measured by its length) returns to the one of two iterations
-    before, the step cap is halved, which turns the alternation into a converging bisection; it
-    is lifted again as soon as the active set stays the same (full Newton steps converge then).
-    """
 
-    def __init__(self, problem):
-        self.tolerance = problem.contact.newton_tolerance
-        self.rounding_m = np.finfo(float).eps * problem.geometry.pin_radius_m
-        self.floor = 64.0 * self.rounding_m
-        self.penalty = problem.penalty_stiffness_Pa_per_m()
-        self.history: list[float] = []
-        self.cap = 1.0
-        self.last_residual = math.inf
+@compiled
+def new_control() -> np.ndarray:
+    """The memory of :func:`step_cap` and :func:`converged` for a new iteration."""
+    return np.array([1.0, math.inf, math.nan, math.nan, 0.0])
 
-    def step_cap(self, active: float) -> float:
-        if len(self.history) >= 2 and active == self.history[-2] != self.history[-1]:
-            self.cap *= 0.5
-        elif self.history and active == self.history[-1]:
-            self.cap = 1.0
-        self.history.append(active)
-        return self.cap
 
-    def converged(self, pin_update: float, displacement_update: float, penetration: float,
-                  displacement: float, force_residual: float, load: float,
-                  active_length: float) -> bool:
-        """The last step's updates, the present penetration and displacement (m); the pin's
-        force residual |R - F/L| at the present state and |F/L| (N/m); the active length (m)."""
-        small = (pin_update <= max(self.tolerance * penetration, self.floor)
-                 and displacement_update <= max(1e3 * self.tolerance * displacement, self.floor))
-        rounding = ROUNDING_FACTOR * self.penalty * self.rounding_m * active_length
-        stagnating = 2.0 * force_residual >= self.last_residual
-        self.last_residual = force_residual
-        return small and (force_residual <= FORCE_TOLERANCE * load
-                          or (stagnating and force_residual <= rounding)
-                          or pin_update <= self.floor / 8.0)
+@compiled
+def step_cap(control: np.ndarray, active: float) -> float:
+    """The cap on the next step for the active length ``active`` (m): halved when the active set
+    returns to the one of two iterations before, lifted when it stays the same."""
+    before, last, count = control[2], control[3], control[4]
+    if count >= 2.0 and active == before and before != last:
+        control[0] *= 0.5
+    elif count >= 1.0 and active == last:
+        control[0] = 1.0
+    control[2], control[3], control[4] = last, active, count + 1.0
+    return control[0]
+
+
+@compiled
+def converged(control: np.ndarray, settings: NewtonSettings, pin_update: float,
+              displacement_update: float, penetration: float, displacement: float,
+              force_residual: float, load: float, active_length: float) -> bool:
+    """The stopping test: the last step's updates, the present penetration and displacement
+    (m); the pin's force residual |R - F/L| at the present state and |F/L| (N/m); the active
+    length (m)."""
+    floor = 64.0 * settings.rounding_m
+    small = (pin_update <= max(settings.tolerance * penetration, floor)
+             and displacement_update <= max(1e3 * settings.tolerance * displacement, floor))
+    rounding = ROUNDING_FACTOR * settings.penalty * settings.rounding_m * active_length
+    stagnating = 2.0 * force_residual >= control[1]
+    control[1] = force_residual
+    return small and (force_residual <= FORCE_TOLERANCE * load
+                      or (stagnating and force_residual <= rounding)
+                      or pin_update <= floor / 8.0)
+
+
+@compiled
+def corner_centre(points: np.ndarray, weights_m: np.ndarray, direction: np.ndarray,
+                  load_size: float, penalty: float, pin_radius: float) -> np.ndarray:
+    """The light-load solution for the bore nodes at ``points`` (deformed): the pin rests on the
+    two neighbouring bore nodes j, j+1 whose corner c_j (the pin centre touching both, at R_p
+    from each) lies furthest along ``direction`` d (on a convex bore the contact-free region of
+    the pin centre is the polygon of these corners), pressed in along d by the penetration
+    |F/L| / (k (w_j + w_j+1)) that two nodes of weight w need to carry the load. Should c_j lie
+    closer than R_p to another node (a non-convex, worn bore), the vertex of the free region
+    furthest along d (:func:`support_vertex`) and its two nodes instead (:func:`free_corner`),
+    pressed into both where their normals are far apart (:func:`wedge_press`: a pin bridging a
+    pocket rests on rims whose normals are far apart, a wedge; pressed along d alone, it would
+    leave one rim and start on the other alone, whence the Newton slides it along that rim, a
+    single contact on a convex rim being no stable equilibrium, instead of into the wedge)."""
+    corner, pair, vertex = free_corner(points, direction, pin_radius)
+    if vertex:
+        pressed, press = wedge_press(points, corner, pair, direction, load_size, penalty,
+                                     weights_m)
+        if pressed:
+            return corner + press
+    weight = weights_m[pair[0]] + weights_m[pair[1]]
+    return corner + load_penetration(load_size, penalty, weight) * direction
+
+
+@compiled
+def ray_centre(points: np.ndarray, centre: np.ndarray, weights_m: np.ndarray, a: np.ndarray,
+               load_size: float, penalty: float, pin_radius: float) -> np.ndarray:
+    """The pin on the ray c = e a, as deep in the bore (nodes at ``points``, deformed) as it is
+    now at ``centre`` or at least as deep as two nodes need to carry the load: first touch along
+    a plus that penetration, so that it is in contact."""
+    penetration = max(-gaps(points, centre, pin_radius).min(),
+                      load_penetration(load_size, penalty, 2.0 * weights_m.max()))
+    return first_touch_centre(points, np.zeros(2), a, pin_radius) + penetration * a
+
+
+discretisation: Any = None  # the operations coupled_newton runs on: bound by specialised()
+
+
+def coupled_newton(state, settings: NewtonSettings, load: np.ndarray, direction: np.ndarray,
+                   basis: np.ndarray, max_iterations: int) -> int:
+    """Semi-smooth Newton on (displacement, c) from the present state, c moving in the span of
+    ``basis`` (2, k), with the step rules and the stopping test of the module docstring, on the
+    ``discretisation`` bound by :func:`specialised` (its :class:`NewtonOperations`, ``state``
+    theirs). Returns the number of steps taken to the state that passes the stopping test, or -1
+    when not converged within ``max_iterations`` steps or, for the free pin (k = 2), as soon as
+    the active set alternates persistently (the step cap below ``CYCLE_CAP``). A state without
+    contact restarts: at the corner start, or on the ray if the pin is held on one."""
+    operations = discretisation
+    control = new_control()
+    load_size = norm(load)
+    pin_step = displacement_step = penetration = displacement = 0.0
+    stepped = False
+    for iteration in range(max_iterations + 1):
+        pin_residual, active, linear = operations.linearise(state, load)
+        if active == 0.0:
+            operations.zero_displacement(state)
+            points, weights = operations.deformed_points(state), operations.node_weights(state)
+            if basis.shape[1] == 2:
+                centre = corner_centre(points, weights, direction, load_size, settings.penalty,
+                                       settings.pin_radius_m)
+            else:
+                centre = ray_centre(points, operations.pin_position(state), weights, direction,
+                                    load_size, settings.penalty, settings.pin_radius_m)
+            operations.place_pin(state, centre)
+            control = new_control()
+            stepped = False
+            continue
+        residual = norm(projected(basis, pin_residual))
+        if stepped and converged(control, settings, pin_step, displacement_step, penetration,
+                                 displacement, residual, load_size, active):
+            return iteration
+        cap = step_cap(control, active)
+        if iteration == max_iterations or (cap < CYCLE_CAP and basis.shape[1] == 2):
+            return -1
+        update, dc = operations.newton_direction(state, linear, pin_residual, load, basis)
+        # the line search on the bore nodes; the Armijo test (a descent direction without
+        # friction) only where the decrease of Pi it asks for is above the rounding level: Pi is
+        # a sum of terms of size |F/L| |c|, and a decrease below ENERGY_ROUNDING of that is
+        # noise; with friction Pi is no potential of the equations
+        line, base = operations.begin_line_search(state, linear, update, dc, pin_residual)
+        centre = operations.pin_position(state)
+        descent = operations.frictionless(state) and -line.slope > ENERGY_ROUNDING * (
+            load_size * norm(centre))
+        step, trial_centre, trial_gaps = line_search(
+            line.points, line.displacement, line.update, centre, dc,
+            operations.node_weights(state), load, load_size, settings.penalty,
+            settings.pin_radius_m, settings.node_spacing_rad, settings.element_size_m,
+            settings.bore_radius_m, cap, line.slope, descent, line.elastic)
+        operations.try_step(state, base, update, step, trial_centre)
+        displacement_step, displacement = operations.update_sizes(state, update)
+        pin_step, penetration = norm(dc), max(-trial_gaps.min(), 0.0)
+        stepped = True
+    return -1
+
+
+def specialised(operations) -> types.FunctionType:
+    """:func:`coupled_newton` on ``operations`` (:class:`NewtonOperations`: a module of compiled
+    functions, to be compiled with it, or a class whose methods take the state as ``self``): the
+    same code with ``discretisation`` bound to them, so that the algorithm is written once and
+    numba can compile it whole for the condensed path (numba resolves a module's functions at
+    compile time and caches the result; it caches no closures)."""
+    namespace = dict(globals(), discretisation=operations)
+    return types.FunctionType(coupled_newton.__code__, namespace, coupled_newton.__name__)
 
 
 def solve_by_contact_angle(inner, pin_residual, direction: np.ndarray, load: np.ndarray,
@@ -702,17 +882,12 @@ class ContactNewton:
 
     def __init__(self, path: ContactDiscretisation):
         self.path = path
+        self.operations = path.operations
         self.last_direction: np.ndarray | None = None
         self.last_contact_nodes = 0
         self.last_load = 0.0
         self.fallback_angle_rad: float | None = None  # the pin's after the last fallback
-        problem = path.problem
-        elements = problem.mesh.circumferential_element_count(problem.geometry.inner_radius_m)
-        self.node_spacing_rad = math.pi / elements  # two bore nodes per element
-        self.pin_radius_m = problem.geometry.pin_radius_m
-        self.bore_radius_m = problem.geometry.inner_radius_m
-        self.element_size_m = problem.mesh.bore_element_size_m
-        self.penalty = problem.penalty_stiffness_Pa_per_m()
+        self.settings = newton_settings(path.problem)
 
     def forget(self) -> None:
         """Start the next solve cold. The fallback's starting angle (the pin's after the last
@@ -726,20 +901,20 @@ class ContactNewton:
 
     def solve(self, load: np.ndarray, direction: np.ndarray) -> int:
         untouched = self._start(direction, load)
-        iterations = self._coupled_newton(load, direction, np.eye(2), COUPLED_ITERATIONS)
+        iterations = self._coupled_newton(load, direction, FREE_PIN, COUPLED_ITERATIONS)
         spent = COUPLED_ITERATIONS
         if iterations is None and untouched:
             # the last solution, not turned on a worn bore, can lead astray (the pin slides
             # along a pocket's flank, held by one node): once more from the corner start
             self._corner_start(direction, load)
-            iterations = self._coupled_newton(load, direction, np.eye(2), COUPLED_ITERATIONS)
+            iterations = self._coupled_newton(load, direction, FREE_PIN, COUPLED_ITERATIONS)
             if iterations is not None:
                 iterations += spent
             spent += COUPLED_ITERATIONS
         if iterations is None:
             iterations = spent + self._solve_by_contact_angle(load, direction,
                                                               self.fallback_angle_rad)
-            centre = self.path.pin_centre_m
+            centre = self._pin()
             self.fallback_angle_rad = math.atan2(centre[1], centre[0])
         self.last_direction = direction
         self.last_contact_nodes = int(np.count_nonzero(self._gaps() < 0.0))
@@ -748,32 +923,38 @@ class ContactNewton:
 
     def _solve_by_contact_angle(self, load: np.ndarray, direction: np.ndarray,
                                 first_angle_rad: float | None) -> int:
-        path, settings = self.path, self.path.problem.contact
+        operations, state = self.operations, self.path.newton_state
+        max_iterations = self.path.problem.contact.newton_max_iterations
 
         def inner(a):
             self._onto_ray(a, load)
-            count = self._coupled_newton(load, a, a[:, None], settings.newton_max_iterations)
+            count = self._coupled_newton(load, a, np.ascontiguousarray(a[:, None]),
+                                         max_iterations)
             if count is None:
                 raise ContactNotConverged(load, "did not converge with the pin on a fixed ray")
             return count
 
-        return solve_by_contact_angle(inner, lambda: path.linearise(load)[0], direction, load,
-                                      settings.newton_max_iterations, first_angle_rad)
+        return solve_by_contact_angle(inner, lambda: operations.linearise(state, load)[0],
+                                      direction, load, max_iterations, first_angle_rad)
+
+    def _coupled_newton(self, load, direction, basis, max_iterations) -> int | None:
+        """:func:`coupled_newton` of the discretisation on its state; None if not converged."""
+        iterations = self.path.coupled_newton(self.path.newton_state, self.settings, load,
+                                              direction, basis, max_iterations)
+        return None if iterations < 0 else iterations
+
+    def _pin(self) -> np.ndarray:
+        return self.operations.pin_position(self.path.newton_state)
+
+    def _place_pin(self, centre: np.ndarray) -> None:
+        self.operations.place_pin(self.path.newton_state, centre)
 
     def _onto_ray(self, a: np.ndarray, load: np.ndarray) -> None:
-        """Put the pin on the ray c = e a, as deep in the (deformed) bore as it is now or at
-        least as deep as two nodes need to carry the load (:meth:`_load_penetration`): first
-        touch along a plus that penetration, so that it is in contact."""
-        path = self.path
-        penetration = max(-self._gaps().min(), self._load_penetration(
-            load, 2.0 * path.weights_m.max()))
-        touch = first_touch_centre(path.deformed_points(), np.zeros(2), a, self.pin_radius_m)
-        path.pin_centre_m = touch + penetration * a
-
-    def _load_penetration(self, load: np.ndarray, weight_m: float) -> float:
-        """The penetration (m) at which nodes of total weight w carry |F/L|
-        (:func:`load_penetration`)."""
-        return load_penetration(norm(load), self.penalty, weight_m)
+        """Put the pin on the ray c = e a (:func:`ray_centre`)."""
+        operations, state, settings = self.operations, self.path.newton_state, self.settings
+        self._place_pin(ray_centre(operations.deformed_points(state), self._pin(),
+                                   operations.node_weights(state), a, norm(load),
+                                   settings.penalty, settings.pin_radius_m))
 
     def _start(self, direction: np.ndarray, load: np.ndarray) -> bool:
         """Without a previous solution: the corner start (:meth:`_corner_start`). Else, if the
@@ -797,7 +978,7 @@ class ContactNewton:
             turn = math.atan2(last[0] * direction[1] - last[1] * direction[0], last @ direction)
             if path.turn_state(turn):
                 if light:
-                    path.pin_centre_m = self._corner(direction, load)
+                    self._place_pin(self._corner(direction, load))
                 return False
         if last is not None and not light:
             turn = math.atan2(last[0] * direction[1] - last[1] * direction[0], last @ direction)
@@ -808,91 +989,22 @@ class ContactNewton:
 
     def _corner_start(self, direction: np.ndarray, load: np.ndarray) -> None:
         """No displacement, the pin at :meth:`_corner` of the undeformed bore."""
-        self.path.zero_displacement()
-        self.path.pin_centre_m = self._corner(direction, load)
+        self.operations.zero_displacement(self.path.newton_state)
+        self._place_pin(self._corner(direction, load))
 
     def _corner(self, direction: np.ndarray, load: np.ndarray) -> np.ndarray:
-        """The light-load solution for the present bore displacement: the pin rests on the two
-        neighbouring bore nodes j, j+1 whose corner c_j (the pin centre touching both, at
-        R_p from each) lies furthest along ``direction`` d (on a convex bore the contact-free
-        region of the pin centre is the polygon of these corners), pressed in along d by the
-        penetration |F/L| / (k (w_j + w_j+1)) that two nodes of weight w need to carry the load.
-        Should c_j lie closer than R_p to another node (a non-convex, worn bore), the vertex of
-        the free region furthest along d (:func:`support_vertex`) and its two nodes instead
-        (:func:`free_corner`), pressed into both where their normals are far apart
-        (:func:`wedge_press`: a pin bridging a pocket rests on rims whose normals are far apart,
-        a wedge; pressed along d alone, it would leave one rim and start on the other alone,
-        whence the Newton slides it along that rim, a single contact on a convex rim being no
-        stable equilibrium, instead of into the wedge)."""
-        path = self.path
-        X = path.deformed_points()
-        corner, pair, vertex = free_corner(X, direction, self.pin_radius_m)
-        if vertex:
-            pressed, press = wedge_press(X, corner, pair, direction, norm(load), self.penalty,
-                                         path.weights_m)
-            if pressed:
-                return corner + press
-        weight = path.weights_m[pair[0]] + path.weights_m[pair[1]]
-        return corner + self._load_penetration(load, weight) * direction
-
-    def _coupled_newton(self, load, direction, basis, max_iterations) -> int | None:
-        """Semi-smooth Newton on (displacement, c) with c moving in the span of ``basis``
-        (2, k); returns the number of steps taken to the state that passes the stopping test,
-        or None when not converged within ``max_iterations`` steps or, for the free pin
-        (k = 2), as soon as the active set alternates persistently."""
-        path = self.path
-        control = NewtonControl(path.problem)
-        last_step = None  # (pin update, displacement update, penetration, displacement)
-        for iteration in range(max_iterations + 1):
-            pin_residual, active = path.linearise(load)
-            if active == 0.0:  # restart, on the ray if the pin is held on one
-                if basis.shape[1] == 2:
-                    self._corner_start(direction, load)
-                else:
-                    path.zero_displacement()
-                    self._onto_ray(direction, load)
-                control, last_step = NewtonControl(path.problem), None
-                continue
-            residual = norm(basis.T @ pin_residual)
-            if last_step is not None and control.converged(
-                    *last_step, residual, norm(load), active):
-                return iteration
-            cap = control.step_cap(active)
-            if iteration == max_iterations or (cap < CYCLE_CAP and basis.shape[1] == 2):
-                return None
-            update, dc = path.newton_direction(pin_residual, load, basis)
-            trial_gaps = self._line_search(update, dc, pin_residual, load, cap)
-            last_step = (norm(dc), *self._sizes(update, trial_gaps))
-        return None
-
-    def _sizes(self, update, trial_gaps: np.ndarray) -> tuple[float, float, float]:
-        """The largest displacement update, penetration (from the gaps of the state the line
-        search left) and displacement (m)."""
-        displacement_update, displacement = self.path.update_sizes(update)
-        return displacement_update, max(-trial_gaps.min(), 0.0), displacement
+        """The light-load solution for the present bore displacement (:func:`corner_centre`)."""
+        operations, state, settings = self.operations, self.path.newton_state, self.settings
+        return corner_centre(operations.deformed_points(state), operations.node_weights(state),
+                             direction, norm(load), settings.penalty, settings.pin_radius_m)
 
     def _gaps(self) -> np.ndarray:
         """Gaps |X + U - c| - R_p at the bore nodes (m), negative in contact."""
-        return gaps(self.path.deformed_points(), self.path.pin_centre_m, self.pin_radius_m)
+        return gaps(self.operations.deformed_points(self.path.newton_state), self._pin(),
+                    self.settings.pin_radius_m)
 
-    def _line_search(self, update, dc, pin_residual, load, cap: float) -> np.ndarray:
-        """The step along the Newton direction by :func:`line_search` on the bore nodes; leaves
-        the state there and returns its gaps. The Armijo test (a descent direction without
-        friction) only where the decrease of Pi it asks for is above the rounding level: Pi is
-        a sum of terms of size |F/L| |c|, and a decrease below ``ENERGY_ROUNDING`` of that is
-        noise; with friction Pi is no potential of the equations."""
-        path = self.path
-        line = path.begin_line_search(update, dc, pin_residual)
-        load_size = norm(load)
-        centre = path.pin_centre_m
-        descent = path.frictionless() and -line.slope > ENERGY_ROUNDING * (
-            load_size * norm(centre))
-        step, trial_centre, trial_gaps = line_search(
-            line.points, line.displacement, line.update, centre, dc, path.weights_m, load,
-            load_size, self.penalty, self.pin_radius_m, self.node_spacing_rad,
-            self.element_size_m, self.bore_radius_m, cap, line.slope, descent, line.elastic)
-        path.try_step(step, trial_centre)
-        return trial_gaps
+
+FREE_PIN = np.eye(2)  # the basis of the pin's moves when it is free (not held on a ray)
 
 
 class LineData(NamedTuple):

@@ -73,6 +73,7 @@ from fewear.contact.newton import (
     ContactNotConverged,
     LineData,
     contact_direction,
+    specialised,
 )
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
@@ -322,22 +323,36 @@ class BushingContactSolver:
         return self.last_result
 
     # -- the discretisation for ContactNewton --------------------------------------------------
-    # The displacement field is not turned for a warm start (no interpolation between rotated
-    # meshes in DOLFINx 0.5).
+    # Its operations (fewear.contact.newton.NewtonOperations) are these methods, the state the
+    # solver itself. The displacement field is not turned for a warm start (no interpolation
+    # between rotated meshes in DOLFINx 0.5).
     can_turn_state = False
+
+    @property
+    def operations(self) -> type:
+        return BushingContactSolver
+
+    @property
+    def newton_state(self) -> BushingContactSolver:
+        return self
+
+    @property
+    def coupled_newton(self):
+        return FULL_PATH_NEWTON
 
     def zero_displacement(self) -> None:
         self.displacement.x.array[:] = 0.0
 
-    def linearise(self, load: np.ndarray) -> tuple[np.ndarray, float]:
-        """Assemble r and J at the current state; the pin residual (N/m) and active length (m)."""
+    def linearise(self, load: np.ndarray) -> tuple[np.ndarray, float, None]:
+        """Assemble r and J at the current state; the pin residual (N/m) and active length (m)
+        (the linearisation is kept in the solver's matrices)."""
         self.pin_centre.value = self.pin_centre_m
-        return self._assemble_contact(load), self._active_length()
+        return self._assemble_contact(load), self._active_length(), None
 
-    def newton_direction(self, pin_residual, load, basis):
+    def newton_direction(self, linear, pin_residual, load, basis):
         return self._bordered_step(pin_residual, basis)
 
-    def begin_line_search(self, du, dc, pin_residual) -> LineData:
+    def begin_line_search(self, linear, du, dc, pin_residual) -> tuple[LineData, None]:
         """Slope of Pi along (du, dc): (K_el u + r) . du + r_c . dc (J/m); the elastic energy
         1/2 u.K_el u along the line, 1/2 u.K_el u + s du.K_el u + s^2/2 du.K_el du; the bore
         nodes' displacement and its update (the evaluation at the nodes is linear in u)."""
@@ -354,18 +369,28 @@ class BushingContactSolver:
             du.copy(self._du.vector)
         self._du.x.scatter_forward()
         return LineData(slope, self.bore.points, np.ascontiguousarray(self.nodal_displacement()),
-                        np.ascontiguousarray(self._at_bore_nodes(self._du)), elastic)
+                        np.ascontiguousarray(self._at_bore_nodes(self._du)), elastic), None
 
-    def try_step(self, step: float, pin_centre: np.ndarray) -> None:
-        du, taken = self._line
+    def try_step(self, base, du, step: float, pin_centre: np.ndarray) -> None:
+        """Move u along the line search's update to the step (the steps taken so far kept)."""
+        _, taken = self._line
         self.displacement.vector.axpy(step - taken, du)
         self.displacement.x.scatter_forward()
         self._line = (du, step)
-        self.pin_centre_m = pin_centre
-        self.pin_centre.value = pin_centre
+        self.place_pin(pin_centre)
 
     def deformed_points(self) -> np.ndarray:
         return self.bore.points + self.nodal_displacement()
+
+    def node_weights(self) -> np.ndarray:
+        return self.weights_m
+
+    def pin_position(self) -> np.ndarray:
+        return self.pin_centre_m
+
+    def place_pin(self, centre: np.ndarray) -> None:
+        self.pin_centre_m = np.array(centre, dtype=float)
+        self.pin_centre.value = self.pin_centre_m
 
     def frictionless(self) -> bool:
         return float(self.friction.value) == 0.0
@@ -470,3 +495,6 @@ class BushingContactSolver:
         out.interpolate(self.displacement)
         return out
 
+
+FULL_PATH_NEWTON = specialised(BushingContactSolver)
+"""The coupled Newton of :mod:`fewear.contact.newton` on the solver's methods, run as Python."""

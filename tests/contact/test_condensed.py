@@ -7,6 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from fewear.contact.condensed_newton import zero_displacement
+
 from .test_solver import N_THETA, coarse_problem, rotate
 
 
@@ -406,7 +408,7 @@ def test_the_corner_start_on_a_worn_bore_rests_on_the_pocket_rims(worn_paths):
         assert distance.min() >= R_p * (1.0 - 1e-12)
         np.testing.assert_allclose(distance[list(pair)], R_p, rtol=1e-12)
         assert abs(pair[1] - pair[0]) > 1
-        fast.zero_displacement()
+        zero_displacement(fast.newton_state)
         start = fast.newton._corner(direction, np.array([1e3, 0.0]))
         assert np.count_nonzero(np.hypot(*(fast.points - start).T) < R_p) == 2
 
@@ -481,7 +483,7 @@ def test_the_start_in_a_wedge_presses_the_pin_onto_both_rims(deep_paths):
     for angle in (34.0, 58.0, 238.0):
         direction = np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
         _, pair = support_vertex(fast.points, direction, R_p)
-        fast.zero_displacement()
+        zero_displacement(fast.newton_state)
         start = fast.newton._corner(direction, np.array([1e4, 0.0]))
         assert np.all(np.hypot(*(fast.points[list(pair)] - start).T) < R_p)
         fast.newton.forget()

@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pytest
 
+from fewear.contact.condensed_newton import zero_displacement
 from fewear.contact.newton import pin_update, unit
 
 from .test_solver import N_THETA, coarse_problem, rotate
@@ -33,7 +34,7 @@ def test_corner_start_touches_two_neighbouring_nodes(fast):
     """The corner c_j lies R_p from both nodes of the pair furthest along d; every other node
     is further; the start presses the pin in along d by |F/L| / (k (w_j + w_j+1))."""
     direction, load = unit(2.0), 40.0 * unit(2.0)
-    fast.zero_displacement()
+    zero_displacement(fast.newton_state)
     centre = fast.newton._corner(direction, load)
     R_p = fast.problem.geometry.pin_radius_m
     penetration = R_p - np.hypot(*(fast.points - centre).T)
@@ -71,14 +72,27 @@ def test_compile_contact_covers_the_argument_types_of_a_solve(fast):
     (a worker would compile that one itself)."""
     from numba.core.registry import CPUDispatcher
 
-    from fewear.contact import condensed, newton
+    from fewear.contact import condensed_newton, newton
 
-    condensed.compile_contact()
+    condensed_newton.compile_contact()
     fast.newton.forget()
     fast.solve((300.0, -2000.0), 0.01, friction=True)
     fast.solve((350.0, -2100.0), 0.01, friction=False)
-    kernels = {name: kernel for module in (newton, condensed)
+    kernels = {name: kernel for module in (newton, condensed_newton)
                for name, kernel in vars(module).items() if isinstance(kernel, CPUDispatcher)}
     assert len(kernels) >= 15
     assert {name: len(kernel.signatures) for name, kernel in kernels.items()
             if len(kernel.signatures) > 1} == {}
+
+
+def test_both_paths_run_the_one_coupled_newton():
+    """The coupled Newton is written once (fewear.contact.newton.coupled_newton): the full
+    path runs its code as Python on the solver's methods, the condensed path compiles the same
+    code on its own operations."""
+    from fewear.contact import condensed_newton, newton, solver
+
+    assert solver.FULL_PATH_NEWTON.__code__ is newton.coupled_newton.__code__
+    assert condensed_newton.coupled_newton_on_state.__code__ is newton.coupled_newton.__code__
+    assert solver.FULL_PATH_NEWTON.__globals__["discretisation"] is solver.BushingContactSolver
+    assert (condensed_newton.coupled_newton_on_state.__globals__["discretisation"]
+            is condensed_newton)

@@ -1,0 +1,306 @@
+"""The condensed path's arithmetic on the bore nodes, compiled (numba, :mod:`fewear.jit`): the
+nodal forces and their linearisation, the bordered Newton step of
+:mod:`fewear.contact.condensed` (whose module docstring gives the equations), and the path's
+:class:`fewear.contact.newton.NewtonOperations` on its state, with the coupled Newton compiled
+on them (:data:`coupled_newton`).
+
+The state (:func:`new_state`) is a tuple of arrays: the bore compliance G (2n, 2n), the nodal
+forces g (2n,), the nodal displacements U = G g (2n,), the pin centre c (2,), the bore nodes
+X (n, 2), their weights w (n,), and the constants (k, R_p, mu s) with mu s the signed friction
+coefficient of the present solve. The operations update it in place, so the class that owns it
+(:class:`fewear.contact.condensed.CondensedBushingContact`) sees every step. This module does
+not import DOLFINx.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+
+import numpy as np
+from numba.extending import register_jitable
+
+from fewear.contact.newton import (
+    FREE_PIN,
+    LineData,
+    NewtonSettings,
+    compile_shared_kernels,
+    gaps,
+    pairwise_sum,
+    specialised,
+)
+from fewear.jit import compiled
+
+
+@compiled
+def nodal_forces(points: np.ndarray, U: np.ndarray, centre: np.ndarray, pin_radius: float,
+                 penalty: float, friction_value: float, weights_m: np.ndarray):
+    """Nodal forces f = w p (n + mu s t) (n, 2), pressures p = k <R_p - r>_+ (n,), normals
+    n = d / r (n, 2) and distances r = |d| (n,) of the bore nodes X (``points``) with nodal
+    displacements U and the pin centre c, d = X + U - c, t = (-n_y, n_x)."""
+    size = points.shape[0]
+    f, p = np.empty((size, 2)), np.empty(size)
+    normal, r = np.empty((size, 2)), np.empty(size)
+    for q in range(size):
+        d_x = points[q, 0] + U[q, 0] - centre[0]
+        d_y = points[q, 1] + U[q, 1] - centre[1]
+        r[q] = math.hypot(d_x, d_y)
+        normal[q, 0], normal[q, 1] = d_x / r[q], d_y / r[q]
+        p[q] = penalty * max(pin_radius - r[q], 0.0)
+        wp = weights_m[q] * p[q]
+        f[q, 0] = wp * (normal[q, 0] + friction_value * -normal[q, 1])
+        f[q, 1] = wp * (normal[q, 1] + friction_value * normal[q, 0])
+    return f, p, normal, r
+
+
+@compiled
+def penetrations(points: np.ndarray, U: np.ndarray, centre: np.ndarray,
+                 pin_radius: float) -> np.ndarray:
+    """<R_p - |X + U - c|>_+ at the bore nodes (m): the negative part of the deformed bore's
+    :func:`fewear.contact.newton.gaps`."""
+    return np.maximum(-gaps(points + U, centre, pin_radius), 0.0)
+
+
+@compiled
+def turned_forces(g: np.ndarray, points: np.ndarray, U: np.ndarray, centre: np.ndarray,
+                  pin_radius: float, nodes_turned: int, angle: float, tolerance: float):
+    """The nodal forces g (2n,) moved ``nodes_turned`` nodes along the angle-sorted bore nodes
+    (``points``, (n, 2)) and turned by ``angle`` (rad), and whether the bore is invariant on
+    the nodes that carry them: each lies within ``tolerance`` times the larger of the state's
+    penetration and largest displacement (U (n, 2), pin at ``centre``) of where the node its
+    force came from lands when turned."""
+    n = points.shape[0]
+    cosine, sine = math.cos(angle), math.sin(angle)
+    turned = np.zeros_like(g)
+    mismatch = 0.0
+    for q in range(n):
+        source = (q - nodes_turned) % n
+        g_x, g_y = g[2 * source], g[2 * source + 1]
+        if g_x == 0.0 and g_y == 0.0:
+            continue
+        turned[2 * q] = cosine * g_x - sine * g_y
+        turned[2 * q + 1] = sine * g_x + cosine * g_y
+        landed_x = cosine * points[source, 0] - sine * points[source, 1]
+        landed_y = sine * points[source, 0] + cosine * points[source, 1]
+        mismatch = max(mismatch, math.hypot(landed_x - points[q, 0], landed_y - points[q, 1]))
+    scale = max(penetrations(points, U, centre, pin_radius).max(), np.abs(U).max())
+    return mismatch <= tolerance * scale, turned
+
+
+@compiled
+def jacobian_blocks(active: np.ndarray, p: np.ndarray, normal: np.ndarray, r: np.ndarray,
+                    penalty: float, friction_value: float, weights_m: np.ndarray) -> np.ndarray:
+    """w dT/dd (|A|, 2, 2) at the active nodes A, T = p (n + mu s t), p = k (R_p - |d|):
+    dT/dd = -k n n^T + p/r P + mu s (-k t n^T + p/r R P), P = I - n n^T, R the turn by
+    90 degrees (t = R n)."""
+    blocks = np.empty((active.size, 2, 2))
+    for a, q in enumerate(active):
+        n = normal[q]
+        t = np.array([-n[1], n[0]])
+        p_r = p[q] / r[q]
+        for i in range(2):
+            for j in range(2):
+                projector = (1.0 if i == j else 0.0) - n[i] * n[j]
+                # (R P)_ij: row 0 is -P_1j, row 1 is P_0j
+                other = 1 - i
+                turned = (-1.0 if i == 0 else 1.0) * ((1.0 if other == j else 0.0)
+                                                      - n[other] * n[j])
+                dT = (-penalty * (n[i] * n[j]) + p_r * projector
+                      + friction_value * (-penalty * (t[i] * n[j]) + p_r * turned))
+                blocks[a, i, j] = weights_m[q] * dT
+    return blocks
+
+
+@compiled
+def linearised_forces(points: np.ndarray, U: np.ndarray, centre: np.ndarray, pin_radius: float,
+                      penalty: float, friction_value: float, weights_m: np.ndarray,
+                      load: np.ndarray):
+    """The nodal forces f (:func:`nodal_forces`), the Jacobian blocks W M at the active nodes A
+    (p > 0, :func:`jacobian_blocks`), A, the pin residual sum f - F/L (N/m) and the active
+    length sum_A w (m)."""
+    f, p, normal, r = nodal_forces(points, U, centre, pin_radius, penalty, friction_value,
+                                   weights_m)
+    active = np.flatnonzero(p > 0.0)
+    residual = np.zeros(2)
+    for q in range(f.shape[0]):
+        residual += f[q]
+    return (f, jacobian_blocks(active, p, normal, r, penalty, friction_value, weights_m),
+            active, residual - load, pairwise_sum(weights_m[active]))
+
+
+@compiled
+def newton_step(compliance: np.ndarray, g: np.ndarray, U: np.ndarray, f: np.ndarray,
+                WM: np.ndarray, active: np.ndarray, basis: np.ndarray, load: np.ndarray):
+    """One Newton step (module docstring) on the active nodes A with the pin update
+    dc = basis dz: the bordered system
+
+        [I - W M G_AA   W M basis] [g'_A]   [f_A - W M U_A]
+        [basis^T ...    0        ] [dz  ] = [basis^T F/L  ]
+
+    (the last rows sum the nodal forces), and the updates dg = g' - g of the nodal forces (g'
+    zero off A), dU = G dg (only the columns of G on the old and new support) and dc."""
+    m, k = active.size, basis.shape[1]
+    system = np.zeros((2 * m + k, 2 * m + k))
+    rhs = np.empty(2 * m + k)
+    for a in range(m):
+        rows = 2 * active[a]
+        for i in range(2):
+            for b in range(m):
+                for j in range(2):
+                    column = 2 * active[b] + j
+                    system[2 * a + i, 2 * b + j] = (1.0 if a == b and i == j else 0.0) - (
+                        WM[a, i, 0] * compliance[rows, column]
+                        + WM[a, i, 1] * compliance[rows + 1, column])
+            for c in range(k):
+                system[2 * a + i, 2 * m + c] = WM[a, i, 0] * basis[0, c] + WM[a, i, 1] * basis[1, c]
+                system[2 * m + c, 2 * a + i] = basis[i, c]
+            rhs[2 * a + i] = f[active[a], i] - (WM[a, i, 0] * U[active[a], 0]
+                                                + WM[a, i, 1] * U[active[a], 1])
+    for c in range(k):
+        rhs[2 * m + c] = basis[0, c] * load[0] + basis[1, c] * load[1]
+    solution = np.linalg.solve(system, rhs)
+    dg = -g
+    for a in range(m):
+        for i in range(2):
+            dg[2 * active[a] + i] += solution[2 * a + i]
+    support = np.flatnonzero(dg)
+    dU = np.dot(compliance[:, support], dg[support])
+    dc = np.zeros(2)
+    for c in range(k):
+        dc += basis[:, c] * solution[2 * m + c]
+    return dg, dU, dc
+
+
+
+def new_state(compliance: np.ndarray, points: np.ndarray, weights_m: np.ndarray,
+              penalty: float, pin_radius: float) -> tuple:
+    """The state of module docstring for G, X and w (m) with no displacement, the pin centred
+    and no friction; arrays C-contiguous (the kernels' signatures)."""
+    size = 2 * points.shape[0]
+    return (np.ascontiguousarray(compliance, dtype=float), np.zeros(size), np.zeros(size),
+            np.zeros(2), np.ascontiguousarray(points, dtype=float),
+            np.ascontiguousarray(weights_m, dtype=float), np.array([penalty, pin_radius, 0.0]))
+
+
+# -- the operations of the contact Newton (fewear.contact.newton.NewtonOperations) ---------------
+# register_jitable: NumPy code when ContactNewton calls them from Python (numba would type the
+# state tuple at every call, slowly: see run_coupled_newton), compiled into the coupled Newton.
+@register_jitable
+def linearise(state, load):
+    """Nodal forces and their Jacobian blocks at the state (``linear``: f, W M_A, A); the pin
+    residual sum f - F/L (N/m) and the active length (m)."""
+    compliance, g, U, centre, points, weights, constants = state
+    f, WM_A, active, residual, length = linearised_forces(
+        points, U.reshape(-1, 2), centre, constants[1], constants[0], constants[2], weights, load)
+    return residual, length, (f, WM_A, active)
+
+
+@register_jitable
+def newton_direction(state, linear, pin_residual, load, basis):
+    """One Newton step (:func:`newton_step`): the update (dg, dU = G dg) of the nodal forces and
+    displacements, and dc. Only the columns of G on the old and new support are used."""
+    compliance, g, U, centre, points, weights, constants = state
+    f, WM_A, active = linear
+    dg, dU, dc = newton_step(compliance, g, U.reshape(-1, 2), f, WM_A, active, basis, load)
+    return (dg, dU), dc
+
+
+@register_jitable
+def begin_line_search(state, linear, update, dc, pin_residual):
+    """Slope of Pi along (dg, dU, dc): (g - f) . dU + (sum f - F/L) . dc (J/m); the elastic
+    energy 1/2 g.G g along the line, 1/2 g.U + s g.dU + s^2/2 dg.dU (G symmetric); the base
+    (g, U) of the line search."""
+    compliance, g, U, centre, points, weights, constants = state
+    dg, dU = update
+    slope = np.dot(g - linear[0].reshape(-1), dU) + np.dot(pin_residual, dc)
+    elastic = np.array([0.5 * np.dot(g, U), np.dot(g, dU), 0.5 * np.dot(dg, dU)])
+    line = LineData(slope, points, U.reshape(-1, 2), dU.reshape(-1, 2), elastic)
+    return line, (g.copy(), U.copy())
+
+
+@register_jitable
+def try_step(state, base, update, step, pin_centre):
+    g, U, centre = state[1], state[2], state[3]
+    g0, U0 = base
+    dg, dU = update
+    g[:] = g0 + step * dg
+    U[:] = U0 + step * dU
+    centre[:] = pin_centre
+
+
+@register_jitable
+def update_sizes(state, update):
+    return np.abs(update[1]).max(), np.abs(state[2]).max()
+
+
+@register_jitable
+def zero_displacement(state):
+    state[1][:] = 0.0
+    state[2][:] = 0.0
+
+
+@register_jitable
+def deformed_points(state):
+    return state[4] + state[2].reshape(-1, 2)
+
+
+@register_jitable
+def node_weights(state):
+    return state[5]
+
+
+@register_jitable
+def pin_position(state):
+    return state[3].copy()
+
+
+@register_jitable
+def place_pin(state, centre):
+    state[3][:] = centre
+
+
+@register_jitable
+def frictionless(state):
+    return state[6][2] == 0.0
+
+
+coupled_newton_on_state = register_jitable(specialised(sys.modules[__name__]))
+
+
+@compiled
+def run_coupled_newton(compliance, g, U, centre, points, weights, constants, settings, load,
+                       direction, basis, max_iterations):
+    """The coupled Newton of :mod:`fewear.contact.newton` on this module's operations, compiled,
+    on the state of these arrays (``settings`` a plain tuple of :class:`NewtonSettings`' fields).
+    Called from Python with the arrays apart: numba 0.56 types a tuple of more than four arrays,
+    or a named tuple, in Python at every call (its type cache keys them on more bytes than it
+    keeps): 20-60 us, as much as a Newton iteration."""
+    return coupled_newton_on_state((compliance, g, U, centre, points, weights, constants),
+                                   NewtonSettings(*settings), load, direction, basis,
+                                   max_iterations)
+
+
+def coupled_newton(state, settings, load, direction, basis, max_iterations) -> int:
+    """:func:`run_coupled_newton` on ``state``; ``settings`` a :class:`NewtonSettings`."""
+    return run_coupled_newton(*state, tuple(settings), load, direction, basis, max_iterations)
+
+
+def compile_contact() -> None:
+    """Compile, or load from numba's cache (:mod:`fewear.jit`), the contact Newton's kernels:
+    each called once on a small bore (16 nodes on a circle, the pin pressed into two) with the
+    argument types of a solve, so that worker processes started afterwards load them instead
+    of each compiling them (tests/contact/test_newton.py checks that a solve adds no
+    signature)."""
+    points, weights, pin_radius, penalty, load, centre, settings = compile_shared_kernels()
+    size = points.shape[0]
+    U, g = np.zeros((size, 2)), np.zeros(2 * size)
+    f, WM, active, _, _ = linearised_forces(points, U, centre, pin_radius, penalty, 0.1,
+                                            weights, load)
+    newton_step(np.eye(2 * size), g, U, f, WM, active, FREE_PIN, load)
+    nodal_forces(points, U, centre, pin_radius, penalty, 0.0, weights)
+    turned_forces(g, points, U, centre, pin_radius, 2, 0.1, 0.1)
+    state = new_state(np.eye(2 * size), points, weights, penalty, pin_radius)
+    direction = load / math.sqrt(load @ load)
+    for basis in (FREE_PIN, np.ascontiguousarray(direction[:, None])):
+        place_pin(state, centre)
+        coupled_newton(state, settings, load, direction, basis, 2)
