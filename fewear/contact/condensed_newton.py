@@ -29,6 +29,7 @@ from fewear.contact.newton import (
     pairwise_sum,
     specialised,
 )
+from fewear.contact.sensitivity import pressure_sensitivity
 from fewear.jit import compiled
 
 
@@ -290,7 +291,7 @@ def compile_contact() -> None:
     each called once on a small bore (16 nodes on a circle, the pin pressed into two) with the
     argument types of a solve, so that worker processes started afterwards load them instead
     of each compiling them (tests/contact/test_newton.py checks that a solve adds no
-    signature)."""
+    signature); and :func:`fewear.contact.sensitivity.pressure_sensitivity`."""
     points, weights, pin_radius, penalty, load, centre, settings = compile_shared_kernels()
     size = points.shape[0]
     U, g = np.zeros((size, 2)), np.zeros(2 * size)
@@ -304,3 +305,5 @@ def compile_contact() -> None:
     for basis in (FREE_PIN, np.ascontiguousarray(direction[:, None])):
         place_pin(state, centre)
         coupled_newton(state, settings, load, direction, basis, 2)
+    for active in (np.arange(2), np.arange(3)):  # least squares and LU
+        pressure_sensitivity(np.eye(2 * size), weights, points, centre, active, penalty)

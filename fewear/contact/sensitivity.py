@@ -17,9 +17,16 @@ is left out of the linearisation (it tilts the normals by at most atan(mu) in th
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
+from fewear.jit import compiled
 
+EPSILON = float(np.finfo(float).eps)  # least squares' cut-off, relative: NumPy's rcond=None
+
+
+@compiled
 def pressure_sensitivity(compliance: np.ndarray, weights_m: np.ndarray, points_m: np.ndarray,
                          pin_centre_m: np.ndarray, active: np.ndarray,
                          penalty_Pa_per_m: float) -> np.ndarray:
@@ -27,26 +34,38 @@ def pressure_sensitivity(compliance: np.ndarray, weights_m: np.ndarray, points_m
 
     ``compliance``: G (2n, 2n), rows and columns (node, direction), m per N/m; ``weights_m`` (n,);
     ``points_m`` (n, 2) the bore nodes (their normal is taken from the pin centre, the nodal
-    displacements being microns against a radius of millimetres).
+    displacements being microns against a radius of millimetres). Compiled (numba): it runs for
+    every load step with slip of every wear step.
     """
     m = active.size
-    normal = points_m[active] - pin_centre_m
-    normal /= np.linalg.norm(normal, axis=1)[:, None]
-    rows = (2 * active[:, None] + np.arange(2)[None, :]).reshape(-1)
-    G = compliance[np.ix_(rows, rows)].reshape(m, 2, m, 2)
-    normal_compliance = np.einsum("ai,aibj,bj->ab", normal, G, normal)
+    normal = np.empty((m, 2))
+    for a in range(m):
+        d_x = points_m[active[a], 0] - pin_centre_m[0]
+        d_y = points_m[active[a], 1] - pin_centre_m[1]
+        length = math.sqrt(d_x * d_x + d_y * d_y)
+        normal[a, 0], normal[a, 1] = d_x / length, d_y / length
     penalty = weights_m[active] * penalty_Pa_per_m
     system = np.zeros((m + 2, m + 2))
-    system[:m, :m] = np.eye(m) + penalty[:, None] * normal_compliance
-    system[:m, m:] = -penalty[:, None] * normal
-    system[m:, :m] = normal.T * penalty.mean()  # scaled like the rows above (N^T df = 0)
     rhs = np.zeros((m + 2, m))
-    rhs[:m] = -np.diag(penalty)
+    for a in range(m):
+        row = 2 * active[a]
+        for b in range(m):
+            column = 2 * active[b]
+            normal_compliance = 0.0  # n_a . G_ab n_b
+            for i in range(2):
+                for j in range(2):
+                    normal_compliance += (normal[a, i] * compliance[row + i, column + j]
+                                          * normal[b, j])
+            system[a, b] = (1.0 if a == b else 0.0) + penalty[a] * normal_compliance
+        for i in range(2):
+            system[a, m + i] = -penalty[a] * normal[a, i]
+            system[m + i, a] = normal[a, i] * penalty.mean()  # scaled like the rows above
+        rhs[a, a] = -penalty[a]
     # with one or two nodes in contact the pin's sliding mode is free (the system is singular):
     # least squares, whose minimum-norm solution keeps it still; else an LU solve (the SVD of
     # least squares cost 3 times as much over a run)
     if m >= 3:
         force_change = np.linalg.solve(system, rhs)[:m]
     else:
-        force_change = np.linalg.lstsq(system, rhs, rcond=None)[0][:m]
-    return force_change / weights_m[active][:, None]
+        force_change = np.linalg.lstsq(system, rhs, rcond=(m + 2) * EPSILON)[0][:m]
+    return force_change / weights_m[active].reshape(-1, 1)
