@@ -23,18 +23,22 @@ import numpy as np
 import pytest
 
 from fewear.cli import main
+from fewear.io.config import load_config
 
 pytestmark = pytest.mark.benchmark
 CYCLES = [int(c) for c in os.environ.get("FEWEAR_BENCH_CONVERGENCE_CYCLES", "50000").split(",")]
 MEMBERS = int(os.environ.get("FEWEAR_BENCH_MEMBERS", "3"))
-DEFAULT_BORE_ELEMENT_M = 0.00044
-REFINEMENTS = {
+DEFAULTS = load_config(None, ("wear_loop", "mesh"))
+LOOP, MESH = DEFAULTS["wear_loop"], DEFAULTS["mesh"]
+REFINEMENTS = {  # each halves the default's numerical step, whatever the default is
     "default": {},
-    "load steps x2": {"wear_loop": {"load_steps_per_cycle": 400}},
-    "recorded cycles x2": {"wear_loop": {"recorded_cycles_per_block": 2}},
-    "block bound / 2": {"wear_loop": {"max_depth_increment_fraction": 0.125}},
-    "warm settling x2": {"wear_loop": {"warm_settling_cycles": 2}},
-    "bore element / 2": {"mesh": {"bore_element_size_m": DEFAULT_BORE_ELEMENT_M / 2}},
+    "load steps x2": {"wear_loop": {"load_steps_per_cycle": 2 * LOOP["load_steps_per_cycle"]}},
+    "recorded cycles x2": {"wear_loop": {
+        "recorded_cycles_per_block": 2 * LOOP["recorded_cycles_per_block"]}},
+    "block bound / 2": {"wear_loop": {
+        "max_depth_increment_fraction": LOOP["max_depth_increment_fraction"] / 2}},
+    "warm settling x2": {"wear_loop": {"warm_settling_cycles": 2 * LOOP["warm_settling_cycles"]}},
+    "bore element / 2": {"mesh": {"bore_element_size_m": MESH["bore_element_size_m"] / 2}},
 }
 REFINEMENTS["all (reference)"] = {
     "wear_loop": {key: value for name in ("load steps x2", "recorded cycles x2", "block bound / 2",
