@@ -100,7 +100,10 @@ class CondensedBushingContact:
     moved (it calls the solver's and rebuilds G).
 
     Attributes: ``compliance`` (2n, 2n) G in m/(N/m) with rows/columns (node, direction),
-    ``weights_m`` (n,), ``points`` (n, 2), ``angles`` (n,), ``pin_centre_m``.
+    ``weights_m`` (n,), ``points`` (n, 2), ``angles`` (n,), ``pin_centre_m``; ``newton_state``
+    (:func:`fewear.contact.condensed_newton.new_state`), whose arrays ``compliance``,
+    ``weights_m``, ``points`` and the nodal forces and displacements are: write into them, do not
+    rebind them (the Newton works on the state).
     """
 
     def __init__(self, solver: BushingContactSolver | ContactProblem, comm=MPI.COMM_WORLD):

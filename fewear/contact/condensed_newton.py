@@ -2,7 +2,7 @@
 nodal forces and their linearisation, the bordered Newton step of
 :mod:`fewear.contact.condensed` (whose module docstring gives the equations), and the path's
 :class:`fewear.contact.newton.NewtonOperations` on its state, with the coupled Newton compiled
-on them (:data:`coupled_newton`).
+on them (:func:`coupled_newton`).
 
 The state (:func:`new_state`) is a tuple of arrays: the bore compliance G (2n, 2n), the nodal
 forces g (2n,), the nodal displacements U = G g (2n,), the pin centre c (2,), the bore nodes
@@ -132,7 +132,8 @@ def linearised_forces(points: np.ndarray, U: np.ndarray, centre: np.ndarray, pin
 @compiled
 def newton_step(compliance: np.ndarray, g: np.ndarray, U: np.ndarray, f: np.ndarray,
                 WM: np.ndarray, active: np.ndarray, basis: np.ndarray, load: np.ndarray):
-    """One Newton step (module docstring) on the active nodes A with the pin update
+    """One Newton step (:mod:`fewear.contact.condensed`'s docstring) on the active nodes A with
+    the pin update
     dc = basis dz: the bordered system
 
         [I - W M G_AA   W M basis] [g'_A]   [f_A - W M U_A]
@@ -170,7 +171,6 @@ def newton_step(compliance: np.ndarray, g: np.ndarray, U: np.ndarray, f: np.ndar
     for c in range(k):
         dc += basis[:, c] * solution[2 * m + c]
     return dg, dU, dc
-
 
 
 def new_state(compliance: np.ndarray, points: np.ndarray, weights_m: np.ndarray,
@@ -302,8 +302,5 @@ def compile_contact() -> None:
     turned_forces(g, points, U, centre, pin_radius, 2, 0.1, 0.1)
     state = new_state(np.eye(2 * size), points, weights, penalty, pin_radius)
     direction = load / math.sqrt(load @ load)
-    for basis in (FREE_PIN, np.ascontiguousarray(direction[:, None])):
-        place_pin(state, centre)
-        coupled_newton(state, settings, load, direction, basis, 2)
-    for active in (np.arange(2), np.arange(3)):  # least squares and LU
-        pressure_sensitivity(np.eye(2 * size), weights, points, centre, active, penalty)
+    coupled_newton(state, settings, load, direction, FREE_PIN, 2)  # a ray's basis: same type
+    pressure_sensitivity(np.eye(2 * size), weights, points, centre, np.arange(3), penalty)

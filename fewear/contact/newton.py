@@ -4,7 +4,8 @@ The unknowns are the bore displacement (the DOLFINx field u in :mod:`fewear.cont
 nodal forces g with U = G g in :mod:`fewear.contact.condensed`) and the pin centre c (m, per unit
 thickness); the equations are the elastic equilibrium of the bushing under the penalty tractions
 and the pin's force balance sum_q f_q = F / L. Each discretisation provides the linear algebra
-through the methods of :class:`ContactDiscretisation`; this module holds the algorithm:
+as its operations (:class:`NewtonOperations`, on its state; :class:`ContactDiscretisation`);
+this module holds the algorithm:
 
 - **Start.** The *corner start* for the first solve: on a convex (circular) bore the region of
   pin centres free of contact with the bore nodes is a polygon whose corners c_j touch two
@@ -150,8 +151,9 @@ class ContactNotConverged(RuntimeError):
 class NewtonOperations(Protocol):
     """What a discretisation provides to the Newton: functions of its ``state`` (the displacement
     and the pin centre c (2,), m; whatever else its linear algebra needs). The condensed path's are
-    compiled functions of a tuple of arrays (:mod:`fewear.contact.condensed`), the full path's the
-    methods of :class:`fewear.contact.solver.BushingContactSolver`, called on the solver.
+    functions of a tuple of arrays (:mod:`fewear.contact.condensed_newton`; compiled into the
+    coupled Newton, NumPy when called from Python), the full path's the methods of
+    :class:`fewear.contact.solver.BushingContactSolver`, called on the solver.
     ``linear`` is what ``linearise`` returns for the step (None where the discretisation keeps
     it), ``base`` what ``begin_line_search`` returns for ``try_step``."""
 
@@ -716,6 +718,7 @@ def ray_centre(points: np.ndarray, centre: np.ndarray, weights_m: np.ndarray, a:
 
 
 discretisation: Any = None  # the operations coupled_newton runs on: bound by specialised()
+# (coupled_newton itself is the template: only its specialised copies can run)
 
 
 def coupled_newton(state, settings: NewtonSettings, load: np.ndarray, direction: np.ndarray,

@@ -21,9 +21,10 @@ import math
 
 import numpy as np
 
+from fewear.contact.newton import pairwise_sum
 from fewear.jit import compiled
 
-EPSILON = float(np.finfo(float).eps)  # least squares' cut-off, relative: NumPy's rcond=None
+EPSILON = float(np.finfo(float).eps)  # machine epsilon: NumPy's rcond=None is eps max(M, N)
 
 
 @compiled
@@ -45,6 +46,7 @@ def pressure_sensitivity(compliance: np.ndarray, weights_m: np.ndarray, points_m
         length = math.sqrt(d_x * d_x + d_y * d_y)
         normal[a, 0], normal[a, 1] = d_x / length, d_y / length
     penalty = weights_m[active] * penalty_Pa_per_m
+    mean_penalty = pairwise_sum(penalty) / m  # NumPy's mean, to the bit
     system = np.zeros((m + 2, m + 2))
     rhs = np.zeros((m + 2, m))
     for a in range(m):
@@ -59,7 +61,7 @@ def pressure_sensitivity(compliance: np.ndarray, weights_m: np.ndarray, points_m
             system[a, b] = (1.0 if a == b else 0.0) + penalty[a] * normal_compliance
         for i in range(2):
             system[a, m + i] = -penalty[a] * normal[a, i]
-            system[m + i, a] = normal[a, i] * penalty.mean()  # scaled like the rows above
+            system[m + i, a] = normal[a, i] * mean_penalty  # scaled like the rows above
         rhs[a, a] = -penalty[a]
     # with one or two nodes in contact the pin's sliding mode is free (the system is singular):
     # least squares, whose minimum-norm solution keeps it still; else an LU solve (the SVD of
