@@ -51,6 +51,10 @@ class Progress:
                      f"max depth {case.state.depth_m.max():.3e} m, ETA {eta:.0f} s")
 
 
+def _say(text: str) -> None:
+    print(f"fewear run: {text}", file=sys.stderr, flush=True)
+
+
 def run_cases(rods, config: dict, out_dir, resumed: dict, comm) -> dict:
     """The wear prediction of each of ``rods`` in turn on ``comm``, continuing the cases of
     ``resumed`` (rod -> :class:`CaseProgress`), a checkpoint after every block; rod -> case."""
@@ -96,7 +100,7 @@ def _in_processes(rods, config: dict, out_dir, resumed: dict, jobs: int) -> dict
 
     groups = [rods[index::jobs] for index in range(jobs)]
     cases = {}
-    compile_kernels()  # once here, not in every worker at once on an empty cache
+    compile_kernels(_say)  # once here, not in every worker at once on an empty cache
     with worker_pool(jobs) as pool:
         results = [pool.apply_async(_run_in_worker, (group, config, out_dir, {
             rod: resumed[rod] for rod in group if rod in resumed})) for group in groups]
@@ -113,7 +117,7 @@ def _on_ranks(rods, config: dict, out_dir, resumed: dict, world) -> dict:
     from fewear.jit import compile_kernels
 
     if world.rank == 0:
-        compile_kernels()  # the other ranks then load it instead of compiling it at once
+        compile_kernels(_say)  # the other ranks then load it instead of compiling it at once
     world.Barrier()
     groups = min(world.size, len(rods))
     color = world.rank % groups
