@@ -156,9 +156,8 @@ def main(args) -> int:
     store = Checkpoint(args.out, config)
     resumed = store.load(rods) if args.resume else {}
     if resumed and world.rank == 0:
-        print(f"fewear run: resuming from {store.path}: " + ", ".join(
-            f"{rod} at {case.state.cycles:,} cycles" for rod, case in resumed.items()),
-            file=sys.stderr, flush=True)
+        _say(f"resuming from {store.path}: " + ", ".join(
+            f"{rod} at {case.state.cycles:,} cycles" for rod, case in resumed.items()))
     with earlier_run_kept(args, store, world):
         set_interrupt_note(lambda: interrupt_note(args, store, rods, inputs.loop.total_cycles))
         with staged_output(args.out, world) as stage:
@@ -171,7 +170,7 @@ def main(args) -> int:
             if world.rank == 0:
                 write_run_outputs(stage, {rod: cases[rod] for rod in rods}, inputs, config)
     if world.rank == 0:
-        print(f"fewear run: done: {args.out}", file=sys.stderr, flush=True)
+        _say(f"done: {args.out}")
     return 0
 
 
