@@ -71,7 +71,6 @@ from fewear.contact.condensed_newton import (
     nodal_forces,
     place_pin,
     turned_forces,
-    zero_displacement,
 )
 from fewear.contact.newton import ContactNewton, ContactNotConverged, contact_direction
 from fewear.contact.params import ContactProblem
@@ -91,6 +90,11 @@ from fewear.mesh.bushing import BORE_TAG
 TURN_TOLERANCE = 0.1
 
 
+def _state_array(index: int, doc: str) -> property:
+    """A read-only attribute that is the ``index``-th array of ``newton_state``."""
+    return property(lambda self: self.newton_state[index], doc=doc)
+
+
 class CondensedBushingContact:
     """Same ``solve(force_N, rotation_increment_rad=0.0, friction=False) -> ContactResult`` as
     :class:`BushingContactSolver`, from the bore compliance G (see the module docstring).
@@ -100,10 +104,9 @@ class CondensedBushingContact:
     moved (it calls the solver's and rebuilds G).
 
     Attributes: ``compliance`` (2n, 2n) G in m/(N/m) with rows/columns (node, direction),
-    ``weights_m`` (n,), ``points`` (n, 2), ``angles`` (n,), ``pin_centre_m``; ``newton_state``
-    (:func:`fewear.contact.condensed_newton.new_state`), whose arrays ``compliance``,
-    ``weights_m``, ``points`` and the nodal forces and displacements are: write into them, do not
-    rebind them (the Newton works on the state).
+    ``weights_m`` (n,), ``points`` (n, 2), ``angles`` (n,), ``pin_centre_m``: all but the angles
+    are the arrays of ``newton_state`` (:func:`fewear.contact.condensed_newton.new_state`), the
+    state the Newton works on.
     """
 
     def __init__(self, solver: BushingContactSolver | ContactProblem, comm=MPI.COMM_WORLD):
@@ -136,20 +139,17 @@ class CondensedBushingContact:
         elif update_solver:
             self.solver.update_geometry()
         bore = self.solver.bore
-        self.points = bore.points.copy()
         self.angles = bore.angles.copy()
-        self.weights_m = bore_node_weights(self.solver.mesh, bore)
         if keep_compliance:
             position = np.argsort(node_ids)[np.searchsorted(node_ids, bore.global_ids,
                                                             sorter=np.argsort(node_ids))]
             rows = (2 * position[:, None] + np.arange(2)[None, :]).reshape(-1)
-            self.compliance = self.compliance[np.ix_(rows, rows)]
+            compliance = self.compliance[np.ix_(rows, rows)]
         else:
-            self.compliance = self._nodal_compliance()
-        self.newton_state = new_state(self.compliance, self.points, self.weights_m, self._k,
+            compliance = self._nodal_compliance()
+        self.newton_state = new_state(compliance, bore.points.copy(),
+                                      bore_node_weights(self.solver.mesh, bore), self._k,
                                       self.problem.geometry.pin_radius_m)
-        self.compliance, self._g, self._U, self._centre, self.points, self.weights_m = (
-            self.newton_state[:6])
         self.newton.forget()
         self.newton.geometry_changed()
 
@@ -227,10 +227,10 @@ class CondensedBushingContact:
         rotation = checked_rotation(rotation_increment_rad)
         friction_value = (self.problem.contact.friction_coefficient * np.sign(rotation)
                           if friction else 0.0)
-        self.newton_state[6][2] = friction_value
+        self._friction_value = friction_value
         n = self.points.shape[0]
         if not np.any(force):
-            self._reset()
+            self.newton.reset()
             return nodal_result(self.problem, self.points, self.angles, np.zeros((n, 2)),
                                 self.pin_centre_m, force, np.zeros(2), np.zeros(2), rotation, 0)
         L = self.problem.geometry.width_m
@@ -248,15 +248,9 @@ class CondensedBushingContact:
                             L * f.sum(axis=0), L * (self.weights_m[:, None] * p[:, None]
                                                     * normal).sum(axis=0), rotation, iterations)
 
-    def _reset(self) -> None:
-        """No displacement, the pin centred; the next solve starts cold."""
-        zero_displacement(self.newton_state)
-        place_pin(self.newton_state, np.zeros(2))
-        self.newton.forget()
-
     def _refuse(self, force: np.ndarray, reason: str) -> None:
         """Raise :class:`ContactLoadError` for ``force`` (N); the next solve starts afresh."""
-        self._reset()
+        self.newton.reset()
         raise ContactLoadError(force, reason, displacement_limit_m(self.problem),
                                self.admissible_force_N(force))
 
@@ -273,17 +267,29 @@ class CondensedBushingContact:
     def _nodal_forces(self, U: np.ndarray, c: np.ndarray):
         """:func:`nodal_forces` for nodal displacements U (n, 2) and pin centre c."""
         return nodal_forces(self.points, U, c, self.problem.geometry.pin_radius_m, self._k,
-                            self.newton_state[6][2], self.weights_m)
+                            self._friction_value, self.weights_m)
 
     # -- the discretisation for ContactNewton --------------------------------------------------
     operations = condensed_newton  # functions of newton_state (compiled)
     coupled_newton = staticmethod(condensed_newton.coupled_newton)  # compiled
     can_turn_state = True
 
+    # the Newton state's arrays under their names (the state is their one holder: write into them)
+    compliance = _state_array(0, "G (2n, 2n), m per N/m, rows/columns (node, direction)")
+    _g = _state_array(1, "the nodal forces g (2n,), N/m")
+    _U = _state_array(2, "the nodal displacements U = G g (2n,), m")
+    pin_centre_m = _state_array(3, "the pin centre c (2,), m (the next solve overwrites it)")
+    points = _state_array(4, "the bore nodes X (n, 2), m, angle-sorted")
+    weights_m = _state_array(5, "the bore nodes' weights w (n,), m")
+
     @property
-    def pin_centre_m(self) -> np.ndarray:
-        """The pin centre c (2,), m: the state's array, which the next solve overwrites."""
-        return self._centre
+    def _friction_value(self) -> float:
+        """mu s of the present solve (signed by the slip; 0 without friction)."""
+        return self.newton_state[6][2]
+
+    @_friction_value.setter
+    def _friction_value(self, value: float) -> None:
+        self.newton_state[6][2] = value
 
     def turn_state(self, angle_rad: float) -> bool:
         """Turn nodal forces and pin centre by the whole number of bore elements (2 nodes each,
@@ -312,7 +318,7 @@ class CondensedBushingContact:
         self._U[:] = g[support] @ self.compliance[support]  # G symmetric: its rows, contiguous
         rotation = np.array([[math.cos(angle), -math.sin(angle)],
                              [math.sin(angle), math.cos(angle)]])
-        place_pin(self.newton_state, rotation @ self._centre)
+        place_pin(self.newton_state, rotation @ self.pin_centre_m)
         return True
 
 

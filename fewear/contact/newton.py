@@ -902,6 +902,14 @@ class ContactNewton:
         """Forget the fallback's starting angle too (the bore moved)."""
         self.fallback_angle_rad = None
 
+    def reset(self) -> None:
+        """No displacement, the pin centred; the next solve starts cold (after a zero force or
+        a refused load)."""
+        state = self.path.newton_state
+        self.operations.zero_displacement(state)
+        self.operations.place_pin(state, np.zeros(2))
+        self.forget()
+
     def solve(self, load: np.ndarray, direction: np.ndarray) -> int:
         untouched = self._start(direction, load)
         iterations = self._coupled_newton(load, direction, FREE_PIN, COUPLED_ITERATIONS)

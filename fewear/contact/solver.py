@@ -281,16 +281,9 @@ class BushingContactSolver:
         self.last_result = result
         return result
 
-    def _reset(self) -> None:
-        """No displacement, the pin centred; the next solve starts cold."""
-        self.displacement.x.array[:] = 0.0
-        self.pin_centre_m = np.zeros(2)
-        self.pin_centre.value = self.pin_centre_m
-        self.newton.forget()
-
     def _refuse(self, force: np.ndarray, reason: str) -> None:
         """Raise :class:`ContactLoadError` for ``force`` (N); the next solve starts afresh."""
-        self._reset()
+        self.newton.reset()
         raise ContactLoadError(force, reason, displacement_limit_m(self.problem),
                                self.admissible_force_N(force))
 
@@ -315,7 +308,7 @@ class BushingContactSolver:
         return displacement_limit_m(self.problem) / float(np.hypot(U[:, 0], U[:, 1]).max())
 
     def _no_contact_result(self, force, rotation) -> ContactResult:
-        self._reset()
+        self.newton.reset()
         zeros = np.zeros((self.bore.points.shape[0], 2))
         self.last_result = nodal_result(
             self.problem, self.bore.points, self.bore.angles, zeros, self.pin_centre_m, force,
