@@ -54,3 +54,21 @@ def periodic_linear(angle_rad, values) -> Callable[[np.ndarray], np.ndarray]:
         return np.interp(at_angle_rad, angles, table, period=TWO_PI)
 
     return interpolant
+
+
+def periodic_linear_rows(angle_rad: np.ndarray, tables: np.ndarray, at_angle_rad: np.ndarray,
+                         rows: np.ndarray) -> np.ndarray:
+    """Many periodic tables on the same angles at once: the value of the interpolant of
+    :func:`periodic_linear` of ``(angle_rad, tables[rows[i]])`` at ``at_angle_rad[i]``
+    (``tables`` (m, n) finite, ``angle_rad`` (n,) distinct modulo 2 pi; unchecked: for inner
+    loops, where ``numpy.interp``'s periodic set-up, a sort per call, costs more than the
+    interpolation)."""
+    angles = np.mod(angle_rad, TWO_PI)
+    order = np.argsort(angles)
+    angles = angles[order]
+    xp = np.concatenate([angles[-1:] - TWO_PI, angles, angles[:1] + TWO_PI])
+    fp = tables[:, np.concatenate([order[-1:], order, order[:1]])]
+    x = np.mod(at_angle_rad, TWO_PI)
+    j = np.minimum(np.searchsorted(xp, x, side="right") - 1, xp.size - 2)
+    left, right = fp[rows, j], fp[rows, j + 1]
+    return left + (right - left) * ((x - xp[j]) / (xp[j + 1] - xp[j]))

@@ -28,6 +28,7 @@ from fewear.diagnose.joint.forward import WearHistory
 from fewear.diagnose.joint.measured import JointMeasurements
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
 from fewear.errors import FewearInputError
+from fewear.mesh.profile import periodic_linear_rows
 from fewear.wear.extensions import (
     NoExtension,
     RunningInCycles,
@@ -48,21 +49,19 @@ class Observations:
     depth_m: np.ndarray
     train: np.ndarray
 
-    @property
+    @cached_property
     def is_profile(self) -> np.ndarray:
         return np.isfinite(self.angle_rad)
 
     @cached_property
-    def by_count(self) -> list[tuple[float, np.ndarray, np.ndarray]]:
-        """Per cycle count (ascending): the count, the indices of its profile points and of
-        its maximum depths (computed once: a fit evaluates the model tens of thousands of
-        times)."""
-        groups = []
-        for cycles in np.unique(self.cycles):
-            at = self.cycles == cycles
-            groups.append((float(cycles), np.flatnonzero(at & self.is_profile),
-                           np.flatnonzero(at & ~self.is_profile)))
-        return groups
+    def counts(self) -> np.ndarray:
+        """The cycle counts measured at, ascending."""
+        return np.unique(self.cycles)
+
+    @cached_property
+    def count_row(self) -> np.ndarray:
+        """Each observation's row in :attr:`counts`."""
+        return np.searchsorted(self.counts, self.cycles)
 
 
 def observations(data: JointMeasurements, held_out_fraction: float) -> Observations:
@@ -114,21 +113,21 @@ class Fit:
 
 
 def _mixed_depth(candidate: Candidate, position: float, scale: float,
-                 cycles: float) -> np.ndarray:
-    """The worn bore at level ``scale`` after ``cycles``, interpolated at ``position`` between
-    the runs (each run's cycles mapped by the ratio of the levels: Archard's depth along the loop
-    is a function of k N)."""
+                 cycles: np.ndarray) -> np.ndarray:
+    """The worn bore at level ``scale`` after each of ``cycles`` (m,), (m, n), interpolated at
+    ``position`` between the runs (each run's cycles mapped by the ratio of the levels:
+    Archard's depth along the loop is a function of k N)."""
     runs = candidate.runs
     if len(runs) == 1:
-        return runs[0].nodal_depth_m(scale / candidate.k_scale(0) * cycles)
+        return runs[0].nodal_depths_m(scale / candidate.k_scale(0) * cycles)
     position = min(max(float(position), 0.0), len(runs) - 1.0)
     k = min(int(position), len(runs) - 2)
     w = position - k
-    return ((1 - w) * runs[k].nodal_depth_m(scale / candidate.k_scale(k) * cycles)
-            + w * runs[k + 1].nodal_depth_m(scale / candidate.k_scale(k + 1) * cycles))
+    return ((1 - w) * runs[k].nodal_depths_m(scale / candidate.k_scale(k) * cycles)
+            + w * runs[k + 1].nodal_depths_m(scale / candidate.k_scale(k + 1) * cycles))
 
 
-def running_in_time_map(cycles: float, run: WearHistory, form: str, extra: float,
+def running_in_time_map(cycles, run: WearHistory, form: str, extra: float,
                         scale: float, k_scale: float = 1.0,
                         run_extension=None, run_k_scale: float = 1.0) -> np.ndarray:
     """Per node a, the cycles of ``run`` after which the node has worn what the model with the
@@ -137,7 +136,8 @@ def running_in_time_map(cycles: float, run: WearHistory, form: str, extra: float
     N' = S_eff,run^-1(s S_eff(N d_a) / s_run) / d_a, with d_a the node's advance per cycle on the
     form's axis (:func:`_advance_per_cycle`) and the run made with level s_run = ``run_k_scale``
     and running-in ``run_extension`` of the same form (None: the believed run, N' = s tau_a(N),
-    tau_a of the module docstring)."""
+    tau_a of the module docstring). ``cycles``: a number, or a column (m, 1) of counts for
+    (m, n) at once."""
     per_cycle = _advance_per_cycle(run, form)
     extension = _on_node_axis(RUNNING_IN_FORMS[form](1.0 + extra, scale))
     effective = k_scale / run_k_scale * extension.effective_distance_m(cycles * per_cycle)
@@ -161,15 +161,17 @@ def _on_node_axis(extension):
     return extension
 
 
-def _nodal_prediction(candidate: Candidate, x: np.ndarray, cycles: float) -> np.ndarray:
-    """The cause's nodal depth after ``cycles`` at the parameters x (s tau(N) on the runs)."""
+def _nodal_predictions(candidate: Candidate, x: np.ndarray, cycles: np.ndarray) -> np.ndarray:
+    """The cause's nodal depths after each of ``cycles`` (m,) at the parameters x (s tau(N) on
+    the runs): (m, n), all counts at once (a fit evaluates the model tens of thousands of
+    times)."""
     if x.size < 2:
-        return candidate.runs[0].nodal_depth_m(cycles)
+        return candidate.runs[0].nodal_depths_m(cycles)
     scale = math.exp(x[1])
     if candidate.time_map:
         run = candidate.runs[0]
         return run.nodal_depth_each_m(running_in_time_map(
-            cycles, run, candidate.form, math.exp(x[2]), math.exp(x[3]), scale,
+            cycles[:, None], run, candidate.form, math.exp(x[2]), math.exp(x[3]), scale,
             candidate.run_extension, candidate.k_scale(0)))
     position = x[2] if candidate.n_extra == 1 else 0.0
     return _mixed_depth(candidate, position, scale, cycles)
@@ -178,13 +180,13 @@ def _nodal_prediction(candidate: Candidate, x: np.ndarray, cycles: float) -> np.
 def predict(obs: Observations, x: np.ndarray, candidate: Candidate) -> np.ndarray:
     """The model's depth at every observation for the parameters x."""
     out = np.empty(obs.depth_m.size)
-    angles = candidate.runs[0].angle_rad  # the loop's node angles: a valid periodic table
-    offset_rad = math.radians(x[0])
-    for cycles, profile, maximum in obs.by_count:
-        nodal = _nodal_prediction(candidate, x, cycles)
-        out[profile] = np.interp(obs.angle_rad[profile] + offset_rad, angles, nodal,
-                                 period=2.0 * math.pi)
-        out[maximum] = nodal.max()
+    nodal = _nodal_predictions(candidate, x, obs.counts)
+    profile, maximum = obs.is_profile, ~obs.is_profile
+    # the loop's node angles: a valid periodic table
+    out[profile] = periodic_linear_rows(candidate.runs[0].angle_rad, nodal,
+                                        obs.angle_rad[profile] + math.radians(x[0]),
+                                        obs.count_row[profile])
+    out[maximum] = nodal.max(axis=1)[obs.count_row[maximum]]
     return out
 
 

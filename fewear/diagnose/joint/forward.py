@@ -46,14 +46,16 @@ class WearHistory:
     def nodal_depth_m(self, cycles: float) -> np.ndarray:
         """Depth at the nodes after ``cycles`` (linear between blocks; beyond the last block
         extrapolated with the last block's rate)."""
-        k = min(max(int(np.searchsorted(self.cycles, cycles)) - 1, 0), self.cycles.size - 2)
-        span = self.cycles[k + 1] - self.cycles[k]
-        weight = (cycles - self.cycles[k]) / span
-        return np.maximum((1.0 - weight) * self.depth_m[k] + weight * self.depth_m[k + 1], 0.0)
+        return self.nodal_depths_m(np.array([float(cycles)]))[0]
+
+    def nodal_depths_m(self, cycles: np.ndarray) -> np.ndarray:
+        """:meth:`nodal_depth_m` after each of ``cycles`` (m,): (m, n)."""
+        return self.nodal_depth_each_m(np.asarray(cycles, dtype=float)[:, None])
 
     def nodal_depth_each_m(self, cycles: np.ndarray) -> np.ndarray:
-        """Depth at each node after its own cycle count ``cycles`` (n,) (as
-        :meth:`nodal_depth_m`, node by node)."""
+        """Depth at each node after its own cycle count: ``cycles`` (n,), or (m, n) for m
+        counts at once (a column (m, 1): the same count at every node), as
+        :meth:`nodal_depth_m` node by node."""
         k = np.minimum(np.maximum(np.searchsorted(self.cycles, cycles) - 1, 0),
                        self.cycles.size - 2)
         weight = (cycles - self.cycles[k]) / (self.cycles[k + 1] - self.cycles[k])
