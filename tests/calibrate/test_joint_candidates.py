@@ -19,9 +19,17 @@ from fewear.diagnose.joint.catalogue import CAUSES
 from fewear.diagnose.joint.diagnose import _confirm, _select, _unexplained
 from fewear.diagnose.joint.fitting import Fit, Observations, fit, fit_candidate, running_in_time_map
 from fewear.diagnose.joint.forward import WearHistory, with_halved_blocks
-from fewear.diagnose.joint.refinement import REFINEMENTS, fit_cause
+from fewear.diagnose.joint.refinement import REFINEMENTS, fit_causes
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
 from fewear.errors import FewearInputError
+
+
+def fit_cause(forms, obs, baseline, settings, run_of) -> Fit:
+    """:func:`fit_causes` of one cause, its runs made one by one by ``run_of(candidate, fit)``."""
+    def runs_of(asked):
+        return [run_of(candidate, fitted) for candidate, fitted in asked]
+
+    return fit_causes({"cause": forms}, obs, baseline, settings, runs_of)["cause"]
 
 
 def _run(last_cycles: float, stopped: str = "") -> WearHistory:
@@ -335,6 +343,21 @@ def test_running_in_refined_on_runs_at_its_fitted_parameters_fits_better_when_ru
     assert mapped["k_initial_over_steady"] < 1.2 < refined.params["k_initial_over_steady"]
     assert np.all(real_rms(run_with(refined.form, refined.params))
                   < 0.85 * real_rms(run_with(refined.form, mapped)))
+
+    # the forms as causes of their own, refined together: each as when refined alone, the runs
+    # of each step asked for in one batch
+    batches = []
+
+    def runs_of(asked):
+        batches.append(len(asked))
+        return [run_with(fitted.form, fitted.params) for _, fitted in asked]
+
+    causes = {form.form: (form,) for form in forms}
+    together = fit_causes(causes, obs, baseline, settings, runs_of)
+    assert batches[0] == len(causes) and max(batches) == len(causes)
+    for name, alone in causes.items():
+        by_itself = fit_causes({name: alone}, obs, baseline, settings, runs_of)[name]
+        np.testing.assert_array_equal(together[name].x, by_itself.x)
 
 
 def _widening_world(angle: np.ndarray):

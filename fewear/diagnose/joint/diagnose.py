@@ -58,7 +58,8 @@ the wear loop's run at its parameters (the loop's blocks are not scaled with k).
 could be accepted (held-out error at least ``min_held_out_gain`` below the believed model's) is
 refitted on runs at its fitted parameters, its level included, at most :data:`REFINEMENTS` of them:
 the run joins the cause's runs (:func:`refine_on_runs`), or running-in is refitted on the time map
-from it (:func:`refine_running_in`).
+from it (:func:`refine_running_in`). The refinements of all causes and forms advance together,
+so the runs they ask for at each step are made side by side (:func:`fit_causes`).
 
 Selection: each cause is fitted by least squares on the training data (Nelder-Mead from several
 starts, :mod:`fewear.diagnose.joint.fitting`). ``wear_coefficient`` is compared with the believed
@@ -129,7 +130,7 @@ from fewear.diagnose.joint.forward import (
     with_halved_blocks,
 )
 from fewear.diagnose.joint.measured import JointMeasurements
-from fewear.diagnose.joint.refinement import RunAt, fit_cause
+from fewear.diagnose.joint.refinement import RunsAt, fit_causes
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
 from fewear.errors import FewearInputError
 from fewear.mesh.profile import periodic_linear
@@ -355,9 +356,7 @@ def _round(data: JointMeasurements, obs: Observations, config: dict,
                     "the data, worn through or contact lost) before the cycles the fit needs"}
                    for name, forms in candidates.items() if not forms]
     candidates = {name: forms for name, forms in candidates.items() if forms}
-    run_at = _refinement_runs(config, make_runs)
-    fits = {name: fit_cause(forms, obs, baseline, settings, run_at)
-            for name, forms in candidates.items()}
+    fits = fit_causes(candidates, obs, baseline, settings, _refinement_runs(config, make_runs))
     scatter = structure.scatter_estimate_m(obs.angle_rad, baseline.residuals_m, obs.cycles)
     accepted, verdicts = _select(baseline, fits, settings, scatter)
     causes, extended, final_fit, extended_depth, not_confirmed = _confirm(
@@ -390,15 +389,18 @@ def _check_run_length(data, obs, believed_config: dict) -> None:
             f"[wear_loop] {key} in --config")
 
 
-def _refinement_runs(config: dict, make_runs: RunMaker) -> RunAt:
-    """The runs the refinements ask for (made by ``make_runs``): the extended model at the fit's
-    parameters, its level included."""
-    def run_at(candidate: Candidate, fitted: Fit) -> WearHistory:
-        cause, form = CAUSES[candidate.name], fitted.form or ""
-        return make_runs([(cause.extended_config(config, fitted.params, form),
-                           cause.run_label(fitted.params, form))])[0]
+def _refinement_runs(config: dict, make_runs: RunMaker) -> RunsAt:
+    """The runs the refinements ask for (made together by ``make_runs``): the extended model
+    at each fit's parameters, its level included."""
+    def runs_at(asked: list[tuple[Candidate, Fit]]) -> list[WearHistory]:
+        requests = []
+        for candidate, fitted in asked:
+            cause, form = CAUSES[candidate.name], fitted.form or ""
+            requests.append((cause.extended_config(config, fitted.params, form),
+                             cause.run_label(fitted.params, form)))
+        return make_runs(requests)
 
-    return run_at
+    return runs_at
 
 
 def _select(baseline: Fit, fits: dict[str, Fit], settings,

@@ -6,7 +6,7 @@ loop's run at its parameters, so a fit that could be accepted is refitted on suc
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Generator
 from dataclasses import replace
 
 import numpy as np
@@ -33,47 +33,81 @@ SETTLED = 0.05
 of the run it sits on."""
 GRID_SETTLED = 0.05
 """A grid refinement ends once the fit lands within this fraction of a grid step of a run."""
-RunAt = Callable[[Candidate, Fit], WearHistory]
-"""The run a refinement asks for: the cause's form (``candidate``) at a fit's parameters."""
+RunsAt = Callable[[list[tuple[Candidate, Fit]]], list[WearHistory]]
+"""The runs refinements ask for, made together: each a cause's form (``candidate``) at a fit's
+parameters."""
+Refinement = Generator[tuple[Candidate, Fit], WearHistory, Fit]
+"""A refinement in progress: it yields the run it needs next (the form and the fit at whose
+parameters to run it), is sent that run, and returns the refined fit."""
 
 
-def fit_cause(forms: tuple[Candidate, ...], obs: Observations, baseline: Fit,
-              settings: JointDiagnoseSettings, run_at: RunAt) -> Fit:
-    """A cause fitted in each of its forms (:func:`fit_candidate`); if the best of them could be
-    accepted (held-out error at least ``min_held_out_gain`` below the believed model's, a
-    condition of acceptance), each form is refined on runs at its own fitted parameters
-    (:func:`refine_running_in`, :func:`refine_on_runs`; ``run_at`` makes them). The best on the
-    training data is kept."""
-    fits = [fit_form(form, obs, float(baseline.x[0]), settings) for form in forms]
-    best = best_form(fits)
-    if 1.0 - best.held_out_rms_m / baseline.held_out_rms_m >= settings.min_held_out_gain:
-        fits = [_refined(form, f, obs, settings, run_at) for form, f in zip(forms, fits)]
-    return best_form(fits)
+def fit_causes(candidates: dict[str, tuple[Candidate, ...]], obs: Observations, baseline: Fit,
+               settings: JointDiagnoseSettings, runs_at: RunsAt) -> dict[str, Fit]:
+    """Each cause fitted in each of its forms (:func:`fit_form`); for a cause whose best form
+    could be accepted (held-out error at least ``min_held_out_gain`` below the believed
+    model's, a condition of acceptance), each form is refined on runs at its own fitted
+    parameters (:func:`refine_running_in`, :func:`refine_on_runs`). The refinements of all
+    causes and forms advance together, so that the runs they ask for at each step are made
+    side by side (``runs_at``); each refinement depends on its own runs only, so the result is
+    that of refining one after the other. Per cause, the best form on the training data is
+    kept."""
+    fits = {name: [fit_form(form, obs, float(baseline.x[0]), settings) for form in forms]
+            for name, forms in candidates.items()}
+    refinements = {
+        (name, index): _refinement(form, fitted, obs, settings)
+        for name, forms in candidates.items()
+        if 1.0 - best_form(fits[name]).held_out_rms_m / baseline.held_out_rms_m
+        >= settings.min_held_out_gain
+        for index, (form, fitted) in enumerate(zip(forms, fits[name]))}
+    for (name, index), refined in _advance_together(refinements, runs_at).items():
+        fits[name][index] = refined
+    return {name: best_form(cause_fits) for name, cause_fits in fits.items()}
 
 
-def _refined(candidate: Candidate, fitted: Fit, obs: Observations,
-             settings: JointDiagnoseSettings, run_at: RunAt) -> Fit:
+def _advance_together(refinements: dict, runs_at: RunsAt) -> dict:
+    """Run the ``refinements`` (by key) to their ends, the runs that those under way ask for at
+    each step made in one call of ``runs_at``; their refined fits by key."""
+    asked, done = {}, {}
+
+    def advance(key, run: WearHistory | None) -> None:
+        try:
+            asked[key] = refinements[key].send(run)
+        except StopIteration as end:
+            done[key] = end.value
+
+    for key in refinements:
+        advance(key, None)
+    while asked:
+        step = dict(asked)
+        asked.clear()
+        for key, run in zip(step, runs_at(list(step.values()))):
+            advance(key, run)
+    return done
+
+
+def _refinement(candidate: Candidate, fitted: Fit, obs: Observations,
+                settings: JointDiagnoseSettings) -> Refinement:
     if candidate.time_map:
-        return refine_running_in(candidate, fitted, obs, settings, run_at)
-    return refine_on_runs(candidate, fitted, obs, settings, run_at)
+        return refine_running_in(candidate, fitted, obs, settings)
+    return refine_on_runs(candidate, fitted, obs, settings)
 
 
 def refine_running_in(candidate: Candidate, fitted: Fit, obs: Observations,
-                      settings: JointDiagnoseSettings, run_at: RunAt) -> Fit:
-    """Defect correction of running-in's time map. The map stretches one run's worn bores in
-    cycles node by node: exact where a node's wear follows its own sliding, but a strong
-    running-in over a short distance wears the young bore's shape deeper than any run without
-    it does (on one third-generator data set the map's fit gained 50 % where its full run lost
-    73 %). So the model is run at the fitted parameters (``run_at``), refitted on the map from
-    that run (:func:`running_in_time_map`, near the identity), and so on, until no parameter moves
-    by more than :data:`SETTLED` or after :data:`REFINEMENTS` runs. At a fixed point
-    the fit is that of the real run at its own parameters; the iteration is not sure to reach
-    one (a shape the map cannot make is approached a step per run), so the fit that is named is
-    run in full again (:func:`_confirm`). A run that stops before the shortest time axis the fit
-    needs ends the refinement; the fit before it stands."""
+                      settings: JointDiagnoseSettings) -> Refinement:
+    """Defect correction of running-in's time map. The map stretches one run's worn bores in cycles
+    node by node: exact where a node's wear follows its own sliding, but a strong running-in over a
+    short distance wears the young bore's shape deeper than any run without it does (on one third-
+    generator data set the map's fit gained 50 % where its full run lost 73 %). So the model is run
+    at the fitted parameters (yielded: :data:`Refinement`), refitted on the map from that run
+    (:func:`running_in_time_map`, near the identity), and so on, until no parameter moves by more
+    than :data:`SETTLED` or after :data:`REFINEMENTS` runs. At a fixed point the fit is that of the
+    real run at its own parameters; the iteration is not sure to reach one (a shape the map cannot
+    make is approached a step per run), so the fit that is named is run in full again
+    (:func:`_confirm`). A run that stops before the shortest time axis the fit needs ends the
+    refinement; the fit before it stands."""
     bounds, _ = bounds_and_starts(candidate, obs, settings)
     for _ in range(REFINEMENTS):
-        run = run_at(candidate, fitted)
+        run = yield candidate, fitted
         if _stops_short(run, obs, settings):
             break
         params = fitted.params
@@ -89,13 +123,14 @@ def refine_running_in(candidate: Candidate, fitted: Fit, obs: Observations,
 
 
 def refine_on_runs(candidate: Candidate, fitted: Fit, obs: Observations,
-                   settings: JointDiagnoseSettings, run_at: RunAt) -> Fit:
+                   settings: JointDiagnoseSettings) -> Refinement:
     """A fit maps the cycles of runs made with the believed k to its level s, and a grid cause
     interpolates linearly between two runs; neither is exact for the wear loop's blocks (a run
     with k x 1.59 fitted a third-generator data set 74 % better than the believed run with its
     cycles scaled), and the run at an interpolated value need not resemble the interpolation (a
     fit at mu = 0.059, between the runs at 0.05 and 0.1, gained 67 % where the run at 0.059 lost
-    17 %). So the run at the fit's parameters (``run_at``, the extended model) joins the runs:
+    17 %). So the run at the fit's parameters (yielded: :data:`Refinement`; the extended model)
+    joins the runs:
     it replaces the run the fit sits on (the level's one run, the run a discrete choice took, a
     grid run within :data:`GRID_SETTLED` of a step) or is added to the grid between two, and the
     cause is refitted; until the fit sits on a run made at its own level (within
@@ -113,7 +148,7 @@ def refine_on_runs(candidate: Candidate, fitted: Fit, obs: Observations,
             return fitted
         if len(made) == REFINEMENTS:
             return _on_best_run(candidate, fitted, made, obs, settings)
-        run = run_at(candidate, fitted)
+        run = yield candidate, fitted
         if _stops_short(run, obs, settings):
             return _on_best_run(candidate, fitted, made, obs, settings) if made else fitted
         made.append(run)
