@@ -14,6 +14,7 @@ from __future__ import annotations
 import os
 import sys
 import types
+from collections.abc import Callable
 from contextlib import contextmanager
 
 SINGLE_THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS")
@@ -53,3 +54,20 @@ def _quiet_worker() -> None:
     import signal
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def side_by_side(function: Callable, arguments: list[tuple], prepare: Callable | None = None):
+    """``[function(*a) for a in arguments]``, in worker processes (:func:`worker_pool`, one per
+    core and at most one per call) when there are several calls and cores and this process is
+    not one of several MPI ranks (they share each call's work instead); else here, one after
+    the other. ``prepare()`` runs before workers start (e.g. compiling what they would each
+    compile at once)."""
+    from mpi4py import MPI
+
+    jobs = min(len(arguments), usable_cores())
+    if jobs < 2 or MPI.COMM_WORLD.size > 1:
+        return [function(*args) for args in arguments]
+    if prepare is not None:
+        prepare()
+    with worker_pool(jobs) as pool:
+        return pool.starmap(function, arguments)

@@ -157,21 +157,15 @@ def simulate_wears(requests: list[tuple[dict, str]]) -> list[WearHistory]:
     """:func:`simulate_wear` of each ``(config, label)``: the runs not made yet side by side in
     worker processes (spawned, one per CPU core, each BLAS on one thread), then all from the
     memo. Serial under ``mpirun`` (the ranks share each run) or on one core."""
-    from mpi4py import MPI
-
     from fewear.jit import compile_kernels
-    from fewear.parallel import usable_cores, worker_pool
+    from fewear.parallel import side_by_side
 
     missing = list({_key(config): (config, label) for config, label in requests
                     if _key(config) not in _RUNS}.values())
-    jobs = min(len(missing), usable_cores())
-    if jobs > 1 and MPI.COMM_WORLD.size == 1:
-        compile_kernels()  # once here, not in every worker at once on an empty cache
-        with worker_pool(jobs) as pool:
-            histories = pool.starmap(simulate_wear, missing)
-        _RUNS.update({_key(config): history
-                      for (config, _), history in zip(missing, histories)})
-    return [simulate_wear(config, label) for config, label in requests]
+    # compiled once here, not in every worker at once on an empty cache
+    histories = side_by_side(simulate_wear, missing, prepare=compile_kernels)
+    _RUNS.update({_key(config): history for (config, _), history in zip(missing, histories)})
+    return [_RUNS[_key(config)] for config, _ in requests]
 
 
 RunMaker = Callable[[list[tuple[dict, str]]], list[WearHistory]]

@@ -25,6 +25,7 @@ from fewear.diagnose.joint.fitting import (
 )
 from fewear.diagnose.joint.forward import WearHistory
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
+from fewear.parallel import side_by_side
 
 REFINEMENTS = 3
 """At most this many runs refine a fit (:func:`refine_running_in`, :func:`refine_on_runs`)."""
@@ -43,7 +44,8 @@ parameters to run it), is sent that run, and returns the refined fit."""
 
 def fit_causes(candidates: dict[str, tuple[Candidate, ...]], obs: Observations, baseline: Fit,
                settings: JointDiagnoseSettings, runs_at: RunsAt) -> dict[str, Fit]:
-    """Each cause fitted in each of its forms (:func:`fit_form`); for a cause whose best form
+    """Each cause fitted in each of its forms (:func:`fit_form`; the forms of all causes side by
+    side in worker processes, :func:`fewear.parallel.side_by_side`); for a cause whose best form
     could be accepted (held-out error at least ``min_held_out_gain`` below the believed
     model's, a condition of acceptance), each form is refined on runs at its own fitted
     parameters (:func:`refine_running_in`, :func:`refine_on_runs`). The refinements of all
@@ -51,8 +53,10 @@ def fit_causes(candidates: dict[str, tuple[Candidate, ...]], obs: Observations, 
     side by side (``runs_at``); each refinement depends on its own runs only, so the result is
     that of refining one after the other. Per cause, the best form on the training data is
     kept."""
-    fits = {name: [fit_form(form, obs, float(baseline.x[0]), settings) for form in forms]
-            for name, forms in candidates.items()}
+    offset = float(baseline.x[0])
+    fitted = iter(side_by_side(fit_form, [(form, obs, offset, settings)
+                                          for forms in candidates.values() for form in forms]))
+    fits = {name: [next(fitted) for _ in forms] for name, forms in candidates.items()}
     refinements = {
         (name, index): _refinement(form, fitted, obs, settings)
         for name, forms in candidates.items()
