@@ -54,9 +54,9 @@ def fit_causes(candidates: dict[str, tuple[Candidate, ...]], obs: Observations, 
     that of refining one after the other. Per cause, the best form on the training data is
     kept."""
     offset = float(baseline.x[0])
-    fitted = iter(side_by_side(fit_form, [(form, obs, offset, settings)
-                                          for forms in candidates.values() for form in forms]))
-    fits = {name: [next(fitted) for _ in forms] for name, forms in candidates.items()}
+    first_fits = iter(side_by_side(fit_form, [(form, obs, offset, settings)
+                                              for forms in candidates.values() for form in forms]))
+    fits = {name: [next(first_fits) for _ in forms] for name, forms in candidates.items()}
     refinements = {
         (name, index): _refinement(form, fitted, obs, settings)
         for name, forms in candidates.items()
@@ -100,13 +100,13 @@ def refine_running_in(candidate: Candidate, fitted: Fit, obs: Observations,
                       settings: JointDiagnoseSettings) -> Refinement:
     """Defect correction of running-in's time map. The map stretches one run's worn bores in cycles
     node by node: exact where a node's wear follows its own sliding, but a strong running-in over a
-    short distance wears the young bore's shape deeper than any run without it does (on one third-
-    generator data set the map's fit gained 50 % where its full run lost 73 %). So the model is run
-    at the fitted parameters (yielded: :data:`Refinement`), refitted on the map from that run
-    (:func:`running_in_time_map`, near the identity), and so on, until no parameter moves by more
-    than :data:`SETTLED` or after :data:`REFINEMENTS` runs. At a fixed point the fit is that of the
-    real run at its own parameters; the iteration is not sure to reach one (a shape the map cannot
-    make is approached a step per run), so the fit that is named is run in full again
+    short distance wears the young bore's shape deeper than any run without it does (on one
+    third-generator data set the map's fit gained 50 % where its full run lost 73 %). So the model
+    is run at the fitted parameters (yielded: :data:`Refinement`), refitted on the map from that
+    run (:func:`running_in_time_map`, near the identity), and so on, until no parameter moves by
+    more than :data:`SETTLED` or after :data:`REFINEMENTS` runs. At a fixed point the fit is that
+    of the real run at its own parameters; the iteration is not sure to reach one (a shape the map
+    cannot make is approached a step per run), so the fit that is named is run in full again
     (:func:`_confirm`). A run that stops before the shortest time axis the fit needs ends the
     refinement; the fit before it stands."""
     bounds, _ = bounds_and_starts(candidate, obs, settings)
