@@ -70,4 +70,4 @@ def side_by_side(function: Callable, arguments: list[tuple], prepare: Callable |
     if prepare is not None:
         prepare()
     with worker_pool(jobs) as pool:
-        return pool.starmap(function, arguments)
+        return pool.starmap(function, arguments, chunksize=1)  # calls of unequal cost

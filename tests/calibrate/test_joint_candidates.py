@@ -17,7 +17,14 @@ import pytest
 from fewear.diagnose.joint.candidates import RUNNING_IN_FORMS, Candidate, lasting
 from fewear.diagnose.joint.catalogue import CAUSES
 from fewear.diagnose.joint.diagnose import _confirm, _select, _unexplained
-from fewear.diagnose.joint.fitting import Fit, Observations, fit, fit_candidate, running_in_time_map
+from fewear.diagnose.joint.fitting import (
+    Fit,
+    Observations,
+    fit,
+    fit_candidate,
+    predict,
+    running_in_time_map,
+)
 from fewear.diagnose.joint.forward import WearHistory, with_halved_blocks
 from fewear.diagnose.joint.refinement import REFINEMENTS, fit_causes
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
@@ -560,3 +567,79 @@ def test_no_cause_is_accepted_where_the_believed_model_predicts_within_the_scatt
     assert accepted == [] and verdicts[0].evidence.p_value < 1e-10
     assert verdicts[0].evidence.gain > settings.min_held_out_gain
     assert _select(baseline, k_level, settings, scatter_m=0.1e-6)[0] == ["wear_coefficient"]
+
+
+def _depth_at(run: WearHistory, cycles: float) -> np.ndarray:
+    """The run's nodal depth after ``cycles``, node by node: linear between the block ends,
+    beyond the last with the last block's rate (written out, as a reference)."""
+    last = min(max(int(np.searchsorted(run.cycles, cycles)) - 1, 0), run.cycles.size - 2)
+    weight = (cycles - run.cycles[last]) / (run.cycles[last + 1] - run.cycles[last])
+    return np.maximum((1 - weight) * run.depth_m[last] + weight * run.depth_m[last + 1], 0.0)
+
+
+def _count_by_count(obs: Observations, x: np.ndarray, candidate: Candidate) -> np.ndarray:
+    """The model at the observations, one measured count at a time, each profile through
+    ``numpy.interp`` with the period: the reference :func:`predict` evaluates all at once."""
+    out = np.empty(obs.depth_m.size)
+    profile = np.isfinite(obs.angle_rad)
+    for cycles in np.unique(obs.cycles):
+        if x.size < 2:
+            nodal = _depth_at(candidate.runs[0], cycles)
+        elif candidate.time_map:
+            run = candidate.runs[0]
+            mapped = running_in_time_map(cycles, run, candidate.form, math.exp(x[2]),
+                                         math.exp(x[3]), math.exp(x[1]),
+                                         candidate.run_extension, candidate.k_scale(0))
+            nodal = np.array([_depth_at(run, c)[node] for node, c in enumerate(mapped)])
+        else:
+            runs = candidate.runs
+            position = min(max(float(x[2]) if candidate.n_extra else 0.0, 0.0),
+                           len(runs) - 1.0)
+            low = min(int(position), max(len(runs) - 2, 0))
+            nodal = sum(share * _depth_at(runs[i], math.exp(x[1]) / candidate.k_scale(i) * cycles)
+                        for i, share in ((low, 1.0 - (position - low)), (low + 1, position - low))
+                        if share and i < len(runs))
+        at = obs.cycles == cycles
+        out[at & profile] = np.interp(obs.angle_rad[at & profile] + math.radians(x[0]),
+                                      candidate.runs[0].angle_rad, nodal, period=2.0 * math.pi)
+        out[at & ~profile] = nodal.max()
+    return out
+
+
+def test_the_model_at_all_counts_at_once_is_the_model_count_by_count():
+    """:func:`predict` for every kind of candidate (the believed run, one run at its own level,
+    a grid inside and at its end, a discrete choice, each running-in form on the believed run
+    and on a run made with running-in) against the count-by-count reference; node angles
+    unsorted, profile angles beyond [0, 2 pi), a count beyond the runs' last block."""
+    rng = np.random.default_rng(5)
+    n = 17
+    angle = rng.permutation(np.mod(np.linspace(0.0, 2.0 * math.pi, n, endpoint=False) + 0.3,
+                                   2.0 * math.pi))
+
+    def run(seed: int) -> WearHistory:
+        own = np.random.default_rng(seed)
+        cycles = np.concatenate([[0.0], np.cumsum(own.uniform(500.0, 3000.0, 8))])
+        depth = np.vstack([np.zeros(n), np.cumsum(own.uniform(0.0, 1e-6, (8, n)), axis=0)])
+        return WearHistory(angle, cycles, depth, own.uniform(0.01, 0.1, n))
+
+    runs = tuple(run(seed) for seed in range(3))
+    counts = np.repeat([1000.0, 4000.0, 9000.0, 30000.0], 10)
+    at = rng.uniform(-1.0, 7.0, counts.size)
+    at[::5] = np.nan  # maximum depths
+    obs = Observations(counts, at, np.zeros(counts.size), counts < 9000.0)
+    cases = [(Candidate("b", runs[:1]), [3.0]),
+             (Candidate("s", runs[:1], k_scales=(1.3,)), [-2.0, 0.4]),
+             (Candidate("g", runs, grid=(0.1, 0.2, 0.3), k_scales=(1.0, 1.2, 0.8)),
+              [1.0, -0.3, 1.37]),
+             (Candidate("g", runs, grid=(0.1, 0.2, 0.3)), [1.0, -0.3, 2.0]),
+             (Candidate("d", runs, grid=(1.0, 2.0, 3.0), discrete=True), [1.0, 0.2, 1.0])]
+    for form, law in RUNNING_IN_FORMS.items():
+        scale = 300.0 if form in BY_CYCLES else 20.0
+        x = [2.0, 0.1, math.log(2.0), math.log(scale)]
+        cases += [(Candidate("r", runs[:1], form=form, time_map=True, k_scales=(1.1,)), x),
+                  (Candidate("r", runs[:1], form=form, time_map=True, k_scales=(1.1,),
+                             run_extension=law(1.5, scale / 2.0)), x)]
+    for candidate, x in cases:
+        expected = _count_by_count(obs, np.array(x), candidate)
+        np.testing.assert_allclose(predict(obs, np.array(x), candidate), expected, rtol=1e-13,
+                                   atol=0.0)

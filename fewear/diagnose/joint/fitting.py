@@ -114,7 +114,7 @@ class Fit:
 
 def _mixed_depth(candidate: Candidate, position: float, scale: float,
                  cycles: np.ndarray) -> np.ndarray:
-    """The worn bore at level ``scale`` after each of ``cycles`` (m,), (m, n), interpolated at
+    """The worn bore (m, n) at level ``scale`` after each of ``cycles`` (m,), interpolated at
     ``position`` between the runs (each run's cycles mapped by the ratio of the levels:
     Archard's depth along the loop is a function of k N)."""
     runs = candidate.runs

@@ -84,7 +84,7 @@ def _advance_together(refinements: dict, runs_at: RunsAt) -> dict:
     while asked:
         step = dict(asked)
         asked.clear()
-        for key, run in zip(step, runs_at(list(step.values()))):
+        for key, run in zip(step, runs_at(list(step.values())), strict=True):
             advance(key, run)
     return done
 
@@ -129,21 +129,19 @@ def refine_running_in(candidate: Candidate, fitted: Fit, obs: Observations,
 def refine_on_runs(candidate: Candidate, fitted: Fit, obs: Observations,
                    settings: JointDiagnoseSettings) -> Refinement:
     """A fit maps the cycles of runs made with the believed k to its level s, and a grid cause
-    interpolates linearly between two runs; neither is exact for the wear loop's blocks (a run
-    with k x 1.59 fitted a third-generator data set 74 % better than the believed run with its
-    cycles scaled), and the run at an interpolated value need not resemble the interpolation (a
-    fit at mu = 0.059, between the runs at 0.05 and 0.1, gained 67 % where the run at 0.059 lost
-    17 %). So the run at the fit's parameters (yielded: :data:`Refinement`; the extended model)
-    joins the runs:
-    it replaces the run the fit sits on (the level's one run, the run a discrete choice took, a
-    grid run within :data:`GRID_SETTLED` of a step) or is added to the grid between two, and the
-    cause is refitted; until the fit sits on a run made at its own level (within
-    :data:`SETTLED` in ln s) or after :data:`REFINEMENTS` runs. A run that stops
-    before the shortest time axis the fit needs ends the refinement. If the runs leave the fit
-    between them (the coarse loop's worn bore need not follow a parameter smoothly: mu = 0.060,
-    0.067, 0.063 on one data set), the fit is taken as the best of the runs made that are still
-    among the cause's, each exactly at its own parameters (:func:`_on_best_run`): a fit the
-    full run reproduces."""
+    interpolates linearly between two runs; neither is exact for the wear loop's blocks (a run with
+    k x 1.59 fitted a third-generator data set 74 % better than the believed run with its cycles
+    scaled), and the run at an interpolated value need not resemble the interpolation (a fit at mu
+    = 0.059, between the runs at 0.05 and 0.1, gained 67 % where the run at 0.059 lost 17 %). So
+    the run at the fit's parameters (yielded: :data:`Refinement`; the extended model) joins the
+    runs: it replaces the run the fit sits on (the level's one run, the run a discrete choice took,
+    a grid run within :data:`GRID_SETTLED` of a step) or is added to the grid between two, and the
+    cause is refitted; until the fit sits on a run made at its own level (within :data:`SETTLED` in
+    ln s) or after :data:`REFINEMENTS` runs. A run that stops before the shortest time axis the fit
+    needs ends the refinement. If the runs leave the fit between them (the coarse loop's worn bore
+    need not follow a parameter smoothly: mu = 0.060, 0.067, 0.063 on one data set), the fit is
+    taken as the best of the runs made that are still among the cause's, each exactly at its own
+    parameters (:func:`_on_best_run`): a fit the full run reproduces."""
     made: list[WearHistory] = []
     while True:
         at, between = _run_under_fit(candidate, fitted)
