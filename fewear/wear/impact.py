@@ -85,19 +85,15 @@ class ImpactWearLaw:
     def from_config(cls, section: dict) -> ImpactWearLaw:
         """The law of a ``[wear]`` section; each value checked (:class:`FewearInputError`
         naming the key, the value and what is allowed)."""
-        exponent = section.get(EXPONENT_CONFIG_KEY, 3.0)
-        if isinstance(exponent, bool) or not isinstance(exponent, (int, float)) or not (
-                0.0 <= exponent <= MAX_SPEED_EXPONENT):
-            raise FewearInputError(f"[wear] {EXPONENT_CONFIG_KEY} = {exponent!r}: expected a "
-                                   f"number between 0 and {MAX_SPEED_EXPONENT:g} (the power n "
-                                   "of the impact speed that impact wear grows with)")
         return cls(impact_wear_coefficient_from_config(section),
                    impact_impulse_wear_coefficient_from_config(section),
                    _coefficient(section, THRESHOLD_CONFIG_KEY, "N (the peak normal force an "
                                 "impact must exceed for its impulse to wear; 0 = every impact)"),
                    _coefficient(section, SPEED_CONFIG_KEY, "m^3 per (m/s)^n (worn volume per "
                                 "impact and n-th power of its approach speed; 0 = none)"),
-                   float(exponent))
+                   _coefficient(section, EXPONENT_CONFIG_KEY, "(the power n of the impact "
+                                "speed that impact wear grows with)", default=3.0,
+                                upper=MAX_SPEED_EXPONENT))
 
     def volume_m3(self, work_J, impulse_N_s, speed_power) -> np.ndarray:
         """The impact volume of each load step (m^3): k_imp W_i + c_J J_i + c_v S_i from the
@@ -184,12 +180,14 @@ def impact_impulse_wear_coefficient_from_config(section: dict) -> float:
                         "of the impacts' normal impulse; 0 = none)")
 
 
-def _coefficient(section: dict, key: str, meaning: str) -> float:
-    """A finite number >= 0 of ``section`` (0 if absent); ``meaning``: its unit and what it is,
-    for the message."""
-    value = section.get(key, 0.0)
+def _coefficient(section: dict, key: str, meaning: str, default: float = 0.0,
+                 upper: float = math.inf) -> float:
+    """A number of ``section`` in [0, ``upper``], finite (``default`` if absent); ``meaning``:
+    its unit and what it is, for the message."""
+    value = section.get(key, default)
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
-            math.isfinite(value) and value >= 0.0):
-        raise FewearInputError(f"[wear] {key} = {value!r}: expected a finite number >= 0 in "
-                               f"{meaning}")
+            math.isfinite(value) and 0.0 <= value <= upper):
+        allowed = ("a finite number >= 0 in" if upper == math.inf
+                   else f"a number between 0 and {upper:g}")
+        raise FewearInputError(f"[wear] {key} = {value!r}: expected {allowed} {meaning}")
     return float(value)
