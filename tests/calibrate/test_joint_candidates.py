@@ -110,9 +110,13 @@ def test_none_with_a_late_misfit_says_the_effect_shows_only_after_the_training_c
     assert _unexplained(steady, steady, [], resolution, []) == []
 
 
-def test_a_grid_with_a_non_positive_value_is_a_clear_error():
-    with pytest.raises(FewearInputError, match=r"friction_grid = \[0.0, 0.3\]: expected a non"):
-        replace(JointDiagnoseSettings.default(), friction_grid=(0.0, 0.3))
+@pytest.mark.parametrize("name, grid", [("friction_grid", (0.0, 0.3)), ("friction_grid", ()),
+                                        ("rod_modulus_factors", (math.nan,)),
+                                        ("impact_volume_ratios", ("2",)),
+                                        ("impact_volume_ratios", (math.inf,))])
+def test_a_grid_with_a_non_positive_value_is_a_clear_error(name, grid):
+    with pytest.raises(FewearInputError, match=rf"{name} = .*: expected a non-empty list of pos"):
+        replace(JointDiagnoseSettings.default(), **{name: grid})
 
 
 def test_an_unknown_impact_form_is_a_clear_error():

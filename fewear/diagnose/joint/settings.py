@@ -18,6 +18,16 @@ def _listed(value):
     return list(value) if isinstance(value, tuple) else value
 
 
+def _check_positive_numbers(name: str, values, expected: str, may_be_empty: bool) -> None:
+    """Refuse ``values`` unless a tuple of finite numbers > 0 (empty only if ``may_be_empty``),
+    naming the setting, its value and what is ``expected``."""
+    if not isinstance(values, tuple) or (not values and not may_be_empty) or any(
+            isinstance(value, bool) or not isinstance(value, (int, float))
+            or not 0.0 < value < math.inf for value in values):
+        raise FewearInputError(f"[joint_diagnose] {name} = {_listed(values)!r}: expected "
+                               f"{expected}")
+
+
 @dataclass(frozen=True)
 class JointDiagnoseSettings:
     """The ``[joint_diagnose]`` section (``fewear/defaults/diagnose.toml`` says why each value)."""
@@ -47,16 +57,11 @@ class JointDiagnoseSettings:
                 f"[joint_diagnose] held_out_fraction = {self.held_out_fraction!r}: expected a "
                 "fraction in (0, 1)")
         for name in ("rod_modulus_factors", "friction_grid", "impact_volume_ratios"):
-            values = getattr(self, name)
-            if not values or min(values) <= 0.0:
-                raise FewearInputError(f"[joint_diagnose] {name} = {list(values)!r}: expected a "
-                                       "non-empty list of positive numbers")
-        if not isinstance(self.rod_damping_factors, tuple) or any(
-                isinstance(factor, bool) or not isinstance(factor, (int, float))
-                or not 0.0 < factor < math.inf for factor in self.rod_damping_factors):
-            raise FewearInputError(
-                f"[joint_diagnose] rod_damping_factors = {_listed(self.rod_damping_factors)!r}: "
-                "expected a list of positive numbers (empty: the damping form is not tried)")
+            _check_positive_numbers(name, getattr(self, name), "a non-empty list of positive "
+                                    "numbers", may_be_empty=False)
+        _check_positive_numbers("rod_damping_factors", self.rod_damping_factors,
+                                "a list of positive numbers (empty: the damping form is not "
+                                "tried)", may_be_empty=True)
         if not self.impact_forms or not set(self.impact_forms) <= set(IMPACT_FORMS):
             raise FewearInputError(
                 f"[joint_diagnose] impact_forms = {list(self.impact_forms)!r}: expected a "
