@@ -171,7 +171,7 @@ def verdict(fit_: Fit, reference: Fit, settings: JointDiagnoseSettings,
             tried: int) -> CauseVerdict:
     """The evidence for a cause against the reference model and whether it is accepted."""
     evidence = Evidence(p_value=f_test_p(reference, fit_),
-                        gain=1.0 - fit_.held_out_rms_m / reference.held_out_rms_m,
+                        gain=fit_.held_out_gain(reference),
                         aicc_improvement=reference.aicc - fit_.aicc)
     return CauseVerdict(fit_, reference.name, evidence,
                         settings.acceptance(tried).accepts(evidence))
@@ -215,8 +215,7 @@ class Round:
     @property
     def gain(self) -> float:
         """The named cause's held-out gain over the round's model (0 without one)."""
-        return (1.0 - self.extended_fit.held_out_rms_m / self.baseline.held_out_rms_m
-                if self.named else 0.0)
+        return self.extended_fit.held_out_gain(self.baseline) if self.named else 0.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -443,7 +442,7 @@ def _confirm(config: dict, accepted: list[str], fits: dict[str, Fit], baseline: 
     for cause in accepted:
         extended = _extended_config(config, cause, fits[cause])
         final, depth = _verify(extended, baseline, obs, settings)
-        gain = 1.0 - final.held_out_rms_m / baseline.held_out_rms_m
+        gain = final.held_out_gain(baseline)
         if gain >= settings.min_held_out_gain:
             return [cause], extended, final, depth, not_confirmed
         not_confirmed.append(Unconfirmed(cause, gain))

@@ -111,6 +111,11 @@ class Fit:
         """AICc on the training data (the small-sample correction's denominator clamped to 1)."""
         return aicc(self.sse_train, self.n_train, self.n_params, clamp_correction=True)
 
+    def held_out_gain(self, reference: Fit) -> float:
+        """1 - (held-out RMS error) / (``reference``'s): how much better this fit predicts the
+        held-out data."""
+        return 1.0 - self.held_out_rms_m / reference.held_out_rms_m
+
 
 def _mixed_depth(candidate: Candidate, position: float, scale: float,
                  cycles: np.ndarray) -> np.ndarray:

@@ -57,12 +57,11 @@ def fit_causes(candidates: dict[str, tuple[Candidate, ...]], obs: Observations, 
     first_fits = iter(side_by_side(fit_form, [(form, obs, offset, settings)
                                               for forms in candidates.values() for form in forms]))
     fits = {name: [next(first_fits) for _ in forms] for name, forms in candidates.items()}
-    refinements = {
-        (name, index): _refinement(form, fitted, obs, settings)
-        for name, forms in candidates.items()
-        if 1.0 - best_form(fits[name]).held_out_rms_m / baseline.held_out_rms_m
-        >= settings.min_held_out_gain
-        for index, (form, fitted) in enumerate(zip(forms, fits[name]))}
+    promising = [name for name in candidates
+                 if best_form(fits[name]).held_out_gain(baseline) >= settings.min_held_out_gain]
+    refinements = {(name, index): _refinement(form, fitted, obs, settings)
+                   for name in promising
+                   for index, (form, fitted) in enumerate(zip(candidates[name], fits[name]))}
     for (name, index), refined in _advance_together(refinements, runs_at).items():
         fits[name][index] = refined
     return {name: best_form(cause_fits) for name, cause_fits in fits.items()}
