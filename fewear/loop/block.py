@@ -8,31 +8,26 @@ import time
 from concurrent.futures import Executor, Future, ThreadPoolExecutor
 from dataclasses import replace
 
-import numpy as np
-
 from fewear.contact.admissible import ContactLoadError
 from fewear.errors import FewearInputError
 from fewear.loop.progress import BlockRecord, CaseProgress, timed
 from fewear.loop.settings import RunInputs
 from fewear.loop.stages import cycle_sliding, cycle_wear, load_steps
-from fewear.wear.archard import CycleSliding, block_wear, smoothed_periodic
+from fewear.wear.archard import CycleSliding, block_wear
 from fewear.wear.extrapolation import extrapolate_block
 from fewear.wear.state import WearState
 
 
 def smoothed_block_wear(per_cycle: CycleSliding, state: WearState, extension, cycles: int,
                         width_rad: float):
-    """:func:`block_wear` with the depth increment smoothed around the bore by a Gaussian of
-    standard deviation ``width_rad`` (volume kept; :func:`smoothed_periodic`): the dwell points of
-    the few recorded cycles stand for an orbit that varies from cycle to cycle over the A_j cycles
-    of the block, and the bore's contact does not resolve ripples shorter than a few elements.
+    """:func:`block_wear` on the bore of ``state``, the depth increment smoothed around the bore
+    by a Gaussian of standard deviation ``width_rad`` (volume kept): the dwell points of the few
+    recorded cycles stand for an orbit that varies from cycle to cycle over the A_j cycles of
+    the block, and the bore's contact does not resolve ripples shorter than a few elements.
     The wear law's history starts from the crank cycles the wear state has run (their one
     owner)."""
-    increment, sliding = block_wear(per_cycle, replace(state.sliding, cycles=float(state.cycles)),
-                                    extension, cycles)
-    step = 2.0 * math.pi / state.angle_rad.size
-    # the FFT convolution leaves rounding noise (~1e-21 m) where nothing wears: clip it
-    return np.maximum(smoothed_periodic(increment, step, width_rad), 0.0), sliding
+    return block_wear(per_cycle, replace(state.sliding, cycles=float(state.cycles)), extension,
+                      cycles, smoothing_width_rad=width_rad)
 
 
 def block_dynamics(rod: str, inputs: RunInputs, state: WearState, mechanism):

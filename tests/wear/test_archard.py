@@ -77,15 +77,46 @@ def test_running_in_by_cycles_over_blocks_is_the_effective_cycles():
     assert sliding.cycles == 5000.0
 
 
-def test_implicit_step_is_backward_euler_and_damps_a_ripple():
-    """With dh/dN = h_c - lambda h (a node that sheds its load as it recedes) the linearly
-    implicit step gives A h_c / (1 + A lambda), backward Euler; explicit extrapolation
-    overshoots as soon as A lambda > 2 (a ripple grows)."""
-    h_c, decay, cycles = 1e-9, 0.01, 5000
-    implicit, _ = block_wear(cycle([h_c], sensitivity=np.array([[-decay]])), unworn(1),
+def test_linearised_step_is_exact_for_a_linear_rate_and_damps_a_ripple():
+    """With dh/dN = h_c - lambda h (a node that sheds its load as it recedes) the step gives the
+    exact h_c (1 - exp(-lambda A)) / lambda, which approaches the equilibrium h_c / lambda from
+    below however long the block; explicit extrapolation overshoots it (A h_c)."""
+    h_c, decay = 1e-9, 0.01
+    for cycles in (30, 5000):
+        step, _ = block_wear(cycle([h_c], sensitivity=np.array([[-decay]])), unworn(1),
                              NoExtension(), cycles)
-    assert implicit[0] == pytest.approx(cycles * h_c / (1 + cycles * decay), rel=1e-12)
-    assert implicit[0] < h_c / decay < cycles * h_c  # below the equilibrium, unlike explicit
+        exact = h_c * -math.expm1(-decay * cycles) / decay
+        assert step[0] == pytest.approx(exact, rel=1e-12)
+        assert step[0] <= h_c / decay
+    assert cycles * h_c > h_c / decay
+
+
+def test_smoothing_enters_the_linearised_step():
+    """The bore changes by the smoothed increment, so the step integrates dh/dN = G (w + S h)
+    (S couples a few nodes in contact, G the Gaussian; they do not commute): against an
+    independent integration (scipy's solve_ivp, Radau, tight tolerances) the step is exact for
+    a linear rate, while solving with S and smoothing afterwards (the former step) is not."""
+    from scipy.integrate import solve_ivp
+
+    n, width, cycles = 72, math.radians(5.0), 400
+    angle = 2 * math.pi * np.arange(n) / n
+    rate = 1e-9 * np.exp(-0.5 * ((angle - math.pi) / 0.15) ** 2)
+    contact = np.flatnonzero(np.abs(angle - math.pi) < 0.3)
+    sensitivity = np.zeros((n, n))
+    # a receding node sheds its load to its neighbours (rows sum to zero: the load is kept)
+    for a in contact:
+        sensitivity[a, a] = -0.5
+        for b in (a - 1, a + 1):
+            sensitivity[a, b] = 0.25
+    step, _ = block_wear(cycle(rate, sensitivity=sensitivity), unworn(n), NoExtension(), cycles,
+                         smoothing_width_rad=width)
+    smooth = np.column_stack([smoothed_periodic(e, 2 * math.pi / n, width) for e in np.eye(n)])
+    exact = solve_ivp(lambda _, h: smooth @ (rate + sensitivity @ h), (0.0, cycles), np.zeros(n),
+                      method="Radau", rtol=1e-10, atol=1e-16).y[:, -1]
+    np.testing.assert_allclose(step, exact, rtol=1e-6, atol=1e-6 * exact.max())
+    former = smoothed_periodic(np.linalg.solve(np.eye(n) - cycles * sensitivity, cycles * rate),
+                               2 * math.pi / n, width)
+    assert np.abs(former - exact).max() > 0.05 * exact.max()
 
 
 def test_smoothing_keeps_the_volume_and_removes_node_scale_ripple():
