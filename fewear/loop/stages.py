@@ -115,7 +115,7 @@ def cycle_wear(contact_model, steps: LoadSteps, wear_coefficient, friction: bool
 
     ``implicit``: also sum the steps' sensitivities k s dp/dh (``contact_model`` must offer
     ``pressure_sensitivity(result)``, as :class:`fewear.loop.bushing.WornBushing` does)
-    for the linearly implicit block step of :func:`fewear.wear.archard.block_wear`.
+    for the linearised block step of :func:`fewear.wear.archard.block_wear`.
     """
     results = _solve_steps(contact_model, steps, friction)
     solved = next(r for r in results if r is not None)  # the heaviest step is never dropped

@@ -114,14 +114,25 @@ def block_wear(cycle: CycleSliding, sliding: SlidingState, extension, cycles: in
 
 
 def exponential_euler_increment(step_jacobian: np.ndarray, explicit: np.ndarray) -> np.ndarray:
-    """phi_1(M) b, phi_1(z) = (e^z - 1) / z, for M = ``step_jacobian`` (A J) and b =
+    """phi_1(M) c, phi_1(z) = (e^z - 1) / z, for M = ``step_jacobian`` (A J) and c =
     ``explicit`` (A times the rate at the start): the exact increment over the step of the
-    linear ODE dh/dN = rate + J (h - h_0), from the exponential of [[M, b], [0, 0]]."""
-    n = explicit.size
-    bordered = np.zeros((n + 1, n + 1))
-    bordered[:n, :n] = step_jacobian
-    bordered[:n, n] = explicit
-    return expm(bordered)[:n, n]
+    linear ODE dh/dN = rate + J (h - h_0).
+
+    Only the nodes in contact U (the nonzero columns of M) feed back; the others follow them:
+    h_U = phi_1(M_UU) c_U and h_R = c_R + M_RU phi_2(M_UU) c_U, both read from the exponential
+    of [[M_UU, c_U, 0], [0, 0, 1], [0, 0, 0]] (Higham, Functions of Matrices (2008), eq. 10.41
+    and its extension to phi_2; Al-Mohy & Higham, SIAM J. Sci. Comput. 33 (2011) 488): a matrix
+    of |U| + 2 rows, not of all bore nodes."""
+    coupled = np.flatnonzero(np.any(step_jacobian != 0.0, axis=0))
+    m = coupled.size
+    bordered = np.zeros((m + 2, m + 2))
+    bordered[:m, :m] = step_jacobian[np.ix_(coupled, coupled)]
+    bordered[:m, m] = explicit[coupled]
+    bordered[m, m + 1] = 1.0
+    exponential = expm(bordered)
+    increment = explicit + step_jacobian[:, coupled] @ exponential[:m, m + 1]
+    increment[coupled] = exponential[:m, m]
+    return increment
 
 
 def smoothing_matrix(n: int, width_rad: float) -> np.ndarray:

@@ -8,7 +8,7 @@ stands for in wear block j.
   the bore's element row, within [1, A_max]. Fast wear (a fresh, non-conforming bore) gets short
   blocks; slow wear after the bore has conformed gets long ones. The geometry, hence the
   pressure, then changes by at most f h_e between two contact analyses, which keeps the
-  linearisation of the implicit wear step (:func:`fewear.wear.archard.block_wear`) valid.
+  linearisation of the wear step (:func:`fewear.wear.archard.block_wear`) valid.
 """
 
 from __future__ import annotations
@@ -52,26 +52,64 @@ class ExtrapolationSettings:
 _KEYS = {"factor": "extrapolation_factor", "max_factor": "max_extrapolation_factor"}
 
 
+MAX_TRIALS = 12
+"""Evaluations of a block's increment that the adaptive search may make."""
+
+FILLED_SHARE = 0.8
+"""The adaptive search stops at a block whose largest increment fills this share of f h_e."""
+
+
 def extrapolate_block(settings: ExtrapolationSettings, increment_for, element_height_m: float,
                       remaining_cycles: int):
     """Choose A_j and return ``(A_j, *increment_for(A_j))``; ``increment_for(A)`` gives the block's
     depth increment (m, per node) first in what it returns.
 
     "fixed": A_j = min(A, remaining). "adaptive": the largest A_j <= min(A_max, remaining) whose
-    largest depth increment stays within f h_e, found by shrinking A_j in proportion to the
-    overshoot (the increment grows about linearly with A_j; at most 12 trials, A_j >= 1; if
-    none is within f h_e, the last one tried, with its own increment).
+    largest depth increment stays within f h_e, searched from the cap: each next trial A_j is
+    scaled in proportion to the increment's shortfall or overshoot (0.95 A f h_e / peak: exact
+    when the increment grows linearly with A_j), kept strictly between the largest block found
+    within the bound and the smallest found beyond it (else their geometric mean). The
+    linearised step's increment is not linear in A_j (it levels off in the stiff modes and
+    can grow faster than A_j far beyond its validity), so one proportional shrink from the cap
+    can land far below the bound. The search stops at a block within the bound that fills at
+    least ``FILLED_SHARE`` of it, or when the bracket closes (within 10 %), after at most
+    ``MAX_TRIALS`` trials; if none is within f h_e, the last one tried is returned, with its
+    own increment.
     """
     if settings.mode == "fixed":
         cycles = int(min(max(math.floor(settings.factor), 1), remaining_cycles))
         return (cycles, *increment_for(cycles))
     limit = settings.max_depth_increment_fraction * element_height_m
     cycles = int(min(max(math.floor(settings.max_factor), 1), remaining_cycles))
+    within, beyond = None, None  # (cycles, outcome) of the largest block within the bound; A
     outcome = increment_for(cycles)
-    for _ in range(11):
+    for _ in range(MAX_TRIALS - 1):
         peak = float(np.max(outcome[0]))
-        if peak <= limit or cycles == 1:
+        if peak <= limit:
+            within = (cycles, outcome)
+            if peak >= FILLED_SHARE * limit or beyond is None:
+                break
+        else:
+            beyond = cycles
+        lower = within[0] if within else 0
+        if cycles == 1 and within is None or beyond - lower <= max(1, 0.1 * lower):
             break
-        cycles = max(1, math.floor(0.95 * cycles * limit / peak))
+        cycles = _next_trial(cycles, peak, limit, lower, beyond)
         outcome = increment_for(cycles)
-    return (cycles, *outcome)
+    else:
+        if float(np.max(outcome[0])) <= limit:
+            within = (cycles, outcome)
+    if within is None:
+        return (cycles, *outcome)
+    return (within[0], *within[1])
+
+
+def _next_trial(cycles: int, peak: float, limit: float, lower: int, beyond: int) -> int:
+    """The next block size of the adaptive search: the proportional guess, if it lies strictly
+    between ``lower`` (largest within the bound, 0: none) and ``beyond`` (smallest beyond it),
+    else their geometric mean (``lower`` 0: one tenth of ``beyond``)."""
+    guess = math.floor(0.95 * cycles * limit / peak) if peak > 0.0 else beyond - 1
+    if lower < guess < beyond:
+        return guess
+    middle = math.sqrt(lower * beyond) if lower else 0.1 * beyond
+    return int(min(max(math.floor(middle), lower + 1, 1), beyond - 1))

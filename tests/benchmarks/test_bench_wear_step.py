@@ -3,18 +3,18 @@
 The default config's rigid rod to FEWEAR_BENCH_WEAR_STEP_CYCLES (default 50,000) crank cycles
 with the dynamics of the unworn joint's first block reused for every wear step: the orbit, and
 with it the cycle-to-cycle scatter that makes the full loop's runs differ by a few per cent, is
-the same in every run, so what differs is the wear step and nothing else. The linearly implicit
-step (:func:`fewear.wear.archard.block_wear`) at the adaptive bound f = 0.25 (the former
-default), 0.125, 0.0625, 0.03125 (the default) of the bore element's height per step is compared
-with explicit steps of A = 40 cycles (seed eq. 10 as printed, stable at that A): the reference.
-The reference's own error is shown by a second pair, from the f = 0.0625 state at 20,000 cycles,
-4,000 cycles more with explicit steps of 40 and of 10 cycles.
+the same in every run, so what differs is the wear step and nothing else. The linearised step
+(:func:`fewear.wear.archard.block_wear`, exponential Euler with the smoothing inside) at the
+adaptive bound f = 0.0625, 0.03125, 0.015625 (the default), 0.0078125 of the bore element's
+height per step and at fixed blocks of A = 160 and 400 cycles is compared with explicit steps
+of A = 40 cycles (seed eq. 10 as printed, stable at that A): the reference. The reference's own
+error is shown by a second pair, from the f = 0.015625 state at 20,000 cycles, 4,000 cycles
+more with explicit steps of 40 and of 10 cycles.
 
-Why a reference of small explicit steps: the contact's response to the wear is stiff (time
-constants of tens of cycles over a continuous spectrum) and the implicit step linearises it with
-the contact's active set fixed, so its error need not fall in proportion to f; explicit steps
-well inside their stability limit have no such linearisation. README "Convergence and
-uncertainty" gives the figures.
+Why a reference of small explicit steps: the linearised step holds the contact's active set and
+its pressure response over the step, an error that depends on the step's depth increment;
+explicit steps well inside their stability limit have no such linearisation. README
+"Convergence and uncertainty" gives the figures.
 """
 
 import math
@@ -33,7 +33,8 @@ from fewear.wear.extrapolation import ExtrapolationSettings
 
 pytestmark = pytest.mark.benchmark
 CYCLES = int(os.environ.get("FEWEAR_BENCH_WEAR_STEP_CYCLES", "50000"))
-BOUNDS = (0.25, 0.125, 0.0625, 0.03125)
+BOUNDS = (0.0625, 0.03125, 0.015625, 0.0078125)
+FIXED_STEP_CYCLES = (160, 400)
 REFERENCE_STEP_CYCLES = 40
 
 
@@ -44,15 +45,15 @@ def done(result) -> Future:
 
 
 def step_settings(inputs, total_cycles: int, bound: float | None = None,
-                  step_cycles: int | None = None):
-    """``inputs`` with the implicit adaptive step at ``bound``, or explicit steps of
-    ``step_cycles``."""
+                  step_cycles: int | None = None, linearised: bool = False):
+    """``inputs`` with the linearised adaptive step at ``bound``, or fixed steps of
+    ``step_cycles``, explicit unless ``linearised``."""
     if bound is not None:
         extrapolation = ExtrapolationSettings("adaptive", max_depth_increment_fraction=bound)
         loop = replace(inputs.loop, extrapolation=extrapolation, implicit_wear_step=True)
     else:
         extrapolation = ExtrapolationSettings("fixed", factor=float(step_cycles))
-        loop = replace(inputs.loop, extrapolation=extrapolation, implicit_wear_step=False)
+        loop = replace(inputs.loop, extrapolation=extrapolation, implicit_wear_step=linearised)
     return replace(inputs, loop=replace(loop, total_cycles=total_cycles, wear_steps_per_block=1))
 
 
@@ -75,7 +76,9 @@ def test_wear_step_convergence_on_one_history():
     bushing, case = fresh(inputs)
     history = block_dynamics("rigid", inputs, case.state, None)
     runs = {}
-    for label, kwargs in [*((f"implicit, f = {f:g}", {"bound": f}) for f in BOUNDS),
+    for label, kwargs in [*((f"linearised, f = {f:g}", {"bound": f}) for f in BOUNDS),
+                          *((f"linearised, A = {a}", {"step_cycles": a, "linearised": True})
+                            for a in FIXED_STEP_CYCLES),
                           (f"explicit, A = {REFERENCE_STEP_CYCLES}",
                            {"step_cycles": REFERENCE_STEP_CYCLES})]:
         settings = step_settings(inputs, CYCLES, **kwargs)
@@ -86,23 +89,23 @@ def test_wear_step_convergence_on_one_history():
     reference = runs[f"explicit, A = {REFERENCE_STEP_CYCLES}"]
     print(f"\nrigid rod, {CYCLES:,} cycles on the first block's history (reference: explicit "
           f"steps of {REFERENCE_STEP_CYCLES} cycles)")
-    print(f"  {'wear step':22s} {'steps':>6s} {'max depth um':>13s} {'diff':>7s} "
+    print(f"  {'wear step':26s} {'steps':>6s} {'max depth um':>13s} {'diff':>7s} "
           f"{'worn area m^2':>14s} {'diff':>7s} {'time s':>7s}")
     for label, (peak, area, steps, seconds) in runs.items():
-        print(f"  {label:22s} {steps:6d} {peak * 1e6:13.2f} {peak / reference[0] - 1:7.1%} "
+        print(f"  {label:26s} {steps:6d} {peak * 1e6:13.2f} {peak / reference[0] - 1:7.1%} "
               f"{area:14.4e} {area / reference[1] - 1:7.1%} {seconds:7.1f}")
     print_reference_check(inputs, history, radius)
 
 
 def print_reference_check(inputs, history, radius):
-    """From the f = 0.0625 state at 20,000 cycles: 4,000 cycles more in explicit steps of 40 and
+    """From the f = 0.015625 state at 20,000 cycles: 4,000 cycles more in explicit steps of 40 and
     of 10 cycles (the reference's step and a quarter of it)."""
     start, span = 20000, 4000
     if CYCLES < start:
         return
     gains = {}
     for step_cycles in (REFERENCE_STEP_CYCLES, REFERENCE_STEP_CYCLES // 4):
-        settings = step_settings(inputs, start, bound=0.0625)
+        settings = step_settings(inputs, start, bound=0.015625)
         bushing, case = fresh(settings)
         wear_to(settings, bushing, case, history)
         before = case.state
@@ -111,6 +114,6 @@ def print_reference_check(inputs, history, radius):
         gains[step_cycles] = ((case.state.depth_m - before.depth_m).max(),
                               case.state.worn_area_m2(radius) - before.worn_area_m2(radius))
     (peak40, area40), (peak10, area10) = gains.values()
-    print(f"  the reference's step: {span:,} cycles from the f = 0.0625 state at {start:,}: "
+    print(f"  the reference's step: {span:,} cycles from the f = 0.015625 state at {start:,}: "
           f"explicit A = 40 against A = 10: largest depth increment {peak40 / peak10 - 1:+.2%}, "
           f"worn area {area40 / area10 - 1:+.2%} ({math.ceil(span / 10)} steps of 10)")

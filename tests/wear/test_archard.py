@@ -6,7 +6,13 @@ import numpy as np
 import pytest
 
 from fewear.errors import FewearInputError
-from fewear.wear.archard import CycleSliding, block_wear, cycle_wear_depth_m, smoothed_periodic
+from fewear.wear.archard import (
+    CycleSliding,
+    block_wear,
+    cycle_wear_depth_m,
+    exponential_euler_increment,
+    smoothed_periodic,
+)
 from fewear.wear.extensions import NoExtension, RunningIn, RunningInCycles, SlidingState
 
 
@@ -136,3 +142,19 @@ def test_smoothing_keeps_the_volume_and_removes_node_scale_ripple():
 def test_bad_block_size():
     with pytest.raises(FewearInputError, match="extrapolation factor"):
         block_wear(cycle([1e-12]), unworn(1), NoExtension(), 0)
+
+
+def test_exponential_step_on_the_nodes_in_contact_equals_the_full_exponential():
+    """Nodes outside the contact (zero columns of A J) follow the others: the increment from
+    the small bordered matrix equals phi_1(A J) c read from the exponential of the full one."""
+    from scipy.linalg import expm
+
+    rng = np.random.default_rng(1)
+    n = 40
+    step_jacobian = rng.normal(size=(n, n)) * 0.5
+    step_jacobian[:, rng.choice(n, 25, replace=False)] = 0.0
+    explicit = rng.normal(size=n)
+    bordered = np.zeros((n + 1, n + 1))
+    bordered[:n, :n], bordered[:n, n] = step_jacobian, explicit
+    np.testing.assert_allclose(exponential_euler_increment(step_jacobian, explicit),
+                               expm(bordered)[:n, n], rtol=1e-12, atol=1e-12)

@@ -68,6 +68,24 @@ def test_adaptive_block_bounds_the_largest_increment():
     assert extrapolate_block(fixed, lambda a: (a * rate,), 1e-4, 3000)[0] == 3000
 
 
+def test_adaptive_block_finds_the_bound_of_an_increment_that_grows_faster_than_the_block():
+    """An increment r A exp(A / 2000) (a linearisation used far beyond its validity grows
+    faster than A_j) is astronomically large at A_max = 50,000: one proportional shrink from
+    there gives A_j = 1. The search brackets the bound instead and returns a block within it
+    that fills at least 80 % of it."""
+    settings = ExtrapolationSettings(mode="adaptive", max_factor=50000.0,
+                                     max_depth_increment_fraction=0.1)
+    limit = 0.1 * 1e-4
+    rate = limit / (1000.0 * math.exp(0.5))  # the increment reaches the bound at A = 1000
+
+    def increment_for(cycles):
+        return (np.array([rate * cycles * math.exp(cycles / 2000.0)]),)
+
+    cycles, increment = extrapolate_block(settings, increment_for, 1e-4, 400000)
+    assert 0.8 * limit <= increment[0] <= limit
+    assert 850 <= cycles <= 1000
+
+
 def test_a_block_whose_increment_never_gets_small_enough_keeps_its_own_increment():
     """An increment that levels off with A_j (2 f h_e (1 - exp(-A / 5))) stays above f h_e until
     A_j < 3.5, beyond the 12 trials from A_max = 50,000: the block returned is the last one
