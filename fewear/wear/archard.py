@@ -106,8 +106,11 @@ def block_wear(cycle: CycleSliding, sliding: SlidingState, extension, cycles: in
     step_rad = 2.0 * np.pi / explicit.size
     increment = smoothed_periodic(explicit, step_rad, smoothing_width_rad)
     if cycle.depth_sensitivity is not None:
-        rate_jacobian = smoothing_matrix(explicit.size, smoothing_width_rad) @ (
-            mean_multiplier[:, None] * cycle.depth_sensitivity)
+        # S has nonzero columns at the nodes in contact only: G m S is built on those
+        coupled = np.flatnonzero(np.any(cycle.depth_sensitivity != 0.0, axis=0))
+        rate_jacobian = np.zeros_like(cycle.depth_sensitivity)
+        rate_jacobian[:, coupled] = smoothing_matrix(explicit.size, smoothing_width_rad) @ (
+            mean_multiplier[:, None] * cycle.depth_sensitivity[:, coupled])
         increment = exponential_euler_increment(cycles * rate_jacobian, increment)
     # the FFT convolution leaves rounding noise (~1e-21 m) where nothing wears: clip it
     return np.maximum(increment, 0.0), after
