@@ -74,14 +74,17 @@ def block_wear(cycle: CycleSliding, sliding: SlidingState, extension, cycles: in
     recedes) the step integrates the linearised wear rate exactly (exponential Euler):
 
         dh/dN = G (m_bar h_cycle + h_imp) + J (h - h_0),   J = G diag(m_bar) S,
-        Delta h = phi_1(A_j J) Delta h_explicit,   phi_1(z) = (e^z - 1) / z,
+        Delta h = phi_1(A_j J) G Delta h_explicit,   phi_1(z) = (e^z - 1) / z,
 
-    evaluated as a block of the exponential of the bordered matrix [[A_j J, Delta h_explicit],
-    [0, 0]] (Higham, Functions of Matrices (2008), eq. 10.41). h_imp is a given source (its own
-    dependence on the wear is not linearised). Why: the contact's response to the wear is
-    stiff (a bore ripple of wavelength lambda flattens at a rate k s pi E* / lambda per cycle,
-    time constants of a few to tens of cycles), so explicit extrapolation makes node-scale
-    ripples grow once A_j exceeds a few tens of cycles. The smoothing belongs inside J: the
+    Delta h_explicit = A_j (m_bar h_cycle + h_imp) the unsmoothed explicit increment, evaluated
+    by :func:`exponential_euler_increment`. h_imp is a given source (its own dependence on the
+    wear is not linearised). J's eigenvalues have negative real parts where the linearisation
+    holds; far beyond it (a step many times the bound of :mod:`fewear.wear.extrapolation`) the
+    exponential can grow without bound, which the adaptive search treats as beyond the bound.
+    Why: the contact's response to the wear is stiff (a bore ripple of wavelength lambda
+    flattens at a rate k s pi E* / lambda per cycle, time constants of a few to tens of
+    cycles), so explicit extrapolation makes node-scale ripples grow once A_j exceeds a few
+    tens of cycles. The smoothing belongs inside J: the
     bore changes by the smoothed increment, and S alone is far stiffer than G S (the Gaussian
     removes the short wavelengths); a step that solved with S and smoothed afterwards damped
     modes that the smoothed wear does not have and lay 13 % below small explicit steps at A_j

@@ -64,52 +64,60 @@ def extrapolate_block(settings: ExtrapolationSettings, increment_for, element_he
     """Choose A_j and return ``(A_j, *increment_for(A_j))``; ``increment_for(A)`` gives the block's
     depth increment (m, per node) first in what it returns.
 
-    "fixed": A_j = min(A, remaining). "adaptive": the largest A_j <= min(A_max, remaining) whose
-    largest depth increment stays within f h_e, searched from the cap: each next trial A_j is
-    scaled in proportion to the increment's shortfall or overshoot (0.95 A f h_e / peak: exact
-    when the increment grows linearly with A_j), kept strictly between the largest block found
-    within the bound and the smallest found beyond it (else their geometric mean). The
-    linearised step's increment is not linear in A_j (it levels off in the stiff modes and
-    can grow faster than A_j far beyond its validity), so one proportional shrink from the cap
-    can land far below the bound. The search stops at a block within the bound that fills at
-    least ``FILLED_SHARE`` of it, or when the bracket closes (within 10 %), after at most
-    ``MAX_TRIALS`` trials; if none is within f h_e, the last one tried is returned, with its
-    own increment.
+    "fixed": A_j = min(A, remaining). "adaptive": a large A_j <= min(A_max, remaining) whose
+    largest depth increment (its peak) stays within f h_e, searched from the cap. The
+    linearised step's increment is not linear in A_j (it levels off in the stiff modes and can
+    grow far faster than A_j beyond its validity, up to overflow), so the search brackets the
+    bound between the largest block found within it and the smallest found beyond it: the next
+    trial aims at 0.95 f h_e on the power law through the bracket's two ends (with one end
+    only, in proportion to the peak: exact for a linear increment), and where that guess is
+    not strictly inside the bracket, or a peak is zero or not finite, it takes the bracket's
+    geometric mean. It stops at a block within the bound that fills at least ``FILLED_SHARE``
+    of it, when the bracket closes (within 10 %), or after ``MAX_TRIALS`` trials, and returns
+    the largest block found within the bound; if none is, the last one tried, with its own
+    increment.
     """
     if settings.mode == "fixed":
         cycles = int(min(max(math.floor(settings.factor), 1), remaining_cycles))
         return (cycles, *increment_for(cycles))
     limit = settings.max_depth_increment_fraction * element_height_m
     cycles = int(min(max(math.floor(settings.max_factor), 1), remaining_cycles))
-    within, beyond = None, None  # (cycles, outcome) of the largest block within the bound; A
-    outcome = increment_for(cycles)
-    for _ in range(MAX_TRIALS - 1):
+    within = beyond = None  # (cycles, peak, outcome) of the largest block within; (cycles, peak)
+    for trial in range(MAX_TRIALS):
+        outcome = increment_for(cycles)
         peak = float(np.max(outcome[0]))
-        if peak <= limit:
-            within = (cycles, outcome)
+        if peak <= limit:  # False for NaN: a step that overflowed is beyond the bound
+            within = (cycles, peak, outcome)
             if peak >= FILLED_SHARE * limit or beyond is None:
                 break
         else:
-            beyond = cycles
+            beyond = (cycles, peak)
         lower = within[0] if within else 0
-        if cycles == 1 and within is None or beyond - lower <= max(1, 0.1 * lower):
+        if (within is None and cycles == 1) or beyond[0] - lower <= max(1, 0.1 * lower):
             break
-        cycles = _next_trial(cycles, peak, limit, lower, beyond)
-        outcome = increment_for(cycles)
-    else:
-        if float(np.max(outcome[0])) <= limit:
-            within = (cycles, outcome)
+        if trial < MAX_TRIALS - 1:
+            cycles = _next_trial(within, beyond, limit)
     if within is None:
         return (cycles, *outcome)
-    return (within[0], *within[1])
+    return (within[0], *within[2])
 
 
-def _next_trial(cycles: int, peak: float, limit: float, lower: int, beyond: int) -> int:
-    """The next block size of the adaptive search: the proportional guess, if it lies strictly
-    between ``lower`` (largest within the bound, 0: none) and ``beyond`` (smallest beyond it),
-    else their geometric mean (``lower`` 0: one tenth of ``beyond``)."""
-    guess = math.floor(0.95 * cycles * limit / peak) if peak > 0.0 else beyond - 1
-    if lower < guess < beyond:
+def _next_trial(within, beyond, limit: float) -> int:
+    """The next block size of the adaptive search between ``within`` (cycles, peak, ...) of the
+    largest block within the bound (None: none yet) and ``beyond`` (cycles, peak) of the smallest
+    beyond it: 0.95 ``limit`` on the power law peak = a A^b through both ends (b = 1 with one
+    end), if strictly inside the bracket, else the bracket's geometric mean (with no block
+    within: a tenth of ``beyond``)."""
+    (high, high_peak), target = beyond, 0.95 * limit
+    low, low_peak = (within[0], within[1]) if within else (0, 0.0)
+    guess = 0
+    if math.isfinite(high_peak) and high_peak > 0.0:
+        exponent = 1.0
+        if low_peak > 0.0:
+            exponent = math.log(high_peak / low_peak) / math.log(high / low)
+        if exponent > 0.0:
+            guess = math.floor(high * (target / high_peak) ** (1.0 / exponent))
+    if low < guess < high:
         return guess
-    middle = math.sqrt(lower * beyond) if lower else 0.1 * beyond
-    return int(min(max(math.floor(middle), lower + 1, 1), beyond - 1))
+    middle = math.sqrt(low * high) if low else 0.1 * high
+    return int(min(max(math.floor(middle), low + 1, 1), high - 1))

@@ -97,11 +97,27 @@ def test_linearised_step_is_exact_for_a_linear_rate_and_damps_a_ripple():
     assert cycles * h_c > h_c / decay
 
 
-def test_smoothing_enters_the_linearised_step():
-    """The bore changes by the smoothed increment, so the step integrates dh/dN = G (w + S h)
-    (S couples a few nodes in contact, G the Gaussian; they do not commute): against an
-    independent integration (scipy's solve_ivp, Radau, tight tolerances) the step is exact for
-    a linear rate, while solving with S and smoothing afterwards (the former step) is not."""
+class NodeMultiplier:
+    """A wear-law extension whose multiplier m is fixed per node (a stand-in for a running-in
+    state that does not change over the block)."""
+
+    def __init__(self, multiplier):
+        self.values = np.asarray(multiplier, dtype=float)
+
+    def advance(self, state, *_):
+        return state
+
+    def multiplier(self, _):
+        return self.values
+
+
+@pytest.mark.parametrize("varying_multiplier", [False, True])
+def test_smoothing_and_multiplier_enter_the_linearised_step(varying_multiplier):
+    """The bore changes by the smoothed increment, so the step integrates dh/dN = G m (w + S h)
+    (S couples a few nodes in contact, G the Gaussian, m the wear law's multiplier per node;
+    they do not commute): against an independent integration (scipy's solve_ivp, Radau, tight
+    tolerances) the step is exact for a linear rate, while solving with S and smoothing
+    afterwards (the former step) is not."""
     from scipy.integrate import solve_ivp
 
     n, width, cycles = 72, math.radians(5.0), 400
@@ -114,11 +130,13 @@ def test_smoothing_enters_the_linearised_step():
         sensitivity[a, a] = -0.5
         for b in (a - 1, a + 1):
             sensitivity[a, b] = 0.25
-    step, _ = block_wear(cycle(rate, sensitivity=sensitivity), unworn(n), NoExtension(), cycles,
-                         smoothing_width_rad=width)
+    multiplier = 1.0 + (0.8 * np.sin(3.0 * angle) if varying_multiplier else 0.0 * angle)
+    step, _ = block_wear(cycle(rate, sensitivity=sensitivity), unworn(n),
+                         NodeMultiplier(multiplier), cycles, smoothing_width_rad=width)
     smooth = np.column_stack([smoothed_periodic(e, 2 * math.pi / n, width) for e in np.eye(n)])
-    exact = solve_ivp(lambda _, h: smooth @ (rate + sensitivity @ h), (0.0, cycles), np.zeros(n),
-                      method="Radau", rtol=1e-10, atol=1e-16).y[:, -1]
+    exact = solve_ivp(lambda _, h: smooth @ (multiplier * (rate + sensitivity @ h)),
+                      (0.0, cycles), np.zeros(n), method="Radau", rtol=1e-10,
+                      atol=1e-16).y[:, -1]
     np.testing.assert_allclose(step, exact, rtol=1e-6, atol=1e-6 * exact.max())
     former = smoothed_periodic(np.linalg.solve(np.eye(n) - cycles * sensitivity, cycles * rate),
                                2 * math.pi / n, width)

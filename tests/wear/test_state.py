@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from fewear.errors import FewearInputError
-from fewear.wear.extrapolation import ExtrapolationSettings, extrapolate_block
+from fewear.wear.extrapolation import MAX_TRIALS, ExtrapolationSettings, extrapolate_block
 from fewear.wear.state import WearState
 
 R_B, R_P, N = 0.010, 0.0095, 288
@@ -84,6 +84,48 @@ def test_adaptive_block_finds_the_bound_of_an_increment_that_grows_faster_than_t
     cycles, increment = extrapolate_block(settings, increment_for, 1e-4, 400000)
     assert 0.8 * limit <= increment[0] <= limit
     assert 850 <= cycles <= 1000
+
+
+def counted(increment_for):
+    """``increment_for`` that counts its calls in ``.calls``."""
+    def wrapped(cycles):
+        wrapped.calls += 1
+        return increment_for(cycles)
+    wrapped.calls = 0
+    return wrapped
+
+
+@pytest.mark.parametrize("peak_at", [
+    lambda a: (a / 49.0) ** 1.9,  # superlinear: proportional guesses zig-zag
+    lambda a: a / 1000.0 if a <= 5000 else math.nan,  # the step overflows beyond 5,000 cycles
+    lambda a: a / 1000.0 if a <= 5000 else math.inf,
+])
+def test_adaptive_search_fills_the_bound_of_awkward_increments(peak_at):
+    """Peaks in units of f h_e: a power law steeper than linear, and an increment that is not
+    finite beyond some block: within MAX_TRIALS calls the search returns a finite block within
+    the bound that fills at least 80 % of it."""
+    settings = ExtrapolationSettings(mode="adaptive", max_factor=50000.0,
+                                     max_depth_increment_fraction=0.1)
+    limit = 0.1 * 1e-4
+    increment_for = counted(lambda cycles: (np.array([limit * peak_at(cycles)]),))
+    cycles, increment = extrapolate_block(settings, increment_for, 1e-4, 400000)
+    assert 0.8 * limit <= increment[0] <= limit
+    assert increment_for.calls <= MAX_TRIALS
+
+
+def test_adaptive_search_returns_the_largest_block_within_the_bound():
+    """A peak that jumps from half the bound to twice it beyond 1,000 cycles: every later trial
+    overshoots, and the block returned is the largest found within the bound, not the last
+    tried."""
+    settings = ExtrapolationSettings(mode="adaptive", max_factor=50000.0,
+                                     max_depth_increment_fraction=0.1)
+    limit = 0.1 * 1e-4
+    increment_for = counted(lambda cycles: (
+        np.array([limit * (cycles / 2000.0 if cycles <= 1000 else 2.0)]), cycles))
+    cycles, increment, evaluated_at = extrapolate_block(settings, increment_for, 1e-4, 400000)
+    assert increment[0] <= limit and cycles == evaluated_at <= 1000
+    assert cycles >= 500
+    assert increment_for.calls <= MAX_TRIALS
 
 
 def test_a_block_whose_increment_never_gets_small_enough_keeps_its_own_increment():
