@@ -84,13 +84,12 @@ def block_wear(cycle: CycleSliding, sliding: SlidingState, extension, cycles: in
     Why: the contact's response to the wear is stiff (a bore ripple of wavelength lambda
     flattens at a rate k s pi E* / lambda per cycle, time constants of a few to tens of
     cycles), so explicit extrapolation makes node-scale ripples grow once A_j exceeds a few
-    tens of cycles. The smoothing belongs inside J: the
-    bore changes by the smoothed increment, and S alone is far stiffer than G S (the Gaussian
-    removes the short wavelengths); a step that solved with S and smoothed afterwards damped
-    modes that the smoothed wear does not have and lay 13 % below small explicit steps at A_j
-    = 40 cycles. Exact for a linear rate, the step's error is the linearisation's (the active
-    set and S held over the step), bounded by the depth increment
-    (:mod:`fewear.wear.extrapolation`).
+    tens of cycles. The smoothing belongs inside J: the bore changes by the smoothed increment,
+    and S alone is far stiffer than G S (the Gaussian removes the short wavelengths); a step
+    that solved with S and smoothed afterwards damped modes that the smoothed wear does not have
+    and lay 13 % below small explicit steps at A_j = 40 cycles. Exact for a linear rate, the
+    step's error is the linearisation's (the active set and S held over the step), bounded by
+    the depth increment (:mod:`fewear.wear.extrapolation`).
     """
     if cycles < 1:
         raise FewearInputError(
@@ -111,32 +110,32 @@ def block_wear(cycle: CycleSliding, sliding: SlidingState, extension, cycles: in
     if cycle.depth_sensitivity is not None:
         # S has nonzero columns at the nodes in contact only: G m S is built on those
         coupled = np.flatnonzero(np.any(cycle.depth_sensitivity != 0.0, axis=0))
-        rate_jacobian = np.zeros_like(cycle.depth_sensitivity)
-        rate_jacobian[:, coupled] = smoothing_matrix(explicit.size, smoothing_width_rad) @ (
+        rate_jacobian = smoothing_matrix(explicit.size, smoothing_width_rad) @ (
             mean_multiplier[:, None] * cycle.depth_sensitivity[:, coupled])
-        increment = exponential_euler_increment(cycles * rate_jacobian, increment)
+        increment = exponential_euler_increment(cycles * rate_jacobian, coupled, increment)
     # the FFT convolution leaves rounding noise (~1e-21 m) where nothing wears: clip it
     return np.maximum(increment, 0.0), after
 
 
-def exponential_euler_increment(step_jacobian: np.ndarray, explicit: np.ndarray) -> np.ndarray:
-    """phi_1(M) c, phi_1(z) = (e^z - 1) / z, for M = ``step_jacobian`` (A J) and c =
-    ``explicit`` (A times the rate at the start): the exact increment over the step of the
-    linear ODE dh/dN = rate + J (h - h_0).
+def exponential_euler_increment(step_jacobian_columns: np.ndarray, coupled: np.ndarray,
+                                explicit: np.ndarray) -> np.ndarray:
+    """phi_1(M) c, phi_1(z) = (e^z - 1) / z, for M = A J and c = ``explicit`` (A times the rate
+    at the start): the exact increment over the step of the linear ODE dh/dN = rate + J (h - h_0).
+    M is given by its nonzero columns ``step_jacobian_columns`` (n, |U|), those of the nodes in
+    contact U = ``coupled``.
 
-    Only the nodes in contact U (the nonzero columns of M) feed back; the others follow them:
-    h_U = phi_1(M_UU) c_U and h_R = c_R + M_RU phi_2(M_UU) c_U, both read from the exponential
-    of [[M_UU, c_U, 0], [0, 0, 1], [0, 0, 0]] (Higham, Functions of Matrices (2008), eq. 10.41
-    and its extension to phi_2; Al-Mohy & Higham, SIAM J. Sci. Comput. 33 (2011) 488): a matrix
-    of |U| + 2 rows, not of all bore nodes."""
-    coupled = np.flatnonzero(np.any(step_jacobian != 0.0, axis=0))
+    Only the nodes in contact feed back; the others follow them: h_U = phi_1(M_UU) c_U and
+    h_R = c_R + M_RU phi_2(M_UU) c_U, both read from the exponential of [[M_UU, c_U, 0], [0, 0,
+    1], [0, 0, 0]] (Higham, Functions of Matrices (2008), eq. 10.41 and its extension to phi_2;
+    Al-Mohy & Higham, SIAM J. Sci. Comput. 33 (2011) 488): a matrix of |U| + 2 rows, not of all
+    bore nodes."""
     m = coupled.size
     bordered = np.zeros((m + 2, m + 2))
-    bordered[:m, :m] = step_jacobian[np.ix_(coupled, coupled)]
+    bordered[:m, :m] = step_jacobian_columns[coupled]
     bordered[:m, m] = explicit[coupled]
     bordered[m, m + 1] = 1.0
     exponential = expm(bordered)
-    increment = explicit + step_jacobian[:, coupled] @ exponential[:m, m + 1]
+    increment = explicit + step_jacobian_columns @ exponential[:m, m + 1]
     increment[coupled] = exponential[:m, m]
     return increment
 

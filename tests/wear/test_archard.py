@@ -174,5 +174,7 @@ def test_exponential_step_on_the_nodes_in_contact_equals_the_full_exponential():
     explicit = rng.normal(size=n)
     bordered = np.zeros((n + 1, n + 1))
     bordered[:n, :n], bordered[:n, n] = step_jacobian, explicit
-    np.testing.assert_allclose(exponential_euler_increment(step_jacobian, explicit),
-                               expm(bordered)[:n, n], rtol=1e-12, atol=1e-12)
+    coupled = np.flatnonzero(np.any(step_jacobian != 0.0, axis=0))
+    np.testing.assert_allclose(
+        exponential_euler_increment(step_jacobian[:, coupled], coupled, explicit),
+        expm(bordered)[:n, n], rtol=1e-12, atol=1e-12)
