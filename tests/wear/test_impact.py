@@ -135,8 +135,11 @@ def test_impact_impulse_is_the_momentum_the_impact_reverses():
                            np.column_stack([force, zeros]), zeros, mode)
     steps = load_steps(history, 12, law)
     assert steps.impact_impulse_N_s.sum() == pytest.approx(expected, rel=1e-5)
-    np.testing.assert_array_equal(steps.impact_impulse_N_s[:4], 0.0)
-    np.testing.assert_array_equal(steps.impact_impulse_N_s[9:], 0.0)  # the contact episode
+    # the fourth step's edge meets the impact's onset to the rounding of the edges' times (on
+    # some CPUs 4e-22 N s of the impulse falls before it)
+    np.testing.assert_allclose(steps.impact_impulse_N_s[:4], 0.0, atol=1e-15 * expected)
+    np.testing.assert_allclose(steps.impact_impulse_N_s[9:], 0.0,  # the contact episode
+                               atol=1e-15 * expected)
 
 
 CLEARANCE_M = 2e-4
