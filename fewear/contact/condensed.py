@@ -27,7 +27,11 @@ g' on the active set A and the pin update dc:
     g'_A = f_A + W M (G_AA g'_A - U_A - dc),    sum_A g'_A = F / L,
 
 W M the 2x2 blocks w_q dT/dd. This is the full path's Newton step written on the bore (its
-displacement update is the elastic response to the linearised contact forces), with the
+displacement update is the elastic response to the linearised contact forces), taken on one
+unknown per node: the blocks' terms for the normal's turn as a node slides along the pin are
+1e-7 of the penalty's and are kept for the pin's motion only
+(:func:`fewear.contact.condensed_newton.newton_step`), which halves the step's dense solve at
+the price of a linear rate where the full blocks converge quadratically. With the
 potential Pi = 1/2 g.G g + sum w k/2 <-g>^2 - F/L . c for the line search. Unlike the full
 path, this one can turn its state with the load for a warm start (g rolled by whole elements
 along the angle-sorted bore nodes, U = G g), so a load step starts from the previous solution
@@ -37,7 +41,7 @@ pocket's flank), else it starts as the full path does. Both paths converge to
 the same solution; the tests and the benchmark check nodal pressures and pin centre to 1e-6
 (measured: ~2e-7 and below, on 200 load steps of a crank cycle).
 Per step this costs O(n |A|) per iteration for the update of U and a dense solve of size
-2|A| + 2, |A| the nodes in contact. The arithmetic on these small arrays and the whole coupled
+|A| + 2, |A| the nodes in contact. The arithmetic on these small arrays and the whole coupled
 Newton iteration on them are compiled (numba, :mod:`fewear.contact.condensed_newton`, with the
 shared kernels of :mod:`fewear.contact.newton`), in NumPy's order of operations (sums
 pairwise, dot products by BLAS), so that it gives the NumPy formulas' results to the bit.

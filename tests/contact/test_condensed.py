@@ -67,7 +67,8 @@ def crank_cycle(steps):
 def test_a_crank_cycle_of_loads_as_the_full_solve_in_a_handful_of_iterations():
     """60 warm-started load steps, light loads and friction switching included: every step as
     the full solve to 1e-6; the active-set Newton needs a handful of iterations (measured on
-    this mesh: mean 4.2, max 8)."""
+    this mesh: mean 4.9, max 10; with the full 2x2 Jacobian blocks, 4.2 and 8 at twice the
+    cost per iteration; without the sliding term for the pin, 8.0 and 13)."""
     from fewear.contact.condensed import CondensedBushingContact
     from fewear.contact.solver import BushingContactSolver
 
@@ -78,7 +79,7 @@ def test_a_crank_cycle_of_loads_as_the_full_solve_in_a_handful_of_iterations():
         result = fast.solve(force, rotation, friction)
         assert_same(full.solve(force, rotation, friction), result)
         iterations.append(result.newton_iterations)
-    assert np.mean(iterations) < 5.0 and max(iterations) <= 10
+    assert np.mean(iterations) < 5.5 and max(iterations) <= 12
 
 
 def test_zero_force(paths):
