@@ -31,14 +31,14 @@ class LoadSteps:
     """The load steps of the recorded cycles (bushing frame).
 
     ``force_N`` (n, 2): joint force ON the pin pushing it into the bore (minus the bushing's
-    reaction on the pin), the mean over each step; ``rotation_rad`` (n,): rotation of the pin
-    relative to the bushing over the step; ``duration_s``: the length of one step;
-    ``hysteresis_work_J`` (n,): the work W_i the contact law's hysteresis dissipates over the step
-    (:func:`fewear.wear.impact.hysteresis_work_J`); ``impact_impulse_N_s`` (n,): the normal
-    impulse J_i of the impacts within the step (:func:`fewear.wear.impact.impact_impulse_N_s`,
-    those above the impact law's force threshold); ``impact_speed_power`` (n,): the sum S_i of
-    v^n over the impacts that begin within the step
-    (:func:`fewear.wear.impact.impact_speed_power`).
+    reaction on the pin), over each step its slip-weighted mean (:func:`load_steps`);
+    ``rotation_rad`` (n,): rotation of the pin relative to the bushing over the step;
+    ``duration_s``: the length of one step; ``hysteresis_work_J`` (n,): the work W_i the contact
+    law's hysteresis dissipates over the step (:func:`fewear.wear.impact.hysteresis_work_J`);
+    ``impact_impulse_N_s`` (n,): the normal impulse J_i of the impacts within the step
+    (:func:`fewear.wear.impact.impact_impulse_N_s`, those above the impact law's force
+    threshold); ``impact_speed_power`` (n,): the sum S_i of v^n over the impacts that begin
+    within the step (:func:`fewear.wear.impact.impact_speed_power`).
     """
 
     time_s: np.ndarray
@@ -75,12 +75,20 @@ def load_steps(history: JointHistory, n_steps: int, law=None,
                impact: ImpactWearLaw = NO_IMPACT_WEAR) -> LoadSteps:
     """Cut the recorded history into ``n_steps`` equal steps (stage 2).
 
-    The force of a step is its mean over the step, the impulse over the step's length (the seed
-    samples it at one instant: an impact peak lasting microseconds is then hit or missed by the
-    sample, and the maximum depth after 10,000 cycles moved by 20 % between n = 200 and 400).
-    Archard's worn volume of a step, k |F| s, is linear in the force, so the mean keeps it for a
-    steady slip rate whatever n. The relative rotation is the integral of ``rel_omega_rad_s``
-    over the step, the hysteresis work W_i that of the dissipated power of ``law`` (the
+    The force of a step is the one that drives Archard's wear over it: of magnitude the mean of
+    |F| weighted by the sliding speed |omega|, int |F| |omega| dt / int |omega| dt, along
+    int F |omega| dt, so that |F_i| |rotation_i| is the step's int |F| |omega| dt whatever n
+    (the load-slip product Archard's worn volume k R sum |F_i| |rotation_i| grows with; with
+    no reversal of the rotation inside the step, exactly). A step without relative rotation
+    keeps the mean force, its impulse over its length. The seed samples the force at one
+    instant: an impact peak lasting microseconds is then hit or missed (the maximum depth after
+    10,000 cycles moved by 20 % between n = 200 and 400). The plain mean is no better: where
+    the force turns within a step (an impact, the flexible rod's vibration) the mean vector is
+    shorter than the mean magnitude, and the slip is not steady; on a late block's history the
+    load-slip product of n = 200 plain means lay 8 % below (rigid) and 5 % above (flexible) the
+    history's, converging as slowly as 1/n. The relative rotation is the integral of
+    ``rel_omega_rad_s`` over the step, the hysteresis work W_i that of the dissipated power of
+    ``law`` (the
     clearance joint's :class:`fewear.mbd.contact.ContactLaw`; None: no work and no impacts, as
     for the ideal joint) and the impact impulse J_i that of F_n over the impacts (those above
     ``impact``'s force threshold). All four integrals are trapezoidal on the history,
@@ -91,11 +99,22 @@ def load_steps(history: JointHistory, n_steps: int, law=None,
     edges = np.linspace(t[0], t[-1], n_steps + 1)
     middles = 0.5 * (edges[1:] + edges[:-1])
     duration = float(edges[1] - edges[0])
-    impulse = cumulative_trapezoid(-history.reaction_force_N, t, axis=0, initial=0.0)  # ON pin
-    force = np.diff(np.column_stack([np.interp(edges, t, impulse[:, i]) for i in range(2)]),
-                    axis=0) / duration
-    rotation = np.diff(np.interp(edges, t, cumulative_trapezoid(history.rel_omega_rad_s, t,
-                                                                initial=0.0)))
+
+    def over_steps(values: np.ndarray) -> np.ndarray:
+        """The integral of ``values`` (samples of the history) over each step."""
+        return np.diff(np.interp(edges, t, cumulative_trapezoid(values, t, initial=0.0)))
+
+    on_pin = -history.reaction_force_N
+    speed = np.abs(history.rel_omega_rad_s)
+    force = np.column_stack([over_steps(on_pin[:, i]) for i in range(2)]) / duration
+    sliding = over_steps(speed)
+    along = np.column_stack([over_steps(on_pin[:, i] * speed) for i in range(2)])
+    length = np.hypot(along[:, 0], along[:, 1])
+    slides = (sliding > 0.0) & (length > 0.0)
+    force[slides] = (along[slides] / length[slides, None]
+                     * (over_steps(np.hypot(on_pin[:, 0], on_pin[:, 1]) * speed)[slides]
+                        / sliding[slides])[:, None])
+    rotation = over_steps(history.rel_omega_rad_s)
     work = impulse = speed_power = np.zeros(n_steps)
     if law is not None:
         work = np.diff(np.interp(
