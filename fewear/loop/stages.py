@@ -100,9 +100,13 @@ def load_steps(history: JointHistory, n_steps: int, law=None,
     middles = 0.5 * (edges[1:] + edges[:-1])
     duration = float(edges[1] - edges[0])
 
+    def gained(cumulative: np.ndarray) -> np.ndarray:
+        """What a cumulative quantity of the history gains over each step."""
+        return np.diff(np.interp(edges, t, cumulative))
+
     def over_steps(values: np.ndarray) -> np.ndarray:
         """The integral of ``values`` (samples of the history) over each step."""
-        return np.diff(np.interp(edges, t, cumulative_trapezoid(values, t, initial=0.0)))
+        return gained(cumulative_trapezoid(values, t, initial=0.0))
 
     on_pin = -history.reaction_force_N
     speed = np.abs(history.rel_omega_rad_s)
@@ -111,16 +115,14 @@ def load_steps(history: JointHistory, n_steps: int, law=None,
     along = np.column_stack([over_steps(on_pin[:, i] * speed) for i in range(2)])
     length = np.hypot(along[:, 0], along[:, 1])
     slides = (sliding > 0.0) & (length > 0.0)
-    force[slides] = (along[slides] / length[slides, None]
-                     * (over_steps(np.hypot(on_pin[:, 0], on_pin[:, 1]) * speed)[slides]
-                        / sliding[slides])[:, None])
+    size = over_steps(np.hypot(on_pin[:, 0], on_pin[:, 1]) * speed)[slides] / sliding[slides]
+    force[slides] = along[slides] / length[slides, None] * size[:, None]
     rotation = over_steps(history.rel_omega_rad_s)
     work = impulse = speed_power = np.zeros(n_steps)
     if law is not None:
-        work = np.diff(np.interp(
-            edges, t, hysteresis_work_J(law, history.penetration_m, history.normal_force_N)))
-        impulse = np.diff(np.interp(edges, t, impact_impulse_N_s(
-            t, history.normal_force_N, history.mode, impact.impulse_threshold_N)))
+        work = gained(hysteresis_work_J(law, history.penetration_m, history.normal_force_N))
+        impulse = gained(impact_impulse_N_s(t, history.normal_force_N, history.mode,
+                                            impact.impulse_threshold_N))
         onsets = impact_speed_power(t, history.eccentricity_m, history.mode,
                                     impact.speed_exponent)
         step_of = np.minimum(np.searchsorted(edges, t, side="right") - 1, n_steps - 1)
