@@ -257,3 +257,29 @@ def clearance_at(angle_rad, cubic, size, theta_rad):
     x = theta - angle[k]
     return (((c3 * x + c2) * x + c1) * x + c0, (3.0 * c3 * x + 2.0 * c2) * x + c1,
             6.0 * c3 * x + 2.0 * c2)
+
+
+@compiled
+def pin_reach_m(direction_rad, point_angle_rad, point_radius_m, pin_radius_m):
+    """How far the centre of a rigid pin of radius R_p can move from the bushing centre in each
+    direction u(``direction_rad``) before the pin touches one of the bore points q_k (polar:
+    ``point_angle_rad``, ``point_radius_m``): the smallest s_k = q_k.u - sqrt((q_k.u)^2 - |q_k|^2
+    + R_p^2) over the points the pin reaches from inside (real root, s_k >= 0; inf if none).
+
+    A circular bore gives R_b - R_p in every direction of a point; a worn lobe that conforms to
+    the pin, c0 + h; a groove narrower than the pin is bridged (the pin rests on its flanks).
+    Compiled: the wear loop samples thousands of directions against thousands of points per
+    block (:meth:`fewear.wear.state.WearState.clearance_profile`)."""
+    cos_q, sin_q = np.cos(point_angle_rad), np.sin(point_angle_rad)
+    reach = np.full(direction_rad.size, np.inf)
+    for j in range(direction_rad.size):
+        u_x, u_y = math.cos(direction_rad[j]), math.sin(direction_rad[j])
+        for k in range(point_angle_rad.size):
+            radius = point_radius_m[k]
+            along = radius * (cos_q[k] * u_x + sin_q[k] * u_y)
+            discriminant = along * along - radius * radius + pin_radius_m * pin_radius_m
+            if discriminant >= 0.0:
+                s = along - math.sqrt(discriminant)
+                if 0.0 <= s < reach[j]:
+                    reach[j] = s
+    return reach
