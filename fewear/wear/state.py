@@ -25,6 +25,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.interpolate import CubicSpline
 
 from fewear.errors import FewearInputError
 from fewear.mesh.profile import periodic_linear
@@ -75,6 +76,16 @@ class WearState:
         """h(theta) at any angles (rad): periodic linear interpolation between the nodes."""
         return periodic_linear(self.angle_rad, self.depth_m)(angle_rad)
 
+    def smooth_depth_at(self, angle_rad) -> np.ndarray:
+        """h(theta) through the nodes by a periodic cubic spline (C2): the bore as the dynamics
+        see it. Linear interpolation kinks the bore at every node, and the contact normal,
+        which leans with the clearance's slope, would turn abruptly there (an undamped flexible
+        rod's steps collapsed on it after 5,000 cycles)."""
+        closed = np.append(self.angle_rad, self.angle_rad[0] + 2.0 * math.pi)
+        spline = CubicSpline(closed, np.append(self.depth_m, self.depth_m[0]),
+                             bc_type="periodic", extrapolate="periodic")
+        return spline(angle_rad)
+
     def bore_radius_m(self, inner_radius_m: float, angle_rad) -> np.ndarray:
         """r(theta) = R_b + h(theta), the worn bore's radius at ``angle_rad``."""
         return inner_radius_m + self.depth_at(angle_rad)
@@ -95,24 +106,23 @@ class WearState:
     def clearance_profile(self, inner_radius_m: float, pin_radius_m: float):
         """The clearance joint's c(theta) for the dynamics: the pin's reach
         (:func:`fewear.mbd.contact.pin_reach_m`) in ``CLEARANCE_DIRECTIONS`` equally spaced
-        directions against the worn bore r(theta) at the same angles (h linear between the
-        nodes), whatever the mesh. Where a pocket has worn narrower than the pin, c(theta) has
-        a cusp (the pin rests on both flanks); a spline through c at the nodes only rounded it
-        off by tens of microns on the default mesh (44 um after 300,000 cycles), and on that
-        rounded bottom the rigid rod's orbit chattered (50-90 impacts per cycle, 50 % more
-        wear) where on finer meshes it did not: the bore mesh decided the rigid rod's wear
-        after 100,000 cycles. Rounded to ``CLEARANCE_QUANTUM_M``: the impact dynamics with
-        step-size control is discontinuous in its input (an accepted or rejected step), so
-        wear depths that differ in the last bits (the FE solve's rounding differs between
-        process counts, by about 1e-14 m on the tests' case) would otherwise send serial and
-        ``mpirun`` runs along different step sequences. A value that differs by d falls on
-        the other side of a rounding boundary with probability d / quantum: 1e-4 per direction
-        at 0.1 nm (with 2,880 directions, 1 pm let a serial and an ``mpirun`` run part in the
-        tests' first block)."""
+        directions against the worn bore R_b + h(theta) at the same angles (h through the nodes
+        by :meth:`smooth_depth_at`), whatever the mesh. Where a pocket has worn narrower than the
+        pin, c(theta) has a cusp (the pin rests on both flanks); a spline through c at the nodes
+        only rounded it off by tens of microns on the default mesh (44 um after 300,000 cycles),
+        and on that rounded bottom the rigid rod's orbit chattered (50-90 impacts per cycle, 50 %
+        more wear) where on finer meshes it did not: the bore mesh decided the rigid rod's wear
+        after 100,000 cycles. Rounded to ``CLEARANCE_QUANTUM_M``: the impact dynamics with step-
+        size control is discontinuous in its input (an accepted or rejected step), so wear depths
+        that differ in the last bits (the FE solve's rounding differs between process counts, by
+        about 1e-14 m on the tests' case) would otherwise send serial and ``mpirun`` runs along
+        different step sequences. A value that differs by d falls on the other side of a rounding
+        boundary with probability d / quantum: 1e-4 per direction at 0.1 nm (with 2,880
+        directions, 1 pm let a serial and an ``mpirun`` run part in the tests' first block)."""
         from fewear.mbd.contact import ClearanceProfile, pin_reach_m
 
         angles = 2.0 * math.pi * np.arange(CLEARANCE_DIRECTIONS) / CLEARANCE_DIRECTIONS
-        clearance = pin_reach_m(angles, angles, self.bore_radius_m(inner_radius_m, angles),
+        clearance = pin_reach_m(angles, angles, inner_radius_m + self.smooth_depth_at(angles),
                                 pin_radius_m)
         return ClearanceProfile(angles,
                                 np.round(clearance / CLEARANCE_QUANTUM_M) * CLEARANCE_QUANTUM_M)
