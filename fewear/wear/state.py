@@ -112,13 +112,14 @@ class WearState:
         only rounded it off by tens of microns on the default mesh (44 um after 300,000 cycles),
         and on that rounded bottom the rigid rod's orbit chattered (50-90 impacts per cycle, 50 %
         more wear) where on finer meshes it did not: the bore mesh decided the rigid rod's wear
-        after 100,000 cycles. Rounded to ``CLEARANCE_QUANTUM_M``: the impact dynamics with step-
-        size control is discontinuous in its input (an accepted or rejected step), so wear depths
-        that differ in the last bits (the FE solve's rounding differs between process counts, by
-        about 1e-14 m on the tests' case) would otherwise send serial and ``mpirun`` runs along
-        different step sequences. A value that differs by d falls on the other side of a rounding
-        boundary with probability d / quantum: 1e-4 per direction at 0.1 nm (with 2,880
-        directions, 1 pm let a serial and an ``mpirun`` run part in the tests' first block)."""
+        after 100,000 cycles. Rounded to ``CLEARANCE_QUANTUM_M``: the impact dynamics with
+        step-size control is discontinuous in its input (an accepted or rejected step), so wear
+        depths that differ in the last bits (the FE solve's rounding differs between process
+        counts, by about 1e-14 m on the tests' case) would otherwise send serial and ``mpirun``
+        runs along different step sequences. A value that differs by d falls on the other side of
+        a rounding boundary with probability d / quantum: 1e-4 per direction at 0.1 nm (with
+        2,880 directions, 1 pm let a serial and an ``mpirun`` run part in the tests' first
+        block)."""
         from fewear.mbd.contact import ClearanceProfile, pin_reach_m
 
         angles = 2.0 * math.pi * np.arange(CLEARANCE_DIRECTIONS) / CLEARANCE_DIRECTIONS
