@@ -79,8 +79,8 @@ class WearState:
     def smooth_depth_at(self, angle_rad) -> np.ndarray:
         """h(theta) through the nodes by a periodic cubic spline (C2): the bore as the dynamics
         see it. Linear interpolation kinks the bore at every node, and the contact normal,
-        which leans with the clearance's slope, would turn abruptly there (an undamped flexible
-        rod's steps collapsed on it after 5,000 cycles)."""
+        which leans with the clearance's slope, would turn abruptly there (c'' 17 times a
+        conforming lobe's h'' at the nodes, against 2.5 times with the spline)."""
         closed = np.append(self.angle_rad, self.angle_rad[0] + 2.0 * math.pi)
         spline = CubicSpline(closed, np.append(self.depth_m, self.depth_m[0]),
                              bc_type="periodic", extrapolate="periodic")

@@ -67,7 +67,7 @@ def test_dynamics_clearance_is_smooth_across_the_nodes_of_a_conforming_lobe():
     """A wide lobe (0.1 mm, sd 30 deg, 288 nodes): the curvature c'' of the dynamics' clearance
     (which turns the contact normal) stays within 3 times the lobe's largest |h''| (2.5 times
     measured: the contact point moves along the lobe); h linear between the nodes kinks the
-    bore at every node and gives 17 times, which collapsed an undamped flexible rod's steps."""
+    bore at every node and gives 17 times (the contact normal would turn abruptly there)."""
     width = math.radians(30)
     state = worn(1e-4 * np.exp(-0.5 * ((ANGLES - math.pi) / width) ** 2))
     profile = state.clearance_profile(R_B, R_P)
