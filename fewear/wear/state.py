@@ -11,8 +11,9 @@ nodes at the same angles (k pi / n) exactly on r(theta), so the state carries ov
 From it:
 
 - the dynamics' clearance c(theta): how far the rigid pin's centre can move in the direction
-  theta before the pin touches r(theta); c0 + h(theta) where the worn bore conforms to the pin
-  (:meth:`WearState.clearance_profile`, a :class:`fewear.mbd.contact.ClearanceProfile`);
+  theta before the pin touches the bore; c0 + h(theta) where the worn bore conforms to the pin
+  (:meth:`WearState.clearance_profile`, a :class:`fewear.mbd.contact.ClearanceProfile`; the
+  dynamics see h through a periodic cubic spline of the nodes, :meth:`smooth_depth_at`);
 - the mesh's bore: every bore node at angle theta sits at radius r(theta) (:meth:`bore_radius_m`).
 
 Each node also carries its sliding history (accumulated sliding distance, time in sliding contact,
@@ -89,19 +90,6 @@ class WearState:
     def bore_radius_m(self, inner_radius_m: float, angle_rad) -> np.ndarray:
         """r(theta) = R_b + h(theta), the worn bore's radius at ``angle_rad``."""
         return inner_radius_m + self.depth_at(angle_rad)
-
-    def pin_clearance_m(self, inner_radius_m: float, pin_radius_m: float) -> np.ndarray:
-        """c(theta) at the node angles: how far the centre of the rigid pin (radius R_p) can move
-        from the bushing centre in the direction theta before the pin touches a bore node
-        (:func:`fewear.mbd.contact.pin_reach_m`). For a circular bore it is c0 = R_b - R_p (to
-        R_b R_p dtheta^2 / (8 c0) between nodes); for a worn bore that conforms to the pin it is
-        c0 + h(theta); a groove narrower than the pin's contact arc is bridged, as by the real
-        pin, so the dynamics never sees the single-node dents of a jagged profile.
-        """
-        from fewear.mbd.contact import pin_reach_m
-
-        return pin_reach_m(self.angle_rad, self.angle_rad, inner_radius_m + self.depth_m,
-                           pin_radius_m)
 
     def clearance_profile(self, inner_radius_m: float, pin_radius_m: float):
         """The clearance joint's c(theta) for the dynamics: the pin's reach

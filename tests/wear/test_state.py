@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from fewear.errors import FewearInputError
+from fewear.mbd.contact import pin_reach_m
 from fewear.wear.extrapolation import MAX_TRIALS, ExtrapolationSettings, extrapolate_block
 from fewear.wear.state import WearState
 
@@ -20,7 +21,7 @@ def worn(depth):
 def test_unworn_clearance_is_c0_to_the_chord_sag():
     """Bore nodes on the circle: c = R_b - R_p at the node directions, the pin touching a node
     exactly (the sag between nodes is R_b R_p dtheta^2 / (8 c0) ~ 0.03 um, not sampled here)."""
-    c = WearState.unworn(ANGLES).pin_clearance_m(R_B, R_P)
+    c = pin_reach_m(ANGLES, ANGLES, np.full(N, R_B), R_P)
     np.testing.assert_allclose(c, R_B - R_P, rtol=1e-12)
 
 
@@ -28,7 +29,7 @@ def test_clearance_fed_back_is_c0_plus_h_where_the_bore_conforms():
     """A wide worn lobe (30 deg, the pin's contact arc is narrower): c(theta) = c0 + h(theta)
     to well within a micron at the lobe's bottom, and never more than c0 + h anywhere."""
     depth = 1e-4 * np.exp(-0.5 * ((ANGLES - math.pi) / math.radians(30)) ** 2)
-    c = worn(depth).pin_clearance_m(R_B, R_P)
+    c = pin_reach_m(ANGLES, ANGLES, R_B + depth, R_P)
     bottom = np.argmax(depth)
     assert c[bottom] == pytest.approx(R_B - R_P + depth[bottom], abs=2e-7)
     assert np.all(c <= R_B - R_P + depth + 1e-12)
@@ -37,7 +38,7 @@ def test_clearance_fed_back_is_c0_plus_h_where_the_bore_conforms():
 def test_a_single_node_dent_is_bridged_by_the_pin():
     depth = np.zeros(N)
     depth[100] = 5e-5
-    c = worn(depth).pin_clearance_m(R_B, R_P)
+    c = pin_reach_m(ANGLES, ANGLES, R_B + depth, R_P)
     assert c[100] - (R_B - R_P) < 1e-6  # the pin cannot sink into a 0.2 mm wide dent
 
 
