@@ -37,6 +37,7 @@ def block_dynamics(rod: str, inputs: RunInputs, state: WearState, mechanism):
     :func:`fewear.mbd.slider_crank.simulate` result, its wall time in s); a mechanism the
     integrator cannot carry is a :class:`FewearInputError` (run ahead in a thread, its future
     raises it when its block comes)."""
+    from fewear.mbd.integrator import StepSizeCollapse
     from fewear.mbd.slider_crank import UNINTEGRABLE_HINT, simulate
 
     loop = inputs.loop
@@ -44,20 +45,29 @@ def block_dynamics(rod: str, inputs: RunInputs, state: WearState, mechanism):
                     recorded_cycles=loop.recorded_cycles_per_block,
                     settling_cycles=(inputs.dynamics.crank.settling_cycles
                                      if mechanism is None else loop.warm_settling_cycles))
+    geometry = inputs.contact.geometry
     joint = replace(inputs.dynamics.joint,
-                    profile=state.clearance_profile(inputs.contact.geometry.inner_radius_m,
-                                                    inputs.contact.geometry.pin_radius_m))
+                    profile=state.clearance_profile(geometry.inner_radius_m,
+                                                    geometry.pin_radius_m))
     start = time.perf_counter()
     try:
         result = simulate(replace(inputs.dynamics, crank=crank, joint=joint), start=mechanism)
-    except RuntimeError as exc:  # the integrator's step size collapsed
+    except StepSizeCollapse as exc:
+        clearance_m = geometry.inner_radius_m - geometry.pin_radius_m
+        if any(delta > clearance_m for delta, _, _ in exc.joints):
+            why = (f"the pin was pushed deeper into the bore than the joint's radial clearance "
+                   f"({clearance_m * 1e3:g} mm): the mechanism jammed it into its worn pocket, "
+                   "beyond the small elastic deformation the contact law describes; the wear "
+                   "cannot be predicted past this bore")
+        else:
+            why = ("a smaller [integrator] min_step_s (1e-11 s carried the undamped rod through "
+                   "a block where its Newton iterates cycled across the friction law's kink), a "
+                   "larger gap_tolerance_m or a wider [wear_loop] wear_smoothing_width_deg may "
+                   "get past it" + ("" if state.blocks else f"; on the unworn clearance, "
+                                    f"{UNINTEGRABLE_HINT}"))
         raise FewearInputError(
             f"{rod} rod, block {state.blocks + 1} at {state.cycles:,} cycles: the dynamics "
-            f"on the worn clearance failed ({exc}): a smaller [integrator] min_step_s, a "
-            "larger gap_tolerance_m or a wider [wear_loop] wear_smoothing_width_deg may get "
-            "past it"
-            + ("" if state.blocks else f"; on the unworn clearance, {UNINTEGRABLE_HINT}")
-        ) from None
+            f"on the worn clearance failed ({exc}): {why}") from None
     return result, time.perf_counter() - start
 
 

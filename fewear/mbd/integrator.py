@@ -57,7 +57,7 @@ import numpy as np
 
 from fewear.errors import FewearInputError
 from fewear.jit import compiled
-from fewear.mbd.clearance import begin_step, end_step, step_error
+from fewear.mbd.clearance import begin_step, end_step, measure_rows, step_error
 from fewear.mbd.constraints import (
     add_constraint_hessian,
     constraint_values_and_jacobian,
@@ -69,6 +69,18 @@ RECORD_CHUNK = 4096  # recorded steps per call of the compiled loop
 # advance's status: reached t_end, the record buffer is full, the step fell below min_step_s,
 # the velocity projection met dependent constraint rows
 DONE, BUFFER_FULL, STEP_TOO_SMALL, SINGULAR_PROJECTION = 0, 1, 2, 3
+
+
+class StepSizeCollapse(RuntimeError):
+    """The step size fell below ``min_step_s`` at ``time_s``; ``joints``: each clearance joint's
+    state at the last accepted step, (penetration m, normal force N, contact direction rad in the
+    bushing frame) (empty without clearance joints). A penetration beyond the elastic range of
+    the contact law (comparable to the clearance itself) says the mechanism jammed its pin into
+    the bore, not that a step was too stiff to take."""
+
+    def __init__(self, message: str, time_s: float, joints: tuple):
+        super().__init__(message)
+        self.time_s, self.joints = time_s, joints
 
 
 @dataclass(frozen=True)
@@ -229,9 +241,7 @@ class GeneralizedAlpha:
         self.stats.wall_time_s += time.perf_counter() - start
         self._update_stats(h)
         if status == STEP_TOO_SMALL:
-            raise RuntimeError(
-                f"generalized-alpha: step size fell below min_step_s = {st.min_step_s:g} s at "
-                f"t = {t:.6g} s")
+            raise _collapse(sys_.data, Y, t, st.min_step_s)
         if status == SINGULAR_PROJECTION:
             raise np.linalg.LinAlgError("velocity projection: Phi_q has dependent rows")
         final = State(t, Y[0].copy(), Y[1].copy(), Y[2].copy(), Y[3].copy(), lam.copy())
@@ -248,6 +258,21 @@ class GeneralizedAlpha:
             factorizations)
         self.stats.smallest_step_s = float(smallest)
         self.stats.extra["next_step_s"] = next_step_s
+
+
+def _collapse(data, Y, t: float, min_step_s: float) -> StepSizeCollapse:
+    """The :class:`StepSizeCollapse` at ``t``, with the clearance joints' state in ``Y`` (the
+    last accepted step) in its message."""
+    joints = []
+    for j in range(data.joints.memory.shape[0]):
+        row = measure_rows(data.joints, j, Y[0][None], Y[1][None], data.joints.memory[None])[0]
+        joints.append((float(row[2]), float(row[3]), math.atan2(row[1], row[0])))
+    where = "".join(
+        f"; clearance joint {j}: penetration {delta * 1e6:.3g} um at "
+        f"{math.degrees(direction) % 360.0:.1f} deg, normal force {force:.3g} N"
+        for j, (delta, force, direction) in enumerate(joints))
+    return StepSizeCollapse(f"generalized-alpha: step size fell below min_step_s = "
+                            f"{min_step_s:g} s at t = {t:.6g} s{where}", t, tuple(joints))
 
 
 # -- compiled -------------------------------------------------------------------------------------

@@ -1,6 +1,7 @@
 """The clearance joint in motion: restitution of one impact, and the limit of zero clearance."""
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -122,3 +123,56 @@ def test_the_flexible_rod_runs_through_a_worn_bore_with_pockets():
                                              settling_cycles=1, clearance_profile=profile)
     assert summary.rejected_steps < 0.5 * summary.steps
     assert history.normal_force_N.max() > 0.0
+
+
+def _undamped_rod_on_the_pocket_it_wore(**integrator):
+    """One settling and one recorded cycle of the undamped flexible rod (``rod_damping_s = 0``)
+    as the wear loop's fourth block ran them: on the bore the loop had worn after 5,374 cycles,
+    from the mechanism's state then (both stored from that run,
+    ``data/undamped_rod_after_5374_cycles.npz``). Returns (simulate's result, the clearance
+    profile, the dynamics inputs)."""
+    from dataclasses import replace
+
+    from fewear.mbd.slider_crank import MechanismState, dynamics_inputs_from_config, simulate
+    from fewear.wear.state import WearState
+
+    stored = np.load(Path(__file__).parent / "data" / "undamped_rod_after_5374_cycles.npz")
+    config = load_config(None, SECTIONS)
+    config["mechanism"].update(rod_density_kg_m3=2660.0, rod_damping_s=0.0)
+    config["integrator"].update(integrator)
+    inputs = dynamics_inputs_from_config(config)
+    worn = replace(WearState.unworn(stored["angle_rad"]), depth_m=stored["depth_m"])
+    profile = worn.clearance_profile(config["bushing"]["inner_radius_m"],
+                                     config["pin"]["radius_m"])
+    crank = replace(inputs.crank, rod="flexible", joint="clearance", settling_cycles=1,
+                    recorded_cycles=1)
+    start = MechanismState(float(stored["time_s"]), stored["q"], stored["qd"])
+    inputs = replace(inputs, crank=crank, joint=replace(inputs.joint, profile=profile))
+    return (lambda: simulate(inputs, start=start)), profile, inputs
+
+
+def test_a_collapsed_step_size_reports_where_the_pin_was():
+    """With min_step_s = 1e-9 s the undamped rod's steps collapse at t = 0.3924 s, where its pin
+    comes to rest in its slip under 8 kN in the worn pocket (the Newton iterates cycle across
+    the friction law's kink on the rod's end node). The error carries the joint's state: the
+    pin at the pocket's bottom (the maximum of c(theta), found here from the profile itself),
+    pressed in elastically (a penetration > 0 and far below the clearance: no jam)."""
+    from fewear.mbd.integrator import StepSizeCollapse
+
+    run, profile, _ = _undamped_rod_on_the_pocket_it_wore(min_step_s=1e-9)
+    with pytest.raises(StepSizeCollapse, match="clearance joint 0: penetration") as caught:
+        run()
+    (penetration_m, force_N, direction_rad), = caught.value.joints
+    bottom = profile.angle_rad[np.argmax(profile.clearance_m)]
+    assert abs(math.remainder(direction_rad - bottom, 2.0 * math.pi)) < math.radians(0.5)
+    assert 0.0 < penetration_m < 0.1 * CLEARANCE_M and force_N > 1e3
+
+
+def test_the_undamped_flexible_rod_runs_through_the_pocket_it_wore_with_shorter_steps():
+    """[integrator] min_step_s = 1e-11 s, the remedy the wear loop's error names, carries the
+    block of the test above (its smallest step measured 0.8e-9 s)."""
+    run, _, inputs = _undamped_rod_on_the_pocket_it_wore(min_step_s=1e-11)
+    history, summary, _ = run()
+    assert history.time_s[-1] - history.time_s[0] == pytest.approx(inputs.crank.period_s)
+    assert summary.smallest_step_s < 1e-9  # the block needed it
+    assert history.normal_force_N.max() > 1e3  # the pocket under load, as in the loop's block
