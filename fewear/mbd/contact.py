@@ -195,6 +195,17 @@ def friction_factor(v0_m_s, v1_m_s, slip_m_s):
     return sign * (speed - v0_m_s) / width, 1.0 / width
 
 
+def periodic_cubic(angle_rad: np.ndarray, values: np.ndarray) -> CubicSpline:
+    """The 2 pi periodic cubic spline (C2) through the table ``(angle_rad, values)`` (angles
+    increasing within [0, 2 pi), unchecked), closed by the first point repeated at its angle +
+    2 pi; it extrapolates periodically. The clearance and the worn bore as the dynamics see them:
+    the contact normal turns continuously, where linear interpolation would kink it at every
+    tabulated angle."""
+    closed = np.append(angle_rad, angle_rad[0] + 2.0 * math.pi)
+    return CubicSpline(closed, np.append(values, values[0]), bc_type="periodic",
+                       extrapolate="periodic")
+
+
 @dataclass(frozen=True)
 class ClearanceProfile:
     """The radial clearance as a function of the contact direction in the bushing frame.
@@ -234,9 +245,7 @@ class ClearanceProfile:
         object.__setattr__(self, "clearance_m", clearance)
         cubic = np.array([[0.0, 0.0, 0.0, clearance[0]]])  # (c3, c2, c1, c0) per piece
         if angle.size > 1:
-            spline = CubicSpline(np.append(angle, angle[0] + 2.0 * math.pi),
-                                 np.append(clearance, clearance[0]), bc_type="periodic")
-            cubic = np.ascontiguousarray(spline.c.T)
+            cubic = np.ascontiguousarray(periodic_cubic(angle, clearance).c.T)
         object.__setattr__(self, "cubic", cubic)
 
     def __call__(self, theta_rad: float) -> tuple[float, float, float]:

@@ -26,9 +26,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import CubicSpline
 
 from fewear.errors import FewearInputError
+from fewear.mbd.contact import periodic_cubic
 from fewear.mesh.profile import periodic_linear
 from fewear.wear.extensions import SlidingState
 
@@ -82,10 +82,7 @@ class WearState:
         see it. Linear interpolation kinks the bore at every node, and the contact normal,
         which leans with the clearance's slope, would turn abruptly there (c'' 17 times a
         conforming lobe's h'' at the nodes, against 2.5 times with the spline)."""
-        closed = np.append(self.angle_rad, self.angle_rad[0] + 2.0 * math.pi)
-        spline = CubicSpline(closed, np.append(self.depth_m, self.depth_m[0]),
-                             bc_type="periodic", extrapolate="periodic")
-        return spline(angle_rad)
+        return periodic_cubic(self.angle_rad, self.depth_m)(angle_rad)
 
     def bore_radius_m(self, inner_radius_m: float, angle_rad) -> np.ndarray:
         """r(theta) = R_b + h(theta), the worn bore's radius at ``angle_rad``."""
