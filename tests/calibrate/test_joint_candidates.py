@@ -73,10 +73,11 @@ def test_halving_the_blocks_halves_the_extrapolation_limits():
     assert with_halved_blocks(fixed)["wear_loop"]["extrapolation_factor"] == 2500.0
 
 
-def _resolution(scatter_m, halved_blocks_m, doubled_recorded_m=0.0) -> dict:
+def _resolution(scatter_m, halved_blocks_m, doubled_recorded_m=0.0, spread_m=0.0) -> dict:
     """A resolution as :func:`fewear.diagnose.joint.diagnose.forward_resolution` gives it."""
     return {"instrument_scatter_m": scatter_m, "halved_blocks_rms_m": halved_blocks_m,
-            "doubled_recorded_cycles_rms_m": doubled_recorded_m}
+            "doubled_recorded_cycles_rms_m": doubled_recorded_m,
+            "start_angle_spread_rms_m": spread_m}
 
 
 def _fit(train_rms_m: float) -> Fit:
@@ -94,6 +95,9 @@ def test_none_with_a_large_misfit_names_the_model_setting_when_that_is_what_limi
     # ... but where recording twice the crank cycles moves the bore by 8 um, that is said
     sentence, = _unexplained(baseline, baseline, [], _resolution(0.5e-6, 0.2e-6, 8e-6), [])
     assert "smaller wear blocks" not in sentence and "more recorded cycles" in sentence
+    # ... and where runs started 1 and 2 deg later part by 8 um, that (the largest) is said
+    sentence, = _unexplained(baseline, baseline, [], _resolution(0.5e-6, 3e-6, 2e-6, 8e-6), [])
+    assert "crank starts 0, 1, 2 deg later" in sentence and "smaller wear blocks" not in sentence
     # within 3 x the scatter: nothing is unexplained
     assert _unexplained(_fit(1.2e-6), _fit(1.2e-6), [], _resolution(0.5e-6, 8e-6), []) == []
 

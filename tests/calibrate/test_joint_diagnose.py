@@ -132,6 +132,11 @@ def assert_no_cause_and_the_origin_found(summary, offset):
     assert 0.0 <= resolution["halved_blocks_rms_m"] < 0.1 * resolution["instrument_scatter_m"]
     assert 0.0 < resolution["doubled_recorded_cycles_rms_m"] < 0.5 * resolution[
         "instrument_scatter_m"]
+    # runs whose crank starts 1 and 2 deg later part by more than the scatter on this coarse
+    # model (measured 6.5e-7 m against 4.3e-7 m): the chaos of its impacting orbit, which its
+    # wear steps (f = 0.25, one per block) let the bore feel; reported, not yet used to judge
+    assert 0.5 * resolution["instrument_scatter_m"] < resolution["start_angle_spread_rms_m"] < (
+        5.0 * resolution["instrument_scatter_m"])
     # the load cell's trace is the believed model's own: its crank phase is found
     trace, = summary["residual_structure"]["traces"]
     assert trace["phase_deg"] == pytest.approx(FORCE_START_DEG, abs=1.0)

@@ -126,6 +126,7 @@ from fewear.diagnose.joint.forward import (
     cycle_on_worn_bore,
     model_config,
     simulate_wear,
+    simulate_wears,
     with_doubled_recorded_cycles,
     with_halved_blocks,
 )
@@ -301,7 +302,7 @@ def diagnose_joint(data: JointMeasurements, config: dict,
            and _to_try(rounds[-1].extended_config, settings, _named(rounds))[0]):
         rounds.append(_round(data, obs, rounds[-1].extended_config, settings, _named(rounds)))
     first, final = rounds[0], _final(rounds)
-    resolution = forward_resolution(config, first.base_run, obs, first.scatter_m)
+    resolution = forward_resolution(config, obs, first.scatter_m)
     return JointDiagnosis(
         data=data, settings=settings, observations=obs, rounds=tuple(rounds),
         residual_structure=cycle_structure(data, config, obs, first.baseline, first.base_run),
@@ -524,28 +525,53 @@ def cycle_structure(data: JointMeasurements, config: dict, obs: Observations, ba
             "sentences": structure.structure_sentences(by_count, crank, traces)}
 
 
-def forward_resolution(config: dict, base: WearHistory, obs: Observations,
+def forward_resolution(config: dict, obs: Observations,
                        scatter_m: float | None) -> dict[str, Any]:
     """What the measurements and the believed model can resolve: the instrument's scatter
     ``scatter_m`` (robust, from neighbouring profile points of the baseline's residuals:
     :func:`fewear.diagnose.joint.structure.scatter_estimate_m`) and the believed model's own
-    numerical noise: how far its worn bore moves when its wear blocks are halved and when twice
-    the crank cycles are recorded per block (RMS over the bore nodes at the measured cycle
-    counts; the loop's discretisation error and the sampling of an orbit that varies from cycle
-    to cycle, roughly). A cause that moves the bore by less than these cannot be told from the
-    model's own settings."""
+    noise, RMS over the bore nodes at the measured cycle counts: how far its worn bore moves
+    when its wear blocks are halved and when twice the crank cycles are recorded per block (the
+    loop's discretisation error and the sampling of an orbit that varies from cycle to cycle,
+    roughly), and how far apart the bores of runs lie whose crank starts
+    ``MEMBER_START_OFFSETS_DEG`` later (the steady cycle cannot depend on it: the spread of an
+    impacting orbit's chaos, which neither refinement alone separates from a discretisation
+    error; on the tests' coarse model 5.6 um after 4,000-20,000 cycles with its wear steps of
+    f = 0.25, 1.3 um with f = 0.015625 and 2 steps per block). A cause that moves the bore by
+    less than these cannot be told from the model's own noise. The runs, all to the last
+    measured count, are made side by side."""
     rod = config["wear_loop"]["rod_models"][0]
     believed = model_config(config, rod, int(obs.cycles.max()) + 1)
-    resolution = {"instrument_scatter_m": scatter_m}
-    for key, twin, label in (
-            ("halved_blocks_rms_m", with_halved_blocks, "blocks halved"),
-            ("doubled_recorded_cycles_rms_m", with_doubled_recorded_cycles,
-             "recorded cycles doubled")):
-        finer = simulate_wear(twin(believed), f"believed model, {label}")
-        moved = np.array([finer.nodal_depth_m(c) - base.nodal_depth_m(c)
-                          for c in np.unique(obs.cycles)])
-        resolution[key] = float(np.sqrt(np.mean(moved**2)))
-    return resolution
+    halved, doubled, *members = simulate_wears(
+        [(with_halved_blocks(believed), "believed model, blocks halved"),
+         (with_doubled_recorded_cycles(believed), "believed model, recorded cycles doubled"),
+         (believed, "believed model, to the last count")]
+        + [(_started_later(believed, offset), f"believed model, started {offset:g} deg later")
+           for offset in MEMBER_START_OFFSETS_DEG])
+    counts = np.unique(obs.cycles)
+
+    def bores(run: WearHistory) -> np.ndarray:
+        return run.nodal_depths_m(counts)
+
+    spread = np.array([bores(run) for run in members])
+    deviation = spread - spread.mean(axis=0)
+    return {"instrument_scatter_m": scatter_m,
+            "halved_blocks_rms_m": float(np.sqrt(np.mean((bores(halved) - spread[0])**2))),
+            "doubled_recorded_cycles_rms_m": float(
+                np.sqrt(np.mean((bores(doubled) - spread[0])**2))),
+            "start_angle_spread_rms_m": float(np.sqrt(
+                np.mean(deviation**2) * len(spread) / (len(spread) - 1)))}
+
+
+MEMBER_START_OFFSETS_DEG = (1.0, 2.0)
+"""Crank angles (deg) by which the runs that measure the believed model's spread start later."""
+
+
+def _started_later(config: dict, offset_deg: float) -> dict:
+    """``config`` with its crank starting ``offset_deg`` later."""
+    changed = copy.deepcopy(config)
+    changed["mechanism"]["initial_crank_angle_deg"] += offset_deg
+    return changed
 
 
 UNEXPLAINED_SCATTERS = 3.0
@@ -577,18 +603,29 @@ def _unexplained(baseline: Fit, final_fit: Fit, causes, resolution: dict,
     if misfit is None:
         return sentences
     misfit_m, sentence = misfit
-    blocks = resolution["halved_blocks_rms_m"]
-    recorded = resolution["doubled_recorded_cycles_rms_m"]
-    if misfit_m <= UNEXPLAINED_SCATTERS * max(blocks, recorded):
-        sentence += (
-            f"; the model's own block size moves its bore by {blocks:.2g} m (blocks "
-            "halved), so smaller wear blocks ([wear_loop] max_extrapolation_factor, "
-            "max_depth_increment_fraction) are needed to tell the causes apart"
-            if blocks >= recorded else
-            f"; the model's own sampling of the crank cycles moves its bore by {recorded:.2g} m "
-            "(twice the recorded cycles), so more recorded cycles ([wear_loop] "
-            "recorded_cycles_per_block) are needed to tell the causes apart")
+    noise = {"blocks": resolution["halved_blocks_rms_m"],
+             "recorded": resolution["doubled_recorded_cycles_rms_m"],
+             "spread": resolution.get("start_angle_spread_rms_m", 0.0)}
+    limit = max(noise, key=noise.get)
+    if misfit_m <= UNEXPLAINED_SCATTERS * noise[limit]:
+        sentence += "; " + LIMITS[limit].format(noise[limit])
     return sentences + [sentence]
+
+
+LIMITS = {
+    "blocks": ("the model's own block size moves its bore by {:.2g} m (blocks halved), so "
+               "smaller wear blocks ([wear_loop] max_extrapolation_factor, "
+               "max_depth_increment_fraction) are needed to tell the causes apart"),
+    "recorded": ("the model's own sampling of the crank cycles moves its bore by {:.2g} m (twice "
+                 "the recorded cycles), so more recorded cycles ([wear_loop] "
+                 "recorded_cycles_per_block) are needed to tell the causes apart"),
+    "spread": ("the model's own bore differs by {:.2g} m between runs whose crank starts "
+               + ", ".join(f"{offset:g}" for offset in (0.0, *MEMBER_START_OFFSETS_DEG))
+               + " deg later (its impacting orbit is chaotic), so smaller wear steps, the "
+               "dynamics renewed more often ([wear_loop] max_depth_increment_fraction, "
+               "wear_steps_per_block), are needed to tell the causes apart")}
+"""What limits the believed model's resolution, by the largest of its noise measures
+(:func:`forward_resolution`), in the sentence of a misfit it cannot resolve."""
 
 
 def _misfit_without_cause(baseline: Fit, scatter_m: float) -> tuple[float, str] | None:

@@ -107,8 +107,10 @@ def _resolution_line(resolution: dict) -> str:
             + "; halving the believed model's wear blocks moves its worn bore by "
             f"{resolution['halved_blocks_rms_m']:.2g} m RMS at the measured cycle counts, "
             "recording twice the crank cycles per block by "
-            f"{resolution['doubled_recorded_cycles_rms_m']:.2g} m (causes that move it less "
-            "cannot be told from the model's own settings).")
+            f"{resolution['doubled_recorded_cycles_rms_m']:.2g} m, and runs whose crank starts "
+            "up to 2 deg later part from each other by "
+            f"{resolution['start_angle_spread_rms_m']:.2g} m (causes that move it less cannot "
+            "be told from the model's own noise).")
 
 
 def report_markdown(s: dict) -> str:
