@@ -12,6 +12,13 @@ result (tests/calibrate/test_joint_independent.py holds the asserts).
 
 Run with ``pytest tests/benchmarks/test_bench_joint_independent.py -m benchmark -s``.
 
+``FEWEAR_BENCH_JOINT_WEAR_STEP=fine``: the truths and the believed model with the loop's wear
+steps of f = 0.015625, two per block, in place of the coarse model's f = 0.25, one per block
+(runs started 0-3 deg apart part by 1.3 against 5.6 um RMS after 4,000-20,000 cycles, at 3 times
+the cost; README, the joint diagnosis's resolution). Measured on 2026-11-27 (f3ca619's method,
+one process, 2 shared cores): friction index 0 (mu = 0.033, 'none' on the coarse model) named
+friction, gain 0.66, 212 s; index 1 (mu = 0.18) friction, gain 0.78, 303 s.
+
 Measured (2 seeds per cause, 2 shared cores, 34 min): 5 of 12 named. Wear coefficient 2/2 (gain
 0.92, 0.98), none 2/2 (no false positive), friction 1/2 (mu = 0.18 named, gain 0.44; mu = 0.033
 named 'none' although the believed model misses its profiles by 17 um RMS at the last count),
@@ -29,6 +36,20 @@ from tests.calibrate.independent_joint_generator import CAUSES, data_set_seed, w
 
 pytestmark = pytest.mark.benchmark
 SEEDS = int(os.environ.get("FEWEAR_BENCH_JOINT_INDEPENDENT_SEEDS", "3"))
+FINE = os.environ.get("FEWEAR_BENCH_JOINT_WEAR_STEP") == "fine"
+
+
+@pytest.fixture(autouse=True)
+def _wear_step(monkeypatch):
+    """The believed model (and so the truths) with the fine wear step when asked."""
+    if FINE:
+        import tests.calibrate.independent_joint_generator as generator
+
+        fine = generator.BELIEVED_TOML.replace(
+            "max_depth_increment_fraction = 0.25", "max_depth_increment_fraction = 0.015625"
+        ).replace("wear_steps_per_block = 1", "wear_steps_per_block = 2")
+        assert fine.count("0.015625") == 1 and "wear_steps_per_block = 2" in fine
+        monkeypatch.setattr(generator, "BELIEVED_TOML", fine)
 
 
 def _truth_text(params: dict) -> str:
