@@ -12,18 +12,14 @@ result (tests/calibrate/test_joint_independent.py holds the asserts).
 
 Run with ``pytest tests/benchmarks/test_bench_joint_independent.py -m benchmark -s``.
 
-``FEWEAR_BENCH_JOINT_WEAR_STEP=fine``: the truths and the believed model with the loop's wear
-steps of f = 0.015625, two per block, in place of the coarse model's f = 0.25, one per block
-(runs started 0-3 deg apart part by 1.3 against 5.6 um RMS after 4,000-20,000 cycles, at 3 times
-the cost; README, the joint diagnosis's resolution). Measured on 2026-11-27 (f3ca619's method,
-one process, 2 shared cores): friction index 0 (mu = 0.033, 'none' on the coarse model) named
-friction, gain 0.66, 212 s; index 1 (mu = 0.18) friction, gain 0.78, 303 s.
-
-Measured (2 seeds per cause, 2 shared cores, 34 min): 5 of 12 named. Wear coefficient 2/2 (gain
-0.92, 0.98), none 2/2 (no false positive), friction 1/2 (mu = 0.18 named, gain 0.44; mu = 0.033
-named 'none' although the believed model misses its profiles by 17 um RMS at the last count),
-flexible link 0/2 (wear_coefficient), impact wear 0/2 ('none' at 13 um RMS, wear_coefficient),
-running-in 0/2 (power-law running-in taken for a k level, gain 0.70 and 0.93).
+``FEWEAR_BENCH_JOINT_WEAR_STEP=F`` (e.g. 0.0078125): the truths and the believed model with the
+loop's wear steps bounded by f = F, two per block, in place of the coarse model's f = 0.25, one
+per block (on its mesh the wear step converges at f = 0.0078: README, the joint diagnosis's
+resolution). Measured on 2026-11-27 with F = 0.015625 (still 7 % deep; f3ca619's method, one
+process, 2 shared cores), index 0 of each cause: friction (mu = 0.033, 'none' on the coarse model)
+named friction, gain 0.66, 212 s; index 1 (mu = 0.18) friction, 0.78, 303 s; none: none, 162 s;
+flexible link (modulus x1.03, height x1.006) a k level, 0.42, 226 s; wear coefficient (k x0.66)
+wear coefficient, 0.80, 208 s.
 """
 
 import os
@@ -36,19 +32,20 @@ from tests.calibrate.independent_joint_generator import CAUSES, data_set_seed, w
 
 pytestmark = pytest.mark.benchmark
 SEEDS = int(os.environ.get("FEWEAR_BENCH_JOINT_INDEPENDENT_SEEDS", "3"))
-FINE = os.environ.get("FEWEAR_BENCH_JOINT_WEAR_STEP") == "fine"
+WEAR_STEP = os.environ.get("FEWEAR_BENCH_JOINT_WEAR_STEP")
 
 
 @pytest.fixture(autouse=True)
 def _wear_step(monkeypatch):
-    """The believed model (and so the truths) with the fine wear step when asked."""
-    if FINE:
+    """The believed model (and so the truths) with the wear step ``WEAR_STEP`` when asked."""
+    if WEAR_STEP:
         import tests.calibrate.independent_joint_generator as generator
 
         fine = generator.BELIEVED_TOML.replace(
-            "max_depth_increment_fraction = 0.25", "max_depth_increment_fraction = 0.015625"
+            "max_depth_increment_fraction = 0.25",
+            f"max_depth_increment_fraction = {float(WEAR_STEP)!r}"
         ).replace("wear_steps_per_block = 1", "wear_steps_per_block = 2")
-        assert fine.count("0.015625") == 1 and "wear_steps_per_block = 2" in fine
+        assert "wear_steps_per_block = 2" in fine and "= 0.25\n" not in fine
         monkeypatch.setattr(generator, "BELIEVED_TOML", fine)
 
 
