@@ -12,7 +12,7 @@ import numpy as np
 
 from fewear.diagnose.core import report
 from fewear.diagnose.joint.catalogue import CAUSES, NONE_MEANING
-from fewear.diagnose.joint.diagnose import CauseVerdict, JointDiagnosis
+from fewear.diagnose.joint.diagnose import MEMBER_START_OFFSETS_DEG, CauseVerdict, JointDiagnosis
 from fewear.diagnose.joint.figures import plot_joint_fits
 from fewear.diagnose.joint.fitting import Fit, Observations
 from fewear.io.config import default_config
@@ -108,7 +108,7 @@ def _resolution_line(resolution: dict) -> str:
             f"{resolution['halved_blocks_rms_m']:.2g} m RMS at the measured cycle counts, "
             "recording twice the crank cycles per block by "
             f"{resolution['doubled_recorded_cycles_rms_m']:.2g} m, and runs whose crank starts "
-            "up to 2 deg later part from each other by "
+            f"up to {max(MEMBER_START_OFFSETS_DEG):g} deg later part from each other by "
             f"{resolution['start_angle_spread_rms_m']:.2g} m (causes that move it less cannot "
             "be told from the model's own noise).")
 
