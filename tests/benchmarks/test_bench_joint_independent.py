@@ -19,7 +19,9 @@ resolution). Measured on 2026-11-27 with F = 0.015625 (still 7 % deep; f3ca619's
 process, 2 shared cores), index 0 of each cause: friction (mu = 0.033, 'none' on the coarse model)
 named friction, gain 0.66, 212 s; index 1 (mu = 0.18) friction, 0.78, 303 s; none: none, 162 s;
 flexible link (modulus x1.03, height x1.006) a k level, 0.42, 226 s; wear coefficient (k x0.66)
-wear coefficient, 0.80, 208 s.
+wear coefficient, 0.80, 208 s. With F = 0.0078125: friction index 0 friction, 0.91, 247 s; none:
+none, 231 s; flexible link index 0 a k level, 0.63, 338 s; index 1 (x1.12) flexible link, 0.72,
+344 s; impact wear index 0 a k level, 0.29, 310 s.
 """
 
 import os
