@@ -21,7 +21,7 @@ named friction, gain 0.66, 212 s; index 1 (mu = 0.18) friction, 0.78, 303 s; non
 flexible link (modulus x1.03, height x1.006) a k level, 0.42, 226 s; wear coefficient (k x0.66)
 wear coefficient, 0.80, 208 s. With F = 0.0078125: friction index 0 friction, 0.91, 247 s; none:
 none, 231 s; flexible link index 0 a k level, 0.63, 338 s; index 1 (x1.12) flexible link, 0.72,
-344 s; impact wear index 0 a k level, 0.29, 310 s.
+344 s; impact wear index 0 a k level, 0.29, 310 s; running-in index 0 friction, 0.88, 565 s.
 """
 
 import os
