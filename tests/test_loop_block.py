@@ -82,7 +82,7 @@ def test_a_collapsed_block_says_whether_the_pin_jammed(small_inputs, monkeypatch
     from fewear.wear.state import WearState
 
     def collapsing(*args, **kwargs):
-        raise StepSizeCollapse("generalized-alpha: step size fell below min_step_s", 7.7,
+        raise StepSizeCollapse("generalized-alpha: step size fell below min_step_s",
                                ((penetration_m, 7.9e7, 0.1),))
 
     monkeypatch.setattr(slider_crank, "simulate", collapsing)

@@ -72,15 +72,15 @@ DONE, BUFFER_FULL, STEP_TOO_SMALL, SINGULAR_PROJECTION = 0, 1, 2, 3
 
 
 class StepSizeCollapse(RuntimeError):
-    """The step size fell below ``min_step_s`` at ``time_s``; ``joints``: each clearance joint's
-    state at the last accepted step, (penetration m, normal force N, contact direction rad in the
-    bushing frame) (empty without clearance joints). A penetration beyond the elastic range of
-    the contact law (comparable to the clearance itself) says the mechanism jammed its pin into
-    the bore, not that a step was too stiff to take."""
+    """The step size fell below ``min_step_s`` (the time in the message); ``joints``: each
+    clearance joint's state at the last accepted step, (penetration m, normal force N, contact
+    direction rad in the bushing frame) (empty without clearance joints). A penetration beyond
+    the elastic range of the contact law (comparable to the clearance itself) says the mechanism
+    jammed its pin into the bore, not that a step was too stiff to take."""
 
-    def __init__(self, message: str, time_s: float, joints: tuple):
+    def __init__(self, message: str, joints: tuple):
         super().__init__(message)
-        self.time_s, self.joints = time_s, joints
+        self.joints = joints
 
 
 @dataclass(frozen=True)
@@ -272,7 +272,7 @@ def _collapse(data, Y, t: float, min_step_s: float) -> StepSizeCollapse:
         f"{math.degrees(direction) % 360.0:.1f} deg, normal force {force:.3g} N"
         for j, (delta, force, direction) in enumerate(joints))
     return StepSizeCollapse(f"generalized-alpha: step size fell below min_step_s = "
-                            f"{min_step_s:g} s at t = {t:.6g} s{where}", t, tuple(joints))
+                            f"{min_step_s:g} s at t = {t:.6g} s{where}", tuple(joints))
 
 
 # -- compiled -------------------------------------------------------------------------------------

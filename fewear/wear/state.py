@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fewear.errors import FewearInputError
-from fewear.mbd.contact import periodic_cubic
+from fewear.mbd.contact import ClearanceProfile, periodic_cubic, pin_reach_m
 from fewear.mesh.profile import periodic_linear
 from fewear.wear.extensions import SlidingState
 
@@ -105,8 +105,6 @@ class WearState:
         a rounding boundary with probability d / quantum: 1e-4 per direction at 0.1 nm (with
         2,880 directions, 1 pm let a serial and an ``mpirun`` run part in the tests' first
         block)."""
-        from fewear.mbd.contact import ClearanceProfile, pin_reach_m
-
         angles = 2.0 * math.pi * np.arange(CLEARANCE_DIRECTIONS) / CLEARANCE_DIRECTIONS
         clearance = pin_reach_m(angles, angles, inner_radius_m + self.smooth_depth_at(angles),
                                 pin_radius_m)

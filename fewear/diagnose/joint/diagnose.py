@@ -605,7 +605,7 @@ def _unexplained(baseline: Fit, final_fit: Fit, causes, resolution: dict,
     misfit_m, sentence = misfit
     noise = {"blocks": resolution["halved_blocks_rms_m"],
              "recorded": resolution["doubled_recorded_cycles_rms_m"],
-             "spread": resolution.get("start_angle_spread_rms_m", 0.0)}
+             "spread": resolution["start_angle_spread_rms_m"]}
     limit = max(noise, key=noise.get)
     if misfit_m <= UNEXPLAINED_SCATTERS * noise[limit]:
         sentence += "; " + LIMITS[limit].format(noise[limit])
