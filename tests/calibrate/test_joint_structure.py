@@ -109,5 +109,6 @@ def test_a_large_misfit_without_a_cause_is_reported_unexplained():
         rms = float(np.sqrt(np.mean(r**2)))
         fit = Fit("baseline", np.zeros(1), 1, float(r @ r), r.size, rms, rms, residual)
         resolution = {"instrument_scatter_m": scatter_estimate_m(angle, residual, cycles),
-                      "halved_blocks_rms_m": 0.0, "doubled_recorded_cycles_rms_m": 0.0}
+                      "halved_blocks_rms_m": 0.0, "doubled_recorded_cycles_rms_m": 0.0,
+                      "start_angle_spread_rms_m": 0.0}
         assert len(_unexplained(fit, fit, [], resolution, [])) == expected
