@@ -206,6 +206,7 @@ from fewear.diagnose.joint.forward import WearHistory, model_config
 from fewear.diagnose.joint.measured import MeasuredProfile, write_joint_profiles, write_max_wear
 from fewear.errors import FewearInputError
 from fewear.wear.extensions import SlidingState
+from tests.calibrate.truth_numerics import with_truth_numerics
 
 CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in", "none",
           "friction+wear_coefficient", "flexible_link+running_in")
@@ -951,7 +952,8 @@ def write_data_set(cause: str, seed: int, directory: str | Path, noise: bool = T
     believed_toml = directory / "believed.toml"
     believed_toml.write_text(BELIEVED_TOML)
     believed = believed_config(believed_toml)
-    params, lab, history, (_, lab_rng, noise_rng) = hidden_truth(cause, seed, believed)
+    params, lab, history, (_, lab_rng, noise_rng) = hidden_truth(
+        cause, seed, with_truth_numerics(believed))
     inner_radius = believed["bushing"]["inner_radius_m"]
     rng = noise_rng if noise else None
     header = (f"fifth joint generator, data set {seed}: roundness tester, depth from the "

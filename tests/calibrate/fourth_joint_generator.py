@@ -167,6 +167,7 @@ import numpy as np
 
 from fewear.diagnose.joint.forward import WearHistory, model_config, simulate_wear
 from fewear.diagnose.joint.measured import write_max_wear
+from tests.calibrate.truth_numerics import with_truth_numerics
 
 CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in", "none")
 BELIEVED_TOML = """\
@@ -665,7 +666,7 @@ def write_data_set(cause: str, seed: int, directory: str | Path, noise: bool = T
     believed_toml = directory / "believed.toml"
     believed_toml.write_text(BELIEVED_TOML)
     believed = load_config(believed_toml, run_sections())
-    truth = true_depth(cause, params, believed, lab.last_cycles)
+    truth = true_depth(cause, params, with_truth_numerics(believed), lab.last_cycles)
     profiles_csv, max_wear_csv = write_measurements(
         directory, lab, truth, believed["bushing"]["inner_radius_m"],
         noise_rng if noise else None)

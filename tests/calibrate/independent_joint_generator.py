@@ -59,7 +59,6 @@ largest nodal depth plus N(0, 1 um), at 0.1 um resolution.
 
 from __future__ import annotations
 
-import copy
 import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -67,6 +66,7 @@ from pathlib import Path
 import numpy as np
 
 from fewear.diagnose.joint.forward import WearHistory, model_config, simulate_wear
+from tests.calibrate.truth_numerics import with_truth_numerics
 
 CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in", "none")
 BELIEVED_TOML = """\
@@ -365,7 +365,7 @@ def write_data_set(cause: str, seed: int, folder: Path) -> DataSet:
     believed_toml = folder / "believed.toml"
     believed = believed_config(believed_toml)
     lab = draw_lab(rng)
-    truth = hidden_truth(cause, copy.deepcopy(believed), lab.last_cycles, rng)
+    truth = hidden_truth(cause, with_truth_numerics(believed), lab.last_cycles, rng)
     history, extra = true_history(truth)
     profiles_csv, max_wear_csv = folder / "profiles.csv", folder / "max_wear.csv"
     write_measurements(history, lab, rng, profiles_csv, max_wear_csv)

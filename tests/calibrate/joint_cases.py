@@ -19,6 +19,7 @@ from fewear.diagnose.joint.forward import (
 )
 from fewear.diagnose.joint.measured import ForceTrace, JointMeasurements
 from tests.calibrate.profilometer import max_wear_growth, measure_profile
+from tests.calibrate.truth_numerics import with_truth_numerics
 
 PROFILE_CYCLES = (4000, 8000, 12000, 16000)
 BELIEVED = """
@@ -107,7 +108,7 @@ def hidden_joint_case(config: dict, cause: str, seed: int, with_growth: bool = T
     the believed model itself), profiles measured after ``profile_cycles``; with a force trace
     at the last count recorded from the crank angle ``force_start_deg`` on, if given."""
     rng = np.random.default_rng(seed)
-    truth, params = truth_config(config, cause, rng)
+    truth, params = truth_config(with_truth_numerics(config), cause, rng)
     rod = truth["wear_loop"]["rod_models"][0]
     last = profile_cycles[-1]
     run = simulate_wear(model_config(truth, rod, last), f"truth: {cause}")

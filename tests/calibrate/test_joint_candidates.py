@@ -567,14 +567,17 @@ def test_no_cause_is_accepted_where_the_believed_model_predicts_within_the_scatt
     profiles to 0.61 um, the instrument's scatter is about 0.5 um; a k level x 0.996 fits the
     2,000 training points 1.5 % better (F-test p ~ 1e-14, AICc 59 lower) and the held-out ones
     12 % better. At the noise, that is no cause ('none': the believed model predicts the
-    held-out data within their scatter); with a scatter of 0.1 um it would be one."""
+    held-out data within their scatter); with a scatter of 0.1 um it would be one. The noise
+    that counts is the larger of the scatter and the believed model's own (runs started a degree
+    apart): a model noisier than the instrument refuses the same k level."""
     baseline = _fit_of("baseline", 1, 0.520e-6, 0.61e-6)
     k_level = {"wear_coefficient": _fit_of("wear_coefficient", 2, 0.512e-6, 0.534e-6)}
     settings = JointDiagnoseSettings.default()
-    accepted, verdicts = _select(baseline, k_level, settings, scatter_m=0.5e-6)
+    accepted, verdicts = _select(baseline, k_level, settings, noise_m=0.5e-6)
     assert accepted == [] and verdicts[0].evidence.p_value < 1e-10
     assert verdicts[0].evidence.gain > settings.min_held_out_gain
-    assert _select(baseline, k_level, settings, scatter_m=0.1e-6)[0] == ["wear_coefficient"]
+    assert _select(baseline, k_level, settings, noise_m=0.1e-6)[0] == ["wear_coefficient"]
+    assert _select(baseline, k_level, settings, noise_m=max(0.1e-6, 0.5e-6))[0] == []
 
 
 def _depth_at(run: WearHistory, cycles: float) -> np.ndarray:

@@ -14,6 +14,7 @@ import pytest
 from fewear.diagnose.joint.forward import model_config, simulate_wear
 from fewear.diagnose.joint.measured import read_joint_measurements
 from tests.calibrate import third_joint_generator as gen
+from tests.calibrate.truth_numerics import with_truth_numerics
 
 R = 0.010  # bore radius of the default bushing (m)
 
@@ -209,8 +210,9 @@ def test_files_parse_with_the_reader(tmp_path):
 
 
 def test_noiseless_none_is_the_believed_run_within_the_stylus_effect(tmp_path):
+    """The believed model run with the truths' converged numerics (truth_numerics.py)."""
     data = gen.write_data_set("none", gen.data_set_seed("none", 0), tmp_path, noise=False)
-    config = gen.believed_config(data.believed_toml)
+    config = with_truth_numerics(gen.believed_config(data.believed_toml))
     history = simulate_wear(model_config(config, "rigid", data.lab.profile_cycles[-1]))
     grid = gen.fine_grid()
     for profile in read_joint_measurements(data.profiles_csv).profiles:

@@ -108,6 +108,8 @@ from pathlib import Path
 
 import numpy as np
 
+from tests.calibrate.truth_numerics import with_truth_numerics
+
 CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in", "none")
 BELIEVED_TOML = """\
 [mechanism]
@@ -579,7 +581,7 @@ def write_data_set(cause: str, seed: int, directory: Path, noise: bool = True) -
         lab = lab.noiseless()
     toml = directory / "believed.toml"
     toml.write_text(BELIEVED_TOML)
-    config = believed_config(toml)
+    config = with_truth_numerics(believed_config(toml))
     last = lab.profile_cycles[-1]
     for redraw in range(4):  # a truth whose run stops early (e.g. the dynamics fail) is redrawn
         try:

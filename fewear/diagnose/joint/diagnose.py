@@ -89,11 +89,12 @@ single-cause data the second round named impact wear beside the right first caus
 sets whose first round named a cause (the extended model's misfit of another model's forms), so
 ``max_causes`` is 1 by default.
 
-Resolution (:func:`forward_resolution`): the instrument's scatter, estimated from neighbouring
-profile points, and how far the believed model's worn bore moves when its wear blocks are halved
-and when twice the crank cycles are recorded per block (its own numerical noise).
-On the coarse test model (blocks of up to 50,000 cycles) the latter is about 10 um at 20,000
-cycles, as large as some causes' effect; blocks of at most 500 cycles bring it to 1-2 um.
+Resolution first (:mod:`fewear.diagnose.joint.resolution`): before any cause is fitted, the
+believed model's wear blocks are halved until its own noise (the spread of runs started a degree
+apart, the move of halved blocks) is at most the instrument's scatter, estimated from
+neighbouring profile points; every run of the diagnosis is made at those blocks. None is
+accepted while the believed model predicts the held-out data within
+:data:`UNEXPLAINED_SCATTERS` times the larger of the scatter and the model's own noise.
 """
 
 from __future__ import annotations
@@ -117,7 +118,6 @@ from fewear.diagnose.joint.fitting import (
     fit,
     needed_cycles,
     observations,
-    offset_start,
 )
 from fewear.diagnose.joint.forward import (
     RunMaker,
@@ -126,12 +126,15 @@ from fewear.diagnose.joint.forward import (
     cycle_on_worn_bore,
     model_config,
     simulate_wear,
-    simulate_wears,
-    with_doubled_recorded_cycles,
-    with_halved_blocks,
 )
 from fewear.diagnose.joint.measured import JointMeasurements
 from fewear.diagnose.joint.refinement import RunsAt, fit_causes
+from fewear.diagnose.joint.resolution import (
+    MEMBER_START_OFFSETS_DEG,
+    baseline_fit,
+    model_noise_m,
+    resolve_wear_step,
+)
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
 from fewear.errors import FewearInputError
 from fewear.mesh.profile import periodic_linear
@@ -226,7 +229,7 @@ class JointDiagnosis:
     ``rounds`` of the selection (the first on the believed config, each further one on the
     model the causes named so far extend; the last names none unless ``max_causes`` or the
     catalogue ended the rounds), the believed model's ``residual_structure``
-    (:func:`cycle_structure`), the ``resolution`` (:func:`forward_resolution`) and what stays
+    (:func:`cycle_structure`), the ``resolution`` (:func:`resolve_wear_step`) and what stays
     ``unexplained``, in sentences. The rest are views of the rounds: the believed model's
     ``baseline``, every cause's verdict, the ``causes`` named (in the order they joined) with
     the ``gains`` each added, and the final extended model."""
@@ -297,12 +300,16 @@ def diagnose_joint(data: JointMeasurements, config: dict,
     named, another on the model they extend (the causes named left out)."""
     settings = settings or JointDiagnoseSettings.default()
     obs = observations(data, settings.held_out_fraction)
-    rounds = [_round(data, obs, config, settings, named=())]
+    _check_run_length(data, obs, _believed_config(config, obs, settings))
+    config, resolution = resolve_wear_step(config, obs, settings.max_wear_step_halvings,
+                                           settings.max_offset_deg)
+    noise_m = model_noise_m(resolution)
+    rounds = [_round(data, obs, config, settings, (), noise_m)]
     while (rounds[-1].named and len(_named(rounds)) < settings.max_causes
            and _to_try(rounds[-1].extended_config, settings, _named(rounds))[0]):
-        rounds.append(_round(data, obs, rounds[-1].extended_config, settings, _named(rounds)))
+        rounds.append(_round(data, obs, rounds[-1].extended_config, settings, _named(rounds),
+                             noise_m))
     first, final = rounds[0], _final(rounds)
-    resolution = forward_resolution(config, obs, first.scatter_m)
     return JointDiagnosis(
         data=data, settings=settings, observations=obs, rounds=tuple(rounds),
         residual_structure=cycle_structure(data, config, obs, first.baseline, first.base_run),
@@ -334,20 +341,15 @@ def _to_try(config: dict, settings: JointDiagnoseSettings,
 
 
 def _round(data: JointMeasurements, obs: Observations, config: dict,
-           settings: JointDiagnoseSettings, named: tuple[str, ...]) -> Round:
+           settings: JointDiagnoseSettings, named: tuple[str, ...], noise_m: float) -> Round:
     """One round of selection on the model ``config`` (the believed one, or the one the causes
-    ``named`` so far extend) over the causes :func:`_to_try`."""
-    rod = config["wear_loop"]["rod_models"][0]
+    ``named`` so far extend) over the causes :func:`_to_try`; ``noise_m``: the believed
+    model's own noise (:func:`fewear.diagnose.joint.resolution.model_noise_m`)."""
     horizon = int(math.ceil(settings.max_k_scale * obs.cycles.max()))
-    # the believed run goes further: running-in maps N to up to r N cycles of it
-    believed_config = model_config(config, rod, RUNNING_IN_REACH * horizon)
-    _check_run_length(data, obs, believed_config)
     label = " + ".join(("believed model",) + named)
-    base = simulate_wear(believed_config, label)
-    believed = Candidate("baseline" if not named else label, (base,))
-    offset = offset_start(obs, believed, settings.max_offset_deg)
-    phi = settings.max_offset_deg
-    baseline = fit(believed.name, believed, obs, [np.array([offset])], np.array([(-phi, phi)]))
+    base = simulate_wear(_believed_config(config, obs, settings), label)
+    baseline = baseline_fit("baseline" if not named else label, base, obs,
+                            settings.max_offset_deg)
     names, untestable = _to_try(config, settings, named)
     make_runs = candidate_runner(horizon, float(obs.depth_m.max()))
     believed_model = Believed(config, base, horizon, needed_cycles(obs, settings), make_runs)
@@ -358,7 +360,8 @@ def _round(data: JointMeasurements, obs: Observations, config: dict,
     candidates = {name: forms for name, forms in candidates.items() if forms}
     fits = fit_causes(candidates, obs, baseline, settings, _refinement_runs(config, make_runs))
     scatter = structure.scatter_estimate_m(obs.angle_rad, baseline.residuals_m, obs.cycles)
-    accepted, verdicts = _select(baseline, fits, settings, scatter)
+    accepted, verdicts = _select(baseline, fits, settings,
+                                 None if scatter is None else max(scatter, noise_m))
     causes, extended, final_fit, extended_depth, not_confirmed = _confirm(
         config, accepted, fits, baseline, obs, settings)
     return Round(baseline=baseline, base_run=base, scatter_m=scatter, verdicts=tuple(verdicts),
@@ -369,10 +372,18 @@ def _round(data: JointMeasurements, obs: Observations, config: dict,
                  extended_depth_m=extended_depth)
 
 
+def _believed_config(config: dict, obs: Observations, settings: JointDiagnoseSettings) -> dict:
+    """``config``'s rod run as far as the fits may need: ``max_k_scale`` times the last measured
+    count, and further still, as running-in maps N to up to r N cycles of it."""
+    horizon = int(math.ceil(settings.max_k_scale * obs.cycles.max()))
+    return model_config(config, config["wear_loop"]["rod_models"][0], RUNNING_IN_REACH * horizon)
+
+
 def _check_run_length(data, obs, believed_config: dict) -> None:
     """The forward runs go a few times the last measured cycle count: a count that makes them
-    longer than a run may be (:data:`fewear.io.limits.MAX_WEAR_STEPS`) is refused before any
-    run, naming the count, the wear steps it would take and what would do."""
+    longer than a run may be (:data:`fewear.io.limits.MAX_WEAR_STEPS`) at the config's wear
+    blocks is refused before any run, naming the count, the wear steps it would take and what
+    would do."""
     from fewear.io.limits import MAX_WEAR_STEPS, SECONDS_PER_WEAR_STEP, duration, wear_steps
 
     loop = believed_config["wear_loop"]
@@ -404,15 +415,16 @@ def _refinement_runs(config: dict, make_runs: RunMaker) -> RunsAt:
 
 
 def _select(baseline: Fit, fits: dict[str, Fit], settings,
-            scatter_m: float | None = None) -> tuple[list[str], list[CauseVerdict]]:
+            noise_m: float | None = None) -> tuple[list[str], list[CauseVerdict]]:
     """The accepted causes in the order they are to be named (the richer ones by held-out
     error, then ``wear_coefficient``) and the verdict on every cause tried. None is accepted
     when the believed model already predicts the held-out data within
-    :data:`UNEXPLAINED_SCATTERS` times the instrument's scatter ``scatter_m`` (what 'none'
-    means): a relative gain on an error at the noise is no evidence of a cause."""
+    :data:`UNEXPLAINED_SCATTERS` times ``noise_m``, the larger of the instrument's scatter and
+    the model's own noise (what 'none' means): a relative gain on an error at the noise is no
+    evidence of a cause."""
     tried = sum(f.forms_tried for f in fits.values())
-    at_noise = scatter_m is not None and (
-        baseline.held_out_rms_m <= UNEXPLAINED_SCATTERS * scatter_m)
+    at_noise = noise_m is not None and (
+        baseline.held_out_rms_m <= UNEXPLAINED_SCATTERS * noise_m)
 
     def judged(fit_: Fit, reference: Fit) -> CauseVerdict:
         entry = verdict(fit_, reference, settings, tried)
@@ -525,55 +537,6 @@ def cycle_structure(data: JointMeasurements, config: dict, obs: Observations, ba
             "sentences": structure.structure_sentences(by_count, crank, traces)}
 
 
-def forward_resolution(config: dict, obs: Observations,
-                       scatter_m: float | None) -> dict[str, Any]:
-    """What the measurements and the believed model can resolve: the instrument's scatter
-    ``scatter_m`` (robust, from neighbouring profile points of the baseline's residuals:
-    :func:`fewear.diagnose.joint.structure.scatter_estimate_m`) and the believed model's own
-    noise, RMS over the bore nodes at the measured cycle counts: how far its worn bore moves
-    when its wear blocks are halved and when twice the crank cycles are recorded per block (the
-    loop's discretisation error and the sampling of an orbit that varies from cycle to cycle,
-    roughly), and how far apart the bores of runs lie whose crank starts
-    ``MEMBER_START_OFFSETS_DEG`` later (the steady cycle cannot depend on it: the spread of an
-    impacting orbit's chaos, which neither refinement alone separates from a discretisation
-    error; on the tests' coarse model 5.6 um after 4,000-20,000 cycles with its wear steps of
-    f = 0.25, 1.3 um with f = 0.015625 and 2 steps per block). A cause that moves the bore by
-    less than these cannot be told from the model's own noise. The runs, all to the last
-    measured count, are made side by side."""
-    rod = config["wear_loop"]["rod_models"][0]
-    believed = model_config(config, rod, int(obs.cycles.max()) + 1)
-    halved, doubled, *members = simulate_wears(
-        [(with_halved_blocks(believed), "believed model, blocks halved"),
-         (with_doubled_recorded_cycles(believed), "believed model, recorded cycles doubled"),
-         (believed, "believed model, to the last count")]
-        + [(_started_later(believed, offset), f"believed model, started {offset:g} deg later")
-           for offset in MEMBER_START_OFFSETS_DEG])
-    counts = np.unique(obs.cycles)
-
-    def bores(run: WearHistory) -> np.ndarray:
-        return run.nodal_depths_m(counts)
-
-    spread = np.array([bores(run) for run in members])
-    deviation = spread - spread.mean(axis=0)
-    return {"instrument_scatter_m": scatter_m,
-            "halved_blocks_rms_m": float(np.sqrt(np.mean((bores(halved) - spread[0])**2))),
-            "doubled_recorded_cycles_rms_m": float(
-                np.sqrt(np.mean((bores(doubled) - spread[0])**2))),
-            "start_angle_spread_rms_m": float(np.sqrt(
-                np.mean(deviation**2) * len(spread) / (len(spread) - 1)))}
-
-
-MEMBER_START_OFFSETS_DEG = (1.0, 2.0)
-"""Crank angles (deg) by which the runs that measure the believed model's spread start later."""
-
-
-def _started_later(config: dict, offset_deg: float) -> dict:
-    """``config`` with its crank starting ``offset_deg`` later."""
-    changed = copy.deepcopy(config)
-    changed["mechanism"]["initial_crank_angle_deg"] += offset_deg
-    return changed
-
-
 UNEXPLAINED_SCATTERS = 3.0
 """With no cause named, a believed model missing the training data by more than this many times
 the instrument's scatter is reported as unexplained, not as right."""
@@ -625,7 +588,7 @@ LIMITS = {
                "dynamics renewed more often ([wear_loop] max_depth_increment_fraction, "
                "wear_steps_per_block), are needed to tell the causes apart")}
 """What limits the believed model's resolution, by the largest of its noise measures
-(:func:`forward_resolution`), in the sentence of a misfit it cannot resolve."""
+(:func:`resolve_wear_step`), in the sentence of a misfit it cannot resolve."""
 
 
 def _misfit_without_cause(baseline: Fit, scatter_m: float) -> tuple[float, str] | None:

@@ -12,9 +12,10 @@ import numpy as np
 
 from fewear.diagnose.core import report
 from fewear.diagnose.joint.catalogue import CAUSES, NONE_MEANING
-from fewear.diagnose.joint.diagnose import MEMBER_START_OFFSETS_DEG, CauseVerdict, JointDiagnosis
+from fewear.diagnose.joint.diagnose import CauseVerdict, JointDiagnosis
 from fewear.diagnose.joint.figures import plot_joint_fits
 from fewear.diagnose.joint.fitting import Fit, Observations
+from fewear.diagnose.joint.resolution import MEMBER_START_OFFSETS_DEG
 from fewear.io.config import default_config
 from fewear.io.output import write_json
 from fewear.wear.coefficient import wear_section_toml
@@ -48,7 +49,8 @@ def summarise(diagnosis: JointDiagnosis) -> dict[str, Any]:
         "criterion": (f"F-test p < {settings.significance:g} / forms tried, held-out RMS at "
                       f"least {settings.min_held_out_gain:.0%} lower, AICc at least "
                       f"{settings.min_aicc_improvement:g} lower"),
-        "baseline": {"model": "the believed config", "held_out_error": d.baseline.held_out_rms_m,
+        "baseline": {"model": "the believed config at the resolved wear blocks",
+                     "held_out_error": d.baseline.held_out_rms_m,
                      "training_error": d.baseline.train_rms_m,
                      "angle_offset_deg": float(d.baseline.x[0])},
         "candidates": [_candidate(entry) for entry in d.verdicts],
@@ -102,15 +104,24 @@ def write_joint_outputs(diagnosis: JointDiagnosis, summary: dict[str, Any], fold
 
 def _resolution_line(resolution: dict) -> str:
     scatter = resolution["instrument_scatter_m"]
+    levels = "; ".join(
+        ", ".join(f"{key} {value:g}" for key, value in level["blocks"].items())
+        + f": runs {level['spread_rms_m']:.2g} m apart"
+        + ("" if level["change_from_coarser_rms_m"] is None
+           else f", {level['change_from_coarser_rms_m']:.2g} m from the coarser")
+        for level in resolution["wear_step_levels"])
+    chosen = ", ".join(f"{key} {value:g}" for key, value in resolution["wear_step"].items())
     return ("Resolution: the instrument's scatter "
             + (f"{scatter:.2g} m" if scatter is not None else "(no profiles to estimate it)")
-            + "; halving the believed model's wear blocks moves its worn bore by "
-            f"{resolution['halved_blocks_rms_m']:.2g} m RMS at the measured cycle counts, "
-            "recording twice the crank cycles per block by "
-            f"{resolution['doubled_recorded_cycles_rms_m']:.2g} m, and runs whose crank starts "
-            f"up to {max(MEMBER_START_OFFSETS_DEG):g} deg later part from each other by "
-            f"{resolution['start_angle_spread_rms_m']:.2g} m (causes that move it less cannot "
-            "be told from the model's own noise).")
+            + f". The believed model's wear blocks ({levels}; runs whose crank starts up to "
+            f"{max(MEMBER_START_OFFSETS_DEG):g} deg later, RMS at the measured cycle counts): "
+            f"every run of the diagnosis uses {chosen}"
+            + ("" if resolution["resolved"] else
+               ", the finest allowed ([joint_diagnose] max_wear_step_halvings), its noise still "
+               "above the scatter")
+            + f"; twice the crank cycles recorded per block move its bore by "
+            f"{resolution['doubled_recorded_cycles_rms_m']:.2g} m (causes that move it less than "
+            "these cannot be told from the model's own noise).")
 
 
 def report_markdown(s: dict) -> str:

@@ -12,6 +12,9 @@ from fewear.diagnose.joint.catalogue import CAUSES, IMPACT_FORMS
 from fewear.errors import FewearInputError
 from fewear.io.config import load_config
 
+MAX_HALVINGS = 10
+"""Halving the wear blocks more often than this makes runs 2^10 times dearer: beyond any use."""
+
 
 def _listed(value):
     """A setting's value as the config file wrote it (a tuple back to a list)."""
@@ -45,6 +48,7 @@ class JointDiagnoseSettings:
     impact_forms: tuple[str, ...]
     max_offset_deg: float
     max_causes: int
+    max_wear_step_halvings: int
 
     def __post_init__(self):
         unknown = [c for c in self.candidates if c not in CAUSES]
@@ -71,6 +75,13 @@ class JointDiagnoseSettings:
             raise FewearInputError(
                 f"[joint_diagnose] max_causes = {self.max_causes!r}: expected a whole number "
                 ">= 1")
+        if isinstance(self.max_wear_step_halvings, bool) or not (
+                isinstance(self.max_wear_step_halvings, int)
+                and 0 <= self.max_wear_step_halvings <= MAX_HALVINGS):
+            raise FewearInputError(
+                f"[joint_diagnose] max_wear_step_halvings = {self.max_wear_step_halvings!r}: "
+                f"expected a whole number from 0 (the config's wear blocks as they are) to "
+                f"{MAX_HALVINGS}")
         if not self.max_k_scale > 1.0:
             raise FewearInputError(
                 f"[joint_diagnose] max_k_scale = {self.max_k_scale!r}: expected > 1")

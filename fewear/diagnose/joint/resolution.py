@@ -1,0 +1,171 @@
+"""Resolution first: the believed model's wear blocks refined until its own noise is below the
+instrument's scatter, before any cause is fitted.
+
+A wear loop with large blocks is a noisy model of the bore: each block's wear is extrapolated
+from a few recorded crank cycles of an orbit that varies from cycle to cycle (an impacting pin's
+orbit is chaotic), so runs that differ only in where the crank starts end on different bores,
+and halving the blocks moves the bore further still. A cause that moves the bore by less than
+this cannot be told from the model's own noise. On the tests' coarse model (48 bore elements,
+f = 0.25, one wear step per block) runs started 0-3 deg apart part by 5.6 um RMS after 4,000-
+20,000 cycles, ten times a profilometer's 0.5 um scatter, and lie 25-60 % deeper than the
+converged model's bore (README, the joint diagnosis's resolution).
+
+:func:`resolve_wear_step` measures, at the user's wear blocks and then at blocks halved again and
+again (:func:`fewear.diagnose.joint.forward.with_halved_blocks`: A_max and the depth-increment
+fraction f), the spread of runs whose crank starts 0, 1 and 2 deg later (RMS over the bore nodes
+at the measured cycle counts, about their mean, with the n - 1 of a sample) and how far their
+mean moves from one level to the next. The coarsest level whose spread is at most the
+instrument's scatter and whose mean the next level moves by at most the scatter is the model
+the diagnosis fits (its candidates are run at those blocks, and ``extended.toml`` carries
+them); at most ``max_wear_step_halvings`` halvings (then the finest is taken, its noise reported
+as the limit).
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from fewear.diagnose.joint import structure
+from fewear.diagnose.joint.candidates import Candidate
+from fewear.diagnose.joint.fitting import Fit, Observations, fit, offset_start
+from fewear.diagnose.joint.forward import (
+    WearHistory,
+    model_config,
+    simulate_wears,
+    with_doubled_recorded_cycles,
+    with_halved_blocks,
+)
+
+MEMBER_START_OFFSETS_DEG = (1.0, 2.0)
+"""Crank angles (deg) by which the runs that measure the believed model's spread start later."""
+
+
+@dataclass(frozen=True)
+class WearStepLevel:
+    """One level of the wear blocks: its adaptive bound ``max_depth_increment_fraction`` and
+    ``max_extrapolation_factor`` (or fixed ``extrapolation_factor``), the spread of the runs
+    started later (m RMS) and how far their mean bore moved from the level before (m RMS; None
+    on the first level)."""
+
+    blocks: dict[str, float]
+    spread_rms_m: float
+    change_from_coarser_rms_m: float | None
+
+
+def baseline_fit(name: str, run: WearHistory, obs: Observations, max_offset_deg: float) -> Fit:
+    """The model of one run fitted with its angular offset only (the level of k as run)."""
+    believed = Candidate(name, (run,))
+    offset = offset_start(obs, believed, max_offset_deg)
+    return fit(believed.name, believed, obs, [np.array([offset])],
+               np.array([(-max_offset_deg, max_offset_deg)]))
+
+
+def resolve_wear_step(config: dict, obs: Observations, max_halvings: int,
+                      max_offset_deg: float) -> tuple[dict, dict[str, Any]]:
+    """(the believed ``config`` at the coarsest wear blocks its noise allows, the resolution)
+    by the module docstring's rule. The resolution (JSON-ready): ``instrument_scatter_m`` (from
+    neighbouring profile points of the residuals of the user's model,
+    :func:`fewear.diagnose.joint.structure.scatter_estimate_m`; None without profiles, and then
+    the user's blocks are kept), ``wear_step_levels`` (every level measured), the chosen level's
+    ``start_angle_spread_rms_m`` and ``halved_blocks_rms_m`` (the next level's move), and
+    ``doubled_recorded_cycles_rms_m`` (its bore with twice the crank cycles recorded per block:
+    the sampling of the orbit)."""
+    rod = config["wear_loop"]["rod_models"][0]
+    counts = np.unique(obs.cycles)
+    level_config = model_config(config, rod, int(obs.cycles.max()) + 1)
+    members = [_members(level_config)]
+    first = baseline_fit("baseline", members[0][0], obs, max_offset_deg)
+    scatter = structure.scatter_estimate_m(obs.angle_rad, first.residuals_m, obs.cycles)
+    levels, configs, means = [], [level_config], []
+    for halving in range(max_halvings + 2):
+        bores = np.array([run.nodal_depths_m(counts) for run in members[-1]])
+        means.append(bores.mean(axis=0))
+        change = None if halving == 0 else _rms(means[-1] - means[-2])
+        levels.append(WearStepLevel(_blocks(configs[-1]), _spread(bores), change))
+        if halving == 0 and scatter is None:
+            break
+        if halving > 0 and (_resolved(levels[-2], change, scatter) or halving > max_halvings):
+            break
+        configs.append(with_halved_blocks(configs[-1]))
+        members.append(_members(configs[-1]))
+    chosen = _chosen_level(levels, scatter, max_halvings)
+    doubled, = simulate_wears([(with_doubled_recorded_cycles(configs[chosen]),
+                                "believed model, recorded cycles doubled")])
+    resolved = _with_blocks(config, levels[chosen].blocks)
+    next_move = levels[chosen + 1].change_from_coarser_rms_m if chosen + 1 < len(levels) else None
+    return resolved, {
+        "instrument_scatter_m": scatter,
+        "wear_step_levels": [vars(level) for level in levels],
+        "wear_step": levels[chosen].blocks,
+        "resolved": bool(scatter is not None and next_move is not None
+                         and _resolved(levels[chosen], next_move, scatter)),
+        "start_angle_spread_rms_m": levels[chosen].spread_rms_m,
+        "halved_blocks_rms_m": next_move if next_move is not None else math.nan,
+        "doubled_recorded_cycles_rms_m": _rms(doubled.nodal_depths_m(counts)
+                                              - members[chosen][0].nodal_depths_m(counts))}
+
+
+def model_noise_m(resolution: dict[str, Any]) -> float:
+    """The believed model's own noise at its chosen level: the larger of the runs' spread and
+    the move of halved blocks (0 where not measured)."""
+    noise = [resolution.get("start_angle_spread_rms_m"), resolution.get("halved_blocks_rms_m")]
+    return max([value for value in noise if value is not None and math.isfinite(value)],
+               default=0.0)
+
+
+def _resolved(level: WearStepLevel, next_change_m: float, scatter_m: float | None) -> bool:
+    """A level is resolved when its runs' spread and the next level's move of their mean are
+    both at most the instrument's scatter."""
+    return scatter_m is not None and max(level.spread_rms_m, next_change_m) <= scatter_m
+
+
+def _chosen_level(levels: list[WearStepLevel], scatter_m: float | None,
+                  max_halvings: int) -> int:
+    """The coarsest resolved level, else the finest one allowed (at most ``max_halvings``)."""
+    for index in range(len(levels) - 1):
+        if _resolved(levels[index], levels[index + 1].change_from_coarser_rms_m, scatter_m):
+            return index
+    return min(len(levels) - 1, max_halvings)
+
+
+def _members(config: dict) -> list[WearHistory]:
+    """Runs of ``config`` whose crank starts 0 and :data:`MEMBER_START_OFFSETS_DEG` later, side
+    by side."""
+    blocks = ", ".join(f"{key} = {value:g}" for key, value in _blocks(config).items())
+    requests = [(config, f"believed model, {blocks}")]
+    for offset in MEMBER_START_OFFSETS_DEG:
+        later = copy.deepcopy(config)
+        later["mechanism"]["initial_crank_angle_deg"] += offset
+        requests.append((later, f"believed model, {blocks}, started {offset:g} deg later"))
+    return simulate_wears(requests)
+
+
+_BLOCK_KEYS = {"adaptive": ("max_depth_increment_fraction", "max_extrapolation_factor"),
+               "fixed": ("extrapolation_factor",)}
+
+
+def _blocks(config: dict) -> dict[str, float]:
+    """The settings of ``config`` that :func:`with_halved_blocks` halves."""
+    loop = config["wear_loop"]
+    return {key: float(loop[key]) for key in _BLOCK_KEYS[loop["extrapolation"]]}
+
+
+def _with_blocks(config: dict, blocks: dict[str, float]) -> dict:
+    changed = copy.deepcopy(config)
+    changed["wear_loop"].update(blocks)
+    return changed
+
+
+def _spread(bores: np.ndarray) -> float:
+    """RMS deviation of the runs' bores (runs, counts, nodes) about their mean (sample, n - 1)."""
+    deviation = bores - bores.mean(axis=0)
+    return float(np.sqrt(np.mean(deviation**2) * len(bores) / (len(bores) - 1)))
+
+
+def _rms(values: np.ndarray) -> float:
+    return float(np.sqrt(np.mean(np.asarray(values) ** 2)))

@@ -1,0 +1,97 @@
+"""Resolution first (fewear.diagnose.joint.resolution): the believed model's wear blocks halved
+until its own noise is at most the instrument's scatter, on runs made up with a known noise.
+
+The made-up model at depth-increment fraction f: the bore of a run is D (1 + 4 f) plus a
+constant +-a f for the runs started 1 and 2 deg later (0 for the first), so its runs' spread (the
+sample RMS about their mean) is exactly a f and halving f moves their mean by 2 f D."""
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from fewear.diagnose.joint import resolution
+from fewear.diagnose.joint.forward import WearHistory
+
+D_M, SPREAD_PER_F_M, SCATTER_M, LAST = 4e-6, 6e-6, 0.5e-6, 4000
+NODES = 12
+SCALE = LAST / (LAST + 1)  # the runs go one cycle past the last count; depth linear in cycles
+
+
+def _made_up_run(config: dict) -> WearHistory:
+    f = config["wear_loop"]["max_depth_increment_fraction"]
+    later = config["mechanism"]["initial_crank_angle_deg"]
+    offset = {0.0: 0.0, 1.0: 1.0, 2.0: -1.0}[later] * SPREAD_PER_F_M * f
+    if config["wear_loop"]["recorded_cycles_per_block"] > 1:
+        offset += 0.1e-6  # recording twice the cycles moves the bore by 0.1 um
+    depth = np.full(NODES, D_M * (1.0 + 4.0 * f) + offset)
+    return WearHistory(np.linspace(0.0, 2 * math.pi, NODES, endpoint=False),
+                       np.array([0.0, config["wear_loop"]["total_cycles"]]),
+                       np.vstack([np.zeros(NODES), depth]), np.ones(NODES))
+
+
+@pytest.fixture
+def made_up(monkeypatch):
+    """The made-up runs in place of the wear loop, the scatter set to :data:`SCATTER_M`."""
+    made = []
+
+    def runs(requests):
+        made.extend(config["wear_loop"]["max_depth_increment_fraction"]
+                    for config, _ in requests)
+        return [_made_up_run(config) for config, _ in requests]
+
+    monkeypatch.setattr(resolution, "simulate_wears", runs)
+    monkeypatch.setattr(resolution, "baseline_fit",
+                        lambda name, run, obs, offset: SimpleNamespace(residuals_m=None))
+    monkeypatch.setattr(resolution.structure, "scatter_estimate_m", lambda *args: SCATTER_M)
+    return made
+
+
+CONFIG = {"wear_loop": {"rod_models": ["rigid"], "extrapolation": "adaptive",
+                        "max_extrapolation_factor": 50000.0, "max_depth_increment_fraction": 0.25,
+                        "recorded_cycles_per_block": 1, "total_cycles": 100},
+          "mechanism": {"initial_crank_angle_deg": 0.0}}
+OBS = SimpleNamespace(cycles=np.array([LAST / 2, LAST]), angle_rad=None)
+
+
+def test_the_coarsest_blocks_whose_noise_is_within_the_scatter_are_chosen(made_up):
+    """f = 0.25: runs 1.5 um apart; 0.125: 0.75 um; 0.0625: 0.375 um, and halving it moves the
+    mean by 0.5 um (each times the RMS over the two counts, 0.79): the first within the 0.5 um
+    scatter on both counts."""
+    config, found = resolution.resolve_wear_step(CONFIG, OBS, max_halvings=6, max_offset_deg=30)
+    fractions = [level["blocks"]["max_depth_increment_fraction"]
+                 for level in found["wear_step_levels"]]
+    assert fractions == [0.25, 0.125, 0.0625, 0.03125]  # the last only to judge the one before
+    assert found["resolved"] and found["wear_step"] == {"max_depth_increment_fraction": 0.0625,
+                                                        "max_extrapolation_factor": 12500.0}
+    assert config["wear_loop"]["max_depth_increment_fraction"] == 0.0625
+    assert config["wear_loop"]["total_cycles"] == 100  # the config's own, not the runs'
+    assert CONFIG["wear_loop"]["max_depth_increment_fraction"] == 0.25  # not changed in place
+    # at the two counts (half and all of the last one's depth) the RMS of a f and of 2 f D
+    rms_of_counts = SCALE * math.sqrt((0.25 + 1.0) / 2)
+    spreads = [level["spread_rms_m"] for level in found["wear_step_levels"]]
+    assert spreads == pytest.approx([SPREAD_PER_F_M * f * rms_of_counts for f in fractions])
+    assert found["halved_blocks_rms_m"] == pytest.approx(2 * 0.0625 * D_M * rms_of_counts)
+    assert found["start_angle_spread_rms_m"] == spreads[2]
+    assert found["doubled_recorded_cycles_rms_m"] == pytest.approx(0.1e-6 * rms_of_counts)
+    assert resolution.model_noise_m(found) == pytest.approx(max(spreads[2],
+                                                                found["halved_blocks_rms_m"]))
+    # three runs per level and the doubled recorded cycles at the chosen one
+    assert made_up.count(0.0625) == 4 and len(made_up) == 13
+
+
+def test_the_finest_allowed_blocks_when_the_noise_stays_above_the_scatter(made_up):
+    config, found = resolution.resolve_wear_step(CONFIG, OBS, max_halvings=1, max_offset_deg=30)
+    assert len(found["wear_step_levels"]) == 3 and not found["resolved"]
+    assert found["wear_step"]["max_depth_increment_fraction"] == 0.125
+
+
+def test_the_config_s_blocks_with_no_halving_allowed_or_no_profiles(made_up, monkeypatch):
+    config, found = resolution.resolve_wear_step(CONFIG, OBS, max_halvings=0, max_offset_deg=30)
+    assert found["wear_step"]["max_depth_increment_fraction"] == 0.25 and not found["resolved"]
+    assert len(found["wear_step_levels"]) == 2  # the halved level measures the move
+    monkeypatch.setattr(resolution.structure, "scatter_estimate_m", lambda *args: None)
+    config, found = resolution.resolve_wear_step(CONFIG, OBS, max_halvings=6, max_offset_deg=30)
+    assert len(found["wear_step_levels"]) == 1 and math.isnan(found["halved_blocks_rms_m"])
+    assert config["wear_loop"]["max_depth_increment_fraction"] == 0.25
