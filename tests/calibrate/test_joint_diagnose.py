@@ -170,6 +170,15 @@ def test_fewear_diagnose_reads_joint_files_and_writes_its_outputs(null_by_the_co
     assert {c["cause"] for c in summary["candidates"]} == set(QUICK["candidates"])
     for name in ("report.md", "joint_fits.png", "extended.toml"):
         assert (out / name).stat().st_size > 0
+    # the report's table of the wear blocks measured marks the one chosen, which extended.toml
+    # carries (the extended model is the believed one at the resolved blocks: no cause)
+    chosen = summary["resolution"]["wear_step"]
+    rows = [line for line in (out / "report.md").read_text().splitlines()
+            if line.endswith("| **chosen** |")]
+    assert rows == [f"| {chosen['max_depth_increment_fraction']:g} | "
+                    f"{chosen['max_extrapolation_factor']:g} | " + rows[0].split(" | ", 2)[2]]
+    extended = (out / "extended.toml").read_text()  # the lines that differ from the defaults
+    assert f"max_extrapolation_factor = {chosen['max_extrapolation_factor']!r}" in extended
 
 
 def test_one_cycle_count_is_a_clear_error(believed, tmp_path, capsys):

@@ -102,26 +102,30 @@ def write_joint_outputs(diagnosis: JointDiagnosis, summary: dict[str, Any], fold
     plot_joint_fits(diagnosis, folder / "joint_fits.png")
 
 
-def _resolution_line(resolution: dict) -> str:
+def _resolution_lines(resolution: dict) -> list[str]:
+    """The resolution as a sentence and a table of the wear-block levels measured."""
     scatter = resolution["instrument_scatter_m"]
-    levels = "; ".join(
-        ", ".join(f"{key} {value:g}" for key, value in level["blocks"].items())
-        + f": runs {level['spread_rms_m']:.2g} m apart"
-        + ("" if level["change_from_coarser_rms_m"] is None
-           else f", {level['change_from_coarser_rms_m']:.2g} m from the coarser")
-        for level in resolution["wear_step_levels"])
-    chosen = ", ".join(f"{key} {value:g}" for key, value in resolution["wear_step"].items())
-    return ("Resolution: the instrument's scatter "
-            + (f"{scatter:.2g} m" if scatter is not None else "(no profiles to estimate it)")
-            + f". The believed model's wear blocks ({levels}; runs whose crank starts up to "
-            f"{max(MEMBER_START_OFFSETS_DEG):g} deg later, RMS at the measured cycle counts): "
-            f"every run of the diagnosis uses {chosen}"
-            + ("" if resolution["resolved"] else
-               ", the finest allowed ([joint_diagnose] max_wear_step_halvings), its noise still "
-               "above the scatter")
-            + f"; twice the crank cycles recorded per block move its bore by "
-            f"{resolution['doubled_recorded_cycles_rms_m']:.2g} m (causes that move it less than "
-            "these cannot be told from the model's own noise).")
+    chosen = resolution["wear_step"]
+    keys = list(chosen)
+    rows = ["| " + " | ".join(f"{level['blocks'][key]:g}" for key in keys)
+            + f" | {level['spread_rms_m']:.2g} | "
+            + ("-" if level["change_from_coarser_rms_m"] is None
+               else f"{level['change_from_coarser_rms_m']:.2g}")
+            + f" | {'**chosen**' if level['blocks'] == chosen else ''} |"
+            for level in resolution["wear_step_levels"]]
+    return [("Resolution: the instrument's scatter "
+             + (f"{scatter:.2g} m" if scatter is not None else "(no profiles to estimate it)")
+             + "; the believed model's wear blocks halved until its runs whose crank starts up "
+             f"to {max(MEMBER_START_OFFSETS_DEG):g} deg later part, and the next halving moves "
+             "their mean, by at most the scatter (RMS at the measured cycle counts)"
+             + ("" if resolution["resolved"] else
+                "; not met within [joint_diagnose] max_wear_step_halvings, the finest allowed "
+                "is taken")
+             + "; twice the crank cycles recorded per block move the chosen model's bore by "
+             f"{resolution['doubled_recorded_cycles_rms_m']:.2g} m. Causes that move the bore "
+             "less than these cannot be told from the model's own noise."), "",
+            f"| {' | '.join(keys)} | runs apart (m) | moved from the coarser (m) | |",
+            "|" + "---|" * (len(keys) + 3), *rows]
 
 
 def report_markdown(s: dict) -> str:
@@ -133,7 +137,7 @@ def report_markdown(s: dict) -> str:
              f"{s['held_out_error']['baseline']:.3g} m, extended "
              f"{s['held_out_error']['extended']:.3g} m (gain {s['gain']:.0%}). "
              f"Criterion: {s['criterion']}.", "",
-             _resolution_line(s["resolution"]), "",
+             *_resolution_lines(s["resolution"]), "",
              "| cause | against | p | held-out RMS (m) | gain | dAICc | accepted |",
              "|---|---|---|---|---|---|---|"]
     lines += [f"| {_cause_label(e)} | {e['against']} | {e['p_value']:.2g} | "
