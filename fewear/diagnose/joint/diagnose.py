@@ -345,7 +345,7 @@ def _round(data: JointMeasurements, obs: Observations, config: dict,
     """One round of selection on the model ``config`` (the believed one, or the one the causes
     ``named`` so far extend) over the causes :func:`_to_try`; ``noise_m``: the believed
     model's own noise (:func:`fewear.diagnose.joint.resolution.model_noise_m`)."""
-    horizon = int(math.ceil(settings.max_k_scale * obs.cycles.max()))
+    horizon = _horizon(obs, settings)
     label = " + ".join(("believed model",) + named)
     base = simulate_wear(_believed_config(config, obs, settings), label)
     baseline = baseline_fit("baseline" if not named else label, base, obs,
@@ -372,11 +372,16 @@ def _round(data: JointMeasurements, obs: Observations, config: dict,
                  extended_depth_m=extended_depth)
 
 
+def _horizon(obs: Observations, settings: JointDiagnoseSettings) -> int:
+    """The cycles the candidates are run to: ``max_k_scale`` times the last measured count."""
+    return int(math.ceil(settings.max_k_scale * obs.cycles.max()))
+
+
 def _believed_config(config: dict, obs: Observations, settings: JointDiagnoseSettings) -> dict:
-    """``config``'s rod run as far as the fits may need: ``max_k_scale`` times the last measured
-    count, and further still, as running-in maps N to up to r N cycles of it."""
-    horizon = int(math.ceil(settings.max_k_scale * obs.cycles.max()))
-    return model_config(config, config["wear_loop"]["rod_models"][0], RUNNING_IN_REACH * horizon)
+    """``config``'s rod run as far as the fits may need: the :func:`_horizon`, and further
+    still, as running-in maps N to up to r N cycles of it."""
+    return model_config(config, config["wear_loop"]["rod_models"][0],
+                        RUNNING_IN_REACH * _horizon(obs, settings))
 
 
 def _check_run_length(data, obs, believed_config: dict) -> None:
