@@ -25,7 +25,7 @@ from fewear.diagnose.joint.fitting import (
     predict,
     running_in_time_map,
 )
-from fewear.diagnose.joint.forward import WearHistory, with_halved_blocks
+from fewear.diagnose.joint.forward import BLOCK_WEAR_STEPS, WearHistory, with_halved_wear_steps
 from fewear.diagnose.joint.refinement import REFINEMENTS, fit_causes
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
 from fewear.errors import FewearInputError
@@ -61,16 +61,24 @@ def test_a_grid_cause_with_only_the_believed_run_left_is_untestable():
     assert kept.runs == (runs[0],)
 
 
-def test_halving_the_blocks_halves_the_extrapolation_limits():
+def test_halving_the_wear_steps_halves_the_extrapolation_limits_and_keeps_the_blocks():
     adaptive = {"wear_loop": {"extrapolation": "adaptive", "extrapolation_factor": 5000.0,
                               "max_extrapolation_factor": 50000.0,
-                              "max_depth_increment_fraction": 0.25}}
-    halved = with_halved_blocks(adaptive)["wear_loop"]
+                              "max_depth_increment_fraction": 0.25, "wear_steps_per_block": 1}}
+    halved = with_halved_wear_steps(adaptive)["wear_loop"]
     assert (halved["max_extrapolation_factor"], halved["max_depth_increment_fraction"]) == (
         25000.0, 0.125)
     assert adaptive["wear_loop"]["max_extrapolation_factor"] == 50000.0  # not changed in place
     fixed = {"wear_loop": {**adaptive["wear_loop"], "extrapolation": "fixed"}}
-    assert with_halved_blocks(fixed)["wear_loop"]["extrapolation_factor"] == 2500.0
+    assert with_halved_wear_steps(fixed)["wear_loop"]["extrapolation_factor"] == 2500.0
+    # twice the wear steps per dynamics block (each block as long), up to BLOCK_WEAR_STEPS
+    steps = [adaptive["wear_loop"]["wear_steps_per_block"]]
+    for _ in range(5):
+        adaptive = with_halved_wear_steps(adaptive)
+        steps.append(adaptive["wear_loop"]["wear_steps_per_block"])
+    assert steps == [1, 2, 4, 8, 8, 8] and BLOCK_WEAR_STEPS == 8
+    more = {"wear_loop": {**adaptive["wear_loop"], "wear_steps_per_block": 12}}
+    assert with_halved_wear_steps(more)["wear_loop"]["wear_steps_per_block"] == 12
 
 
 def _resolution(scatter_m, halved_blocks_m, doubled_recorded_m=0.0, spread_m=0.0) -> dict:
@@ -86,18 +94,18 @@ def _fit(train_rms_m: float) -> Fit:
 
 def test_none_with_a_large_misfit_names_the_model_setting_when_that_is_what_limits():
     baseline = _fit(10e-6)
-    # 20 x the instrument's 0.5 um scatter, and the blocks move the bore by 8 um: not resolved
+    # 20 x the scatter (0.5 um), and halved wear steps move the bore by 8 um: not resolved
     sentence, = _unexplained(baseline, baseline, [], _resolution(0.5e-6, 8e-6), [])
-    assert "20 times the instrument's scatter" in sentence and "smaller wear blocks" in sentence
-    # the same misfit with well-resolved blocks: unexplained, without the block-size remark
+    assert "20 times the instrument's scatter" in sentence and "(wear steps halved)" in sentence
+    # the same misfit with well-resolved wear steps: unexplained, without the wear-step remark
     sentence, = _unexplained(baseline, baseline, [], _resolution(0.5e-6, 0.2e-6), [])
-    assert "smaller wear blocks" not in sentence
+    assert "(wear steps halved)" not in sentence
     # ... but where recording twice the crank cycles moves the bore by 8 um, that is said
     sentence, = _unexplained(baseline, baseline, [], _resolution(0.5e-6, 0.2e-6, 8e-6), [])
-    assert "smaller wear blocks" not in sentence and "more recorded cycles" in sentence
+    assert "(wear steps halved)" not in sentence and "more recorded cycles" in sentence
     # ... and where runs started 1 and 2 deg later part by 8 um, that (the largest) is said
     sentence, = _unexplained(baseline, baseline, [], _resolution(0.5e-6, 3e-6, 2e-6, 8e-6), [])
-    assert "crank starts 0, 1, 2 deg later" in sentence and "smaller wear blocks" not in sentence
+    assert "crank starts 0, 1, 2 deg later" in sentence and "(wear steps halved)" not in sentence
     # within 3 x the scatter: nothing is unexplained
     assert _unexplained(_fit(1.2e-6), _fit(1.2e-6), [], _resolution(0.5e-6, 8e-6), []) == []
 

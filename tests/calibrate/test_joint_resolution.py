@@ -50,7 +50,8 @@ def made_up(monkeypatch):
 
 CONFIG = {"wear_loop": {"rod_models": ["rigid"], "extrapolation": "adaptive",
                         "max_extrapolation_factor": 50000.0, "max_depth_increment_fraction": 0.25,
-                        "recorded_cycles_per_block": 1, "total_cycles": 100},
+                        "recorded_cycles_per_block": 1, "wear_steps_per_block": 1,
+                        "total_cycles": 100},
           "mechanism": {"initial_crank_angle_deg": 0.0}}
 OBS = SimpleNamespace(cycles=np.array([LAST / 2, LAST]), angle_rad=None)
 
@@ -64,8 +65,10 @@ def test_the_coarsest_blocks_whose_noise_is_within_the_scatter_are_chosen(made_u
                  for level in found["wear_step_levels"]]
     assert fractions == [0.25, 0.125, 0.0625, 0.03125]  # the last only to judge the one before
     assert found["resolved"] and found["wear_step"] == {"max_depth_increment_fraction": 0.0625,
-                                                        "max_extrapolation_factor": 12500.0}
+                                                        "max_extrapolation_factor": 12500.0,
+                                                        "wear_steps_per_block": 4}
     assert config["wear_loop"]["max_depth_increment_fraction"] == 0.0625
+    assert config["wear_loop"]["wear_steps_per_block"] == 4
     assert config["wear_loop"]["total_cycles"] == 100  # the config's own, not the runs'
     assert CONFIG["wear_loop"]["max_depth_increment_fraction"] == 0.25  # not changed in place
     # at the two counts (half and all of the last one's depth) the RMS of a f and of 2 f D

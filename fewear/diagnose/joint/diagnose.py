@@ -90,8 +90,8 @@ sets whose first round named a cause (the extended model's misfit of another mod
 ``max_causes`` is 1 by default.
 
 Resolution first (:mod:`fewear.diagnose.joint.resolution`): before any cause is fitted, the
-believed model's wear blocks are halved until its own noise (the spread of runs started a degree
-apart, the move of halved blocks) is at most the instrument's scatter, estimated from
+believed model's wear steps are halved until its own noise (the spread of runs started a degree
+apart, the move of halved wear steps) is at most the instrument's scatter, estimated from
 neighbouring profile points; every run of the diagnosis is made at those blocks. None is
 accepted while the believed model predicts the held-out data within
 :data:`UNEXPLAINED_SCATTERS` times the larger of the scatter and the model's own noise.
@@ -358,7 +358,9 @@ def _round(data: JointMeasurements, obs: Observations, config: dict,
                     "the data, worn through or contact lost) before the cycles the fit needs"}
                    for name, forms in candidates.items() if not forms]
     candidates = {name: forms for name, forms in candidates.items() if forms}
-    fits = fit_causes(candidates, obs, baseline, settings, _refinement_runs(config, make_runs))
+    refined_runs = candidate_runner(int(math.ceil(REFINED_REACH * obs.cycles.max())),
+                                    float(obs.depth_m.max()))
+    fits = fit_causes(candidates, obs, baseline, settings, _refinement_runs(config, refined_runs))
     scatter = structure.scatter_estimate_m(obs.angle_rad, baseline.residuals_m, obs.cycles)
     accepted, verdicts = _select(baseline, fits, settings,
                                  None if scatter is None else max(scatter, noise_m))
@@ -370,6 +372,12 @@ def _round(data: JointMeasurements, obs: Observations, config: dict,
                  not_confirmed=tuple(not_confirmed), untestable=tuple(untestable),
                  extended_config=extended, extended_fit=final_fit,
                  extended_depth_m=extended_depth)
+
+
+REFINED_REACH = 1.25
+"""A refinement's run, made at its fit's level of k, goes this many times the last measured count
+(the level refitted on it may rise by as much before the run's last block is extrapolated); the
+candidates' runs, made at the believed k, go ``max_k_scale`` times it."""
 
 
 def _horizon(obs: Observations, settings: JointDiagnoseSettings) -> int:
@@ -581,9 +589,10 @@ def _unexplained(baseline: Fit, final_fit: Fit, causes, resolution: dict,
 
 
 LIMITS = {
-    "blocks": ("the model's own block size moves its bore by {:.2g} m (blocks halved), so "
-               "smaller wear blocks ([wear_loop] max_extrapolation_factor, "
-               "max_depth_increment_fraction) are needed to tell the causes apart"),
+    "blocks": ("the model's own wear step moves its bore by {:.2g} m (wear steps halved), so "
+               "smaller wear steps ([wear_loop] max_extrapolation_factor, "
+               "max_depth_increment_fraction, with more wear_steps_per_block) are needed to "
+               "tell the causes apart"),
     "recorded": ("the model's own sampling of the crank cycles moves its bore by {:.2g} m (twice "
                  "the recorded cycles), so more recorded cycles ([wear_loop] "
                  "recorded_cycles_per_block) are needed to tell the causes apart"),

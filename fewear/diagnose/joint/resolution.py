@@ -10,15 +10,16 @@ f = 0.25, one wear step per block) runs started 0-3 deg apart part by 5.6 um RMS
 20,000 cycles, ten times a profilometer's 0.5 um scatter, and lie 25-60 % deeper than the
 converged model's bore (README, the joint diagnosis's resolution).
 
-:func:`resolve_wear_step` measures, at the user's wear blocks and then at blocks halved again and
-again (:func:`fewear.diagnose.joint.forward.with_halved_blocks`: A_max and the depth-increment
-fraction f), the spread of runs whose crank starts 0, 1 and 2 deg later (RMS over the bore nodes
-at the measured cycle counts, about their mean, with the n - 1 of a sample) and how far their
-mean moves from one level to the next. The coarsest level whose spread is at most the
-instrument's scatter and whose mean the next level moves by at most the scatter is the model
-the diagnosis fits (its candidates are run at those blocks, and ``extended.toml`` carries
-them); at most ``max_wear_step_halvings`` halvings (then the finest is taken, its noise reported
-as the limit).
+:func:`resolve_wear_step` measures, at the user's wear steps and then at wear steps halved again
+and again (:func:`fewear.diagnose.joint.forward.with_halved_wear_steps`: A_max and the depth-
+increment fraction f, with more wear steps per dynamics block, so that a level costs contact
+solves, not dynamics), the spread of runs whose crank starts 0, 1 and 2 deg later (RMS over the
+bore nodes at the measured cycle counts, about their mean, with the n - 1 of a sample) and how far
+their mean moves from one level to the next. The coarsest level whose spread is at most the
+instrument's scatter and whose mean the next level moves by at most the scatter is the model the
+diagnosis fits (its candidates are run at those blocks, and ``extended.toml`` carries them); at
+most ``max_wear_step_halvings`` halvings (then the finest is taken, its noise reported as the
+limit).
 """
 
 from __future__ import annotations
@@ -38,7 +39,7 @@ from fewear.diagnose.joint.forward import (
     model_config,
     simulate_wears,
     with_doubled_recorded_cycles,
-    with_halved_blocks,
+    with_halved_wear_steps,
 )
 
 MEMBER_START_OFFSETS_DEG = (1.0, 2.0)
@@ -91,7 +92,7 @@ def resolve_wear_step(config: dict, obs: Observations, max_halvings: int,
             break
         if halving > 0 and (_resolved(levels[-2], change, scatter) or halving > max_halvings):
             break
-        configs.append(with_halved_blocks(configs[-1]))
+        configs.append(with_halved_wear_steps(configs[-1]))
         members.append(_members(configs[-1]))
     chosen = _chosen_level(levels, scatter, max_halvings)
     doubled, = simulate_wears([(with_doubled_recorded_cycles(configs[chosen]),
@@ -150,9 +151,10 @@ _BLOCK_KEYS = {"adaptive": ("max_depth_increment_fraction", "max_extrapolation_f
 
 
 def _blocks(config: dict) -> dict[str, float]:
-    """The settings of ``config`` that :func:`with_halved_blocks` halves."""
+    """The settings of ``config`` that :func:`with_halved_wear_steps` changes."""
     loop = config["wear_loop"]
-    return {key: float(loop[key]) for key in _BLOCK_KEYS[loop["extrapolation"]]}
+    return {**{key: float(loop[key]) for key in _BLOCK_KEYS[loop["extrapolation"]]},
+            "wear_steps_per_block": int(loop["wear_steps_per_block"])}
 
 
 def _with_blocks(config: dict, blocks: dict[str, float]) -> dict:
