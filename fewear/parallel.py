@@ -15,7 +15,7 @@ import os
 import sys
 import types
 from collections.abc import Callable
-from contextlib import contextmanager
+from contextlib import ExitStack, contextmanager
 
 SINGLE_THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS")
 
@@ -57,17 +57,52 @@ def _quiet_worker() -> None:
 
 
 def side_by_side(function: Callable, arguments: list[tuple], prepare: Callable | None = None):
-    """``[function(*a) for a in arguments]``, in worker processes (:func:`worker_pool`, one per
-    core and at most one per call) when there are several calls and cores and this process is
-    not one of several MPI ranks (they share each call's work instead); else here, one after
-    the other. ``prepare()`` runs before workers start (e.g. compiling what they would each
-    compile at once)."""
+    """``[function(*a) for a in arguments]``, in worker processes (those of
+    :func:`workers_kept` while it is open, else a :func:`worker_pool` of one per core and at
+    most one per call) when there are several calls and cores and this process is not one of
+    several MPI ranks (they share each call's work instead); else here, one after the other.
+    ``prepare()`` runs before workers start (e.g. compiling what they would each compile at
+    once)."""
     from mpi4py import MPI
 
     jobs = min(len(arguments), usable_cores())
     if jobs < 2 or MPI.COMM_WORLD.size > 1:
         return [function(*args) for args in arguments]
+    if _kept.stack is not None:
+        if _kept.pool is None:
+            if prepare is not None:
+                prepare()
+            _kept.pool = _kept.stack.enter_context(worker_pool(usable_cores()))
+        return _kept.pool.starmap(function, arguments, chunksize=1)
     if prepare is not None:
         prepare()
     with worker_pool(jobs) as pool:
         return pool.starmap(function, arguments, chunksize=1)  # calls of unequal cost
+
+
+class _Kept:
+    """The open :func:`workers_kept` block (``stack`` None: none) and its pool, once started."""
+
+    stack: ExitStack | None = None
+    pool = None
+
+
+_kept = _Kept()
+
+
+@contextmanager
+def workers_kept():
+    """Within the block, :func:`side_by_side` hands its calls to one pool of workers (one per
+    core, started at the first call that uses workers, stopped when the block is left) instead
+    of starting a pool per call: a worker's start (an interpreter importing DOLFINx and PETSc,
+    loading the compiled kernels and forms) costs seconds, and a joint diagnosis makes some
+    fifteen batches of runs and fits. A nested block shares the outer one's pool."""
+    if _kept.stack is not None:
+        yield
+        return
+    with ExitStack() as stack:
+        _kept.stack = stack
+        try:
+            yield
+        finally:
+            _kept.stack, _kept.pool = None, None

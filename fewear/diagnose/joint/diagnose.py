@@ -138,6 +138,7 @@ from fewear.diagnose.joint.resolution import (
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
 from fewear.errors import FewearInputError
 from fewear.mesh.profile import periodic_linear
+from fewear.parallel import workers_kept
 
 
 def f_test_p(nested: Fit, fuller: Fit) -> float:
@@ -301,14 +302,15 @@ def diagnose_joint(data: JointMeasurements, config: dict,
     settings = settings or JointDiagnoseSettings.default()
     obs = observations(data, settings.held_out_fraction)
     _check_run_length(data, obs, _believed_config(config, obs, settings))
-    config, resolution = resolve_wear_step(config, obs, settings.max_wear_step_halvings,
-                                           settings.max_offset_deg)
-    noise_m = model_noise_m(resolution)
-    rounds = [_round(data, obs, config, settings, (), noise_m)]
-    while (rounds[-1].named and len(_named(rounds)) < settings.max_causes
-           and _to_try(rounds[-1].extended_config, settings, _named(rounds))[0]):
-        rounds.append(_round(data, obs, rounds[-1].extended_config, settings, _named(rounds),
-                             noise_m))
+    with workers_kept():
+        config, resolution = resolve_wear_step(config, obs, settings.max_wear_step_halvings,
+                                               settings.max_offset_deg)
+        noise_m = model_noise_m(resolution)
+        rounds = [_round(data, obs, config, settings, (), noise_m)]
+        while (rounds[-1].named and len(_named(rounds)) < settings.max_causes
+               and _to_try(rounds[-1].extended_config, settings, _named(rounds))[0]):
+            rounds.append(_round(data, obs, rounds[-1].extended_config, settings,
+                                 _named(rounds), noise_m))
     first, final = rounds[0], _final(rounds)
     return JointDiagnosis(
         data=data, settings=settings, observations=obs, rounds=tuple(rounds),

@@ -1,0 +1,41 @@
+"""Runs side by side in worker processes (fewear.parallel): a pool kept for a block of calls."""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+
+from fewear import parallel
+
+needs_two_cores = pytest.mark.skipif(parallel.usable_cores() < 2, reason="one core only")
+
+
+def _workers() -> set[int]:
+    """The processes that ran a batch of calls (the calls' results: their process ids)."""
+    return set(parallel.side_by_side(os.getpid, [()] * 4))
+
+
+@needs_two_cores
+def test_a_kept_pool_runs_every_batch_of_its_block_and_is_stopped_after():
+    with parallel.workers_kept():
+        first = _workers()
+        with parallel.workers_kept():  # a nested block shares the pool
+            second = _workers()
+        third = _workers()
+    after = _workers()
+    kept = first | second | third  # not more processes than one pool has
+    assert os.getpid() not in kept and len(kept) <= parallel.usable_cores()
+    assert after.isdisjoint(kept)  # a pool of its own, started and stopped for the batch
+    assert parallel._kept.stack is None and parallel._kept.pool is None
+
+
+@needs_two_cores
+def test_without_a_kept_pool_each_batch_starts_its_own():
+    assert _workers().isdisjoint(_workers())
+
+
+def test_a_block_whose_calls_need_no_workers_starts_none():
+    with parallel.workers_kept():
+        assert parallel.side_by_side(os.getpid, [()]) == [os.getpid()]  # one call: here
+        assert parallel._kept.pool is None
