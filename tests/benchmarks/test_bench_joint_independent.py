@@ -4,7 +4,7 @@ The data sets come from tests/calibrate/independent_joint_generator.py (written 
 the diagnosis or the project's own generator): per cause of the catalogue ``SEEDS`` data sets
 (env ``FEWEAR_BENCH_JOINT_INDEPENDENT_SEEDS``, default 3), each with its own truth parameters and
 its own lab (sampling, origin, filter, noise, drift, dust, coverage, cycle counts). All are
-diagnosed in one process against the believed model (resolved first: its wear blocks halved until
+diagnosed in one process against the believed model (resolved first: its wear steps halved until
 its own noise is within the instrument's scatter; the forward runs are memoised), through the CSV
 reader. Printed per data set: the hidden truth, the causes named, the held-out gain and the
 wall time (data generation + diagnosis); then per cause how many were named first, the false

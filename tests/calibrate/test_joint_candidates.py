@@ -1,5 +1,5 @@
 """The joint diagnosis's candidate runs and resolution (fewear.diagnose.joint.diagnose), on
-constructed wear histories: runs that stop before the data are left out, halving the blocks
+constructed wear histories: runs that stop before the data are left out, halving the wear steps
 halves what the extrapolation settings allow, a 'none' whose misfit lies within what the
 model's blocks resolve says so, running-in's time map and form are those of the data, and a
 cause is named only if its full run holds up on the held-out data.

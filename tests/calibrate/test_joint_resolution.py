@@ -1,4 +1,4 @@
-"""Resolution first (fewear.diagnose.joint.resolution): the believed model's wear blocks halved
+"""Resolution first (fewear.diagnose.joint.resolution): the believed model's wear steps halved
 until its own noise is at most the instrument's scatter, on runs made up with a known noise.
 
 The made-up model at depth-increment fraction f: the bore of a run is D (1 + 4 f) plus a

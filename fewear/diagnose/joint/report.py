@@ -103,7 +103,7 @@ def write_joint_outputs(diagnosis: JointDiagnosis, summary: dict[str, Any], fold
 
 
 def _resolution_lines(resolution: dict) -> list[str]:
-    """The resolution as a sentence and a table of the wear-block levels measured."""
+    """The resolution as a sentence and a table of the wear-step levels measured."""
     scatter = resolution["instrument_scatter_m"]
     chosen = resolution["wear_step"]
     keys = list(chosen)
@@ -115,7 +115,7 @@ def _resolution_lines(resolution: dict) -> list[str]:
             for level in resolution["wear_step_levels"]]
     return [("Resolution: the instrument's scatter "
              + (f"{scatter:.2g} m" if scatter is not None else "(no profiles to estimate it)")
-             + "; the believed model's wear blocks halved until its runs whose crank starts up "
+             + "; the believed model's wear steps halved until its runs whose crank starts up "
              f"to {max(MEMBER_START_OFFSETS_DEG):g} deg later part, and the next halving moves "
              "their mean, by at most the scatter (RMS at the measured cycle counts)"
              + ("" if resolution["resolved"] else
