@@ -347,21 +347,20 @@ def _round(data: JointMeasurements, obs: Observations, config: dict,
     """One round of selection on the model ``config`` (the believed one, or the one the causes
     ``named`` so far extend) over the causes :func:`_to_try`; ``noise_m``: the believed
     model's own noise (:func:`fewear.diagnose.joint.resolution.model_noise_m`)."""
-    horizon = _horizon(obs, settings)
+    horizon, deepest_m = _reach(obs, settings.max_k_scale), float(obs.depth_m.max())
     label = " + ".join(("believed model",) + named)
     base = simulate_wear(_believed_config(config, obs, settings), label)
     baseline = baseline_fit("baseline" if not named else label, base, obs,
                             settings.max_offset_deg)
     names, untestable = _to_try(config, settings, named)
-    make_runs = candidate_runner(horizon, float(obs.depth_m.max()))
+    make_runs = candidate_runner(horizon, deepest_m)
     believed_model = Believed(config, base, horizon, needed_cycles(obs, settings), make_runs)
     candidates = {name: CAUSES[name].forms(believed_model, settings) for name in names}
     untestable += [{"cause": name, "why": "every run with it switched on stops (far deeper than "
                     "the data, worn through or contact lost) before the cycles the fit needs"}
                    for name, forms in candidates.items() if not forms]
     candidates = {name: forms for name, forms in candidates.items() if forms}
-    refined_runs = candidate_runner(int(math.ceil(REFINED_REACH * obs.cycles.max())),
-                                    float(obs.depth_m.max()))
+    refined_runs = candidate_runner(_reach(obs, REFINED_REACH), deepest_m)
     fits = fit_causes(candidates, obs, baseline, settings, _refinement_runs(config, refined_runs))
     scatter = structure.scatter_estimate_m(obs.angle_rad, baseline.residuals_m, obs.cycles)
     accepted, verdicts = _select(baseline, fits, settings,
@@ -382,16 +381,18 @@ REFINED_REACH = 1.25
 candidates' runs, made at the believed k, go ``max_k_scale`` times it."""
 
 
-def _horizon(obs: Observations, settings: JointDiagnoseSettings) -> int:
-    """The cycles the candidates are run to: ``max_k_scale`` times the last measured count."""
-    return int(math.ceil(settings.max_k_scale * obs.cycles.max()))
+def _reach(obs: Observations, times: float) -> int:
+    """``times`` the last measured count, in whole cycles: how far a round's runs go (the
+    candidates' ``max_k_scale`` times, a refinement's :data:`REFINED_REACH` times)."""
+    return int(math.ceil(times * obs.cycles.max()))
 
 
 def _believed_config(config: dict, obs: Observations, settings: JointDiagnoseSettings) -> dict:
-    """``config``'s rod run as far as the fits may need: the :func:`_horizon`, and further
-    still, as running-in maps N to up to r N cycles of it."""
+    """``config``'s rod run as far as the fits may need: as far as the candidates
+    (``max_k_scale`` times the last count), and further still, as running-in maps N to up to
+    r N cycles of it."""
     return model_config(config, config["wear_loop"]["rod_models"][0],
-                        RUNNING_IN_REACH * _horizon(obs, settings))
+                        RUNNING_IN_REACH * _reach(obs, settings.max_k_scale))
 
 
 def _check_run_length(data, obs, believed_config: dict) -> None:
