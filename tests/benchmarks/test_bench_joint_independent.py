@@ -13,8 +13,9 @@ result (tests/calibrate/test_joint_independent.py holds the asserts).
 
 Run with ``pytest tests/benchmarks/test_bench_joint_independent.py -m benchmark -s``.
 
-Measured at b9f6fed with one seed per cause (index 0; README, CHANGELOG.md): 5 of 6 hidden
-causes named (impact wear taken for a k level), the null set 'none'; 10-17 minutes per data set.
+Measured at a7d8c5a with two seeds per cause (README, CHANGELOG.md): 7 of 10 hidden causes named
+(impact wear taken for a k level twice, the flexible rod x1.12 once), both null sets 'none';
+114-251 s per data set (10-17 minutes at b9f6fed, before the resolution by wear steps).
 """
 
 import os

@@ -170,8 +170,8 @@ def test_fewear_diagnose_reads_joint_files_and_writes_its_outputs(null_by_the_co
     assert {c["cause"] for c in summary["candidates"]} == set(QUICK["candidates"])
     for name in ("report.md", "joint_fits.png", "extended.toml"):
         assert (out / name).stat().st_size > 0
-    # the report's table of the wear blocks measured marks the one chosen, which extended.toml
-    # carries (the extended model is the believed one at the resolved blocks: no cause)
+    # the report's table of the wear-step levels measured marks the one chosen, which
+    # extended.toml carries (the extended model is the believed one at those steps: no cause)
     chosen = summary["resolution"]["wear_step"]
     rows = [line for line in (out / "report.md").read_text().splitlines()
             if line.endswith("| **chosen** |")]
