@@ -61,21 +61,20 @@ def side_by_side(function: Callable, arguments: list[tuple], prepare: Callable |
     :func:`workers_kept` while it is open, else a :func:`worker_pool` of one per core and at
     most one per call) when there are several calls and cores and this process is not one of
     several MPI ranks (they share each call's work instead); else here, one after the other.
-    ``prepare()`` runs before workers start (e.g. compiling what they would each compile at
-    once)."""
+    ``prepare()`` runs here before the calls are handed out (e.g. compiling what the workers
+    would each compile at once; with a kept pool, before every batch that passes it: the pool
+    may have been started by a batch that did not)."""
     from mpi4py import MPI
 
     jobs = min(len(arguments), usable_cores())
     if jobs < 2 or MPI.COMM_WORLD.size > 1:
         return [function(*args) for args in arguments]
+    if prepare is not None:  # also before a kept pool's later batch: its workers may not
+        prepare()            # have run what it prepares yet
     if _kept.stack is not None:
         if _kept.pool is None:
-            if prepare is not None:
-                prepare()
             _kept.pool = _kept.stack.enter_context(worker_pool(usable_cores()))
         return _kept.pool.starmap(function, arguments, chunksize=1)
-    if prepare is not None:
-        prepare()
     with worker_pool(jobs) as pool:
         return pool.starmap(function, arguments, chunksize=1)  # calls of unequal cost
 

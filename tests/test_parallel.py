@@ -39,3 +39,14 @@ def test_a_block_whose_calls_need_no_workers_starts_none():
     with parallel.workers_kept():
         assert parallel.side_by_side(os.getpid, [()]) == [os.getpid()]  # one call: here
         assert parallel._kept.pool is None
+
+
+@needs_two_cores
+def test_every_batch_of_a_kept_pool_is_prepared_here_first():
+    """The pool may have been started by a batch without ``prepare`` (fits before runs): a later
+    batch's ``prepare`` still runs here before its calls are handed out."""
+    prepared = []
+    with parallel.workers_kept():
+        _workers()
+        parallel.side_by_side(os.getpid, [()] * 2, prepare=lambda: prepared.append(os.getpid()))
+    assert prepared == [os.getpid()]
