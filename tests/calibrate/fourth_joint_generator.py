@@ -94,6 +94,25 @@ Hidden causes (``CAUSES``; one per data set; ``params`` of :class:`DataSet` hold
     dh/dN = m(N) f(h)), so the truth is the believed run read at N_eff(N); the extra wear
     saturates at (r - 1) N_r equivalent cycles (750 to 8000).
 
+Two hidden causes (:func:`write_two_cause_data_set`)
+-----------------------------------------------------
+A pair of :data:`TWO_CAUSE_PAIRS` hides both causes of the pair in one truth, each by its law and
+ranges above; all ten pairs of the five causes combine. :func:`true_depth` applies a set of causes
+in one forward run: the config causes (the wear coefficient's level, the flexible rod) change
+different keys of the one truth config; a rising friction and impact wear are layered on that
+config's loop together (:func:`layered_run`: each block at mu(N_j), the impacts' depth added to
+its wear steps, the rod flexible or the k level changed if the pair says so); running-in warps the
+cycles of that same run. Running-in multiplies the sliding (abrasive) wear only, so with a
+time-dependent or an added wear the warp is exact only if the loop runs in the warped count
+N_eff: dh/dN_eff = f(h, mu(N)) + g(h) / m(N) at the real count N = N_eff^-1 (the inverse of
+N_eff(N), :func:`running_in_real_cycles`): each block of the warped run takes mu at the real
+count of its first cycle and each wear step the impacts' depth divided by m there, and the truth
+is the run read at N_eff(N). Each cause's parameters are drawn from its own stream (the truth
+stream's child numbered by the cause's place in :data:`CAUSES`), as its single-cause set draws
+them; the lab plan and the noise come from the seed's lab and noise streams as in every set.
+``params`` joins both causes' parameters (their names are distinct) and their laws ("; ").
+Seeds: :func:`two_cause_seed`.
+
 Instrument (:class:`LabPlan`, :func:`measure_profiles`, :func:`measure_max_depths`)
 --------------------------------------------------------------------------------
 At each profile count the joint is stopped and a silicone replica of the bore is cast as a split
@@ -141,7 +160,8 @@ The replica's compliance and the confocal spot's footprint (40 um, 0.23 deg, far
 filter's cutoff); wear along the width (the plane-strain FE model is uniform along it, so the
 seven lines see one profile); any change of the impact speed distribution within a block beyond
 the block's recorded cycle; the pin's wear; the hardness' effect on anything but k; in the
-friction cause the rise of mu within a block (each block runs at mu of its first cycle); in the
+friction cause the rise of mu within a block (each block runs at mu of its first cycle; with
+running-in also the change of m over a block's dynamics and a wear step's impacts); in the
 impact law any threshold speed (every impact wears) and the worn bore's wider Hertz contact
 (nominal radii).
 
@@ -161,6 +181,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from itertools import combinations
 from pathlib import Path
 
 import numpy as np
@@ -223,6 +244,13 @@ PROFILE_COUNTS = (4, 5, 6)
 FIRST_COUNT = (1500, 2600)
 LAST_COUNT = (19000, 25000)
 MAX_DEPTH_READINGS = 3
+TWO_CAUSE_PAIRS = tuple(combinations([cause for cause in CAUSES if cause != "none"], 2))
+"""The pairs of distinct hidden causes a two-cause data set hides, each in :data:`CAUSES` order
+(all ten: every pair combines in one truth, module doc)."""
+TWO_CAUSE_SEED_BASE = 19000
+"""Two-cause seeds 19000 + 100 * (pair index) + index: above every single-cause seed (9000-9599)."""
+CONFIG_CAUSES = ("wear_coefficient", "flexible_link")
+"""The causes that change the truth's config (:func:`truth_config`)."""
 
 
 @dataclass(frozen=True)
@@ -250,7 +278,8 @@ class LabPlan:
 @dataclass(frozen=True)
 class DataSet:
     """One written data set: its hidden ``cause`` and ``params`` (the truth), the files, and the
-    ``lab`` plan (:class:`LabPlan`)."""
+    ``lab`` plan (:class:`LabPlan`). A two-cause set's ``cause`` is its pair joined by "+" in
+    :data:`CAUSES` order (e.g. "friction+running_in"), its ``params`` both causes' (module doc)."""
 
     cause: str
     seed: int
@@ -259,6 +288,11 @@ class DataSet:
     max_wear_csv: Path
     params: dict
     lab: LabPlan
+
+    @property
+    def causes(self) -> tuple[str, ...]:
+        """The hidden causes: one, or the two of a two-cause set."""
+        return tuple(self.cause.split("+"))
 
 
 def data_set_seed(cause: str, index: int) -> int:
@@ -270,9 +304,36 @@ def data_set_seed(cause: str, index: int) -> int:
     return 9000 + 100 * CAUSES.index(cause) + int(index)
 
 
+def checked_pair(pair) -> tuple[str, str]:
+    """``pair`` as a tuple of :data:`TWO_CAUSE_PAIRS`; a ValueError naming it otherwise."""
+    candidate = tuple(pair) if isinstance(pair, (tuple, list)) else None
+    if candidate not in TWO_CAUSE_PAIRS:
+        raise ValueError(f"cause pair {pair!r}: expected one of {TWO_CAUSE_PAIRS} (two distinct "
+                         "causes other than 'none', in CAUSES order)")
+    return candidate
+
+
+def two_cause_seed(pair, index: int) -> int:
+    """The seed of two-cause data set ``index`` (0-99) of ``pair`` (one of
+    :data:`TWO_CAUSE_PAIRS`): 19000 + 100 * position + index, apart from every single-cause
+    seed."""
+    pair = checked_pair(pair)
+    if not (isinstance(index, (int, np.integer)) and 0 <= index <= 99):
+        raise ValueError(f"data set index {index!r}: expected a whole number in 0-99")
+    return TWO_CAUSE_SEED_BASE + 100 * TWO_CAUSE_PAIRS.index(pair) + int(index)
+
+
 def _streams(seed: int) -> tuple[np.random.Generator, ...]:
     """Independent random streams of a seed: the truth, the lab plan, the instrument's noise."""
     return tuple(np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(3))
+
+
+def cause_streams(seed: int, causes) -> dict[str, np.random.Generator]:
+    """The random stream of each cause of a two-cause data set of ``seed``: the child of the
+    seed's truth stream (:func:`_streams`) numbered by the cause's place in :data:`CAUSES`
+    (independent of each other and of the lab and noise streams)."""
+    return {cause: np.random.default_rng(np.random.SeedSequence(
+        seed, spawn_key=(0, CAUSES.index(cause)))) for cause in causes}
 
 
 def _log_uniform(rng: np.random.Generator, bounds: tuple[float, float]) -> float:
@@ -310,6 +371,34 @@ def draw_truth(cause: str, rng: np.random.Generator) -> dict:
     raise ValueError(f"unknown cause {cause!r}; expected one of {', '.join(CAUSES)}")
 
 
+def draw_pair_truth(pair, streams: dict[str, np.random.Generator]) -> dict:
+    """The parameters of both causes of ``pair``, each drawn by :func:`draw_truth` from its own
+    stream of ``streams`` (:func:`cause_streams`), in one dict: the causes' parameters (their
+    names are distinct) and ``law``, their laws joined by "; "."""
+    laws, params = [], {}
+    for cause in checked_pair(pair):
+        drawn = dict(draw_truth(cause, streams[cause]))
+        laws.append(drawn.pop("law"))
+        shared = set(drawn) & set(params)
+        if shared:
+            raise ValueError(f"{pair}: the causes' parameters share the names {shared}")
+        params.update(drawn)
+    return {"law": "; ".join(laws), **params}
+
+
+def truth_causes(causes) -> tuple[str, ...]:
+    """``causes`` (one cause's name, or a collection of causes) as a tuple in :data:`CAUSES`
+    order; a ValueError for an unknown or repeated cause or 'none' with another."""
+    chosen = (causes,) if isinstance(causes, str) else tuple(causes)
+    unknown = [cause for cause in chosen if cause not in CAUSES]
+    if unknown or not chosen:
+        raise ValueError(f"unknown cause {unknown[0] if unknown else causes!r}; expected one or "
+                         f"more of {', '.join(CAUSES)}")
+    if len(set(chosen)) < len(chosen) or ("none" in chosen and len(chosen) > 1):
+        raise ValueError(f"causes {causes!r}: expected distinct causes, 'none' alone")
+    return tuple(cause for cause in CAUSES if cause in chosen)
+
+
 def running_in_multiplier(cycles, ratio: float, n_r_cycles: float):
     """m(N) = 1 + (r - 1) / (1 + N / N_r)^2 (-): the bore-wide wear multiplier of running in."""
     return 1.0 + (ratio - 1.0) / (1.0 + np.asarray(cycles, dtype=float) / n_r_cycles) ** 2
@@ -320,6 +409,15 @@ def running_in_cycles(cycles, ratio: float, n_r_cycles: float):
     count at which its bore equals the running-in truth's after N cycles."""
     n = np.asarray(cycles, dtype=float)
     return n + (ratio - 1.0) * n_r_cycles * n / (n + n_r_cycles)
+
+
+def running_in_real_cycles(effective_cycles, ratio: float, n_r_cycles: float):
+    """N(N_eff): the inverse of :func:`running_in_cycles`, the positive root of
+    N^2 + (N_r + (r - 1) N_r - N_eff) N - N_eff N_r = 0 (written without cancellation)."""
+    tau = np.asarray(effective_cycles, dtype=float)
+    b = n_r_cycles * ratio - tau
+    root = np.sqrt(b * b + 4.0 * tau * n_r_cycles)  # b + root > 0 for tau >= 0
+    return np.where(b > 0.0, 2.0 * tau * n_r_cycles / (b + root), 0.5 * (root - b))
 
 
 def friction_coefficient(cycles, mu_0: float, mu_dry: float, n_g_cycles: float):
@@ -400,7 +498,8 @@ _LAYERED: dict[str, WearHistory] = {}
 
 
 def layered_run(config: dict, last_cycles: int, friction: dict | None = None,
-                impact_volume_m3: float = 0.0) -> WearHistory:
+                impact_volume_m3: float = 0.0,
+                running_in: tuple[float, float] | None = None) -> WearHistory:
     """The wear loop of the config's rod model up to ``last_cycles``, block by block as
     :func:`fewear.loop.block.run_block`, with a hidden effect layered on it:
 
@@ -409,12 +508,17 @@ def layered_run(config: dict, last_cycles: int, friction: dict | None = None,
       and in the FE contact (the bushing's FE model is rebuilt with it and restored onto the worn
       mesh, as ``fewear run --resume`` does; the mechanism continues from its last state);
     - ``impact_volume_m3`` > 0: V_ref of the impact wear of :func:`impact_depth_per_cycle_m`,
-      added to every block's depth per cycle.
+      added to every block's depth per cycle;
+    - ``running_in`` (r, N_r), with either: the loop counts the running-in's warped cycles
+      N_eff (``last_cycles`` is one of them); each block takes mu at the real count
+      N = :func:`running_in_real_cycles` of its first cycle, and each wear step the impacts'
+      depth divided by m(N) (:func:`running_in_multiplier`) at its own: the sliding wear runs m
+      times faster, the impact wear does not (module doc). The truth is this run read at N_eff.
 
-    With neither, it is the believed loop (:func:`fewear.diagnose.joint.forward.simulate_wear`)
-    block for block. Memoised."""
-    key = json.dumps([config, last_cycles, friction, impact_volume_m3], sort_keys=True,
-                     default=str)
+    With neither friction nor impacts, it is the believed loop
+    (:func:`fewear.diagnose.joint.forward.simulate_wear`) block for block. Memoised."""
+    key = json.dumps([config, last_cycles, friction, impact_volume_m3, running_in],
+                     sort_keys=True, default=str)
     if key in _LAYERED:
         return _LAYERED[key]
     from mpi4py import MPI
@@ -431,13 +535,13 @@ def layered_run(config: dict, last_cycles: int, friction: dict | None = None,
     case = new_case(bushing)
     while case.state.cycles < last_cycles:
         if friction is not None:
-            block_config["joint"]["friction_coefficient"] = float(friction_coefficient(
-                case.state.cycles, friction["mu_0"], friction["mu_dry"], friction["n_g_cycles"]))
+            block_config["joint"]["friction_coefficient"] = block_friction_coefficient(
+                friction, case.state.cycles, running_in)
             inputs = run_inputs_from_config(block_config)
             if case.records:
                 bushing = restored_bushing(inputs, case, comm)
         source = (_impact_depth_source(block_config, impact_volume_m3,
-                                       inputs.loop.recorded_cycles_per_block)
+                                       inputs.loop.recorded_cycles_per_block, running_in)
                   if impact_volume_m3 > 0.0 else None)
         run_block(rod, inputs, bushing, case, source)
     state = case.state
@@ -449,13 +553,38 @@ def layered_run(config: dict, last_cycles: int, friction: dict | None = None,
     return history
 
 
-def _impact_depth_source(config: dict, volume_m3: float, recorded_cycles: int):
+def block_friction_coefficient(friction: dict, loop_cycles: float,
+                               running_in: tuple[float, float] | None = None) -> float:
+    """mu(N) of ``friction`` (``mu_0``, ``mu_dry``, ``n_g_cycles``) for a block starting at the
+    loop's count ``loop_cycles``: N itself, or with ``running_in`` (r, N_r) the real count of
+    that warped count (:func:`running_in_real_cycles`)."""
+    real = (loop_cycles if running_in is None
+            else float(running_in_real_cycles(loop_cycles, *running_in)))
+    return float(friction_coefficient(real, friction["mu_0"], friction["mu_dry"],
+                                      friction["n_g_cycles"]))
+
+
+def _impact_depth_source(config: dict, volume_m3: float, recorded_cycles: int,
+                         running_in: tuple[float, float] | None = None):
     """The impact wear of a block's recorded cycles as a depth per cycle on its current bore:
-    the source :func:`fewear.loop.block.run_block` adds to the block's wear."""
+    the source :func:`fewear.loop.block.run_block` adds to the block's wear. ``running_in``
+    (r, N_r): per warped cycle of a running-in loop, V_ref / m(N) at the wear step's real count
+    (:func:`impact_volume_per_warped_cycle_m3`)."""
     def depth_per_cycle_m(history, state) -> np.ndarray:
+        volume = (volume_m3 if running_in is None else
+                  impact_volume_per_warped_cycle_m3(volume_m3, state.cycles, running_in))
         return impact_depth_per_cycle_m(impacts_of(history), state.angle_rad, config,
-                                        volume_m3) / recorded_cycles
+                                        volume) / recorded_cycles
     return depth_per_cycle_m
+
+
+def impact_volume_per_warped_cycle_m3(volume_m3: float, effective_cycles: float,
+                                      running_in: tuple[float, float]) -> float:
+    """V_ref / m(N) at the real count N of ``effective_cycles`` (running-in's N_eff): the impacts
+    of one real cycle spread over the m(N) warped cycles it counts for (the running-in speeds up
+    the sliding wear, not the impacts)."""
+    real = running_in_real_cycles(effective_cycles, *running_in)
+    return float(volume_m3 / running_in_multiplier(real, *running_in))
 
 
 def truth_config(cause: str, params: dict, believed: dict) -> dict:
@@ -486,28 +615,32 @@ def believed_depth(believed: dict,
     return lambda cycles: (run.angle_rad, run.nodal_depth_m(cycles))
 
 
-def true_depth(cause: str, params: dict, believed: dict,
+def true_depth(causes, params: dict, believed: dict,
                last_cycles: int) -> Callable[[float], tuple[np.ndarray, np.ndarray]]:
     """The hidden truth's worn bore up to ``last_cycles``: a function cycles -> (node angles
-    (rad), nodal depth (m)). Runs the forward model once (memoised)."""
-    rod = believed["wear_loop"]["rod_models"][0]
-    if cause == "running_in":
-        ratio, n_r = params["ratio"], params["n_r_cycles"]
-        total = int(math.ceil(float(running_in_cycles(last_cycles, ratio, n_r))))
-        run = simulate_wear(model_config(believed, rod, total))
-        return lambda cycles: (run.angle_rad,
-                               run.nodal_depth_m(float(running_in_cycles(cycles, ratio, n_r))))
-    if cause == "friction":
-        run = layered_run(believed, int(last_cycles), {
-            key: params[key] for key in ("mu_0", "mu_dry", "n_g_cycles")})
-    elif cause == "impact_wear":
-        run = layered_run(believed, int(last_cycles),
-                          impact_volume_m3=params["volume_at_v_ref_m3"])
+    (rad), nodal depth (m)). ``causes``: one cause's name, or several (:func:`truth_causes`),
+    applied in one forward run (module doc): the config causes in its config, friction and
+    impact wear layered on its loop (:func:`layered_run`), running-in as its warped cycles. Runs
+    the forward model once (memoised)."""
+    causes = truth_causes(causes)
+    config = copy.deepcopy(believed)
+    for cause in causes:
+        if cause in CONFIG_CAUSES:
+            config = truth_config(cause, params, config)
+    warp = ((params["ratio"], params["n_r_cycles"]) if "running_in" in causes else None)
+    total = (int(last_cycles) if warp is None
+             else int(math.ceil(float(running_in_cycles(last_cycles, *warp)))))
+    friction = ({key: params[key] for key in ("mu_0", "mu_dry", "n_g_cycles")}
+                if "friction" in causes else None)
+    impact = params["volume_at_v_ref_m3"] if "impact_wear" in causes else 0.0
+    if friction is not None or impact > 0.0:
+        run = layered_run(config, total, friction, impact, warp)
     else:
-        config = truth_config(cause, params, believed)
-        run = simulate_wear(model_config(config, config["wear_loop"]["rod_models"][0],
-                                         int(last_cycles)))
-    return lambda cycles: (run.angle_rad, run.nodal_depth_m(cycles))
+        run = simulate_wear(model_config(config, config["wear_loop"]["rod_models"][0], total))
+    if warp is None:
+        return lambda cycles: (run.angle_rad, run.nodal_depth_m(cycles))
+    return lambda cycles: (run.angle_rad,
+                           run.nodal_depth_m(float(running_in_cycles(cycles, *warp))))
 
 
 # --- the lab ----------------------------------------------------------------------------------
@@ -653,24 +786,42 @@ def write_data_set(cause: str, seed: int, directory: str | Path, noise: bool = T
     """Write one data set of ``cause`` (deterministic per ``seed``) into ``directory``:
     believed.toml, profiles.csv, max_wear.csv (module doc). ``noise=False``: the same data set
     without the instrument's noise."""
+    if cause not in CAUSES:
+        raise ValueError(f"unknown cause {cause!r}; expected one of {', '.join(CAUSES)}")
+    truth_rng, _, _ = _streams(seed)
+    return _write(cause, (cause,), draw_truth(cause, truth_rng), seed, directory, noise)
+
+
+def write_two_cause_data_set(pair, seed: int, directory: str | Path,
+                             noise: bool = True) -> DataSet:
+    """As :func:`write_data_set`, with the two hidden causes of ``pair`` (one of
+    :data:`TWO_CAUSE_PAIRS`) in one truth (module doc): each cause's parameters drawn from its
+    own stream (:func:`cause_streams`), the lab plan and the noise from the seed's streams as in
+    every set. The data set's ``cause`` is the pair joined by "+"."""
+    pair = checked_pair(pair)
+    return _write("+".join(pair), pair, draw_pair_truth(pair, cause_streams(seed, pair)), seed,
+                  directory, noise)
+
+
+def _write(label: str, causes: tuple[str, ...], params: dict, seed: int,
+           directory: str | Path, noise: bool) -> DataSet:
+    """The data set of ``causes`` with the truth ``params``: the lab plan and the noise from
+    the seed's streams (:func:`_streams`), the files written into ``directory``."""
     from fewear.io.config import load_config
     from fewear.loop.settings import run_sections
 
-    if cause not in CAUSES:
-        raise ValueError(f"unknown cause {cause!r}; expected one of {', '.join(CAUSES)}")
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
-    truth_rng, lab_rng, noise_rng = _streams(seed)
-    params = draw_truth(cause, truth_rng)
+    _, lab_rng, noise_rng = _streams(seed)
     lab = draw_lab(lab_rng)
     believed_toml = directory / "believed.toml"
     believed_toml.write_text(BELIEVED_TOML)
     believed = load_config(believed_toml, run_sections())
-    truth = true_depth(cause, params, with_truth_numerics(believed), lab.last_cycles)
+    truth = true_depth(causes, params, with_truth_numerics(believed), lab.last_cycles)
     profiles_csv, max_wear_csv = write_measurements(
         directory, lab, truth, believed["bushing"]["inner_radius_m"],
         noise_rng if noise else None)
-    return DataSet(cause, int(seed), believed_toml, profiles_csv, max_wear_csv, params, lab)
+    return DataSet(label, int(seed), believed_toml, profiles_csv, max_wear_csv, params, lab)
 
 
 def truth_text(data: DataSet) -> str:

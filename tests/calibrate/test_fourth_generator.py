@@ -1,8 +1,11 @@
 """The fourth joint-wear generator (tests/calibrate/fourth_joint_generator.py): each piece against
 closed forms or independent computations, the instrument on known shapes, and (slow) the forward
-runs it layers its hidden causes on."""
+runs it layers its hidden causes on. Two-cause data sets: seeds, draws, the warped loop's laws and
+the one run that carries both causes (on synthetic stand-ins for the forward runs, no FE); slow:
+one written data set per pair."""
 
 import math
+import re
 import time
 
 import numpy as np
@@ -14,6 +17,7 @@ from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
 from fewear.mbd.history import JointHistory, classify_modes
 from tests.calibrate import fourth_joint_generator as gen
+from tests.calibrate.truth_numerics import with_truth_numerics
 
 R_BORE = 0.010  # m, the believed bore radius
 NODES = np.arange(96) * (2.0 * math.pi / 96)  # the believed bore nodes (rad)
@@ -405,3 +409,311 @@ def test_one_data_set_of_each_cause_is_written_with_a_measurable_effect(cause, t
         assert effect == 0.0
     else:
         assert 3e-6 < effect < 1e-4 and effect > 4 * noise
+
+
+# --- two hidden causes --------------------------------------------------------------------------
+
+NEUTRAL = {"wear_coefficient": {"hardness_HB": 235.0, "k_factor": 1.0},
+           "friction": {"mu_0": 0.1, "mu_dry": 0.1, "n_g_cycles": 5000.0},
+           "impact_wear": {"volume_at_v_ref_m3": 0.0},
+           "running_in": {"ratio": 1.0, "n_r_cycles": 900.0}}
+"""Parameters with which a cause has no effect (friction held at the believed 0.1)."""
+
+
+def _check_single_cause_range(cause, params):
+    """The ranges of the module doc (as test_truth_parameters_keep_to_their_stated_ranges)."""
+    if cause == "wear_coefficient":
+        assert params["k_factor"] == pytest.approx(235.0 / params["hardness_HB"], rel=1e-14)
+        assert 150.0 <= params["hardness_HB"] <= 195.0 or 285.0 <= params["hardness_HB"] <= 370.0
+    elif cause == "flexible_link":
+        assert params["rod_elements"] == 6.0
+        assert 1.0e-5 <= params["rod_damping_s"] <= 1.2e-4
+        assert 195e9 <= params["rod_youngs_modulus_Pa"] <= 215e9
+    elif cause == "friction":
+        assert 0.085 <= params["mu_0"] <= 0.115 and 0.24 <= params["mu_dry"] <= 0.38
+        assert 4000.0 <= params["n_g_cycles"] <= 15000.0
+    elif cause == "impact_wear":
+        assert 3e-15 <= params["volume_at_v_ref_m3"] <= 1e-14 and params["v_ref_m_s"] == 0.2
+    else:
+        assert cause == "running_in"
+        assert 2.5 <= params["ratio"] <= 6.0 and 500.0 <= params["n_r_cycles"] <= 1600.0
+
+
+def _pair_truth(pair, index=0):
+    seed = gen.two_cause_seed(pair, index)
+    return seed, gen.draw_pair_truth(pair, gen.cause_streams(seed, pair))
+
+
+def test_two_cause_pairs_are_the_ten_pairs_in_causes_order():
+    assert len(gen.TWO_CAUSE_PAIRS) == len(set(gen.TWO_CAUSE_PAIRS)) == 10
+    for first, second in gen.TWO_CAUSE_PAIRS:
+        assert "none" not in (first, second)
+        assert gen.CAUSES.index(first) < gen.CAUSES.index(second)
+
+
+def test_two_cause_seeds_follow_their_numbering_and_refuse_bad_input():
+    assert gen.two_cause_seed(("wear_coefficient", "flexible_link"), 0) == 19000
+    assert gen.two_cause_seed(("impact_wear", "running_in"), 99) == 19999
+    seeds = {gen.two_cause_seed(pair, i) for pair in gen.TWO_CAUSE_PAIRS for i in range(100)}
+    assert len(seeds) == 1000
+    assert not seeds & {gen.data_set_seed(c, i) for c in gen.CAUSES for i in range(100)}
+    for pair in (("running_in", "friction"), ("friction", "friction"), ("friction", "none"),
+                 ("friction",), "friction+running_in", ("friction", "thermal"), None):
+        with pytest.raises(ValueError, match=re.escape(repr(pair)) + ".*expected one of"):
+            gen.two_cause_seed(pair, 0)
+        with pytest.raises(ValueError, match=re.escape(repr(pair))):
+            gen.write_two_cause_data_set(pair, 19000, "/nonexistent/never/written")
+    for index in (100, -1, 1.5, "0"):
+        with pytest.raises(ValueError, match=re.escape(repr(index)) + ".*0-99"):
+            gen.two_cause_seed(("friction", "running_in"), index)
+
+
+@pytest.mark.parametrize("pair", gen.TWO_CAUSE_PAIRS, ids="+".join)
+def test_each_cause_of_a_pair_is_drawn_from_its_own_single_cause_distribution(pair):
+    for index in range(60):
+        seed, params = _pair_truth(pair, index)
+        laws = []
+        for cause in pair:
+            alone = gen.draw_truth(cause, gen.cause_streams(seed, [cause])[cause])
+            _check_single_cause_range(cause, alone)
+            laws.append(alone.pop("law"))
+            assert {key: params[key] for key in alone} == alone  # its own stream, any partner
+        assert params["law"] == "; ".join(laws)
+        assert len(params) == 1 + sum(len(gen.draw_truth(c, np.random.default_rng(0))) - 1
+                                      for c in pair)
+
+
+def test_pairs_draw_each_cause_independently_of_its_partner_and_the_single_stream():
+    seed = 19321
+    drawn = [gen.draw_pair_truth(pair, gen.cause_streams(seed, pair))["mu_dry"]
+             for pair in gen.TWO_CAUSE_PAIRS if "friction" in pair]
+    assert len(drawn) == 4 and len(set(drawn)) == 1
+    assert drawn[0] != gen.draw_truth("friction", gen._streams(seed)[0])["mu_dry"]
+    again = gen.draw_pair_truth(("friction", "running_in"),
+                                gen.cause_streams(seed + 1, ("friction", "running_in")))
+    assert again["mu_dry"] != drawn[0]
+
+
+def test_truth_causes_are_checked():
+    assert gen.truth_causes("friction") == ("friction",)
+    assert gen.truth_causes(["running_in", "friction"]) == ("friction", "running_in")
+    for bad in ("thermal", ("friction", "friction"), ("none", "friction"), ()):
+        with pytest.raises(ValueError):
+            gen.truth_causes(bad)
+
+
+def test_running_in_real_cycles_invert_the_warp():
+    for ratio, n_r in ((2.5, 500.0), (6.0, 1600.0), (4.0, 900.0), (1.0, 900.0)):
+        n = np.array([0.0, 1e-3, 1.0, 120.0, n_r, 3000.0, 25000.0, 1e7])
+        tau = gen.running_in_cycles(n, ratio, n_r)
+        np.testing.assert_allclose(gen.running_in_real_cycles(tau, ratio, n_r), n, rtol=1e-12,
+                                   atol=0.0)
+    assert float(gen.running_in_real_cycles(0.0, 3.0, 700.0)) == 0.0
+    np.testing.assert_allclose(gen.running_in_real_cycles(np.array([5.0, 4e4]), 1.0, 900.0),
+                               [5.0, 4e4], rtol=1e-13)
+
+
+def test_the_warped_loop_takes_mu_and_the_impacts_at_the_real_count():
+    friction = {"mu_0": 0.09, "mu_dry": 0.3, "n_g_cycles": 6000.0}
+    ratio, n_r = 4.0, 1000.0
+    for tau in (0.0, 800.0, 5000.0, 26000.0):
+        real = float(gen.running_in_real_cycles(tau, ratio, n_r))
+        assert gen.block_friction_coefficient(friction, tau) == pytest.approx(
+            float(gen.friction_coefficient(tau, 0.09, 0.3, 6000.0)), rel=1e-15)
+        assert gen.block_friction_coefficient(friction, tau, (ratio, n_r)) == pytest.approx(
+            float(gen.friction_coefficient(real, 0.09, 0.3, 6000.0)), rel=1e-14)
+        assert gen.block_friction_coefficient(friction, tau, (1.0, n_r)) == pytest.approx(
+            gen.block_friction_coefficient(friction, tau), rel=1e-13)
+        assert gen.impact_volume_per_warped_cycle_m3(5e-15, tau, (1.0, n_r)) == pytest.approx(
+            5e-15, rel=1e-15)
+    assert gen.impact_volume_per_warped_cycle_m3(5e-15, 0.0, (ratio, n_r)) == pytest.approx(
+        5e-15 / ratio, rel=1e-14)
+    # the impacts of N real cycles, spread over the warped cycles, are N cycles' worth
+    for cycles in (300.0, 2000.0, 20000.0):
+        warped = float(gen.running_in_cycles(cycles, ratio, n_r))
+        total, _ = quad(lambda t: gen.impact_volume_per_warped_cycle_m3(1.0, t, (ratio, n_r)),
+                        0.0, warped, limit=200)
+        assert total == pytest.approx(cycles, rel=1e-8)
+
+
+class _SyntheticRun:
+    """A stand-in for a forward run (no FE): a bore on the believed nodes worn in 1000-cycle
+    blocks of the loop's count, each at the rate of the config (k level against ``base_tail``,
+    a flexible rod tilts the bore) times mu / 0.1 of the block (the block law with friction)
+    plus the impacts' volume of the block (the warped law with running-in), like the loop."""
+
+    def __init__(self, config, base_tail, friction=None, impact=0.0, running_in=None):
+        flexible = config["wear_loop"]["rod_models"] == ["flexible"]
+        self.angle_rad = NODES
+        self.rate = 2e-9 * math.exp(config["wear"]["rbf"]["tail"][0] - base_tail) * (
+            1.0 + config["mechanism"]["rod_youngs_modulus_Pa"] / 1e12 if flexible else 1.0)
+        self.shape = 1.2 + np.cos(NODES - 0.7 - (0.3 if flexible else 0.0))
+        self.mu = config["joint"]["friction_coefficient"]
+        self.friction, self.impact, self.running_in = friction, impact, running_in
+
+    def nodal_depth_m(self, cycles):
+        ends = np.append(np.arange(0.0, cycles, 1000.0), cycles)
+        depth = np.zeros(NODES.size)
+        for start, end in zip(ends[:-1], ends[1:]):
+            mu = (self.mu if self.friction is None else
+                  gen.block_friction_coefficient(self.friction, start, self.running_in))
+            volume = (self.impact if self.running_in is None or self.impact == 0.0 else
+                      gen.impact_volume_per_warped_cycle_m3(self.impact, start, self.running_in))
+            depth += (end - start) * (self.rate * mu / 0.1 * self.shape
+                                      + volume * 1e6 * (1.0 + np.sin(NODES)))
+        return depth
+
+
+@pytest.fixture
+def synthetic(monkeypatch, believed):
+    """The forward runs replaced by :class:`_SyntheticRun`; returns the record of the runs:
+    ("simulate", config, rod, cycles) or ("layered", config, cycles, friction, impact,
+    running_in)."""
+    record = []
+    base_tail = believed["wear"]["rbf"]["tail"][0]
+
+    def model_config(config, rod, total):
+        return config, rod, total
+
+    def simulate_wear(model):
+        record.append(("simulate", *model))
+        return _SyntheticRun(model[0], base_tail)
+
+    def layered_run(config, last_cycles, friction=None, impact_volume_m3=0.0, running_in=None):
+        record.append(("layered", config, last_cycles, friction, impact_volume_m3, running_in))
+        return _SyntheticRun(config, base_tail, friction, impact_volume_m3, running_in)
+
+    monkeypatch.setattr(gen, "model_config", model_config)
+    monkeypatch.setattr(gen, "simulate_wear", simulate_wear)
+    monkeypatch.setattr(gen, "layered_run", layered_run)
+    return record
+
+
+def _reference_truth(cause, params, believed, last_cycles):
+    """A single cause's truth as the generator computed it before it took sets of causes (its
+    code, on the module's unchanged pieces)."""
+    rod = believed["wear_loop"]["rod_models"][0]
+    if cause == "running_in":
+        ratio, n_r = params["ratio"], params["n_r_cycles"]
+        total = int(math.ceil(float(gen.running_in_cycles(last_cycles, ratio, n_r))))
+        run = gen.simulate_wear(gen.model_config(believed, rod, total))
+        return lambda cycles: (run.angle_rad, run.nodal_depth_m(
+            float(gen.running_in_cycles(cycles, ratio, n_r))))
+    if cause == "friction":
+        run = gen.layered_run(believed, int(last_cycles), {
+            key: params[key] for key in ("mu_0", "mu_dry", "n_g_cycles")})
+    elif cause == "impact_wear":
+        run = gen.layered_run(believed, int(last_cycles),
+                              impact_volume_m3=params["volume_at_v_ref_m3"])
+    else:
+        config = gen.truth_config(cause, params, believed)
+        run = gen.simulate_wear(gen.model_config(config, config["wear_loop"]["rod_models"][0],
+                                                 int(last_cycles)))
+    return lambda cycles: (run.angle_rad, run.nodal_depth_m(cycles))
+
+
+@pytest.mark.parametrize("cause", gen.CAUSES)
+def test_single_cause_truth_and_files_are_unchanged_by_the_cause_sets(cause, synthetic, believed,
+                                                                     tmp_path):
+    """Against the single-cause code as it was (on the synthetic runs): the same runs asked
+    for, the same truth, the same files for the same seed."""
+    seed = gen.data_set_seed(cause, 4)
+    truth_rng, lab_rng, noise_rng = gen._streams(seed)
+    params = gen.draw_truth(cause, truth_rng)
+    lab = gen.draw_lab(lab_rng)
+    truth = gen.true_depth(cause, params, believed, lab.last_cycles)
+    reference = _reference_truth(cause, params, believed, lab.last_cycles)
+    assert synthetic[0] == synthetic[1]
+    for cycles in (*lab.profile_cycles, *lab.max_wear_cycles):
+        np.testing.assert_array_equal(truth(cycles)[1], reference(cycles)[1])
+    data = gen.write_data_set(cause, seed, tmp_path / "set")
+    assert data.cause == cause and data.causes == (cause,) and data.params == params
+    numerics = with_truth_numerics(load_config(data.believed_toml, run_sections()))
+    (tmp_path / "reference").mkdir()
+    profiles_csv, max_wear_csv = gen.write_measurements(
+        tmp_path / "reference", lab, _reference_truth(cause, params, numerics, lab.last_cycles),
+        R_BORE, noise_rng)
+    assert data.profiles_csv.read_bytes() == profiles_csv.read_bytes()
+    assert data.max_wear_csv.read_bytes() == max_wear_csv.read_bytes()
+
+
+@pytest.mark.parametrize("pair", gen.TWO_CAUSE_PAIRS, ids="+".join)
+def test_a_pair_is_one_run_carrying_both_causes(pair, synthetic, believed):
+    """One forward run: its config changed by every config cause of the pair, friction and
+    impacts layered on it together, running-in as its warped count."""
+    _, params = _pair_truth(pair)
+    last = 21000
+    truth = gen.true_depth(pair, params, believed, last)
+    assert len(synthetic) == 1
+    expected = believed
+    for cause in pair:
+        if cause in gen.CONFIG_CAUSES:
+            expected = gen.truth_config(cause, params, expected)
+    warp = (params["ratio"], params["n_r_cycles"]) if "running_in" in pair else None
+    total = last if warp is None else math.ceil(float(gen.running_in_cycles(last, *warp)))
+    friction = ({key: params[key] for key in ("mu_0", "mu_dry", "n_g_cycles")}
+                if "friction" in pair else None)
+    impact = params.get("volume_at_v_ref_m3", 0.0)
+    if friction is None and impact == 0.0:
+        assert synthetic[0] == ("simulate", expected, expected["wear_loop"]["rod_models"][0],
+                                total)
+    else:
+        assert synthetic[0] == ("layered", expected, total, friction, impact, warp)
+    run = _SyntheticRun(expected, believed["wear"]["rbf"]["tail"][0], friction, impact, warp)
+    for cycles in (1500, 7000, last):
+        read = cycles if warp is None else float(gen.running_in_cycles(cycles, *warp))
+        np.testing.assert_array_equal(truth(cycles)[1], run.nodal_depth_m(read))
+
+
+@pytest.mark.parametrize("pair", gen.TWO_CAUSE_PAIRS, ids="+".join)
+def test_a_pair_with_one_cause_switched_off_is_the_other_cause_alone(pair, synthetic, believed):
+    _, params = _pair_truth(pair, 1)
+    counts = (1800, 4000, 9000, 22000)
+    for off, on in (pair, pair[::-1]):
+        if off not in NEUTRAL:  # the flexible rod has no neutral value
+            continue
+        both = gen.true_depth(pair, {**params, **NEUTRAL[off]}, believed, 22000)
+        alone = gen.true_depth(on, params, believed, 22000)
+        for cycles in counts:
+            np.testing.assert_allclose(both(cycles)[1], alone(cycles)[1], rtol=1e-11, atol=0.0)
+    both = gen.true_depth(pair, params, believed, 22000)(22000)[1]
+    for cause in pair:
+        alone = gen.true_depth(cause, params, believed, 22000)(22000)[1]
+        assert np.abs(both - alone).max() > 1e-3 * both.max()
+
+
+def test_two_cause_files_are_written_as_single_cause_ones(synthetic, tmp_path):
+    pair = ("friction", "running_in")
+    seed = gen.two_cause_seed(pair, 0)
+    data = gen.write_two_cause_data_set(pair, seed, tmp_path)
+    assert data.cause == "friction+running_in" and data.causes == pair
+    assert data.params == _pair_truth(pair)[1]
+    assert data.lab == gen.draw_lab(gen._streams(seed)[1])
+    assert data.believed_toml.read_text() == gen.BELIEVED_TOML
+    measured = read_joint_measurements([data.profiles_csv, data.max_wear_csv])
+    assert measured.profile_cycles == data.lab.profile_cycles
+    assert tuple(int(c) for c in measured.max_wear[0]) == data.lab.max_wear_cycles
+    assert "cycles,angle_deg,wear_depth_m" in data.profiles_csv.read_text().splitlines()
+    assert gen.truth_text(data).startswith("friction+running_in: mu_0=")
+    again = gen.write_two_cause_data_set(pair, seed, tmp_path / "again")
+    assert again.profiles_csv.read_bytes() == data.profiles_csv.read_bytes()
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("pair", gen.TWO_CAUSE_PAIRS, ids="+".join)
+def test_one_two_cause_data_set_of_each_pair_is_written_with_a_measurable_effect(pair, tmp_path):
+    seed = gen.two_cause_seed(pair, 0)
+    start = time.perf_counter()
+    data = gen.write_two_cause_data_set(pair, seed, tmp_path / "noisy")
+    assert time.perf_counter() - start < 240.0
+    assert data.causes == pair
+    for cause in pair:
+        alone = gen.draw_truth(cause, gen.cause_streams(seed, [cause])[cause])
+        _check_single_cause_range(cause, alone)
+    measured = read_joint_measurements([data.profiles_csv, data.max_wear_csv])
+    assert measured.profile_cycles == data.lab.profile_cycles
+    config = load_config(data.believed_toml, run_sections())
+    last = data.lab.profile_cycles[-1]
+    truth = gen.true_depth(pair, data.params, config, data.lab.last_cycles)(last)[1]
+    belief = gen.believed_depth(config, data.lab.last_cycles)(last)[1]
+    assert float(np.sqrt(np.mean((truth - belief) ** 2))) > 3e-6

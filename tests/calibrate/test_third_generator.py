@@ -4,9 +4,14 @@ of the running-in multiplier, and the believed model's own forward run.
 
 That a hidden effect exceeds the noise is checked by default for running-in (a longer run of the
 believed model); the slow variant (`make slow`) checks the causes whose truth is a forward run of
-its own: wear coefficient, friction, flexible link, impact wear (20-60 s each)."""
+its own: wear coefficient, friction, flexible link, impact wear (20-60 s each).
+
+Two-cause data sets: their seeds, draws and the way one truth carries both causes are checked by
+default on a synthetic stand-in for the forward runs (no FE); the slow variant runs each pair's
+truth on the believed coarse model."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -259,3 +264,326 @@ def test_each_hidden_effect_exceeds_the_noise_at_the_last_count(cause, tmp_path)
     if cause == "impact_wear":
         assert 0.15 <= derived["volume_fraction"] <= 0.40
         assert np.all(difference >= -1e-12)  # impacts only add wear
+
+
+# --- two hidden causes (the forward runs replaced by a synthetic bore: no FE) -----------------
+
+NEUTRAL = {"wear_coefficient": {"k_factor": 1.0}, "friction": {"friction_coefficient": 0.1},
+           "running_in": {"initial_rate_factor": 1.0, "running_in_cycles": 8000.0},
+           "impact_wear": {"pressure_threshold_Pa": 80e6, "scatter_deg": 3.0,
+                           "volume_fraction_target": 0.0}}
+"""Parameters with which a cause has no effect (friction at the believed 0.1)."""
+
+
+def _assert_in_single_cause_range(cause, params):
+    """The ranges of the module doc."""
+    if cause == "wear_coefficient":
+        f = params["k_factor"]
+        assert 0.45 <= f <= 0.72 or 1.4 <= f <= 2.2
+    elif cause == "flexible_link":
+        steel = params["material"] == "steel"
+        assert params["material"] in ("steel", "aluminium")
+        low, high = (195e9, 215e9) if steel else (69e9, 73e9)
+        assert low <= params["rod_youngs_modulus_Pa"] <= high
+        low, high = (7750.0, 7900.0) if steel else (2700.0, 2810.0)
+        assert low <= params["rod_density_kg_m3"] <= high
+        assert params["rod_poisson_ratio"] == (0.29 if steel else 0.33)
+        assert 4.5e-3 <= params["rod_height_m"] <= 6.5e-3
+        assert 16e-3 <= params["rod_width_m"] <= 20e-3
+        assert 1e-5 <= params["rod_damping_s"] <= 6e-5
+    elif cause == "friction":
+        mu = params["friction_coefficient"]
+        assert 0.035 <= mu <= 0.07 or 0.15 <= mu <= 0.28
+    elif cause == "impact_wear":
+        assert 60e6 <= params["pressure_threshold_Pa"] <= 100e6
+        assert 2.0 <= params["scatter_deg"] <= 4.0
+        assert 0.15 <= params["volume_fraction_target"] <= 0.40
+    else:
+        assert cause == "running_in"
+        assert 1.5 <= params["initial_rate_factor"] <= 2.4
+        assert 5000.0 <= params["running_in_cycles"] <= 14000.0
+
+
+class _SyntheticRun:
+    """A stand-in for a truth's forward run: a smooth bore on 96 nodes whose depth grows
+    nonlinearly in N and with the config's friction, k level (against ``base_tail``, the
+    believed ln k) and rod (a flexible rod tilts it)."""
+
+    def __init__(self, config, base_tail):
+        self.angle_rad = np.arange(96) * (2 * math.pi / 96)
+        flexible = config["wear_loop"]["rod_models"] == ["flexible"]
+        self.scale = (config["joint"]["friction_coefficient"] / 0.1
+                      * math.exp(config["wear"]["rbf"]["tail"][0] - base_tail)
+                      * (1.0 + config["mechanism"]["rod_youngs_modulus_Pa"] / 1e12 if flexible
+                         else 1.0))
+        self.tilt = 0.3 if flexible else 0.0
+
+    def nodal_depth_m(self, cycles):
+        shape = 1.2 + np.cos(self.angle_rad - 0.7 - self.tilt)
+        return 4e-9 * float(cycles) ** 0.95 * shape * self.scale
+
+    def depth_at(self, cycles, angle_rad):
+        return np.interp(angle_rad, self.angle_rad, self.nodal_depth_m(cycles), period=2 * math.pi)
+
+
+@pytest.fixture
+def synthetic(monkeypatch, tmp_path):
+    """The truths' forward runs and crank cycles replaced by synthetic ones; returns the record
+    of the runs (config, cycles) and of the crank cycles (config, depth) asked for."""
+    import fewear.diagnose.joint.forward as forward
+
+    record = {"runs": [], "cycles": []}
+    base_tail = _believed(tmp_path)["wear"]["rbf"]["tail"][0]
+
+    def run(config, total):
+        record["runs"].append((config, total))
+        return _SyntheticRun(config, base_tail)
+
+    def cycle(config, angle_rad=None, depth_m=None):
+        record["cycles"].append((config, depth_m))
+        return (config["joint"]["friction_coefficient"],
+                0.0 if depth_m is None else float(np.max(depth_m)))
+
+    def hits(cycle, config):
+        mu, deepest = cycle
+        return [((0.4 + 2e4 * deepest) % (2 * math.pi), 3e-4, 1.1e8 + 2e8 * mu),
+                (2.9, 2e-4, 1.3e8)]
+
+    monkeypatch.setattr(gen, "_run", run)
+    monkeypatch.setattr(gen, "impact_hits", hits)
+    monkeypatch.setattr(forward, "cycle_on_worn_bore", cycle)
+    return record
+
+
+def _reference_bore(cause, params, config, last):
+    """A single cause's truth as the generator computed it before it took sets of causes (its
+    code, on the module's unchanged pieces)."""
+    from fewear.diagnose.joint.forward import cycle_on_worn_bore
+
+    if cause in ("none", "wear_coefficient", "flexible_link", "friction"):
+        return gen.TrueBore(gen._run(gen.truth_config(cause, params, config), last), R), {}
+    if cause == "running_in":
+        timing = (params["initial_rate_factor"], params["running_in_cycles"])
+        needed = int(math.ceil(gen.running_in_time(float(last), *timing) / 100.0)) * 100
+        return gen.TrueBore(gen._run(config, needed), R, running_in=timing), {
+            "believed_cycles_at_last": float(gen.running_in_time(float(last), *timing))}
+    history = gen._run(config, last)
+    grid = gen.fine_grid()
+    counts = np.linspace(0.0, float(last), gen.IMPACT_EVALUATIONS)
+    damage, impacts = [], 0
+    for count in counts:
+        cycle = (cycle_on_worn_bore(config) if count == 0.0 else
+                 cycle_on_worn_bore(config, history.angle_rad, history.nodal_depth_m(count)))
+        hits = gen.impact_hits(cycle, config)
+        impacts += len(hits)
+        damage.append(gen.impact_damage(grid, R, hits, params["pressure_threshold_Pa"],
+                                        math.radians(params["scatter_deg"])))
+    damage = np.array(damage)
+    unit = gen.TrueBore(history, R, impact_cycles=counts, impact_rate=damage)
+    unit_volume = gen.worn_volume_m3(unit.impact_depth_m(last), config)
+    sliding = gen.worn_volume_m3(history.depth_at(last, grid), config)
+    coefficient = params["volume_fraction_target"] * sliding / unit_volume
+    bore = gen.TrueBore(history, R, impact_cycles=counts, impact_rate=coefficient * damage)
+    reached = gen.worn_volume_m3(bore.impact_depth_m(last), config) / sliding
+    return bore, {"impact_coefficient_m_Pa2": float(coefficient),
+                  "volume_fraction": float(reached), "impacts_sampled": float(impacts)}
+
+
+def _pair_truth(pair, index=0):
+    seed = gen.two_cause_seed(pair, index)
+    return seed, gen.draw_pair_params(pair, gen.cause_streams(seed, pair))
+
+
+def test_two_cause_pairs_are_the_ten_pairs_in_causes_order():
+    assert len(gen.TWO_CAUSE_PAIRS) == len(set(gen.TWO_CAUSE_PAIRS)) == 10
+    for first, second in gen.TWO_CAUSE_PAIRS:
+        assert "none" not in (first, second)
+        assert gen.CAUSES.index(first) < gen.CAUSES.index(second)
+
+
+def test_two_cause_seeds_distinct_apart_from_single_ones_and_refuse_bad_input():
+    seeds = [gen.two_cause_seed(pair, index) for pair in gen.TWO_CAUSE_PAIRS
+             for index in range(100)]
+    assert len(set(seeds)) == len(seeds) == 1000
+    single = {gen.data_set_seed(cause, index) for cause in gen.CAUSES for index in range(100)}
+    assert not set(seeds) & single
+    assert all(isinstance(seed, int) for seed in seeds)
+    good = ("friction", "running_in")
+    for pair in (("running_in", "friction"), ("friction", "friction"), ("friction", "none"),
+                 ("friction",), "friction+running_in", ("friction", "thermal"), None):
+        with pytest.raises(ValueError, match=re.escape(repr(pair)) + ".*expected one of"):
+            gen.two_cause_seed(pair, 0)
+        with pytest.raises(ValueError, match=re.escape(repr(pair))):
+            gen.write_two_cause_data_set(pair, 17000, "/nonexistent/never/written")
+    for index in (100, -1, 1.5, "0"):
+        with pytest.raises(ValueError, match=re.escape(repr(index)) + ".*0-99"):
+            gen.two_cause_seed(good, index)
+
+
+def test_single_cause_draws_keep_to_the_stated_ranges():
+    for cause in gen.CAUSES[:-1]:
+        for index in range(40):
+            _assert_in_single_cause_range(cause, _truth(cause, index)[1])
+
+
+@pytest.mark.parametrize("pair", gen.TWO_CAUSE_PAIRS, ids="+".join)
+def test_each_cause_of_a_pair_is_drawn_from_its_own_single_cause_distribution(pair):
+    branches = set()
+    for index in range(40):
+        seed, params = _pair_truth(pair, index)
+        names = [set(_truth(cause)[1]) for cause in pair]
+        assert set(params) == names[0] | names[1] and not names[0] & names[1]
+        for cause in pair:
+            alone = gen.draw_params(cause, gen.cause_streams(seed, [cause])[cause])
+            assert {key: params[key] for key in alone} == alone  # its own stream, any partner
+            _assert_in_single_cause_range(cause, alone)
+        if "friction" in pair:
+            branches.add(params["friction_coefficient"] > 0.1)
+    assert "friction" not in pair or branches == {False, True}
+
+
+def test_pairs_draw_each_cause_independently_of_its_partner():
+    seed = 17123
+    friction = [gen.draw_pair_params(pair, gen.cause_streams(seed, pair))["friction_coefficient"]
+                for pair in gen.TWO_CAUSE_PAIRS if "friction" in pair]
+    assert len(friction) == 4 and len(set(friction)) == 1
+    k = gen.draw_pair_params(("wear_coefficient", "friction"), gen.cause_streams(seed, (
+        "wear_coefficient", "friction")))["k_factor"]
+    assert k != friction[0]
+    other = gen.draw_pair_params(("friction", "running_in"), gen.cause_streams(seed + 1, (
+        "friction", "running_in")))
+    assert other["friction_coefficient"] != friction[0]
+
+
+def test_truth_causes_are_checked():
+    assert gen.truth_causes("friction") == ("friction",)
+    assert gen.truth_causes(["running_in", "friction"]) == ("friction", "running_in")
+    for bad in ("thermal", ("friction", "friction"), ("none", "friction"), ()):
+        with pytest.raises(ValueError):
+            gen.truth_causes(bad)
+
+
+@pytest.mark.parametrize("cause", gen.CAUSES)
+def test_single_cause_truth_and_files_are_unchanged_by_the_cause_sets(cause, synthetic,
+                                                                     tmp_path):
+    """Against the single-cause code as it was (on the synthetic runs): the same truth, the
+    same derived values, the same files for the same seed."""
+    config = _believed(tmp_path)
+    lab, params = _truth(cause, 3)
+    last = lab.profile_cycles[-1]
+    bore, derived = gen.true_bore(cause, params, config, last)
+    reference, expected = _reference_bore(cause, params, config, last)
+    assert derived == expected
+    for cycles in (*lab.profile_cycles, *lab.max_wear_cycles):
+        np.testing.assert_array_equal(bore.depth_m(cycles), reference.depth_m(cycles))
+    # the files: the data set drawn and measured as write_data_set did before the cause sets
+    seed = gen.data_set_seed(cause, 3)
+    data = gen.write_data_set(cause, seed, tmp_path / "set")
+    assert data.cause == cause and data.causes == (cause,)
+    rng = np.random.default_rng(seed)
+    lab = gen.draw_lab(rng)
+    params = gen.draw_params(cause, rng)
+    truth = with_truth_numerics(gen.believed_config(data.believed_toml))
+    bore, expected = _reference_bore(cause, params, truth, lab.profile_cycles[-1])
+    traces = [gen.measure_profile(bore, lab, trace, rng)
+              for trace in range(len(lab.profile_cycles))]
+    gen.write_profiles_csv(tmp_path / "profiles.csv", traces, lab)
+    gen.write_max_wear_csv(tmp_path / "max_wear.csv", gen.measure_max_wear(bore, lab, rng), lab)
+    assert data.profiles_csv.read_bytes() == (tmp_path / "profiles.csv").read_bytes()
+    assert data.max_wear_csv.read_bytes() == (tmp_path / "max_wear.csv").read_bytes()
+    assert data.params == {**params, **expected, "effect_rms_um": gen.rms_difference_m(
+        bore, truth, lab.profile_cycles[-1]) * 1e6}
+
+
+@pytest.mark.parametrize("pair", gen.TWO_CAUSE_PAIRS, ids="+".join)
+def test_a_pair_is_one_run_carrying_both_causes(pair, synthetic, tmp_path):
+    """One forward run for the truth; its config changed by every config cause of the pair;
+    the impacts' cycles on that run's bore (at tau(N) with running-in) and its config."""
+    config = _believed(tmp_path)
+    lab = gen.draw_lab(np.random.default_rng(gen.two_cause_seed(pair, 0)))
+    _, params = _pair_truth(pair)
+    last = lab.profile_cycles[-1]
+    bore, derived = gen.true_bore(pair, params, config, last)
+    assert len(synthetic["runs"]) == 1
+    run_config, total = synthetic["runs"][0]
+    expected = config
+    for cause in pair:
+        if cause in gen.CONFIG_CAUSES:
+            expected = gen.truth_config(cause, params, expected)
+    assert run_config == expected
+    if "running_in" in pair:
+        timing = (params["initial_rate_factor"], params["running_in_cycles"])
+        assert total >= gen.running_in_time(float(last), *timing) and total % 100 == 0
+        assert bore.running_in == timing
+    else:
+        assert total == last and bore.running_in is None
+    if "impact_wear" in pair:
+        counts = np.linspace(0.0, float(last), gen.IMPACT_EVALUATIONS)
+        assert len(synthetic["cycles"]) == counts.size
+        for count, (cycle_config, depth) in zip(counts[1:], synthetic["cycles"][1:]):
+            assert cycle_config == run_config
+            np.testing.assert_array_equal(depth, bore.history.nodal_depth_m(
+                bore.sliding_cycles(count)))
+        assert derived["volume_fraction"] == pytest.approx(params["volume_fraction_target"])
+    else:
+        assert not synthetic["cycles"] and bore.impact_rate is None
+
+
+@pytest.mark.parametrize("pair", gen.TWO_CAUSE_PAIRS, ids="+".join)
+def test_a_pair_with_one_cause_switched_off_is_the_other_cause_alone(pair, synthetic,
+                                                                    tmp_path):
+    config = _believed(tmp_path)
+    lab = gen.draw_lab(np.random.default_rng(gen.two_cause_seed(pair, 1)))
+    _, params = _pair_truth(pair, 1)
+    last = lab.profile_cycles[-1]
+    counts = (*lab.profile_cycles, *lab.max_wear_cycles)
+    for off, on in (pair, pair[::-1]):
+        if off not in NEUTRAL:  # the flexible rod has no neutral value
+            continue
+        both, derived = gen.true_bore(pair, {**params, **NEUTRAL[off]}, config, last)
+        alone, expected = gen.true_bore(on, params, config, last)
+        for cycles in counts:
+            np.testing.assert_allclose(both.depth_m(cycles), alone.depth_m(cycles), rtol=1e-12,
+                                       atol=1e-18)
+        for key, value in expected.items():
+            assert derived[key] == pytest.approx(value, rel=1e-12)
+    # with both on, the truth is neither cause alone
+    both = gen.true_bore(pair, params, config, last)[0].depth_m(last)
+    for cause in pair:
+        assert np.abs(both - gen.true_bore(cause, params, config, last)[0].depth_m(last)).max() \
+            > 1e-3 * both.max()
+
+
+def test_two_cause_files_are_written_as_single_cause_ones(synthetic, tmp_path):
+    pair = ("friction", "running_in")
+    seed = gen.two_cause_seed(pair, 0)
+    data = gen.write_two_cause_data_set(pair, seed, tmp_path)
+    assert data.cause == "friction+running_in" and data.causes == pair
+    _, params = _pair_truth(pair)
+    assert {key: data.params[key] for key in params} == params
+    assert "believed_cycles_at_last" in data.params and "effect_rms_um" in data.params
+    assert data.believed_toml.read_text() == gen.BELIEVED_TOML
+    lab = gen.draw_lab(np.random.default_rng(seed))
+    assert data.lab.profile_cycles == lab.profile_cycles
+    measured = read_joint_measurements([data.profiles_csv, data.max_wear_csv])
+    assert measured.profile_cycles == lab.profile_cycles
+    assert data.profiles_csv.read_text().splitlines()[1] == "cycles,angle_deg,wear_depth_m"
+    again = gen.write_two_cause_data_set(pair, seed, tmp_path / "again")
+    assert again.profiles_csv.read_bytes() == data.profiles_csv.read_bytes()
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("pair", gen.TWO_CAUSE_PAIRS, ids="+".join)
+def test_each_pair_truth_exceeds_the_noise_at_the_last_count(pair, tmp_path):
+    """Each pair's truth on the believed coarse model (not the truths' numerics)."""
+    config = _believed(tmp_path)
+    seed, params = _pair_truth(pair)
+    lab = gen.draw_lab(np.random.default_rng(seed))
+    last = lab.profile_cycles[-1]
+    bore, derived = gen.true_bore(pair, params, config, last)
+    history = simulate_wear(model_config(config, "rigid", last))
+    grid = gen.fine_grid()
+    difference = bore.depth_m(last) - history.depth_at(last, grid)
+    assert np.sqrt(np.mean(difference**2)) > max(5.0 * lab.noise_m, 3e-6)
+    if "impact_wear" in pair:
+        assert 0.15 <= derived["volume_fraction"] <= 0.40

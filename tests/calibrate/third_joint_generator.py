@@ -62,6 +62,23 @@ counter-clockwise; h > 0 is removed material), evaluated on a fine grid of 2880 
     shows 30-140 % more wear than believed, and the last still (r - 1) N_r / 2 >= 1,250 cycles'
     worth more.
 
+Two hidden causes (:func:`write_two_cause_data_set`)
+-----------------------------------------------------
+A pair of :data:`TWO_CAUSE_PAIRS` hides both causes of the pair in one truth, each in the form
+and with the ranges above. All ten pairs of the five causes combine (no two set the same model
+quantity). :func:`true_bore` applies a set of causes in one forward run: the config causes
+(wear coefficient, flexible link, friction) change different keys of the one truth config, so a
+flexible rod, a friction and a wear-coefficient level act together in the dynamics, the contact
+and the wear of one run; running-in reads that run at tau(N) (its worn shapes followed faster);
+impact wear is taken on that run: its crank cycles use the truth's config (rod, friction) on the
+truth's sliding bore at each real count N_j (at tau(N_j) with running-in), and c is sized by the
+truth's own sliding wear volume at the last count (phi is the impacts' share of the wear that the
+truth slides off). Each cause's parameters are drawn from its own random stream (the seed's
+:class:`numpy.random.SeedSequence` child numbered by the cause's place in :data:`CAUSES`), as
+its single-cause set draws them; the lab and the instruments' noise come from
+``default_rng(seed)`` as in every set. A truth whose run stops early redraws both causes from
+their streams. Seeds: :func:`two_cause_seed`.
+
 Instruments (the lab)
 ---------------------
 Bore profiles: a coordinate measuring machine scans the bore with a ruby ball stylus of radius
@@ -90,13 +107,13 @@ noise U[1.0, 2.5] um.
 Neglected
 ---------
 The impact pockets do not feed back on the dynamics or the sliding wear (impacts and sliding are
-taken on the believed bore); the Hertz half-width uses the unworn radii, not the worn bore's
-conformity; the running-in multiplier leaves the worn shapes' sequence unchanged; the CMM's
-probing direction is the nominal radial direction (no stylus-tip friction, no lobing of the
-machine), the centre offset is linearised; the gauge's noise is independent between counts;
-axial (along the bushing width) variation is not modelled (plane strain, as the believed model).
-A truth whose forward run stops before the last count is redrawn from the same generator
-(``params["redraws"]`` counts it; deterministic per seed).
+taken on the sliding bore: the believed one for impact wear alone); the Hertz half-width uses the
+unworn radii, not the worn bore's conformity; the running-in multiplier leaves the worn shapes'
+sequence unchanged; the CMM's probing direction is the nominal radial direction (no stylus-tip
+friction, no lobing of the machine), the centre offset is linearised; the gauge's noise is
+independent between counts; axial (along the bushing width) variation is not modelled (plane strain,
+as the believed model). A truth whose forward run stops before the last count is redrawn from the
+same generator (``params["redraws"]`` counts it; deterministic per seed).
 """
 
 from __future__ import annotations
@@ -104,6 +121,7 @@ from __future__ import annotations
 import copy
 import math
 from dataclasses import dataclass, replace
+from itertools import combinations
 from pathlib import Path
 
 import numpy as np
@@ -127,6 +145,13 @@ wear_steps_per_block = 1
 """
 SEED_BASE = 7000
 """Seeds 7000 + 100 * (cause index) + index: apart from the small seeds of other generators."""
+TWO_CAUSE_PAIRS = tuple(combinations([cause for cause in CAUSES if cause != "none"], 2))
+"""The pairs of distinct hidden causes a two-cause data set hides, each in :data:`CAUSES` order
+(all ten: every pair combines in one truth, module doc)."""
+TWO_CAUSE_SEED_BASE = 17000
+"""Seeds 17000 + 100 * (pair index) + index: above every single-cause seed (7000-7599)."""
+CONFIG_CAUSES = ("wear_coefficient", "flexible_link", "friction")
+"""The causes that change the truth's config (:func:`truth_config`)."""
 FINE_POINTS = 2880
 """Angles of the fine grid the true bore is evaluated on (0.125 deg)."""
 IMPACT_EVALUATIONS = 12
@@ -174,7 +199,11 @@ class Lab:
 
 @dataclass(frozen=True, eq=False)
 class DataSet:
-    """One generated data set: the believed config, the measured files and the hidden truth."""
+    """One generated data set: the believed config, the measured files and the hidden truth.
+
+    ``cause``: the hidden cause, or the two of a two-cause set joined by "+" in :data:`CAUSES`
+    order (e.g. "friction+running_in"); ``params``: the drawn parameters of every cause (their
+    names are distinct between causes) and the values derived on the way."""
 
     cause: str
     seed: int
@@ -184,6 +213,11 @@ class DataSet:
     params: dict
     lab: Lab
 
+    @property
+    def causes(self) -> tuple[str, ...]:
+        """The hidden causes: one, or the two of a two-cause set."""
+        return tuple(self.cause.split("+"))
+
 
 def data_set_seed(cause: str, index: int) -> int:
     """The seed of data set ``index`` (0-99) of ``cause``: distinct per cause and index."""
@@ -192,6 +226,33 @@ def data_set_seed(cause: str, index: int) -> int:
     if not 0 <= index < 100:
         raise ValueError(f"index {index}: expected 0-99")
     return SEED_BASE + 100 * CAUSES.index(cause) + index
+
+
+def checked_pair(pair) -> tuple[str, str]:
+    """``pair`` as a tuple of :data:`TWO_CAUSE_PAIRS`; a ValueError naming it otherwise."""
+    candidate = tuple(pair) if isinstance(pair, (tuple, list)) else None
+    if candidate not in TWO_CAUSE_PAIRS:
+        raise ValueError(f"cause pair {pair!r}: expected one of {TWO_CAUSE_PAIRS} (two distinct "
+                         "causes other than 'none', in CAUSES order)")
+    return candidate
+
+
+def two_cause_seed(pair, index: int) -> int:
+    """The seed of two-cause data set ``index`` (0-99) of ``pair`` (one of
+    :data:`TWO_CAUSE_PAIRS`): distinct per pair and index, and from every single-cause seed."""
+    pair = checked_pair(pair)
+    if not (isinstance(index, (int, np.integer)) and not isinstance(index, bool)
+            and 0 <= index <= 99):
+        raise ValueError(f"data set index {index!r}: expected a whole number in 0-99")
+    return TWO_CAUSE_SEED_BASE + 100 * TWO_CAUSE_PAIRS.index(pair) + int(index)
+
+
+def cause_streams(seed: int, causes) -> dict[str, np.random.Generator]:
+    """The random stream of each cause of a two-cause data set of ``seed``: the child of the
+    seed's :class:`numpy.random.SeedSequence` numbered by the cause's place in :data:`CAUSES`
+    (independent of each other and of ``default_rng(seed)``, which draws the lab and the noise)."""
+    return {cause: np.random.default_rng(np.random.SeedSequence(
+        seed, spawn_key=(CAUSES.index(cause),))) for cause in causes}
 
 
 def draw_lab(rng: np.random.Generator) -> Lab:
@@ -260,6 +321,32 @@ def draw_params(cause: str, rng: np.random.Generator) -> dict:
                 "running_in_cycles": float(math.exp(rng.uniform(math.log(5000.0),
                                                                 math.log(14000.0))))}
     raise ValueError(f"unknown cause {cause!r}; expected one of {CAUSES}")
+
+
+def draw_pair_params(pair, streams: dict[str, np.random.Generator]) -> dict:
+    """The parameters of both causes of ``pair``, each drawn by :func:`draw_params` from its own
+    stream of ``streams`` (:func:`cause_streams`), in one dict (the causes' names are distinct)."""
+    params = {}
+    for cause in checked_pair(pair):
+        drawn = draw_params(cause, streams[cause])
+        shared = set(drawn) & set(params)
+        if shared:
+            raise ValueError(f"{pair}: the causes' parameters share the names {shared}")
+        params.update(drawn)
+    return params
+
+
+def truth_causes(causes) -> tuple[str, ...]:
+    """``causes`` (one cause's name, or a collection of causes) as a tuple in :data:`CAUSES`
+    order; a ValueError for an unknown or repeated cause or 'none' with another."""
+    chosen = (causes,) if isinstance(causes, str) else tuple(causes)
+    unknown = [cause for cause in chosen if cause not in CAUSES]
+    if unknown or not chosen:
+        raise ValueError(f"unknown cause {unknown[0] if unknown else causes!r}; expected one or "
+                         f"more of {CAUSES}")
+    if len(set(chosen)) < len(chosen) or ("none" in chosen and len(chosen) > 1):
+        raise ValueError(f"causes {causes!r}: expected distinct causes, 'none' alone")
+    return tuple(cause for cause in CAUSES if cause in chosen)
 
 
 def truth_config(cause: str, params: dict, config: dict) -> dict:
@@ -420,43 +507,56 @@ def believed_history(config: dict, last_cycles: int):
     return _run(config, last_cycles)
 
 
-def true_bore(cause: str, params: dict, config: dict, last_cycles: int) -> tuple[TrueBore, dict]:
-    """The true bore of ``cause`` and the parameters derived on the way (for impact wear the
-    coefficient c and the volume fraction reached)."""
+def true_bore(causes, params: dict, config: dict, last_cycles: int) -> tuple[TrueBore, dict]:
+    """The true bore of ``causes`` (one cause's name, or several: :func:`truth_causes`) and the
+    parameters derived on the way (for running-in the believed cycles at the last count, for
+    impact wear the coefficient c and the volume fraction reached). One forward run carries every
+    cause: the config causes in its config (:data:`CONFIG_CAUSES`), running-in as its reading at
+    tau(N), impact wear taken on it (module doc)."""
+    causes = truth_causes(causes)
     radius = config["bushing"]["inner_radius_m"]
-    if cause in ("none", "wear_coefficient", "flexible_link", "friction"):
-        return TrueBore(_run(truth_config(cause, params, config), last_cycles), radius), {}
-    if cause == "running_in":
+    run_config = copy.deepcopy(config)
+    for cause in causes:
+        if cause in CONFIG_CAUSES:
+            run_config = truth_config(cause, params, run_config)
+    timing, needed, derived = None, last_cycles, {}
+    if "running_in" in causes:
         timing = (params["initial_rate_factor"], params["running_in_cycles"])
         needed = int(math.ceil(running_in_time(float(last_cycles), *timing) / 100.0)) * 100
-        return TrueBore(_run(config, needed), radius, running_in=timing), {
-            "believed_cycles_at_last": float(running_in_time(float(last_cycles), *timing))}
-    if cause == "impact_wear":
-        return _impact_bore(params, config, last_cycles)
-    raise ValueError(f"unknown cause {cause!r}")
+        derived["believed_cycles_at_last"] = float(running_in_time(float(last_cycles), *timing))
+    bore = TrueBore(_run(run_config, needed), radius, running_in=timing)
+    if "impact_wear" in causes:
+        bore, impact = _with_impacts(bore, params, run_config, last_cycles)
+        derived.update(impact)
+    return bore, derived
 
 
-def _impact_bore(params: dict, config: dict, last_cycles: int) -> tuple[TrueBore, dict]:
+def _with_impacts(bore: TrueBore, params: dict, config: dict,
+                  last_cycles: int) -> tuple[TrueBore, dict]:
+    """``bore`` (its sliding wear) with the impact wear of ``params`` added: the impacts of one
+    crank cycle of ``config`` on the sliding bore at each of the counts, c sized by the sliding
+    wear volume at ``last_cycles``."""
     from fewear.diagnose.joint.forward import cycle_on_worn_bore
 
-    history = believed_history(config, last_cycles)
+    history = bore.history
     radius = config["bushing"]["inner_radius_m"]
     grid = fine_grid()
     counts = np.linspace(0.0, float(last_cycles), IMPACT_EVALUATIONS)
     damage, impacts = [], 0
     for count in counts:
         cycle = (cycle_on_worn_bore(config) if count == 0.0 else
-                 cycle_on_worn_bore(config, history.angle_rad, history.nodal_depth_m(count)))
+                 cycle_on_worn_bore(config, history.angle_rad,
+                                    history.nodal_depth_m(bore.sliding_cycles(count))))
         hits = impact_hits(cycle, config)
         impacts += len(hits)
         damage.append(impact_damage(grid, radius, hits, params["pressure_threshold_Pa"],
                                     math.radians(params["scatter_deg"])))
     damage = np.array(damage)
-    unit = TrueBore(history, radius, impact_cycles=counts, impact_rate=damage)
+    unit = replace(bore, impact_cycles=counts, impact_rate=damage)
     unit_volume = worn_volume_m3(unit.impact_depth_m(last_cycles), config)
     if unit_volume <= 0.0:
         raise RuntimeError("no impact exceeded the damage threshold: no impact wear")
-    sliding = worn_volume_m3(history.depth_at(last_cycles, grid), config)
+    sliding = worn_volume_m3(history.depth_at(bore.sliding_cycles(last_cycles), grid), config)
     coefficient = params["volume_fraction_target"] * sliding / unit_volume
     bore = replace(unit, impact_rate=coefficient * damage)
     reached = worn_volume_m3(bore.impact_depth_m(last_cycles), config) / sliding
@@ -572,11 +672,30 @@ def write_data_set(cause: str, seed: int, directory: Path, noise: bool = True) -
     ``noise=False``: the same data set without noise, jitter or centre offsets."""
     if cause not in CAUSES:
         raise ValueError(f"unknown cause {cause!r}; expected one of {CAUSES}")
+    rng = np.random.default_rng(seed)
+    return _write(cause, (cause,), seed, directory, noise, rng,
+                  lambda: draw_params(cause, rng))
+
+
+def write_two_cause_data_set(pair, seed: int, directory: Path, noise: bool = True) -> DataSet:
+    """As :func:`write_data_set`, with the two hidden causes of ``pair`` (one of
+    :data:`TWO_CAUSE_PAIRS`) in one truth (module doc): each cause's parameters drawn from its
+    own stream (:func:`cause_streams`), the lab and the noise from ``default_rng(seed)``. The
+    data set's ``cause`` is the pair joined by "+"."""
+    pair = checked_pair(pair)
+    streams = cause_streams(seed, pair)
+    return _write("+".join(pair), pair, seed, directory, noise, np.random.default_rng(seed),
+                  lambda: draw_pair_params(pair, streams))
+
+
+def _write(label: str, causes: tuple[str, ...], seed: int, directory: Path, noise: bool,
+           rng: np.random.Generator, draw) -> DataSet:
+    """The data set of ``causes``: the lab and the noise from ``rng``, the truth's parameters
+    from ``draw()`` (called after the lab is drawn, again for a redraw)."""
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
-    rng = np.random.default_rng(seed)
     lab = draw_lab(rng)
-    params = draw_params(cause, rng)
+    params = draw()
     if not noise:
         lab = lab.noiseless()
     toml = directory / "believed.toml"
@@ -585,12 +704,12 @@ def write_data_set(cause: str, seed: int, directory: Path, noise: bool = True) -
     last = lab.profile_cycles[-1]
     for redraw in range(4):  # a truth whose run stops early (e.g. the dynamics fail) is redrawn
         try:
-            bore, derived = true_bore(cause, params, config, last)
+            bore, derived = true_bore(causes, params, config, last)
             break
         except RuntimeError:
-            if redraw == 3 or cause == "none":
+            if redraw == 3 or causes == ("none",):
                 raise
-            params = draw_params(cause, rng)
+            params = draw()
     derived = {**derived, "redraws": float(redraw)} if redraw else derived
     traces = [measure_profile(bore, lab, trace, rng) for trace in range(len(lab.profile_cycles))]
     max_wear = measure_max_wear(bore, lab, rng)
@@ -599,4 +718,4 @@ def write_data_set(cause: str, seed: int, directory: Path, noise: bool = True) -
     write_max_wear_csv(max_wear_csv, max_wear, lab)
     truth = {**params, **derived,
              "effect_rms_um": rms_difference_m(bore, config, last) * 1e6}
-    return DataSet(cause, seed, toml, profiles_csv, max_wear_csv, truth, lab)
+    return DataSet(label, seed, toml, profiles_csv, max_wear_csv, truth, lab)
