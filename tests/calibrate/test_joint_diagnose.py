@@ -232,13 +232,13 @@ def test_each_round_starts_from_the_model_the_causes_before_it_extend(
 
     calls = []
 
-    def stand_in_round(data, obs, config, settings, named, noise_m):
+    def stand_in_round(data, obs, config, settings, named, floor_m):
         index = len(calls)
         calls.append((config["round"], named))
         fit_ = replace(FIT, held_out_rms_m=0.5**index)
         return method.Round(
-            baseline=fit_, base_run=None, scatter_m=None, verdicts=(), accepted=(),
-            named=named_per_round[index], confounded=(), not_confirmed=(), untestable=(),
+            baseline=fit_, base_run=None, verdicts=(), accepted=(),
+            named=named_per_round[index], confounded=(), confirmations=(), untestable=(),
             extended_config={"round": index + 1},
             extended_fit=replace(fit_, name=str(index), held_out_rms_m=0.5**(index + 1)),
             extended_depth_m=np.zeros(1))
@@ -247,7 +247,8 @@ def test_each_round_starts_from_the_model_the_causes_before_it_extend(
     monkeypatch.setattr(method, "_to_try",
                         lambda config, settings, named: (["a cause"] * (left - len(named)), []))
     monkeypatch.setattr(method, "observations", lambda data, fraction: None)
-    monkeypatch.setattr(method, "resolve_wear_step", lambda config, *args: (config, {}))
+    monkeypatch.setattr(method, "resolve_wear_step",
+                        lambda config, *args: (config, {"instrument_scatter_m": None}))
     monkeypatch.setattr(method, "_check_run_length", lambda *args: None)
     monkeypatch.setattr(method, "_believed_config", lambda *args: None)
     monkeypatch.setattr(method, "cycle_structure", lambda *args: {})

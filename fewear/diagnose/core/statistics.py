@@ -2,7 +2,9 @@
 
 A cause extends a reference model by q parameters; whether the data support it is asked three
 ways: the extra-sum-of-squares F-test of the nested fits, the corrected Akaike criterion (AICc)
-of each, and (where the held-out units are many) a paired test of their held-out errors. The
+of each, and (where the held-out units are many) a paired test of their held-out errors; where
+each model has several realizations (runs of a chaotic model), Welch's test of their held-out
+errors. The
 guards where a statistic is undefined differ between the two data kinds; each caller names its
 own (see the ``clamp_correction`` of :func:`aicc`).
 """
@@ -59,6 +61,16 @@ def paired_improvement_p(before: np.ndarray, after: np.ndarray) -> float:
     if sd == 0.0:
         return 0.0 if d.mean() > 0.0 else 1.0
     return float(stats.t.sf(d.mean() / (sd / np.sqrt(d.size)), d.size - 1))
+
+
+def welch_lower_p(lower: np.ndarray, higher: np.ndarray) -> float:
+    """One-sided p-value that the mean of sample ``lower`` is below that of ``higher``: Welch's
+    t-test, the samples' variances not taken equal (Welch, Biometrika 34 (1947) 28-35). Two
+    samples without spread: 0 if the means are so ordered, else 1."""
+    lower, higher = np.asarray(lower, dtype=float), np.asarray(higher, dtype=float)
+    if np.ptp(lower) == 0.0 and np.ptp(higher) == 0.0:
+        return 0.0 if lower.mean() < higher.mean() else 1.0
+    return float(stats.ttest_ind(lower, higher, equal_var=False, alternative="less").pvalue)
 
 
 def bonferroni_threshold(significance: float, forms_tried: int) -> float:

@@ -70,12 +70,15 @@ cause is accepted when (1) the extra-sum-of-squares F-test of the nested trainin
 lower (Burnham & Anderson 2002); none is accepted when the believed model predicts the held-out
 data within :data:`UNEXPLAINED_SCATTERS` times the instrument's scatter (a relative gain on an
 error at the noise is no evidence). The accepted causes are taken in order, the richer ones by
-held-out error, then ``wear_coefficient``: each one's fitted model is run in full (the extended
-config) and scored on the held-out data, and the first whose full run is at least
-``min_held_out_gain`` better than the believed model is named (the fits interpolate between runs on
-a grid, the full run is the model the user gets); the gain reported is that of the real run.
-Accepted causes after it are reported as confounded with it, those whose full run did not hold up
-as ``not_confirmed``.
+held-out error, then ``wear_coefficient``: each one's fitted model (the extended config) is run
+in full from several crank starts, and the first whose runs predict the held-out data better than
+the reference's runs (a richer cause's reference the k level when that was accepted, else the
+round's model), by at least ``min_held_out_gain`` on average and beyond the runs' own scatter, is
+named (:mod:`fewear.diagnose.joint.confirmation`: the fits interpolate between runs on a grid or
+take the luckiest of several, and the runs of one model started a degree apart differ as much as
+the causes). The gain reported is that of its run started at the config's crank angle, the model
+the user gets. Accepted causes after it are reported as confounded with it, those whose runs did
+not hold up as ``not_confirmed``.
 
 Several causes: once a cause is named, the same selection runs again on the model it extends
 (its full run at the fitted parameters is the new reference), over the causes not yet named
@@ -111,11 +114,16 @@ from fewear.diagnose.core.statistics import nested_f_test_p
 from fewear.diagnose.joint import structure
 from fewear.diagnose.joint.candidates import Candidate
 from fewear.diagnose.joint.catalogue import CAUSES, Believed
+from fewear.diagnose.joint.confirmation import (
+    Confirmation,
+    confirm,
+    extended_config,
+    realizations,
+)
 from fewear.diagnose.joint.fitting import (
     RUNNING_IN_REACH,
     Fit,
     Observations,
-    fit,
     needed_cycles,
     observations,
 )
@@ -163,15 +171,6 @@ class CauseVerdict:
         return self.fit.name
 
 
-@dataclass(frozen=True)
-class Unconfirmed:
-    """An accepted ``cause`` whose extended model, run in full, predicted the held-out data
-    ``full_run_held_out_gain`` better than the believed model: below the criterion."""
-
-    cause: str
-    full_run_held_out_gain: float
-
-
 def verdict(fit_: Fit, reference: Fit, settings: JointDiagnoseSettings,
             tried: int) -> CauseVerdict:
     """The evidence for a cause against the reference model and whether it is accepted."""
@@ -206,16 +205,20 @@ class Round:
 
     baseline: Fit
     base_run: WearHistory
-    scatter_m: float | None
     verdicts: tuple[CauseVerdict, ...]
     accepted: tuple[str, ...]
     named: tuple[str, ...]
     confounded: tuple[CauseVerdict, ...]
-    not_confirmed: tuple[Unconfirmed, ...]
+    confirmations: tuple[Confirmation, ...]
     untestable: tuple[dict[str, str], ...]
     extended_config: dict
     extended_fit: Fit
     extended_depth_m: np.ndarray
+
+    @property
+    def not_confirmed(self) -> tuple[Confirmation, ...]:
+        """The accepted causes whose realizations did not hold up."""
+        return tuple(entry for entry in self.confirmations if not entry.confirmed)
 
     @property
     def gain(self) -> float:
@@ -269,7 +272,11 @@ class JointDiagnosis:
         return tuple(entry for r in self.rounds for entry in r.confounded)
 
     @property
-    def not_confirmed(self) -> tuple[Unconfirmed, ...]:
+    def confirmations(self) -> tuple[Confirmation, ...]:
+        return tuple(entry for r in self.rounds for entry in r.confirmations)
+
+    @property
+    def not_confirmed(self) -> tuple[Confirmation, ...]:
         return tuple(entry for r in self.rounds for entry in r.not_confirmed)
 
     @property
@@ -305,12 +312,12 @@ def diagnose_joint(data: JointMeasurements, config: dict,
     with workers_kept():
         config, resolution = resolve_wear_step(config, obs, settings.max_wear_step_halvings,
                                                settings.max_offset_deg)
-        noise_m = model_noise_m(resolution)
-        rounds = [_round(data, obs, config, settings, (), noise_m)]
+        floor_m = _noise_floor_m(resolution)
+        rounds = [_round(data, obs, config, settings, (), floor_m)]
         while (rounds[-1].named and len(_named(rounds)) < settings.max_causes
                and _to_try(rounds[-1].extended_config, settings, _named(rounds))[0]):
             rounds.append(_round(data, obs, rounds[-1].extended_config, settings,
-                                 _named(rounds), noise_m))
+                                 _named(rounds), floor_m))
     first, final = rounds[0], _final(rounds)
     return JointDiagnosis(
         data=data, settings=settings, observations=obs, rounds=tuple(rounds),
@@ -342,11 +349,20 @@ def _to_try(config: dict, settings: JointDiagnoseSettings,
              if name not in named and not (named and name == "wear_coefficient")], untestable)
 
 
+def _noise_floor_m(resolution: dict[str, Any]) -> float | None:
+    """The larger of the instrument's scatter (estimated once, by the resolution) and the
+    believed model's own noise (:func:`fewear.diagnose.joint.resolution.model_noise_m`); None
+    without profiles to estimate the scatter from."""
+    scatter = resolution["instrument_scatter_m"]
+    return None if scatter is None else max(scatter, model_noise_m(resolution))
+
+
 def _round(data: JointMeasurements, obs: Observations, config: dict,
-           settings: JointDiagnoseSettings, named: tuple[str, ...], noise_m: float) -> Round:
+           settings: JointDiagnoseSettings, named: tuple[str, ...],
+           floor_m: float | None) -> Round:
     """One round of selection on the model ``config`` (the believed one, or the one the causes
-    ``named`` so far extend) over the causes :func:`_to_try`; ``noise_m``: the believed
-    model's own noise (:func:`fewear.diagnose.joint.resolution.model_noise_m`)."""
+    ``named`` so far extend) over the causes :func:`_to_try`; ``floor_m``: the noise below
+    which no cause is named (:func:`_noise_floor_m`)."""
     horizon, deepest_m = _reach(obs, settings.max_k_scale), float(obs.depth_m.max())
     label = " + ".join(("believed model",) + named)
     base = simulate_wear(_believed_config(config, obs, settings), label)
@@ -362,15 +378,13 @@ def _round(data: JointMeasurements, obs: Observations, config: dict,
     candidates = {name: forms for name, forms in candidates.items() if forms}
     refined_runs = candidate_runner(_reach(obs, REFINED_REACH), deepest_m)
     fits = fit_causes(candidates, obs, baseline, settings, _refinement_runs(config, refined_runs))
-    scatter = structure.scatter_estimate_m(obs.angle_rad, baseline.residuals_m, obs.cycles)
-    accepted, verdicts = _select(baseline, fits, settings,
-                                 None if scatter is None else max(scatter, noise_m))
-    causes, extended, final_fit, extended_depth, not_confirmed = _confirm(
-        config, accepted, fits, baseline, obs, settings)
-    return Round(baseline=baseline, base_run=base, scatter_m=scatter, verdicts=tuple(verdicts),
+    accepted, verdicts = _select(baseline, fits, settings, floor_m)
+    causes, extended, final_fit, extended_depth, confirmations = _confirm(
+        config, accepted, fits, baseline, obs, settings, label)
+    return Round(baseline=baseline, base_run=base, verdicts=tuple(verdicts),
                  accepted=tuple(accepted), named=tuple(causes),
                  confounded=_confounded(verdicts, accepted, causes),
-                 not_confirmed=tuple(not_confirmed), untestable=tuple(untestable),
+                 confirmations=tuple(confirmations), untestable=tuple(untestable),
                  extended_config=extended, extended_fit=final_fit,
                  extended_depth_m=extended_depth)
 
@@ -461,22 +475,29 @@ def _select(baseline: Fit, fits: dict[str, Fit], settings,
 
 
 def _confirm(config: dict, accepted: list[str], fits: dict[str, Fit], baseline: Fit,
-             obs: Observations, settings: JointDiagnoseSettings):
-    """The first accepted cause whose extended model, run in full, predicts the held-out data
-    at least ``min_held_out_gain`` better than the believed model: the fits interpolate between
-    runs on a grid (or map the cycles of one run), the full run is the model the user gets.
-    Returns (the named cause as a list, empty if none holds up; the extended config; its fit;
-    its depths at the observations; the causes whose full run did not hold up, with its gain)."""
-    not_confirmed = []
+             obs: Observations, settings: JointDiagnoseSettings, label: str):
+    """The first accepted cause confirmed on realizations of its extended model
+    (:mod:`fewear.diagnose.joint.confirmation`): a richer cause against the k level's when that
+    was accepted, else against the round's model ``config`` (named ``label``). Every accepted
+    cause's realizations and their references' are run in one batch (side by side). Returns
+    (the named cause as a list, empty if none is confirmed; the extended config; its fit, the
+    realization started at the config's crank angle; its depths at the observations; the
+    confirmations up to the named cause)."""
+    extended = {cause: extended_config(config, cause, fits[cause]) for cause in accepted}
+    models = {label: config, **extended}
+    runs = dict(zip(models, realizations(list(models.values()), list(models), obs,
+                                         float(baseline.x[0]), settings.max_offset_deg)))
+    confirmations = []
     for cause in accepted:
-        extended = _extended_config(config, cause, fits[cause])
-        final, depth = _verify(extended, baseline, obs, settings)
-        gain = final.held_out_gain(baseline)
-        if gain >= settings.min_held_out_gain:
-            return [cause], extended, final, depth, not_confirmed
-        not_confirmed.append(Unconfirmed(cause, gain))
+        against = ("wear_coefficient" if "wear_coefficient" in accepted
+                   and cause != "wear_coefficient" else label)
+        confirmations.append(confirm(cause, runs[cause], runs[against], against, settings))
+        if confirmations[-1].confirmed:
+            final = runs[cause].fits[0]
+            return ([cause], extended[cause], final, obs.depth_m - final.residuals_m,
+                    confirmations)
     return ([], copy.deepcopy(config), baseline, obs.depth_m - baseline.residuals_m,
-            not_confirmed)
+            confirmations)
 
 
 def _confounded(verdicts: list[CauseVerdict], accepted: list[str],
@@ -484,21 +505,6 @@ def _confounded(verdicts: list[CauseVerdict], accepted: list[str],
     """The verdicts on the richer causes accepted after the named one (not run in full)."""
     later = accepted[accepted.index(causes[0]) + 1:] if causes else []
     return tuple(e for e in verdicts if e.cause in later and e.cause != "wear_coefficient")
-
-
-def _extended_config(config: dict, cause: str, fitted: Fit) -> dict:
-    """The believed config with ``cause`` at its ``fitted`` parameters."""
-    return CAUSES[cause].extended_config(config, fitted.params, fitted.form or "")
-
-
-def _verify(extended: dict, baseline: Fit, obs: Observations, settings):
-    """The extended model run in full, its offset fitted on the training data."""
-    rod = extended["wear_loop"]["rod_models"][0]
-    run = simulate_wear(model_config(extended, rod, int(obs.cycles.max()) + 1), "extended model")
-    phi = settings.max_offset_deg
-    final = fit("extended", Candidate("extended", (run,)), obs, [np.array([baseline.x[0]])],
-                np.array([(-phi, phi)]))
-    return final, obs.depth_m - final.residuals_m
 
 
 def residual_structure(obs: Observations, residuals: np.ndarray,
@@ -566,12 +572,13 @@ shrinkage, grow with it); impact wear that shows only at the held-out count gave
 
 
 def _unexplained(baseline: Fit, final_fit: Fit, causes, resolution: dict,
-                 not_confirmed: list[Unconfirmed]) -> list[str]:
+                 not_confirmed: list[Confirmation]) -> list[str]:
     """What the named causes (or none) leave unexplained, in sentences."""
     base_error, ext_error = baseline.held_out_rms_m, final_fit.held_out_rms_m
-    sentences = [f"{entry.cause} was accepted on its fitted runs, but its extended model run "
-                 f"in full predicts the held-out data {entry.full_run_held_out_gain:+.0%} "
-                 "better than the believed model (below the criterion), so it is not named"
+    sentences = [f"{entry.cause} was accepted on its fitted runs, but its extended model, run "
+                 f"from {len(entry.held_out_rms_m)} crank starts, predicts the held-out data "
+                 f"{entry.gain:+.0%} better than {entry.against} on average (Welch p = "
+                 f"{entry.p_value:.2g}): below the criterion, so it is not named"
                  for entry in not_confirmed]
     if causes:
         return sentences + ([] if ext_error < 0.5 * base_error else [

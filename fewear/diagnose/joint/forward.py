@@ -76,6 +76,14 @@ def model_config(config: dict, rod: str, total_cycles: int) -> dict:
     return changed
 
 
+def started_later(config: dict, offset_deg: float) -> dict:
+    """``config`` with its crank starting ``offset_deg`` later: another realization of a model
+    whose impacting orbit differs from cycle to cycle."""
+    changed = copy.deepcopy(config)
+    changed["mechanism"]["initial_crank_angle_deg"] += offset_deg
+    return changed
+
+
 def with_halved_wear_steps(config: dict) -> dict:
     """``config`` with its wear steps halved: the fixed extrapolation factor A, or the adaptive
     A_max and depth-increment fraction f (:mod:`fewear.wear.extrapolation`), and twice the wear

@@ -66,8 +66,8 @@ def summarise(diagnosis: JointDiagnosis) -> dict[str, Any]:
         "cause_gains": [{"cause": cause, "held_out_gain": gain,
                          "against": "the believed config" + "".join(f" + {c}" for c in causes[:i])}
                         for i, (cause, gain) in enumerate(zip(causes, d.gains))],
-        "not_confirmed": [{"cause": e.cause, "full_run_held_out_gain": e.full_run_held_out_gain}
-                          for e in d.not_confirmed],
+        "confirmations": [vars(entry) for entry in d.confirmations],
+        "not_confirmed": [entry.cause for entry in d.not_confirmed],
         "unexplained": list(d.unexplained),
     }
 

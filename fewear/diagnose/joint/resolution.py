@@ -38,6 +38,7 @@ from fewear.diagnose.joint.forward import (
     WearHistory,
     model_config,
     simulate_wears,
+    started_later,
     with_doubled_recorded_cycles,
     with_halved_wear_steps,
 )
@@ -140,9 +141,8 @@ def _members(config: dict) -> list[WearHistory]:
     blocks = ", ".join(f"{key} = {value:g}" for key, value in _blocks(config).items())
     requests = [(config, f"believed model, {blocks}")]
     for offset in MEMBER_START_OFFSETS_DEG:
-        later = copy.deepcopy(config)
-        later["mechanism"]["initial_crank_angle_deg"] += offset
-        requests.append((later, f"believed model, {blocks}, started {offset:g} deg later"))
+        requests.append((started_later(config, offset),
+                         f"believed model, {blocks}, started {offset:g} deg later"))
     return simulate_wears(requests)
 
 

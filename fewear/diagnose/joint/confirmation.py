@@ -1,0 +1,101 @@
+"""Confirming an accepted cause on realizations of its extended model (the joint diagnosis,
+:mod:`fewear.diagnose.joint.diagnose`).
+
+A cause is accepted on fits that interpolate between runs on a grid, map the cycles of one run or
+take the best of several (the flexible rod's moduli), and every run is one realization of a model
+whose worn bore depends on where the crank starts: an impacting pin's orbit differs from cycle to
+cycle, and the wear loop samples it once per dynamics block. On the third joint generator's data
+set hiding a k level x 1.67, five runs of the fitted k level started 0-4 deg apart predict the
+held-out profiles to 1.35-3.75 um, five of the flexible rod x 1.05 that one run had named (1.01
+um against the k level's 3.51) to 0.97-3.26 um: one run of each told nothing but luck apart.
+
+So the extended model of an accepted cause and its reference's (the k level when that was
+accepted and the cause is a richer one, else the round's own model) are each run from the crank
+starts :data:`START_OFFSETS_DEG`, each run fitted with its angle offset only, and the cause is
+confirmed when the mean of its runs' held-out RMS errors is at least ``min_held_out_gain`` below
+the reference's and lower by more than the runs' own scatter: Welch's one-sided t-test
+(:func:`fewear.diagnose.core.statistics.welch_lower_p`) gives p < ``significance``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from fewear.diagnose.core.statistics import welch_lower_p
+from fewear.diagnose.joint.candidates import Candidate
+from fewear.diagnose.joint.catalogue import CAUSES
+from fewear.diagnose.joint.fitting import Fit, Observations, fit
+from fewear.diagnose.joint.forward import model_config, simulate_wears, started_later
+from fewear.diagnose.joint.settings import JointDiagnoseSettings
+
+START_OFFSETS_DEG = (0.0, 1.0, 2.0)
+"""Crank angles (deg) by which the realizations of a model start later: as the resolution's runs
+(:data:`fewear.diagnose.joint.resolution.MEMBER_START_OFFSETS_DEG`), so the believed model's
+are those runs again."""
+
+
+@dataclass(frozen=True, eq=False)
+class Realizations:
+    """A model run from each crank start of :data:`START_OFFSETS_DEG`, each run's ``fits``
+    (angle offset only; the first, started at the config's own angle, is the model's)."""
+
+    fits: tuple[Fit, ...]
+
+    @property
+    def held_out_rms_m(self) -> np.ndarray:
+        return np.array([f.held_out_rms_m for f in self.fits])
+
+
+@dataclass(frozen=True)
+class Confirmation:
+    """An accepted ``cause``'s realizations against its reference's (named ``against``): their
+    held-out RMS errors (m), the ``gain`` of the cause's mean error over the reference's, the
+    Welch ``p_value`` and whether the cause is ``confirmed``."""
+
+    cause: str
+    against: str
+    held_out_rms_m: tuple[float, ...]
+    reference_held_out_rms_m: tuple[float, ...]
+    gain: float
+    p_value: float
+    confirmed: bool
+
+
+def realizations(configs: list[dict], labels: list[str], obs: Observations, offset_deg: float,
+                 max_offset_deg: float) -> list[Realizations]:
+    """Each of ``configs`` run to the last measured count from every crank start of
+    :data:`START_OFFSETS_DEG` (all runs side by side), each run fitted with its angle offset
+    (from ``offset_deg``, within +- ``max_offset_deg``)."""
+    cycles = int(obs.cycles.max()) + 1
+    requests = [(started_later(model_config(config, config["wear_loop"]["rod_models"][0],
+                                            cycles), offset),
+                 f"{label}, started {offset:g} deg later" if offset else label)
+                for config, label in zip(configs, labels) for offset in START_OFFSETS_DEG]
+    runs = iter(simulate_wears(requests))
+    bounds = np.array([(-max_offset_deg, max_offset_deg)])
+    return [Realizations(tuple(fit("extended", Candidate("extended", (next(runs),)), obs,
+                                   [np.array([offset_deg])], bounds)
+                               for _ in START_OFFSETS_DEG))
+            for _ in configs]
+
+
+def confirm(cause: str, extended: Realizations, reference: Realizations, against: str,
+            settings: JointDiagnoseSettings) -> Confirmation:
+    """Whether ``cause``'s ``extended`` realizations predict the held-out data better than the
+    ``reference``'s (the module docstring's rule)."""
+    errors, reference_errors = extended.held_out_rms_m, reference.held_out_rms_m
+    mean, reference_mean = float(errors.mean()), float(reference_errors.mean())
+    gain = 1.0 - mean / reference_mean if reference_mean > 0.0 else -math.inf
+    p_value = welch_lower_p(errors, reference_errors)
+    return Confirmation(cause, against, tuple(map(float, errors)),
+                        tuple(map(float, reference_errors)), gain, p_value,
+                        bool(gain >= settings.min_held_out_gain
+                             and p_value < settings.significance))
+
+
+def extended_config(config: dict, cause: str, fitted: Fit) -> dict:
+    """The believed config with ``cause`` at its ``fitted`` parameters."""
+    return CAUSES[cause].extended_config(config, fitted.params, fitted.form or "")
