@@ -25,9 +25,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from fewear.diagnose.core.statistics import welch_lower_p
-from fewear.diagnose.joint.candidates import Candidate
 from fewear.diagnose.joint.catalogue import CAUSES
-from fewear.diagnose.joint.fitting import Fit, Observations, fit
+from fewear.diagnose.joint.fitting import Fit, Observations, offset_fit
 from fewear.diagnose.joint.forward import model_config, simulate_wears, started_later
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
 
@@ -75,10 +74,8 @@ def realizations(configs: list[dict], labels: list[str], obs: Observations, offs
                  f"{label}, started {offset:g} deg later" if offset else label)
                 for config, label in zip(configs, labels) for offset in START_OFFSETS_DEG]
     runs = iter(simulate_wears(requests))
-    bounds = np.array([(-max_offset_deg, max_offset_deg)])
-    return [Realizations(tuple(fit("extended", Candidate("extended", (next(runs),)), obs,
-                                   [np.array([offset_deg])], bounds)
-                               for _ in START_OFFSETS_DEG))
+    return [Realizations(tuple(offset_fit("extended", next(runs), obs, offset_deg,
+                                          max_offset_deg) for _ in START_OFFSETS_DEG))
             for _ in configs]
 
 

@@ -218,6 +218,14 @@ def fit(name: str, candidate: Candidate, obs: Observations, starts: list[np.ndar
                float(np.sqrt(np.mean(held**2))), float(np.sqrt(np.mean(train**2))), residuals)
 
 
+def offset_fit(name: str, run: WearHistory, obs: Observations, start_deg: float,
+               max_offset_deg: float) -> Fit:
+    """The model of one ``run`` fitted with its angular offset only (from ``start_deg``, within
+    +- ``max_offset_deg``; the level of k as run)."""
+    return fit(name, Candidate(name, (run,)), obs, [np.array([start_deg])],
+               np.array([(-max_offset_deg, max_offset_deg)]))
+
+
 def offset_start(obs: Observations, base: Candidate, max_offset_deg: float) -> float:
     """The offset (deg) that best aligns the training profiles with the believed model scaled to
     the measured depth (a scan in 1 deg steps)."""

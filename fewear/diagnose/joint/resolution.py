@@ -33,7 +33,7 @@ import numpy as np
 
 from fewear.diagnose.joint import structure
 from fewear.diagnose.joint.candidates import Candidate
-from fewear.diagnose.joint.fitting import Fit, Observations, fit, offset_start
+from fewear.diagnose.joint.fitting import Fit, Observations, offset_fit, offset_start
 from fewear.diagnose.joint.forward import (
     WearHistory,
     model_config,
@@ -61,10 +61,8 @@ class WearStepLevel:
 
 def baseline_fit(name: str, run: WearHistory, obs: Observations, max_offset_deg: float) -> Fit:
     """The model of one run fitted with its angular offset only (the level of k as run)."""
-    believed = Candidate(name, (run,))
-    offset = offset_start(obs, believed, max_offset_deg)
-    return fit(believed.name, believed, obs, [np.array([offset])],
-               np.array([(-max_offset_deg, max_offset_deg)]))
+    start = offset_start(obs, Candidate(name, (run,)), max_offset_deg)
+    return offset_fit(name, run, obs, start, max_offset_deg)
 
 
 def resolve_wear_step(config: dict, obs: Observations, max_halvings: int,
