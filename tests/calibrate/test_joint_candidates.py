@@ -531,9 +531,9 @@ def _fitted(name: str, k_scale: float, **params) -> Fit:
 
 
 @pytest.mark.parametrize("friction_rate_factor, accepted, named", [
-    (0.9, ["friction", "wear_coefficient"], ["wear_coefficient"]),
-    (1.5, ["friction", "wear_coefficient"], ["wear_coefficient"]),
-    (1.5, ["friction"], ["friction"])])
+    (0.9, ["friction", "wear_coefficient"], "wear_coefficient"),
+    (1.5, ["friction", "wear_coefficient"], "wear_coefficient"),
+    (1.5, ["friction"], "friction")])
 def test_the_first_accepted_cause_whose_realizations_hold_up_is_named(
         monkeypatch, friction_rate_factor, accepted, named):
     """The data are a k level x1.5. Friction was accepted first on its fitted runs; its
@@ -545,19 +545,19 @@ def test_the_first_accepted_cause_whose_realizations_hold_up_is_named(
     baseline = _baseline(base, obs)
     fits = {"friction": _fitted("friction", 1.0, friction_coefficient=0.3),
             "wear_coefficient": _fitted("wear_coefficient", 1.5)}
-    causes, extended, final, depth, confirmations = _confirm(
+    cause, extended, final, depth, confirmations = _confirm(
         config, accepted, fits, baseline, obs, settings, "believed model")
-    assert causes == named
+    assert cause == named
     assert final.held_out_rms_m < 1e-6 * obs.depth_m.max()
     np.testing.assert_allclose(depth, obs.depth_m, rtol=1e-9, atol=1e-15)
-    assert [c.confirmed for c in confirmations] == [c == named[0] for c in accepted]
-    if named == ["wear_coefficient"]:
+    assert [c.confirmed for c in confirmations] == [c == named for c in accepted]
+    if named == "wear_coefficient":
         assert extended["wear"]["constant_k_m2_N"] == pytest.approx(1.5e-15)
         assert extended["joint"]["friction_coefficient"] == 0.1
         refused = confirmations[0]
         assert refused.cause == "friction" and refused.against == "wear_coefficient"
         assert len(refused.held_out_rms_m) == len(START_OFFSETS_DEG)
-        sentence, = _unexplained(baseline, final, causes, _resolution(None, 0.0),
+        sentence, = _unexplained(baseline, final, [cause], _resolution(None, 0.0),
                                  [refused])
         assert sentence.startswith("friction was accepted on its fitted runs")
     else:
@@ -569,10 +569,10 @@ def test_no_cause_is_named_when_no_realizations_hold_up(monkeypatch):
     config, base, obs = _k_level_world(monkeypatch, 1.5, 0.9)
     baseline = _baseline(base, obs)
     fits = {"friction": _fitted("friction", 1.0, friction_coefficient=0.3)}
-    causes, extended, final, depth, confirmations = _confirm(
+    cause, extended, final, depth, confirmations = _confirm(
         config, ["friction"], fits, baseline, obs, JointDiagnoseSettings.default(),
         "believed model")
-    assert causes == [] and final is baseline and extended == config
+    assert cause is None and final is baseline and extended == config
     assert [(e.cause, e.confirmed) for e in confirmations] == [("friction", False)]
 
 

@@ -28,8 +28,10 @@ class Candidate:
     """One form of a cause as runs of the wear loop: ``runs`` at the values ``grid`` of its
     ``parameter`` (one run: no grid; ``discrete``: one of the runs is chosen, not interpolated
     between; ``parameter_scales_with_level``: the parameter is a wear rate, scaled by the fitted
-    level s too); ``time_map``: the one run's cycles are mapped node by node by the running-in
-    ``form`` (a key of :data:`RUNNING_IN_FORMS`); ``form``: '' for a cause with one form.
+    level s too); ``time_map``: each run's cycles are mapped node by node by the running-in form
+    :attr:`map_form` (a key of :data:`RUNNING_IN_FORMS`): the cause's ``form`` for running-in
+    itself, ``running_in_form`` for another cause's runs with running-in on top (a pair,
+    :mod:`fewear.diagnose.joint.pairs`); ``form``: '' for a cause with one form.
     ``k_scales``: the wear coefficient's level each run was made with (empty: the believed k for
     all; a refinement's run has its fit's); ``run_extension``: the running-in its one run was made
     with (None: none)."""
@@ -44,6 +46,18 @@ class Candidate:
     parameter: str | None = None
     parameter_scales_with_level: bool = False
     time_map: bool = False
+    running_in_form: str = ""
+
+    @property
+    def map_form(self) -> str:
+        """The running-in form of the time map."""
+        return self.running_in_form or self.form
+
+    @property
+    def position_index(self) -> int:
+        """Where the position on the runs sits in a fit's x = (phi_deg, ln s, [ln(r - 1),
+        ln s0,] position) (a discrete choice's run index alike)."""
+        return 4 if self.time_map else 2
 
     def k_scale(self, run: int) -> float:
         """The level of k run ``run`` was made with."""
@@ -51,9 +65,9 @@ class Candidate:
 
     @property
     def n_extra(self) -> int:
-        """The parameters of the cause's own: r - 1 and the scale (time map), the position on
-        the grid (several runs), none (one run)."""
-        return 2 if self.time_map else (1 if len(self.runs) > 1 else 0)
+        """The parameters of the cause's own: r - 1 and the scale (time map) and the position
+        on the grid (several runs)."""
+        return 2 * self.time_map + (len(self.runs) > 1)
 
 
 def running_in_extension(form: str, params: dict):

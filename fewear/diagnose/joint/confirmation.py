@@ -28,6 +28,7 @@ from fewear.diagnose.core.statistics import welch_lower_p
 from fewear.diagnose.joint.catalogue import CAUSES
 from fewear.diagnose.joint.fitting import Fit, Observations, offset_fit
 from fewear.diagnose.joint.forward import model_config, simulate_wears, started_later
+from fewear.diagnose.joint.pairs import is_pair, pair_config
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
 
 START_OFFSETS_DEG = (0.0, 1.0, 2.0)
@@ -94,5 +95,8 @@ def confirm(cause: str, extended: Realizations, reference: Realizations, against
 
 
 def extended_config(config: dict, cause: str, fitted: Fit) -> dict:
-    """The believed config with ``cause`` at its ``fitted`` parameters."""
+    """The believed config with ``cause`` (or a pair, :mod:`fewear.diagnose.joint.pairs`) at its
+    ``fitted`` parameters."""
+    if is_pair(cause):
+        return pair_config(config, fitted)
     return CAUSES[cause].extended_config(config, fitted.params, fitted.form or "")

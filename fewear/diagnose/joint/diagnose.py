@@ -92,6 +92,14 @@ single-cause data the second round named impact wear beside the right first caus
 sets whose first round named a cause (the extended model's misfit of another model's forms), so
 ``max_causes`` is 1 by default.
 
+Two causes at once (``max_causes`` >= 2; :mod:`fewear.diagnose.joint.pairs`): two causes acting
+together need not leave one that predicts the held-out data better on its own, and then the
+first round names none. So when it accepts none, running-in is fitted together with each cause
+that, as running-in, fits the training data better than the believed model beyond chance
+(running-in's time map on that cause's runs: no new runs); a pair is accepted by the rule of a
+single cause against the believed model and when it fits the training data better than each of
+its causes alone, and named, both causes at once, when its realizations hold up.
+
 Resolution first (:mod:`fewear.diagnose.joint.resolution`): before any cause is fitted, the
 believed model's wear steps are halved until its own noise (the spread of runs started a degree
 apart, the move of halved wear steps) is at most the instrument's scatter, estimated from
@@ -136,6 +144,7 @@ from fewear.diagnose.joint.forward import (
     simulate_wear,
 )
 from fewear.diagnose.joint.measured import JointMeasurements
+from fewear.diagnose.joint.pairs import causes_of, fit_pairs, pair_candidates
 from fewear.diagnose.joint.refinement import RunsAt, fit_causes
 from fewear.diagnose.joint.resolution import (
     MEMBER_START_OFFSETS_DEG,
@@ -264,7 +273,8 @@ class JointDiagnosis:
 
     @property
     def gains(self) -> tuple[float, ...]:
-        """Each named cause's held-out gain over the model before it."""
+        """Per round that named a cause (or a pair, both at once), its held-out gain over the
+        model before it."""
         return tuple(r.gain for r in self.rounds if r.named)
 
     @property
@@ -379,11 +389,15 @@ def _round(data: JointMeasurements, obs: Observations, config: dict,
     refined_runs = candidate_runner(_reach(obs, REFINED_REACH), deepest_m)
     fits = fit_causes(candidates, obs, baseline, settings, _refinement_runs(config, refined_runs))
     accepted, verdicts = _select(baseline, fits, settings, floor_m)
-    causes, extended, final_fit, extended_depth, confirmations = _confirm(
+    if not accepted and not named and settings.max_causes >= 2:
+        accepted, pair_verdicts, pair_fits = _select_pairs(candidates, fits, obs, baseline,
+                                                           settings, floor_m)
+        verdicts, fits = verdicts + pair_verdicts, {**fits, **pair_fits}
+    entry, extended, final_fit, extended_depth, confirmations = _confirm(
         config, accepted, fits, baseline, obs, settings, label)
     return Round(baseline=baseline, base_run=base, verdicts=tuple(verdicts),
-                 accepted=tuple(accepted), named=tuple(causes),
-                 confounded=_confounded(verdicts, accepted, causes),
+                 accepted=tuple(accepted), named=causes_of(entry) if entry else (),
+                 confounded=_confounded(verdicts, accepted, entry),
                  confirmations=tuple(confirmations), untestable=tuple(untestable),
                  extended_config=extended, extended_fit=final_fit,
                  extended_depth_m=extended_depth)
@@ -453,34 +467,70 @@ def _select(baseline: Fit, fits: dict[str, Fit], settings,
     the model's own noise (what 'none' means): a relative gain on an error at the noise is no
     evidence of a cause."""
     tried = sum(f.forms_tried for f in fits.values())
-    at_noise = noise_m is not None and (
-        baseline.held_out_rms_m <= UNEXPLAINED_SCATTERS * noise_m)
-
-    def judged(fit_: Fit, reference: Fit) -> CauseVerdict:
-        entry = verdict(fit_, reference, settings, tried)
-        return replace(entry, accepted=entry.accepted and not at_noise)
-
+    at_noise = _at_noise(baseline, noise_m)
     verdicts = []
     reference = baseline
     chosen: list[str] = []
     if "wear_coefficient" in fits:
-        entry = judged(fits["wear_coefficient"], baseline)
+        entry = _judged(fits["wear_coefficient"], baseline, settings, tried, at_noise)
         verdicts.append(entry)
         if entry.accepted:
             reference, chosen = fits["wear_coefficient"], ["wear_coefficient"]
-    richer = [judged(f, reference) for name, f in fits.items() if name != "wear_coefficient"]
+    richer = [_judged(f, reference, settings, tried, at_noise)
+              for name, f in fits.items() if name != "wear_coefficient"]
     verdicts += richer
-    accepted = sorted((e for e in richer if e.accepted), key=lambda e: e.fit.held_out_rms_m)
-    return [e.cause for e in accepted] + chosen, verdicts
+    return _by_held_out_error(richer) + chosen, verdicts
+
+
+def _at_noise(baseline: Fit, noise_m: float | None) -> bool:
+    """Whether the believed model predicts the held-out data within
+    :data:`UNEXPLAINED_SCATTERS` times ``noise_m`` (:func:`_select`)."""
+    return noise_m is not None and baseline.held_out_rms_m <= UNEXPLAINED_SCATTERS * noise_m
+
+
+def _judged(fit_: Fit, reference: Fit, settings, tried: int, at_noise: bool) -> CauseVerdict:
+    """:func:`verdict`, none accepted ``at_noise`` (:func:`_at_noise`)."""
+    entry = verdict(fit_, reference, settings, tried)
+    return replace(entry, accepted=entry.accepted and not at_noise)
+
+
+def _by_held_out_error(verdicts: list[CauseVerdict]) -> list[str]:
+    """The accepted causes of ``verdicts``, the best on the held-out data first."""
+    return [e.cause for e in sorted((e for e in verdicts if e.accepted),
+                                    key=lambda e: e.fit.held_out_rms_m)]
+
+
+def _select_pairs(candidates: dict, fits: dict[str, Fit], obs: Observations, baseline: Fit,
+                  settings: JointDiagnoseSettings, noise_m: float | None):
+    """With no single cause accepted on the believed model: running-in fitted together with each
+    cause that, as running-in, fits the training data better than the believed model beyond
+    chance (F-test p < ``significance`` / forms tried; :mod:`fewear.diagnose.joint.pairs`). A
+    pair is accepted by :func:`verdict` against the believed model (every pair counted among the
+    forms tried) and when it fits the training data better than each of its causes alone
+    (F-test of the nested fits, p < ``significance``). Returns the accepted pairs, the best on
+    the held-out data first, the verdicts on all pairs and their fits."""
+    tried = sum(f.forms_tried for f in fits.values())
+    pairs = pair_candidates(
+        candidates, fits,
+        lambda f: f_test_p(baseline, f) < settings.significance / tried)
+    pair_fits = fit_pairs(pairs, fits, obs, float(baseline.x[0]), settings)
+    verdicts = []
+    for name, fitted in pair_fits.items():
+        entry = _judged(fitted, baseline, settings, tried + len(pairs),
+                        _at_noise(baseline, noise_m))
+        beyond_each = all(f_test_p(fits[cause], fitted) < settings.significance
+                          for cause in causes_of(name))
+        verdicts.append(replace(entry, accepted=entry.accepted and beyond_each))
+    return _by_held_out_error(verdicts), verdicts, pair_fits
 
 
 def _confirm(config: dict, accepted: list[str], fits: dict[str, Fit], baseline: Fit,
              obs: Observations, settings: JointDiagnoseSettings, label: str):
-    """The first accepted cause confirmed on realizations of its extended model
+    """The first accepted cause (or pair) confirmed on realizations of its extended model
     (:mod:`fewear.diagnose.joint.confirmation`): a richer cause against the k level's when that
     was accepted, else against the round's model ``config`` (named ``label``). Every accepted
     cause's realizations and their references' are run in one batch (side by side). Returns
-    (the named cause as a list, empty if none is confirmed; the extended config; its fit, the
+    (the accepted name confirmed, None if none is; the extended config; its fit, the
     realization started at the config's crank angle; its depths at the observations; the
     confirmations up to the named cause)."""
     extended = {cause: extended_config(config, cause, fits[cause]) for cause in accepted}
@@ -494,16 +544,16 @@ def _confirm(config: dict, accepted: list[str], fits: dict[str, Fit], baseline: 
         confirmations.append(confirm(cause, runs[cause], runs[against], against, settings))
         if confirmations[-1].confirmed:
             final = runs[cause].fits[0]
-            return ([cause], extended[cause], final, obs.depth_m - final.residuals_m,
+            return (cause, extended[cause], final, obs.depth_m - final.residuals_m,
                     confirmations)
-    return ([], copy.deepcopy(config), baseline, obs.depth_m - baseline.residuals_m,
+    return (None, copy.deepcopy(config), baseline, obs.depth_m - baseline.residuals_m,
             confirmations)
 
 
 def _confounded(verdicts: list[CauseVerdict], accepted: list[str],
-                causes: list[str]) -> tuple[CauseVerdict, ...]:
-    """The verdicts on the richer causes accepted after the named one (not run in full)."""
-    later = accepted[accepted.index(causes[0]) + 1:] if causes else []
+                named: str | None) -> tuple[CauseVerdict, ...]:
+    """The verdicts on the richer causes accepted after the ``named`` one (not run in full)."""
+    later = accepted[accepted.index(named) + 1:] if named else []
     return tuple(e for e in verdicts if e.cause in later and e.cause != "wear_coefficient")
 
 

@@ -92,7 +92,9 @@ def observations(data: JointMeasurements, held_out_fraction: float) -> Observati
 
 @dataclass(frozen=True, eq=False)
 class Fit:
-    """A model fitted on the training data: parameters x = (phi_deg[, ln s, extra...])."""
+    """A model fitted on the training data: parameters x = (phi_deg[, ln s, extra...]), by
+    name in ``params``; ``form``: the cause's form; ``running_in_form``: the form of running-in
+    on top of it (a pair, :mod:`fewear.diagnose.joint.pairs`)."""
 
     name: str
     x: np.ndarray
@@ -105,6 +107,7 @@ class Fit:
     params: dict = field(default_factory=dict)
     form: str | None = None
     forms_tried: int = 1
+    running_in_form: str | None = None
 
     @property
     def aicc(self) -> float:
@@ -117,19 +120,32 @@ class Fit:
         return 1.0 - self.held_out_rms_m / reference.held_out_rms_m
 
 
-def _mixed_depth(candidate: Candidate, position: float, scale: float,
-                 cycles: np.ndarray) -> np.ndarray:
+def _mixed_depth(candidate: Candidate, position: float, scale: float, cycles: np.ndarray,
+                 time_map: tuple[float, float] | None = None) -> np.ndarray:
     """The worn bore (m, n) at level ``scale`` after each of ``cycles`` (m,), interpolated at
-    ``position`` between the runs (each run's cycles mapped by the ratio of the levels:
-    Archard's depth along the loop is a function of k N)."""
+    ``position`` between the runs (each run's cycles mapped by :func:`_run_depths`)."""
     runs = candidate.runs
     if len(runs) == 1:
-        return runs[0].nodal_depths_m(scale / candidate.k_scale(0) * cycles)
+        return _run_depths(candidate, 0, scale, cycles, time_map)
     position = min(max(float(position), 0.0), len(runs) - 1.0)
     k = min(int(position), len(runs) - 2)
     w = position - k
-    return ((1 - w) * runs[k].nodal_depths_m(scale / candidate.k_scale(k) * cycles)
-            + w * runs[k + 1].nodal_depths_m(scale / candidate.k_scale(k + 1) * cycles))
+    return ((1 - w) * _run_depths(candidate, k, scale, cycles, time_map)
+            + w * _run_depths(candidate, k + 1, scale, cycles, time_map))
+
+
+def _run_depths(candidate: Candidate, index: int, scale: float, cycles: np.ndarray,
+                time_map: tuple[float, float] | None) -> np.ndarray:
+    """Run ``index``'s worn bore (m, n) at level ``scale`` after each of ``cycles`` (m,): its
+    cycles mapped by the ratio of the levels (Archard's depth along the loop is a function of
+    k N) or, with ``time_map`` = (r - 1, s0 or N0), node by node through the running-in
+    form's (:func:`running_in_time_map`)."""
+    run = candidate.runs[index]
+    if time_map is None:
+        return run.nodal_depths_m(scale / candidate.k_scale(index) * cycles)
+    return run.nodal_depth_each_m(running_in_time_map(
+        cycles[:, None], run, candidate.map_form, *time_map, scale, candidate.run_extension,
+        candidate.k_scale(index)))
 
 
 def running_in_time_map(cycles, run: WearHistory, form: str, extra: float,
@@ -173,13 +189,9 @@ def _nodal_predictions(candidate: Candidate, x: np.ndarray, cycles: np.ndarray) 
     if x.size < 2:
         return candidate.runs[0].nodal_depths_m(cycles)
     scale = math.exp(x[1])
-    if candidate.time_map:
-        run = candidate.runs[0]
-        return run.nodal_depth_each_m(running_in_time_map(
-            cycles[:, None], run, candidate.form, math.exp(x[2]), math.exp(x[3]), scale,
-            candidate.run_extension, candidate.k_scale(0)))
-    position = x[2] if candidate.n_extra == 1 else 0.0
-    return _mixed_depth(candidate, position, scale, cycles)
+    time_map = (math.exp(x[2]), math.exp(x[3])) if candidate.time_map else None
+    position = x[candidate.position_index] if len(candidate.runs) > 1 else 0.0
+    return _mixed_depth(candidate, position, scale, cycles, time_map)
 
 
 def predict(obs: Observations, x: np.ndarray, candidate: Candidate) -> np.ndarray:
@@ -254,68 +266,73 @@ def best_form(fits: list[Fit]) -> Fit:
 
 
 def fit_form(candidate: Candidate, obs: Observations, offset_deg: float,
-              settings: JointDiagnoseSettings) -> Fit:
-    """:func:`fit_candidate` for one form."""
+             settings: JointDiagnoseSettings, starts: list[np.ndarray] | None = None) -> Fit:
+    """:func:`fit_candidate` for one form, from ``starts`` (x without a discrete choice's run
+    index) or from each level of (1, e^-0.5, e^0.5) times the form's own starts."""
     bounds, extra_starts = bounds_and_starts(candidate, obs, settings)
-    levels = (0.0, -0.5, 0.5)
-    if candidate.discrete:
-        result = best_run(candidate, obs, [np.array([offset_deg, s]) for s in levels], bounds)
-    else:
-        starts = [np.array([offset_deg, ln_s, *extra]) for ln_s in levels
+    if starts is None:
+        starts = [np.array([offset_deg, ln_s, *extra]) for ln_s in (0.0, -0.5, 0.5)
                   for extra in extra_starts]
+    if candidate.discrete:
+        result = best_run(candidate, obs, starts, bounds)
+    else:
         result = fit(candidate.name, candidate, obs, starts, bounds)
     return with_params(result, candidate)
 
 
 def bounds_and_starts(candidate: Candidate, obs: Observations,
-                       settings: JointDiagnoseSettings) -> tuple[np.ndarray, list[tuple]]:
-    """The bounds of x = (phi_deg, ln s, extra...) and the starts of the extra parameters."""
+                      settings: JointDiagnoseSettings) -> tuple[np.ndarray, list[tuple]]:
+    """The bounds of x = (phi_deg, ln s, extra...) and the starts of the extra parameters (a
+    discrete choice's run index is not among them: :func:`best_run`)."""
     last_train = float(obs.cycles[obs.train].max())
     ln_max = math.log(settings.max_k_scale)
     phi = settings.max_offset_deg
     bounds = [(-phi, phi), (-ln_max, ln_max)]
     extra_starts: list[tuple[float, ...]] = [()]
     if candidate.time_map:
-        advance = _advance_per_cycle(candidate.runs[0], candidate.form)
+        advance = _advance_per_cycle(candidate.runs[0], candidate.map_form)
         typical = float(np.median(advance[advance > 1e-300])) * last_train  # m slid or cycles
         bounds += [(math.log(0.05), math.log(2.0 * RUNNING_IN_REACH - 1.0)),
                    (math.log(1e-3 * typical), math.log(10.0 * typical))]
         extra_starts = [(math.log(r), math.log(f * typical)) for r in (0.5, 3.0)
                         for f in (0.03, 0.3)]
-    elif candidate.n_extra == 1:
+    if len(candidate.runs) > 1 and not candidate.discrete:
         top = len(candidate.runs) - 1.0
         bounds += [(0.0, top)]
-        extra_starts = [(p,) for p in np.linspace(0.0, top, len(candidate.runs))]
+        extra_starts = [(*extra, p) for extra in extra_starts
+                        for p in np.linspace(0.0, top, len(candidate.runs))]
     return np.array(bounds), extra_starts
 
 
 def best_run(candidate: Candidate, obs: Observations, starts, bounds) -> Fit:
-    """The discrete choice: each run fitted alone (offset and level), the best on the training
-    data kept; its x gets the run's index, and the choice counts as one parameter."""
+    """The discrete choice: each run fitted alone (offset, level and a time map's parameters),
+    the best on the training data kept; its x gets the run's index, and the choice counts as
+    one parameter."""
     best, best_index = None, 0
     for index, run in enumerate(candidate.runs):
-        alone = Candidate(candidate.name, (run,), k_scales=(candidate.k_scale(index),))
-        result = fit(candidate.name, alone, obs, starts, np.array(bounds[:2]))
+        alone = replace(candidate, runs=(run,), grid=(), k_scales=(candidate.k_scale(index),))
+        result = fit(candidate.name, alone, obs, starts, np.asarray(bounds))
         if best is None or result.sse_train < best.sse_train:
             best, best_index = result, index
     return replace(best, x=np.append(best.x, float(best_index)), n_params=best.n_params + 1)
 
 
 def with_params(result: Fit, candidate: Candidate) -> Fit:
-    """``result`` with its parameters by name (``params``) and its form."""
+    """``result`` with its parameters by name (``params``) and its forms."""
     x = result.x
     params = {"angle_offset_deg": float(x[0])}
     if x.size > 1:
         params["k_scale"] = float(math.exp(x[1]))
     if candidate.time_map:
-        params.update(RUNNING_IN_FORMS[candidate.form](1.0 + float(math.exp(x[2])),
-                                                       float(math.exp(x[3]))).params())
-    elif candidate.n_extra == 1:
-        value = grid_value(candidate, float(x[2]))
+        params.update(RUNNING_IN_FORMS[candidate.map_form](1.0 + float(math.exp(x[2])),
+                                                           float(math.exp(x[3]))).params())
+    if len(candidate.runs) > 1:
+        value = grid_value(candidate, float(x[candidate.position_index]))
         if candidate.parameter_scales_with_level:  # s rescales the cycle axis: all wear
             value *= params["k_scale"]
         params[candidate.parameter] = value
-    return replace(result, params=params, form=candidate.form or None)
+    return replace(result, params=params, form=candidate.form or None,
+                   running_in_form=candidate.running_in_form or None)
 
 
 def needed_cycles(obs: Observations, settings: JointDiagnoseSettings) -> float:

@@ -63,13 +63,22 @@ def summarise(diagnosis: JointDiagnosis) -> dict[str, Any]:
                        "extended": _prediction(obs, d.extended_fit)},
         "residual_structure": d.residual_structure,
         "resolution": d.resolution,
-        "cause_gains": [{"cause": cause, "held_out_gain": gain,
-                         "against": "the believed config" + "".join(f" + {c}" for c in causes[:i])}
-                        for i, (cause, gain) in enumerate(zip(causes, d.gains))],
+        "cause_gains": _cause_gains(d),
         "confirmations": [vars(entry) for entry in d.confirmations],
         "not_confirmed": [entry.cause for entry in d.not_confirmed],
         "unexplained": list(d.unexplained),
     }
+
+
+def _cause_gains(d: JointDiagnosis) -> list[dict[str, Any]]:
+    """Per round that named a cause (or a pair, both at once): the held-out gain it adds to the
+    model of the causes before it."""
+    entries, before = [], []
+    for named, gain in zip((r.named for r in d.rounds if r.named), d.gains):
+        entries.append({"cause": " + ".join(named), "held_out_gain": gain,
+                        "against": "the believed config" + "".join(f" + {c}" for c in before)})
+        before += named
+    return entries
 
 
 def _candidate(entry: CauseVerdict) -> dict[str, Any]:
