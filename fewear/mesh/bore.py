@@ -6,6 +6,10 @@ the Q8 (serendipity) nodes on the bore and the points of the 3-point Gauss-Lobat
 the contact integral is computed (:mod:`fewear.contact.solver`). :class:`BoreNodes` finds them on
 each rank and gathers their union, sorted by angle, on every rank; :func:`bore_node_weights` gives
 their Gauss-Lobatto weights.
+
+The same serves any contact surface tagged ``CONTACT_TAG``: on the flat below the origin
+(:mod:`fewear.mesh.flat`) every node's angle lies in (pi, 2 pi), and the angle order is the order
+in x.
 """
 
 from __future__ import annotations
@@ -15,7 +19,7 @@ import math
 import numpy as np
 from mpi4py import MPI
 
-from fewear.mesh.bushing import BORE_TAG
+from fewear.mesh.tags import CONTACT_TAG
 
 # DOLFINx reference quadrilateral: local edge e joins these vertices; geometry node 4 + e is the
 # edge's midpoint node of the 9-node geometry.
@@ -36,7 +40,7 @@ class BoreNodes:
         msh.topology.create_connectivity(tdim - 1, tdim)
         msh.topology.create_connectivity(tdim, tdim - 1)
         n_owned = msh.topology.index_map(tdim - 1).size_local
-        facets = facet_tags.find(BORE_TAG)
+        facets = facet_tags.find(CONTACT_TAG)
         self.facets = facets[facets < n_owned].astype(np.int32)
         f2c = msh.topology.connectivity(tdim - 1, tdim)
         c2f = msh.topology.connectivity(tdim, tdim - 1)

@@ -34,9 +34,10 @@ from mpi4py import MPI
 from fewear.errors import FewearInputError
 from fewear.mesh.geometry import BushingGeometry, MeshSettings
 from fewear.mesh.profile import checked_periodic_table, periodic_linear, polar_angle
+from fewear.mesh.tags import CLAMPED_TAG, CONTACT_TAG
 
-BORE_TAG = 1
-OUTER_TAG = 2
+BORE_TAG = CONTACT_TAG
+OUTER_TAG = CLAMPED_TAG
 BUSHING_TAG = 3
 
 

@@ -1,7 +1,8 @@
-"""The bushing's geometry and its mesh settings: plain frozen dataclasses in SI units (no DOLFINx).
+"""The bodies' geometry and mesh settings: plain frozen dataclasses in SI units (no DOLFINx).
 
-Every check lives in a ``__post_init__`` and raises :class:`fewear.errors.FewearInputError` naming
-the value and the allowed range.
+The bushing (:class:`BushingGeometry`, :class:`MeshSettings`) and the flat under a rigid cylinder
+(:class:`FlatGeometry`, :class:`FlatMeshSettings`). Every check lives in a ``__post_init__`` and
+raises :class:`fewear.errors.FewearInputError` naming the value and the allowed range.
 """
 
 from __future__ import annotations
@@ -80,3 +81,97 @@ class MeshSettings:
         """Elements around the bore: ceil(2 pi R_b / h) rounded up to a multiple of 4 (>= 8; a
         config is refused below 16, :mod:`fewear.io.limits`)."""
         return max(8, 4 * math.ceil(self.elements_around(inner_radius_m) / 4))
+
+
+@dataclass(frozen=True)
+class FlatGeometry:
+    """A rigid cylinder of radius ``cylinder_radius_m`` over an elastic flat (m).
+
+    The flat is the rectangle |x| <= ``width_m``/2, ``top_y_m`` - ``height_m`` <= y <=
+    ``top_y_m``, plane strain of out-of-plane length ``length_m`` (forces in N are line loads
+    times it, as the bushing's joint width). The cylinder's centre starts at the origin, so the
+    top surface lies at y = -(R + ``standoff_m``): a small positive gap the first touch closes.
+    """
+
+    cylinder_radius_m: float
+    width_m: float
+    height_m: float
+    length_m: float
+    standoff_m: float
+
+    def __post_init__(self) -> None:
+        for name in ("cylinder_radius_m", "width_m", "height_m", "length_m", "standoff_m"):
+            require_finite_positive(f"flat {name}", getattr(self, name))
+        require(
+            self.standoff_m < self.cylinder_radius_m,
+            f"flat standoff_m = {self.standoff_m!r}: must be smaller than the cylinder_radius_m "
+            f"= {self.cylinder_radius_m!r} (a small gap between cylinder and flat)",
+        )
+
+    @property
+    def top_y_m(self) -> float:
+        """y of the flat's top surface, -(R + standoff) (m)."""
+        return -(self.cylinder_radius_m + self.standoff_m)
+
+
+@dataclass(frozen=True)
+class FlatMeshSettings:
+    """The structured mesh of the flat (see :mod:`fewear.mesh.flat`).
+
+    - ``contact_element_size_m``: largest element edge along the top over the contact zone (m);
+      the zone holds :meth:`contact_element_count` equal elements.
+    - ``contact_zone_half_width_m``: the zone |x| < x_c of these elements (m), which must hold
+      the contact strip.
+    - ``side_element_count``: elements along the top on each side of the zone (>= 1), graded
+      from the contact element size outward.
+    - ``depth_element_count``: elements through the height (>= 2), graded from the contact
+      element size at the top downward.
+    """
+
+    contact_element_size_m: float
+    contact_zone_half_width_m: float
+    side_element_count: int = 16
+    depth_element_count: int = 24
+
+    def __post_init__(self) -> None:
+        require_finite_positive("flat mesh contact_element_size_m", self.contact_element_size_m)
+        require_finite_positive("flat mesh contact_zone_half_width_m",
+                                self.contact_zone_half_width_m)
+        for name, smallest in (("side_element_count", 1), ("depth_element_count", 2)):
+            count = getattr(self, name)
+            require(
+                isinstance(count, int) and smallest <= count <= 1000,
+                f"flat mesh {name} = {count!r}: must be a whole number in [{smallest}, 1000]",
+            )
+
+    def contact_element_count(self) -> int:
+        """Elements over the zone, 2 x_c / size rounded up to an even number (x = 0 a node)."""
+        per_half = self.contact_zone_half_width_m / self.contact_element_size_m
+        return 2 * math.ceil(per_half - 1e-9)
+
+    def contact_element_length_m(self) -> float:
+        """The edge length of the zone's elements, 2 x_c / count (m)."""
+        return 2.0 * self.contact_zone_half_width_m / self.contact_element_count()
+
+    def require_fits(self, geometry: FlatGeometry) -> None:
+        """The zone and the graded elements must fit in the flat, else FewearInputError: x_c
+        below W/4 (the zone widens to the middle of each half at the bottom), and the side and
+        depth elements, each at least the contact element long, within W/2 - x_c and H."""
+        x_c, size = self.contact_zone_half_width_m, self.contact_element_length_m()
+        require(
+            x_c < 0.25 * geometry.width_m,
+            f"flat mesh contact_zone_half_width_m = {x_c!r}: must be below a quarter of the "
+            f"flat width_m = {geometry.width_m!r}",
+        )
+        require(
+            self.side_element_count * size < 0.5 * geometry.width_m - x_c,
+            f"flat mesh side_element_count = {self.side_element_count!r} elements of at least "
+            f"{size:.3g} m do not fit in the {0.5 * geometry.width_m - x_c:.3g} m beside the "
+            "contact zone: fewer elements or a smaller contact_element_size_m",
+        )
+        require(
+            self.depth_element_count * size < geometry.height_m,
+            f"flat mesh depth_element_count = {self.depth_element_count!r} elements of at least "
+            f"{size:.3g} m do not fit in the height_m = {geometry.height_m!r}: fewer elements or "
+            "a smaller contact_element_size_m",
+        )

@@ -1,0 +1,120 @@
+"""The flat's mesh: a structured quadrilateral mesh of a rectangle under a rigid cylinder (gmsh).
+
+The flat |x| <= W/2, y_top - H <= y <= y_top, y_top = -(R + standoff) (:class:`FlatGeometry`:
+the cylinder's centre starts at the origin), is meshed as three transfinite patches side by
+side, recombined into quadrilaterals:
+
+- the middle patch, a trapezoid: its top is the contact zone |x| <= x_c, in equal elements of
+  the contact element size h; its bottom spans |x| <= (x_c + W/2)/2, so that its elements widen
+  with depth instead of staying h wide down to the bottom;
+- the two side patches: along the top, ``side_element_count`` elements graded geometrically from
+  h at the zone to the flat's sides; along the bottom, as many equal ones.
+
+Through the height, ``depth_element_count`` elements graded geometrically from h at the top.
+The geometry is second order (9-node quadrilaterals, as in :mod:`fewear.mesh.bushing`); every top
+node, vertex or edge midpoint, lies on y = y_top to rounding.
+
+gmsh runs on rank 0 only; ``dolfinx.io.gmshio.model_to_mesh`` distributes the mesh. Facet tags:
+``CONTACT_TAG`` on the whole top, ``CLAMPED_TAG`` on the bottom (u = 0); the sides are free; the
+cells carry ``FLAT_TAG``.
+"""
+
+from __future__ import annotations
+
+import gmsh
+from mpi4py import MPI
+from scipy.optimize import brentq
+
+from fewear.mesh.geometry import FlatGeometry, FlatMeshSettings
+from fewear.mesh.tags import CLAMPED_TAG, CONTACT_TAG
+
+FLAT_TAG = 3
+
+
+def progression_ratio(first_size_m: float, length_m: float, count: int) -> float:
+    """The ratio r >= 1 of a geometric progression of ``count`` sizes that starts at
+    ``first_size_m`` and adds up to ``length_m``: h (r^n - 1)/(r - 1) = L (1 when n h = L)."""
+    excess = length_m / first_size_m - count
+    if excess <= 0.0:
+        return 1.0
+
+    def shortfall(ratio: float) -> float:
+        return sum(ratio**k for k in range(count)) - length_m / first_size_m
+
+    return brentq(shortfall, 1.0, (length_m / first_size_m) ** (1.0 / max(count - 1, 1)) + 1.0,
+                  xtol=1e-14, rtol=1e-14)
+
+
+def flat_mesh(geometry: FlatGeometry, mesh_settings: FlatMeshSettings, comm=MPI.COMM_WORLD):
+    """Mesh the flat (module docstring); returns ``(mesh, cell_tags, facet_tags)`` on ``comm``."""
+    from dolfinx.io import gmshio
+
+    mesh_settings.require_fits(geometry)
+    model_rank = 0
+    if comm.rank == model_rank:
+        gmsh.initialize()
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.model.add("fewear_flat")
+        try:
+            _build_patches(geometry, mesh_settings)
+            mesh, cell_tags, facet_tags = gmshio.model_to_mesh(gmsh.model, comm, model_rank, gdim=2)
+        finally:
+            gmsh.finalize()
+    else:
+        mesh, cell_tags, facet_tags = gmshio.model_to_mesh(gmsh.model, comm, model_rank, gdim=2)
+    mesh.name = "flat"
+    return mesh, cell_tags, facet_tags
+
+
+def _build_patches(geometry: FlatGeometry, mesh_settings: FlatMeshSettings) -> None:
+    """Create the three transfinite patches in the current gmsh model and mesh them."""
+    geo = gmsh.model.geo
+    half_width, x_c = 0.5 * geometry.width_m, mesh_settings.contact_zone_half_width_m
+    x_bottom = 0.5 * (x_c + half_width)  # the middle patch's bottom corners, |x|
+    top, bottom = geometry.top_y_m, geometry.top_y_m - geometry.height_m
+    top_points = [geo.addPoint(x, top, 0.0) for x in (-half_width, -x_c, x_c, half_width)]
+    bottom_points = [geo.addPoint(x, bottom, 0.0)
+                     for x in (-half_width, -x_bottom, x_bottom, half_width)]
+    # along the top and bottom from the middle outward (the side sizes grow outward), and down
+    top_lines, bottom_lines = ([geo.addLine(points[1], points[0]),
+                                geo.addLine(points[1], points[2]),
+                                geo.addLine(points[2], points[3])]
+                               for points in (top_points, bottom_points))
+    downs = [geo.addLine(t, b) for t, b in zip(top_points, bottom_points)]
+    loops = [[top_lines[0], downs[0], -bottom_lines[0], -downs[1]],
+             [bottom_lines[1], -downs[2], -top_lines[1], downs[1]],
+             [bottom_lines[2], -downs[3], -top_lines[2], downs[2]]]
+    surfaces = [geo.addPlaneSurface([geo.addCurveLoop(loop)]) for loop in loops]
+    geo.synchronize()
+    _set_grading(geometry, mesh_settings, top_lines, bottom_lines, downs, surfaces)
+    gmsh.model.addPhysicalGroup(2, surfaces, FLAT_TAG)
+    gmsh.model.addPhysicalGroup(1, top_lines, CONTACT_TAG)
+    gmsh.model.addPhysicalGroup(1, bottom_lines, CLAMPED_TAG)
+    gmsh.model.setPhysicalName(2, FLAT_TAG, "flat")
+    gmsh.model.setPhysicalName(1, CONTACT_TAG, "top")
+    gmsh.model.setPhysicalName(1, CLAMPED_TAG, "bottom")
+    gmsh.option.setNumber("Mesh.SecondOrderIncomplete", 0)
+    gmsh.model.mesh.generate(2)
+    gmsh.model.mesh.setOrder(2)
+
+
+def _set_grading(geometry: FlatGeometry, mesh_settings: FlatMeshSettings, top_lines,
+                 bottom_lines, downs, surfaces) -> None:
+    """Transfinite node counts and gradings of the patches' curves (module docstring)."""
+    mesh = gmsh.model.mesh
+    size = mesh_settings.contact_element_length_m()
+    n_contact, n_side = mesh_settings.contact_element_count(), mesh_settings.side_element_count
+    n_depth = mesh_settings.depth_element_count
+    side_length = 0.5 * geometry.width_m - mesh_settings.contact_zone_half_width_m
+    side_ratio = progression_ratio(size, side_length, n_side)
+    depth_ratio = progression_ratio(size, geometry.height_m, n_depth)
+    for side in (0, 2):
+        mesh.setTransfiniteCurve(top_lines[side], n_side + 1, "Progression", side_ratio)
+        mesh.setTransfiniteCurve(bottom_lines[side], n_side + 1)
+    for line in (top_lines[1], bottom_lines[1]):
+        mesh.setTransfiniteCurve(line, n_contact + 1)
+    for line in downs:  # the slanted ones too: the same fractions of the height
+        mesh.setTransfiniteCurve(line, n_depth + 1, "Progression", depth_ratio)
+    for surface in surfaces:
+        mesh.setTransfiniteSurface(surface)
+        mesh.setRecombine(2, surface)
