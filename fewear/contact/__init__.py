@@ -1,7 +1,8 @@
 """Pin-in-bushing contact: the FE model of the joint's bore (DOLFINx/PETSc, imported explicitly).
 
 - :mod:`fewear.contact.params`: material, contact settings, ``ContactProblem`` and
-  ``contact_problem_from_config`` (no DOLFINx; the geometry is in :mod:`fewear.mesh.geometry`).
+  ``contact_problem_from_config``, ``FlatContactProblem`` (no DOLFINx; the geometry is in
+  :mod:`fewear.mesh.geometry`).
 - :mod:`fewear.contact.result`: ``ContactResult``, the plain-data output (no DOLFINx).
 - :mod:`fewear.contact.newton`: ``ContactNewton``, the active-set Newton both paths share.
 - :mod:`fewear.contact.admissible`: the forces the model can carry; ``ContactLoadError``.

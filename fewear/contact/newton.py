@@ -220,7 +220,8 @@ class NewtonSettings(NamedTuple):
     """The constants of the coupled Newton for one problem: ``tolerance`` ([contact]
     newton_tolerance), ``rounding_m`` = eps R_p (the level at which gaps are computed), the
     penalty stiffness k (Pa/m), R_p, R_b and the bore element size h (m), and the angle between
-    neighbouring bore nodes (rad)."""
+    neighbouring bore nodes (rad); for another contact surface than the bore, its
+    :class:`fewear.contact.params.ContactSurface` in place of the last three."""
 
     tolerance: float
     rounding_m: float
@@ -232,14 +233,13 @@ class NewtonSettings(NamedTuple):
 
 
 def newton_settings(problem) -> NewtonSettings:
-    """The :class:`NewtonSettings` of a :class:`fewear.contact.params.ContactProblem`."""
-    geometry = problem.geometry
-    elements = problem.mesh.circumferential_element_count(geometry.inner_radius_m)
+    """The :class:`NewtonSettings` of a :class:`fewear.contact.params.ContactProblem` (or
+    ``FlatContactProblem``)."""
+    surface = problem.contact_surface()
     return NewtonSettings(problem.contact.newton_tolerance,
-                          float(np.finfo(float).eps * geometry.pin_radius_m),
-                          problem.penalty_stiffness_Pa_per_m(), geometry.pin_radius_m,
-                          geometry.inner_radius_m, problem.mesh.bore_element_size_m,
-                          math.pi / elements)  # two bore nodes per element
+                          float(np.finfo(float).eps * problem.indenter_radius_m),
+                          problem.penalty_stiffness_Pa_per_m(), problem.indenter_radius_m,
+                          surface.radius_m, surface.element_size_m, surface.node_spacing_rad)
 
 
 @compiled
@@ -935,18 +935,25 @@ class ContactNewton:
     def _solve_by_contact_angle(self, load: np.ndarray, direction: np.ndarray,
                                 first_angle_rad: float | None) -> int:
         operations, state = self.operations, self.path.newton_state
-        max_iterations = self.path.problem.contact.newton_max_iterations
+        return solve_by_contact_angle(lambda a: self.solve_on_ray(load, a),
+                                      lambda: operations.linearise(state, load)[0], direction,
+                                      load, self.path.problem.contact.newton_max_iterations,
+                                      first_angle_rad)
 
-        def inner(a):
-            self._onto_ray(a, load)
-            count = self._coupled_newton(load, a, np.ascontiguousarray(a[:, None]),
-                                         max_iterations)
-            if count is None:
-                raise ContactNotConverged(load, "did not converge with the pin on a fixed ray")
-            return count
-
-        return solve_by_contact_angle(inner, lambda: operations.linearise(state, load)[0],
-                                      direction, load, max_iterations, first_angle_rad)
+    def solve_on_ray(self, load: np.ndarray, a: np.ndarray) -> int:
+        """Solve with the pin centre held on the ray c = e a through the origin (the unit vector
+        ``a``), from the present state: the pin put on the ray (:meth:`_onto_ray`), then the
+        coupled Newton with the pin's moves along ``a`` alone, i.e. force control of the
+        component a . F/L of the load (N/m; the component across the ray is left unbalanced).
+        Returns the Newton iterations; raises :class:`ContactNotConverged` if it does not
+        converge within ``newton_max_iterations``. The contact-angle fallback's inner problem,
+        and the cylinder on a flat with its x held (:mod:`fewear.contact.flat`)."""
+        self._onto_ray(a, load)
+        count = self._coupled_newton(load, a, np.ascontiguousarray(a[:, None]),
+                                     self.path.problem.contact.newton_max_iterations)
+        if count is None:
+            raise ContactNotConverged(load, "did not converge with the pin on a fixed ray")
+        return count
 
     def _coupled_newton(self, load, direction, basis, max_iterations) -> int | None:
         """:func:`coupled_newton` of the discretisation on its state; None if not converged."""

@@ -1,18 +1,23 @@
-"""Input data of the bushing contact model: plain frozen dataclasses in SI units (no DOLFINx).
+"""Input data of the contact model: plain frozen dataclasses in SI units (no DOLFINx).
 
 ``contact_problem_from_config`` turns the config sections ``[bushing]``, ``[pin]``, ``[joint]``,
 ``[mesh]`` and ``[contact]`` (see ``fewear/defaults/joint.toml`` and ``contact.toml``) into one
-:class:`ContactProblem`. Every physical check lives in a ``__post_init__`` and raises
-:class:`fewear.errors.FewearInputError` naming the value and the allowed range.
+:class:`ContactProblem`, the pin in the bushing. :class:`FlatContactProblem` is a rigid cylinder
+on an elastic flat. What the contact solver asks of a body beyond its mesh, both answer: the
+indenter's radius, the out-of-plane length, the penalty stiffness and the
+:class:`ContactSurface` (how the Newton may move the indenter along the surface). Every physical
+check lives in a ``__post_init__`` and raises :class:`fewear.errors.FewearInputError` naming the
+value and the allowed range.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 from fewear.errors import require, require_finite_positive, require_poisson_ratio
-from fewear.mesh.geometry import BushingGeometry, MeshSettings
+from fewear.mesh.geometry import BushingGeometry, FlatGeometry, FlatMeshSettings, MeshSettings
 
 
 @dataclass(frozen=True)
@@ -70,6 +75,19 @@ class ContactSettings:
         )
 
 
+class ContactSurface(NamedTuple):
+    """The contact surface as the Newton's step rules see it (:func:`fewear.contact.newton.
+    pin_update`, :func:`~fewear.contact.newton.slide_limit`): its radius about the origin
+    ``radius_m`` (m), the element size along it ``element_size_m`` (m) and the angle between
+    neighbouring nodes about the origin ``node_spacing_rad``. A move of the indenter along the
+    surface by more than one node spacing is a turn about the origin, and one step turns it by
+    at most h / radius."""
+
+    radius_m: float
+    element_size_m: float
+    node_spacing_rad: float
+
+
 @dataclass(frozen=True)
 class ContactProblem:
     """Everything the contact solver needs: geometry, material, mesh and contact settings."""
@@ -86,6 +104,65 @@ class ContactProblem:
             * self.material.plane_strain_modulus_Pa
             / self.mesh.bore_element_size_m
         )
+
+    @property
+    def indenter_radius_m(self) -> float:
+        """The rigid circle's radius: the pin's, R_p (m)."""
+        return self.geometry.pin_radius_m
+
+    @property
+    def out_of_plane_length_m(self) -> float:
+        """The plane-strain thickness forces are divided by: the joint width L (m)."""
+        return self.geometry.width_m
+
+    def contact_surface(self) -> ContactSurface:
+        """The bore: radius R_b, element size h, 2 n_theta nodes around (two per element)."""
+        elements = self.mesh.circumferential_element_count(self.geometry.inner_radius_m)
+        return ContactSurface(self.geometry.inner_radius_m, self.mesh.bore_element_size_m,
+                              math.pi / elements)
+
+
+@dataclass(frozen=True)
+class FlatContactProblem:
+    """A rigid cylinder pressed on an elastic flat (:class:`FlatGeometry`, meshed by
+    :mod:`fewear.mesh.flat`); ``material`` is the flat's. Checks that the mesh fits the flat."""
+
+    geometry: FlatGeometry
+    material: BushingMaterial
+    mesh: FlatMeshSettings
+    contact: ContactSettings
+
+    def __post_init__(self) -> None:
+        self.mesh.require_fits(self.geometry)
+
+    def penalty_stiffness_Pa_per_m(self) -> float:
+        """k = penalty_factor * E/(1-nu^2) / h with h the contact zone's element length (Pa/m)."""
+        return (
+            self.contact.penalty_factor
+            * self.material.plane_strain_modulus_Pa
+            / self.mesh.contact_element_length_m()
+        )
+
+    @property
+    def indenter_radius_m(self) -> float:
+        """The rigid circle's radius: the cylinder's, R (m)."""
+        return self.geometry.cylinder_radius_m
+
+    @property
+    def out_of_plane_length_m(self) -> float:
+        """The plane-strain thickness forces are divided by: the flat's length L (m)."""
+        return self.geometry.length_m
+
+    def contact_surface(self) -> ContactSurface:
+        """The top as seen from the origin at x = 0, where the cylinder presses: at the
+        distance R + standoff, its contact elements of length h and nodes h/2 apart subtending
+        h/(R + standoff) and h/(2 (R + standoff)). The rules that turn the indenter about the
+        origin are the bore's; the flat is solved with the cylinder on its ray
+        (:meth:`fewear.contact.newton.ContactNewton.solve_on_ray`, x held), whose moves have
+        no part along the surface, so that they never apply."""
+        distance = -self.geometry.top_y_m
+        size = self.mesh.contact_element_length_m()
+        return ContactSurface(distance, size, 0.5 * size / distance)
 
 
 CONFIG_SECTIONS = ["bushing", "pin", "joint", "mesh", "contact"]

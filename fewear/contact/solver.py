@@ -8,9 +8,10 @@ L = ``width_m``, i.e. the bushing is a plane-strain slab of thickness L):
   (9-node) geometry; the outer surface is clamped, u = 0.
 - Pin: a rigid circle of radius R_p whose centre c (the pilot point) is the second unknown; the
   joint force F (N) acts on the pin (force control, as in the seed paper).
-- Contact: penalty law on the bore Gamma_b. At a bore point X the deformed position is X + u(X),
-  the gap g = |X + u - c| - R_p (m) and the normal n = (X + u - c)/|X + u - c|; the pressure is
-  p = k <-g>_+ (Pa) with k = penalty_factor * E/(1-nu^2) / h_bore (Pa/m, see ContactProblem).
+- Contact: penalty law on the bore Gamma_b (facets ``CONTACT_TAG``). At a bore point X the
+  deformed position is X + u(X), the gap g = |X + u - c| - R_p (m) and the normal
+  n = (X + u - c)/|X + u - c|; the pressure is p = k <-g>_+ (Pa) with
+  k = penalty_factor * E/(1-nu^2) / h_bore (Pa/m, see ContactProblem).
   With friction, the pin also drags the bore with the Coulomb traction mu p t, t = (-n_y, n_x), in
   the direction of the pin's rotation increment (opposing the bore's sliding relative to the pin);
   without a rotation increment there is no sliding and no friction traction.
@@ -47,6 +48,12 @@ its linear algebra (assembly of r and J, the bordered step above, the bore nodes
 and the elastic energy along a line search).
 ``newton_iterations`` counts all iterations.
 
+The bushing is one body the solver takes: any mesh with its contact surface tagged ``CONTACT_TAG``
+and its clamped surface ``CLAMPED_TAG`` (:mod:`fewear.mesh.tags`) and a problem that answers the
+indenter's radius, the out-of-plane length, the penalty stiffness and the contact surface's
+step sizes (:mod:`fewear.contact.params`) is solved the same way (a rigid cylinder on an elastic
+flat: :class:`fewear.contact.params.FlatContactProblem`).
+
 Forms are compiled once per mesh; load, pin centre, penalty and friction are ``fem.Constant``s.
 After the bore has been moved (``mesh.geometry.x`` written, ALE), call :meth:`update_geometry`.
 Under MPI every rank gets the same gathered bore-node arrays (duplicates removed, sorted by angle).
@@ -79,7 +86,8 @@ from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.errors import FewearInputError
 from fewear.mesh.bore import BoreNodes, bore_node_weights
-from fewear.mesh.bushing import BORE_TAG, OUTER_TAG, bushing_mesh
+from fewear.mesh.bushing import bushing_mesh
+from fewear.mesh.tags import CLAMPED_TAG, CONTACT_TAG
 
 # The contact integral's quadrature: 3-point Gauss-Lobatto (Simpson) on each bore facet, whose
 # points are the facet's Q8 nodes (two vertices and the edge midpoint, weights 1/6, 1/6, 2/3).
@@ -108,9 +116,9 @@ def nodal_result(problem: ContactProblem, points: np.ndarray, angles: np.ndarray
                  iterations: int) -> ContactResult:
     """Evaluate the penalty law at the bore nodes and pack the :class:`ContactResult`."""
     deformed = points + nodal_displacement - pin_centre
-    gap = np.hypot(deformed[:, 0], deformed[:, 1]) - problem.geometry.pin_radius_m
+    gap = np.hypot(deformed[:, 0], deformed[:, 1]) - problem.indenter_radius_m
     pressure = problem.penalty_stiffness_Pa_per_m() * np.maximum(-gap, 0.0)
-    slip = np.where(pressure > 0.0, problem.geometry.pin_radius_m * abs(rotation), 0.0)
+    slip = np.where(pressure > 0.0, problem.indenter_radius_m * abs(rotation), 0.0)
     return ContactResult(
         angle_rad=angles.copy(), x_m=points[:, 0].copy(), y_m=points[:, 1].copy(),
         pressure_Pa=pressure, gap_m=gap, slip_m=slip, pin_centre_m=np.array(pin_centre, float),
@@ -162,34 +170,28 @@ class BushingContactSolver:
 
         trial, test = ufl.TrialFunction(self.V), ufl.TestFunction(self.V)
         self._a_elastic = fem.form(ufl.inner(σ(trial), ε(test)) * ufl.dx)
-        outer = self.facet_tags.find(OUTER_TAG)
+        outer = self.facet_tags.find(CLAMPED_TAG)
         outer_dofs = fem.locate_dofs_topological(self.V, msh.topology.dim - 1, outer)
         self._bc = fem.dirichletbc(fem.Function(self.V), outer_dofs)
 
         self.pin_centre = fem.Constant(msh, np.zeros(2, dtype=PETSc.ScalarType))
         self.penalty = fem.Constant(msh, PETSc.ScalarType(problem.penalty_stiffness_Pa_per_m()))
-        self.pin_radius = fem.Constant(msh, PETSc.ScalarType(problem.geometry.pin_radius_m))
+        self.pin_radius = fem.Constant(msh, PETSc.ScalarType(problem.indenter_radius_m))
         self.friction = fem.Constant(msh, PETSc.ScalarType(0.0))  # mu * sign(rotation)
         ds = ufl.Measure("ds", domain=msh, subdomain_data=self.facet_tags,
                          metadata=CONTACT_QUADRATURE)
+        self._ds = ds
         u = self.displacement
         traction = self.contact_traction(ufl.SpatialCoordinate(msh) + u)
-        residual = -ufl.inner(traction, test) * ds(BORE_TAG)
+        residual = -ufl.inner(traction, test) * ds(CONTACT_TAG)
         self._r_contact = fem.form(residual)
         self._j_contact = fem.form(ufl.derivative(residual, u, trial))
         pressure = self.contact_pressure(ufl.SpatialCoordinate(msh) + u)
         normal = self._normal(ufl.SpatialCoordinate(msh) + u)
-        self._normal_force = [fem.form(pressure * normal[i] * ds(BORE_TAG)) for i in range(2)]
-        # The cosine-law pressure of a 1 N joint force along load_direction (admissible.py)
-        self.load_direction = fem.Constant(msh, np.array([1.0, 0.0], dtype=PETSc.ScalarType))
-        x = ufl.SpatialCoordinate(msh)
-        radial = x / ufl.sqrt(ufl.inner(x, x))
-        facing = ufl.inner(radial, self.load_direction)
-        cosine_law = (2.0 / (math.pi * problem.geometry.inner_radius_m * problem.geometry.width_m)
-                      * ufl.conditional(ufl.gt(facing, 0.0), facing, 0.0))
-        self._cosine_law_load = fem.form(cosine_law * ufl.inner(radial, test) * ds(BORE_TAG))
+        self._normal_force = [fem.form(pressure * normal[i] * ds(CONTACT_TAG)) for i in range(2)]
+        self._cosine_law_load = None  # compiled on first use (admissible_force_N)
         self._contact_length = fem.form(ufl.conditional(ufl.gt(pressure, 0.0), 1.0, 0.0)
-                                        * ds(BORE_TAG))
+                                        * ds(CONTACT_TAG))
 
         # E_0, E_1: uniform unit displacements (kept as Functions: their PETSc vectors wrap
         # the Functions' memory)
@@ -226,6 +228,24 @@ class BushingContactSolver:
         n = self._normal(deformed)
         t = ufl.as_vector((-n[1], n[0]))
         return self.contact_pressure(deformed) * (n + self.friction * t)
+
+    def _cosine_law_load_form(self):
+        """The load vector of the cosine-law pressure of a 1 N joint force along
+        ``load_direction`` on the bore (:mod:`fewear.contact.admissible`), compiled on first
+        use."""
+        if self._cosine_law_load is None:
+            geometry = self.problem.geometry
+            self.load_direction = fem.Constant(self.mesh,
+                                               np.array([1.0, 0.0], dtype=PETSc.ScalarType))
+            x = ufl.SpatialCoordinate(self.mesh)
+            radial = x / ufl.sqrt(ufl.inner(x, x))
+            facing = ufl.inner(radial, self.load_direction)
+            cosine_law = (2.0 / (math.pi * geometry.inner_radius_m * geometry.width_m)
+                          * ufl.conditional(ufl.gt(facing, 0.0), facing, 0.0))
+            test = ufl.TestFunction(self.V)
+            self._cosine_law_load = fem.form(cosine_law * ufl.inner(radial, test)
+                                             * self._ds(CONTACT_TAG))
+        return self._cosine_law_load
 
     def _make_lu_solver(self) -> PETSc.KSP:
         ksp = PETSc.KSP().create(self.comm)
@@ -266,20 +286,31 @@ class BushingContactSolver:
         self.friction.value = μs
         if not np.any(force):
             return self._no_contact_result(force, rotation)
-        load = force / self.problem.geometry.width_m
+        load = force / self.problem.out_of_plane_length_m
         try:
             iterations = self.newton.solve(load, contact_direction(force, μs))
         except ContactNotConverged:
             self._refuse(force, "the contact Newton found no equilibrium")
+        return self._equilibrium_result(force, rotation, iterations)
+
+    def _equilibrium_result(self, force: np.ndarray, rotation: float,
+                            iterations: int) -> ContactResult:
+        """The :class:`ContactResult` of the converged state under ``force`` (N), refused
+        (:meth:`_refuse`) if :meth:`_inadmissible` gives a reason."""
         self.pin_centre.value = self.pin_centre_m
-        self._assemble_contact(load)
+        self._assemble_contact(force / self.problem.out_of_plane_length_m)
         displacement = self.nodal_displacement()
         result = self._result(force, rotation, iterations, displacement)
-        reason = beyond_small_displacements(self.problem, float(np.hypot(*displacement.T).max()))
+        reason = self._inadmissible(result, displacement)
         if reason is not None:
             self._refuse(force, reason)
         self.last_result = result
         return result
+
+    def _inadmissible(self, result: ContactResult, displacement: np.ndarray) -> str | None:
+        """Why the solution is not admissible (:mod:`fewear.contact.admissible`: the bore moves
+        by too much), or None."""
+        return beyond_small_displacements(self.problem, float(np.hypot(*displacement.T).max()))
 
     def _refuse(self, force: np.ndarray, reason: str) -> None:
         """Raise :class:`ContactLoadError` for ``force`` (N); the next solve starts afresh."""
@@ -291,11 +322,12 @@ class BushingContactSolver:
         """The largest admissible |F| (N) in the direction of ``force_N``
         (:mod:`fewear.contact.admissible`): u_max / max_q |u_q| with u the elastic displacement
         under the cosine-law pressure of 1 N on the bore (one LU solve with K_el)."""
+        form = self._cosine_law_load_form()
         self.load_direction.value = np.asarray(force_N, dtype=float) / np.linalg.norm(force_N)
         rhs = self._rhs[0]
         with rhs.localForm() as local:
             local.set(0.0)
-        fem_petsc.assemble_vector(rhs, self._cosine_law_load)
+        fem_petsc.assemble_vector(rhs, form)
         rhs.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
         rhs.array_w[self._bc_local] = 0.0
         ksp = self._make_lu_solver()
@@ -464,7 +496,7 @@ class BushingContactSolver:
         return self.bore.gather(values)
 
     def _result(self, force, rotation, iterations, displacement) -> ContactResult:
-        L = self.problem.geometry.width_m
+        L = self.problem.out_of_plane_length_m
         resultant = L * np.array([-self.uniform[i].dot(self._r) for i in range(2)])  # E^T r
         normal = L * np.array([self.comm.allreduce(fem.assemble_scalar(form), op=MPI.SUM)
                                for form in self._normal_force])
