@@ -7,6 +7,8 @@
 - :mod:`fewear.contact.newton`: ``ContactNewton``, the active-set Newton both paths share.
 - :mod:`fewear.contact.admissible`: the forces the model can carry; ``ContactLoadError``.
 - :mod:`fewear.contact.solver`: ``BushingContactSolver``, the full Newton solve in DOLFINx.
+- :mod:`fewear.contact.flat`: ``FlatContactSolver``, the same solver for a rigid cylinder pressed
+  on an elastic flat (normal force, frictionless).
 - :mod:`fewear.contact.condensed`: ``CondensedBushingContact``, the same answer from the bushing
   condensed onto its bore (the fast path for the wear loop).
 """

@@ -52,7 +52,7 @@ The bushing is one body the solver takes: any mesh with its contact surface tagg
 and its clamped surface ``CLAMPED_TAG`` (:mod:`fewear.mesh.tags`) and a problem that answers the
 indenter's radius, the out-of-plane length, the penalty stiffness and the contact surface's
 step sizes (:mod:`fewear.contact.params`) is solved the same way (a rigid cylinder on an elastic
-flat: :class:`fewear.contact.params.FlatContactProblem`).
+flat: :mod:`fewear.contact.flat`).
 
 Forms are compiled once per mesh; load, pin centre, penalty and friction are ``fem.Constant``s.
 After the bore has been moved (``mesh.geometry.x`` written, ALE), call :meth:`update_geometry`.

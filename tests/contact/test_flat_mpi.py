@@ -1,0 +1,47 @@
+"""The cylinder on the flat under `mpirun -n 2` gives the serial pressures
+(tests/contact/flat_mpi_case.py).
+
+The only difference between the runs is the partition (assembly order, distributed LU). The
+nodal pressures k <-g>_+ are computed from gaps |X + u - c| - R known to about eps R, i.e. to
+k eps R ~ 20 Pa (1e-7 of p0 here): the runs may differ by a few times that, and are allowed
+1e-6 of the peak (measured: equal to the bit, the cylinder's centres 5e-20 m apart).
+"""
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tests.contact.test_mpi import MPI_ENV, mpirun_or_skip
+
+REPOSITORY = Path(__file__).resolve().parents[2]
+
+
+def run_case(out, *launcher):
+    command = [*launcher, sys.executable, "-m", "tests.contact.flat_mpi_case", str(out)]
+    process = subprocess.run(command, capture_output=True, text=True, timeout=300,
+                             cwd=REPOSITORY, env={**os.environ, **MPI_ENV})
+    assert process.returncode == 0, process.stderr
+    return np.load(out)
+
+
+@pytest.mark.mpi
+def test_two_ranks_press_the_flat_as_serial(tmp_path):
+    mpirun = mpirun_or_skip()
+    serial = run_case(tmp_path / "serial.npz")
+    parallel = run_case(tmp_path / "mpi.npz", mpirun, "-n", "2")
+    assert (int(serial["ranks"]), int(parallel["ranks"])) == (1, 2)
+    np.testing.assert_array_equal(serial["x_m"], parallel["x_m"])
+    peak = serial["pressure_Pa"].max()
+    difference = np.abs(parallel["pressure_Pa"] - serial["pressure_Pa"]).max()
+    rounding = float(serial["penalty_Pa_per_m"]) * np.finfo(float).eps * 0.020
+    pin = np.abs(parallel["pin_centre_m"] - serial["pin_centre_m"]).max()
+    print(f"\nserial vs mpirun -n 2: pressures differ by {difference:.2e} Pa "
+          f"({difference / peak:.1e} of the peak; k eps R = {rounding:.1f} Pa), the cylinder's "
+          f"centre by {pin:.1e} m")
+    assert difference < 1e-6 * peak
+    assert np.allclose(parallel["resultant_force_N"], serial["resultant_force_N"], rtol=1e-7,
+                       atol=1e-9)
