@@ -58,17 +58,14 @@ def _diagnosis_inputs(obs: Observations):
     """The round's inputs on ``obs``: the candidates of friction and running-in (forms), each
     cause fitted alone, and the believed model's fit."""
     runs = [_run(rate) for rate in RATES]
+    running_in = CAUSES["running_in"]  # two of its forms (every node slides alike here)
     candidates = {"friction": (CAUSES["friction"].candidate(runs, GRID),),
-                  "running_in": CAUSES["running_in"].forms(_Believed(runs[0]), SETTINGS)}
+                  "running_in": tuple(running_in.candidate(runs[0], form)
+                                      for form in ("exponential", "power_law"))}
     baseline = baseline_fit("baseline", runs[0], obs, SETTINGS.max_offset_deg)
     fits = {name: fit_candidate(forms, obs, float(baseline.x[0]), SETTINGS)
             for name, forms in candidates.items()}
     return candidates, fits, baseline
-
-
-class _Believed:
-    def __init__(self, run):
-        self.run = run
 
 
 @pytest.fixture(scope="module")
@@ -83,11 +80,10 @@ def test_friction_and_running_in_together_are_fitted_and_accepted(friction_and_r
                                                   None)
     assert accepted == [pair_name("friction")] == [v.cause for v in verdicts]
     pair = pair_fits[pair_name("friction")]
-    # every node slides 0.01 m per cycle: running-in by distance over s0 = 0.01 N0 is the same
-    assert pair.running_in_form in ("cycles", "exponential")
+    # every node slides 0.01 m per cycle: running-in by distance over s0 = 0.01 N0
+    assert pair.running_in_form == "exponential"
     assert pair.params["k_initial_over_steady"] == pytest.approx(3.0, rel=0.05)
-    scale_cycles = pair.params.get("scale_cycles", pair.params.get("distance_scale_m", 0) / 0.01)
-    assert scale_cycles == pytest.approx(2500.0, rel=0.1)
+    assert pair.params["distance_scale_m"] == pytest.approx(0.01 * 2500.0, rel=0.1)
     assert pair.params["friction_coefficient"] == pytest.approx(0.18, abs=0.005)
     assert pair.params["k_scale"] == pytest.approx(1.2, rel=0.03)
     assert pair.params["angle_offset_deg"] == pytest.approx(6.0, abs=0.2)
