@@ -14,6 +14,10 @@ Through the height, ``depth_element_count`` elements graded geometrically from h
 The geometry is second order (9-node quadrilaterals, as in :mod:`fewear.mesh.bushing`); every top
 node, vertex or edge midpoint, lies on y = y_top to rounding.
 
+A worn flat (wear depth h(x) along -y, :class:`fewear.wear.state.FlatWearState`) is this mesh with
+its nodes moved by :func:`worn_node_y_m`, the counterpart of the bushing's radial map: x kept, every
+column shrunk by (H - h(x))/H, top nodes on y_top - h(x) exactly.
+
 gmsh runs on rank 0 only; ``dolfinx.io.gmshio.model_to_mesh`` distributes the mesh. Facet tags:
 ``CONTACT_TAG`` on the whole top, ``CLAMPED_TAG`` on the bottom (u = 0); the sides are free; the
 cells carry ``FLAT_TAG``.
@@ -22,6 +26,7 @@ cells carry ``FLAT_TAG``.
 from __future__ import annotations
 
 import gmsh
+import numpy as np
 from mpi4py import MPI
 from scipy.optimize import brentq
 
@@ -118,3 +123,19 @@ def _set_grading(geometry: FlatGeometry, mesh_settings: FlatMeshSettings, top_li
     for surface in surfaces:
         mesh.setTransfiniteSurface(surface)
         mesh.setRecombine(2, surface)
+
+
+def worn_node_y_m(made_xy_m, geometry: FlatGeometry, depth_at) -> np.ndarray:
+    """y (m) of the flat's nodes on the worn flat: the counterpart of the bushing's radial map
+    (:mod:`fewear.mesh.bushing`) along -y, x kept. A node made at (x, y) goes to
+
+        y' = y_b + (y - y_b) (H - h(x)) / H,    y_b = y_top - H the bottom,
+
+    so top nodes land on y_top - h(x) exactly, the bottom stays, and every element of a column
+    shrinks by the same factor (H - h)/H. ``made_xy_m`` (n, 2): the nodes as meshed by
+    :func:`flat_mesh`; ``depth_at``: h(x) (m), vectorised (e.g.
+    :meth:`fewear.wear.state.FlatWearState.depth_at`). Write the result to ``mesh.geometry.x``
+    and update the contact solver's geometry."""
+    x, y = made_xy_m[:, 0], made_xy_m[:, 1]
+    bottom = geometry.top_y_m - geometry.height_m
+    return bottom + (y - bottom) * (geometry.height_m - depth_at(x)) / geometry.height_m

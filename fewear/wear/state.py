@@ -16,6 +16,9 @@ From it:
   dynamics see h through a periodic cubic spline of the nodes, :meth:`smooth_depth_at`);
 - the mesh's bore: every bore node at angle theta sits at radius r(theta) (:meth:`bore_radius_m`).
 
+The flat worn by a cylinder (:class:`FlatWearState`) is the same bookkeeping along x instead of
+theta, not periodic: h at the flat's top nodes, the worn top y0 - h(x).
+
 Each node also carries its sliding history (accumulated sliding distance, time in sliding contact,
 lagged frictional power) for the history-dependent wear laws of :mod:`fewear.wear.extensions`.
 """
@@ -131,3 +134,54 @@ class WearState:
                 f" deg after {self.cycles} cycles exceeds {max_wall_fraction:g} of the "
                 f"{wall:.3e} m bushing wall ([wear_loop] max_wall_fraction): the bushing is worn "
                 "through; lower [wear_loop] total_cycles or the wear coefficient")
+
+
+@dataclass(frozen=True)
+class FlatWearState:
+    """Wear depth at the top nodes of a flat worn by a cylinder (:mod:`fewear.mesh.flat`), after
+    sliding ``sliding_distance_m`` (m) in ``steps`` wear steps.
+
+    ``x_m`` (n,): the top nodes' x, strictly increasing; ``depth_m`` (n,): their wear depth h >= 0
+    along -y (m). Not periodic: the worn top is y_top(x) = y0 - h(x), h linear in x between the
+    nodes and held at its end values beyond them (:meth:`depth_at`), the counterpart of the
+    bore's r(theta) = R_b + h(theta).
+    """
+
+    x_m: np.ndarray
+    depth_m: np.ndarray
+    sliding_distance_m: float = 0.0
+    steps: int = 0
+
+    def __post_init__(self):
+        x = np.asarray(self.x_m, dtype=float)
+        depth = np.asarray(self.depth_m, dtype=float)
+        if x.ndim != 1 or depth.shape != x.shape or x.size < 2:
+            raise ValueError("flat wear state: x_m and depth_m must be equal-length 1-D arrays")
+        if not np.all(np.isfinite(x)) or np.any(np.diff(x) <= 0.0):
+            raise ValueError("flat wear state: node x must be finite and increase strictly")
+        if not np.all(np.isfinite(depth)) or np.any(depth < 0.0):
+            raise ValueError("flat wear state: depths must be finite and >= 0")
+
+    @classmethod
+    def unworn(cls, x_m: np.ndarray) -> FlatWearState:
+        """No wear yet at the top nodes ``x_m``."""
+        return cls(np.asarray(x_m, dtype=float), np.zeros(np.size(x_m)))
+
+    def depth_at(self, x_m) -> np.ndarray:
+        """h(x) at any x (m): linear between the nodes, exact at them."""
+        return np.interp(x_m, self.x_m, self.depth_m)
+
+    def top_y_m(self, unworn_top_y_m: float, x_m) -> np.ndarray:
+        """y_top(x) = y0 - h(x), the worn top (m) over the unworn one at y0."""
+        return unworn_top_y_m - self.depth_at(x_m)
+
+    def worn_by(self, increment_m: np.ndarray, sliding_m: float) -> FlatWearState:
+        """The state after one wear step: depths deeper by ``increment_m`` (per node, m) and
+        ``sliding_m`` (m) more slid."""
+        return FlatWearState(self.x_m, self.depth_m + increment_m,
+                             self.sliding_distance_m + sliding_m, self.steps + 1)
+
+    def worn_area_m2(self) -> float:
+        """Area removed from the flat's cross-section, integral of h dx (m^2, the worn volume
+        per unit length; trapezoid rule between the nodes)."""
+        return float(np.sum(0.5 * (self.depth_m[1:] + self.depth_m[:-1]) * np.diff(self.x_m)))

@@ -119,3 +119,21 @@ def test_mesh_settings_refuse_bad_values(settings, message):
 def test_mesh_must_fit_the_flat(settings, message):
     with pytest.raises(FewearInputError, match=message):
         settings.require_fits(GEOMETRY)
+
+
+def test_worn_map_puts_the_top_on_the_worn_flat_and_keeps_the_bottom():
+    from fewear.mesh.flat import worn_node_y_m
+
+    top, bottom = GEOMETRY.top_y_m, GEOMETRY.top_y_m - GEOMETRY.height_m
+    made = np.array([[-1e-4, top], [2e-4, top], [2e-4, bottom], [2e-4, 0.5 * (top + bottom)],
+                     [-1e-4, top - 0.25 * GEOMETRY.height_m]])
+
+    def depth_at(x):
+        return 1e-5 + 1e-2 * x  # 9 um at x = -0.1 mm, 12 um at 0.2 mm
+
+    y = worn_node_y_m(made, GEOMETRY, depth_at)
+    np.testing.assert_allclose(y[:2], top - np.array([9e-6, 12e-6]), rtol=0, atol=1e-18)
+    assert y[2] == bottom
+    # interior: the column shrinks in proportion, y' - y_b = (y - y_b) (H - h) / H
+    assert y[3] - bottom == pytest.approx(0.5 * (GEOMETRY.height_m - 12e-6), rel=1e-12)
+    assert y[4] - bottom == pytest.approx(0.75 * (GEOMETRY.height_m - 9e-6), rel=1e-12)
