@@ -28,11 +28,13 @@ loaded nodes reach x_c is refused (:class:`FlatLoadError`).
 from __future__ import annotations
 
 import math
+from contextlib import contextmanager
+from dataclasses import replace
 
 import numpy as np
 from mpi4py import MPI
 
-from fewear.contact.newton import ContactNotConverged
+from fewear.contact.newton import ContactNotConverged, newton_settings
 from fewear.contact.params import FlatContactProblem
 from fewear.contact.result import ContactResult
 from fewear.contact.solver import BushingContactSolver
@@ -82,20 +84,49 @@ class FlatContactSolver(BushingContactSolver):
             mesh_data = flat_mesh(problem.geometry, problem.mesh, comm)
         super().__init__(problem, comm, mesh_data)
 
-    def solve(self, normal_force_N: float) -> ContactResult:
+    def solve(self, normal_force_N: float, wear_compliance_m_per_Pa: float = 0.0
+              ) -> ContactResult:
         """Press the cylinder on the flat with ``normal_force_N`` (N, along -y), x held at 0;
-        frictionless. The result's nodes are the top's, in the order of x."""
+        frictionless. The result's nodes are the top's, in the order of x.
+
+        ``wear_compliance_m_per_Pa``: c >= 0, a wear step solved implicitly (backward Euler):
+        over the step every node recedes by c p (Archard: c = k ds), which puts c in series
+        with the penalty law, p = <-g>_+ / (1/k + c), g the gap to the flat as it is
+        (:meth:`_series_penalty`); 0, the plain contact."""
         normal = checked_normal_force(normal_force_N)
         force = normal * PRESS_DIRECTION
         self.friction.value = 0.0
         if normal == 0.0:
             return self._no_contact_result(force, 0.0)
+        with self._series_penalty(wear_compliance_m_per_Pa):
+            try:
+                iterations = self.newton.solve_on_ray(
+                    force / self.problem.out_of_plane_length_m, PRESS_DIRECTION)
+            except ContactNotConverged:
+                self._refuse(force, "the contact Newton found no equilibrium")
+            return self._equilibrium_result(force, 0.0, iterations)
+
+    @contextmanager
+    def _series_penalty(self, compliance_m_per_Pa: float):
+        """Within the ``with`` block the penalty is k' = 1 / (1/k + c) for the compliance c
+        (m/Pa): in the weak form, the Newton's constants and the nodal pressures (the problem's
+        penalty factor scaled by k'/k); the problem as given afterwards."""
+        if not (math.isfinite(compliance_m_per_Pa) and compliance_m_per_Pa >= 0.0):
+            raise FewearInputError(f"wear compliance = {compliance_m_per_Pa!r} m/Pa: expected "
+                                   "a finite number >= 0")
+        problem = self.problem
+        penalty = problem.penalty_stiffness_Pa_per_m()
+        series = 1.0 / (1.0 / penalty + compliance_m_per_Pa)
+        self.problem = replace(problem, contact=replace(
+            problem.contact, penalty_factor=problem.contact.penalty_factor * series / penalty))
+        self.penalty.value = series
+        self.newton.settings = newton_settings(self.problem)
         try:
-            iterations = self.newton.solve_on_ray(force / self.problem.out_of_plane_length_m,
-                                                  PRESS_DIRECTION)
-        except ContactNotConverged:
-            self._refuse(force, "the contact Newton found no equilibrium")
-        return self._equilibrium_result(force, 0.0, iterations)
+            yield
+        finally:
+            self.problem = problem
+            self.penalty.value = penalty
+            self.newton.settings = newton_settings(problem)
 
     def _inadmissible(self, result: ContactResult, displacement: np.ndarray) -> str | None:
         """Why the solution is not admissible (its loaded nodes reach the contact zone's edge

@@ -3,6 +3,7 @@ from the config at the command's edge into typed stage inputs."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from fewear.errors import FewearInputError
@@ -97,3 +98,33 @@ def run_inputs_from_config(config: dict) -> RunInputs:
                      wear_extension_from_config(config["wear"]),
                      WearLoopSettings.from_config(config["wear_loop"]),
                      ImpactWearLaw.from_config(config["wear"]))
+
+
+@dataclass(frozen=True)
+class SlidingWearSettings:
+    """A flat worn by a cylinder sliding over it at constant normal force (block on ring,
+    :mod:`fewear.loop.flat_wear`).
+
+    ``normal_force_N``: P (N); ``sliding_distance_m``: S (m), imposed at every node in contact;
+    ``wear_coefficient_m2_N``: Archard's dimensional k of the flat (m^2/N = 1/Pa);
+    ``wear_steps``: N, the wear steps of S/N each (a whole number in [1, 10000]).
+    """
+
+    normal_force_N: float
+    sliding_distance_m: float
+    wear_coefficient_m2_N: float
+    wear_steps: int = 30
+
+    def __post_init__(self):
+        for name in ("normal_force_N", "sliding_distance_m", "wear_coefficient_m2_N"):
+            value = getattr(self, name)
+            if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0.0):
+                raise FewearInputError(f"{name} = {value!r}: must be a finite number > 0")
+        steps = self.wear_steps
+        if not (isinstance(steps, int) and not isinstance(steps, bool) and 1 <= steps <= 10000):
+            raise FewearInputError(f"wear_steps = {steps!r}: must be a whole number in [1, 10000]")
+
+    @property
+    def slide_m(self) -> float:
+        """The slide of one wear step, S/N (m)."""
+        return self.sliding_distance_m / self.wear_steps
