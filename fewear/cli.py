@@ -32,6 +32,7 @@ HANDLERS = {
     "diagnose": "fewear.diagnose.command:main",
     "run": "fewear.loop.command:main",
     "plot": "fewear.plot.worn_bushing:main",
+    "scar": "fewear.loop.scar_command:main",
 }
 
 
@@ -95,6 +96,9 @@ def build_parser() -> argparse.ArgumentParser:
                           "rod model, at most the CPU cores; 1: one after the other in this "
                           "process). Under mpirun the ranks are split among the rod models "
                           "instead")
+
+    scar = sub.add_parser("scar", help="a block-on-ring wear scar beside the measured ones")
+    _add_config_and_out(scar, "out/scar")
 
     plot = sub.add_parser("plot", help="PyVista view of a run's worn bushing, coloured by depth")
     plot.add_argument("folder", metavar="DIR", help="the output folder of `fewear run`")

@@ -1,0 +1,199 @@
+"""``fewear scar [--config FILE.toml] [--out DIR]``: a block-on-ring wear scar predicted by the FE
+wear loop on the flat (:mod:`fewear.loop.flat_wear`) beside the three measured ones of Cruzado et
+al., Rev. Metal. 46 (2010) 106-114 (``fewear/data/scar_block_on_ring_cruzado2010.csv``).
+
+Reads ``[block_on_ring]``, ``[block_on_ring_mesh]`` and ``[contact]`` (penalty and Newton
+settings; the contact is frictionless), prints a progress line per wear step on stderr, and
+writes, all or nothing (:func:`fewear.io.output.staged_output`):
+
+- ``profiles.csv``: x_m on the measured profiles' grid, the predicted depth there (linear between
+  the FE nodes) and the three tests' depths (m, positive: worn; the measured heights negated);
+- ``predicted_nodes.csv``: x_m and depth_m at the FE top nodes;
+- ``summary.json``: the largest depth, the width (where the depth exceeds 5 % of it, crossings
+  interpolated: :func:`fewear.wear.scar.scar_depth_and_width_m`) and the worn area, predicted,
+  of the ring-arc closed form and of each test with the tests' mean, least and largest; the run's
+  steps, mesh quality and wall time; the config used;
+- ``scar.png``: the profiles.
+
+The measured worn area is the integral of the raw depth over the scar's width (no baseline
+removed), so it carries the digitised profile's offset over 2.7 mm. Runs under ``mpirun -n N``;
+rank 0 writes.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+import numpy as np
+
+from fewear.contact.params import BushingMaterial, ContactSettings, FlatContactProblem
+from fewear.errors import FewearInputError
+from fewear.loop.settings import SlidingWearSettings
+from fewear.mesh.geometry import FlatGeometry, FlatMeshSettings
+from fewear.wear.scar import (
+    EDGE_SHARE,
+    ring_arc_depth_m,
+    ring_arc_width_m,
+    scar_depth_and_width_m,
+)
+
+SCAR_SECTIONS = ["block_on_ring", "block_on_ring_mesh", "contact"]
+STANDOFF_SHARE = 1e-3
+"""The gap between the ring and the unworn block, a share of the ring's radius."""
+
+
+def block_on_ring_from_config(config: dict) -> tuple[FlatContactProblem, SlidingWearSettings]:
+    """The contact problem and the wear settings of the config's sections; every check of the
+    dataclasses named with its section, and the contact zone checked to hold the scar of the
+    ring-arc closed form."""
+    case, mesh = config["block_on_ring"], config["block_on_ring_mesh"]
+    try:
+        geometry = FlatGeometry(case["cylinder_radius_m"], mesh["width_m"], mesh["height_m"],
+                                case["length_m"], STANDOFF_SHARE * case["cylinder_radius_m"])
+        material = BushingMaterial(case["youngs_modulus_Pa"], case["poisson_ratio"])
+        settings = SlidingWearSettings(case["normal_force_N"], case["sliding_distance_m"],
+                                       case["wear_coefficient_m2_N"], case["wear_steps"])
+    except FewearInputError as exc:
+        raise FewearInputError(f"[block_on_ring] or [block_on_ring_mesh]: {exc}") from None
+    try:
+        mesh_settings = FlatMeshSettings(
+            mesh["contact_element_size_m"], mesh["contact_zone_half_width_m"],
+            mesh["side_element_count"], mesh["depth_element_count"])
+        contact = config["contact"]
+        problem = FlatContactProblem(geometry, material, mesh_settings, ContactSettings(
+            contact["penalty_factor"], 0.0, contact["newton_tolerance"],
+            contact["newton_max_iterations"]))
+    except FewearInputError as exc:
+        raise FewearInputError(f"[block_on_ring_mesh]: {exc}") from None
+    _require_zone_holds_the_scar(problem, settings)
+    return problem, settings
+
+
+def closed_form_depth_m(problem: FlatContactProblem, settings: SlidingWearSettings) -> float:
+    """The ring-arc scar's depth d of the worn area k P' S (m, :mod:`fewear.wear.scar`)."""
+    area = (settings.wear_coefficient_m2_N * settings.normal_force_N
+            / problem.geometry.length_m * settings.sliding_distance_m)
+    return ring_arc_depth_m(problem.geometry.cylinder_radius_m, area)
+
+
+def _require_zone_holds_the_scar(problem: FlatContactProblem,
+                                 settings: SlidingWearSettings) -> None:
+    radius = problem.geometry.cylinder_radius_m
+    depth = closed_form_depth_m(problem, settings)
+    if depth >= radius:
+        raise FewearInputError(
+            f"[block_on_ring] wear_coefficient_m2_N, normal_force_N, sliding_distance_m: the "
+            f"worn area k P' S exceeds half the ring's cross-section (radius {radius:g} m): "
+            "lower them")
+    half_width = 0.5 * ring_arc_width_m(radius, depth)
+    zone = problem.mesh.contact_zone_half_width_m
+    if half_width >= zone:
+        raise FewearInputError(
+            f"[block_on_ring_mesh] contact_zone_half_width_m = {zone!r}: must exceed the "
+            f"scar's half-width, {half_width:.3g} m by the ring-arc closed form (k P' S), with "
+            "width_m above four times it")
+
+
+def measured_scars() -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """The three measured profiles as name -> (x_m, depth_m), depth positive where worn."""
+    from fewear.data import BLOCK_ON_RING_CRUZADO2010_CSV
+
+    rows = [line for line in BLOCK_ON_RING_CRUZADO2010_CSV.read_text().splitlines()
+            if not line.startswith("#")]
+    table = np.genfromtxt(rows, delimiter=",", names=True)
+    return {name.removesuffix("_um"): (1e-3 * table["x_mm"], -1e-6 * table[name])
+            for name in table.dtype.names[1:]}
+
+
+def scar_figures(x_m: np.ndarray, depth_m: np.ndarray) -> dict[str, float]:
+    """The largest depth (m), the width at ``EDGE_SHARE`` of it (m) and the worn area (m^2,
+    the depth integrated over that width by the trapezoid rule on the nodes within it)."""
+    depth, width = scar_depth_and_width_m(x_m, depth_m)
+    worn = depth_m > EDGE_SHARE * depth
+    inside_x, inside_depth = x_m[worn], depth_m[worn]
+    area = float(np.sum(0.5 * (inside_depth[1:] + inside_depth[:-1]) * np.diff(inside_x)))
+    return {"max_depth_m": depth, "width_m": width, "worn_area_m2": area}
+
+
+def scar_summary(run, problem: FlatContactProblem, settings: SlidingWearSettings,
+                 measured: dict, config: dict) -> dict:
+    """summary.json (module docstring)."""
+    radius = problem.geometry.cylinder_radius_m
+    depth = closed_form_depth_m(problem, settings)
+    predicted = scar_figures(run.state.x_m, run.state.depth_m)
+    predicted["worn_area_m2"] = run.state.worn_area_m2()  # the whole profile: nothing beside
+    tests = {name: scar_figures(*profile) for name, profile in measured.items()}
+    spread = {f"{statistic}_{key}": float(reduce([figures[key] for figures in tests.values()]))
+              for key in predicted for statistic, reduce in
+              (("mean", np.mean), ("least", np.min), ("largest", np.max))}
+    return {
+        "predicted": predicted,
+        "closed_form": {"max_depth_m": depth,
+                        "width_m": ring_arc_width_m(radius, depth, EDGE_SHARE),
+                        "chord_m": ring_arc_width_m(radius, depth),
+                        "worn_area_m2": (settings.wear_coefficient_m2_N * settings.normal_force_N
+                                         / problem.geometry.length_m
+                                         * settings.sliding_distance_m)},
+        "measured": {"tests": tests, **spread},
+        "edge_share": EDGE_SHARE,
+        "wear_steps": len(run.steps),
+        "mesh_quality": {"as_made": _cell_shape(run.unworn_quality),
+                         "worn": _cell_shape(run.quality)},
+        "wall_time_s": run.wall_time_s,
+        "config": config,
+    }
+
+
+def _cell_shape(quality) -> dict[str, float]:
+    """The worst scaled Jacobian and angle sine of a :class:`fewear.mesh.quality.MeshQuality`
+    (its bore motion ratio is the bushing's re-mesh criterion: the flat is never re-meshed)."""
+    return {"min_scaled_jacobian": quality.min_scaled_jacobian,
+            "min_angle_sine": quality.min_angle_sine}
+
+
+def main(args: argparse.Namespace) -> int:
+    from mpi4py import MPI
+
+    from fewear.io.config import load_config
+    from fewear.io.output import staged_output
+
+    comm = MPI.COMM_WORLD
+    config = load_config(args.config, SCAR_SECTIONS)
+    problem, settings = block_on_ring_from_config(config)
+    with staged_output(args.out, comm) as stage:
+        run = _run(problem, settings, comm)
+        if comm.rank == 0:
+            _write_outputs(stage, run, problem, settings, config)
+    return 0
+
+
+def _run(problem, settings, comm):
+    from fewear.loop.flat_wear import run_flat_wear
+
+    def progress(step) -> None:
+        if comm.rank == 0:
+            done = round(step.sliding_distance_m / settings.slide_m)
+            print(f"fewear scar: step {done}/{settings.wear_steps}, "
+                  f"{step.sliding_distance_m:.4g} m slid: depth {step.max_depth_m * 1e6:.2f} um, "
+                  f"peak pressure {step.max_pressure_Pa / 1e6:.3g} MPa", file=sys.stderr,
+                  flush=True)
+
+    return run_flat_wear(problem, settings, comm, report=progress)
+
+
+def _write_outputs(stage, run, problem, settings, config) -> None:
+    from fewear.io.output import write_json
+    from fewear.plot.scar import plot_scar
+
+    measured = measured_scars()
+    x = next(iter(measured.values()))[0]
+    columns = [x, run.state.depth_at(x)] + [depth for _, depth in measured.values()]
+    header = ",".join(["x_m", "predicted_depth_m"] + [f"{name}_depth_m" for name in measured])
+    np.savetxt(stage / "profiles.csv", np.column_stack(columns), delimiter=",", header=header,
+               comments="", fmt="%.9g")
+    np.savetxt(stage / "predicted_nodes.csv", np.column_stack([run.state.x_m, run.state.depth_m]),
+               delimiter=",", header="x_m,depth_m", comments="", fmt="%.12g")
+    write_json(stage / "summary.json", scar_summary(run, problem, settings, measured, config))
+    plot_scar(stage / "scar.png", (run.state.x_m, run.state.depth_m), measured,
+              f"block on ring after {settings.sliding_distance_m:g} m")

@@ -1,0 +1,105 @@
+"""`fewear scar` end to end on a coarse block on ring, and its refusals of bad input.
+
+The good run is checked against what the command does not compute for itself: the predicted
+profile of profiles.csv against the ring's arc of the worn area k P' S (computed here), and the
+measured figures against the research note's reading of the data (section 1: depths 46.3 / 44.5
+/ 48.7 um; widths 2.66 / 2.61 / 2.68 mm at the nodes, a little wider with the crossings
+interpolated). Bad input must give exit status 2, one line on stderr naming the value and what is
+allowed, no traceback and no output folder.
+"""
+
+import json
+import math
+import re
+
+import numpy as np
+import pytest
+
+from fewear.cli import main
+
+COARSE = """
+[block_on_ring]
+wear_steps = 15
+
+[block_on_ring_mesh]
+contact_element_size_m = 1e-4
+"""
+
+
+@pytest.fixture(scope="module")
+def coarse_run(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("scar")
+    config = folder / "coarse.toml"
+    config.write_text(COARSE)
+    out = folder / "out"
+    return main(["scar", "--config", str(config), "--out", str(out)]), out
+
+
+def test_writes_profiles_nodes_summary_and_png(coarse_run, capsys):
+    status, out = coarse_run
+    assert status == 0
+    assert {path.name for path in out.iterdir()} == {"profiles.csv", "predicted_nodes.csv",
+                                                     "summary.json", "scar.png"}
+    assert (out / "scar.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_predicted_profile_is_the_ring_arc_of_archards_area(coarse_run):
+    _, out = coarse_run
+    radius, area = 0.020, 2e-15 * 65.0 / 0.006 * 3600.0
+    # the depth of the ring's segment of that area, by bisection on A(d)
+    low, high = 0.0, 1e-3
+    for _ in range(100):
+        middle = 0.5 * (low + high)
+        segment = (radius**2 * math.acos((radius - middle) / radius)
+                   - (radius - middle) * math.sqrt(2 * radius * middle - middle**2))
+        low, high = (middle, high) if segment < area else (low, middle)
+    depth = 0.5 * (low + high)
+    nodes = np.genfromtxt(out / "predicted_nodes.csv", delimiter=",", names=True)
+    arc = np.maximum(depth - radius + np.sqrt(radius**2 - nodes["x_m"] ** 2), 0.0)
+    assert np.max(np.abs(nodes["depth_m"] - arc)) < 0.01 * depth
+    # beside the measured profiles: linear between the nodes
+    table = np.genfromtxt(out / "profiles.csv", delimiter=",", names=True)
+    np.testing.assert_allclose(table["predicted_depth_m"],
+                               np.interp(table["x_m"], nodes["x_m"], nodes["depth_m"]),
+                               rtol=1e-8, atol=1e-15)
+    assert list(table.dtype.names) == ["x_m", "predicted_depth_m", "test1_depth_m",
+                                       "test2_depth_m", "test3_depth_m"]
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["predicted"]["max_depth_m"] == pytest.approx(depth, rel=5e-3)
+    assert summary["predicted"]["worn_area_m2"] == pytest.approx(area, rel=1e-3)
+    assert summary["closed_form"]["chord_m"] == pytest.approx(
+        2 * math.sqrt(2 * radius * depth - depth**2), rel=1e-9)
+    assert summary["wear_steps"] == 15
+
+
+def test_measured_figures_are_the_research_notes(coarse_run):
+    _, out = coarse_run
+    measured = json.loads((out / "summary.json").read_text())["measured"]
+    for name, depth_um, width_mm in (("test1", 46.3, 2.66), ("test2", 44.5, 2.61),
+                                     ("test3", 48.7, 2.68)):
+        assert measured["tests"][name]["max_depth_m"] == pytest.approx(depth_um * 1e-6,
+                                                                       abs=0.05e-6)
+        assert width_mm * 1e-3 <= measured["tests"][name]["width_m"] < (width_mm + 0.02) * 1e-3
+    assert measured["least_max_depth_m"] == measured["tests"]["test2"]["max_depth_m"]
+    assert measured["largest_width_m"] == measured["tests"]["test3"]["width_m"]
+
+
+@pytest.mark.parametrize("config, message", [
+    ("[block_on_ring]\nwear_steps = 0\n",
+     r"wear_steps = 0: must be a whole number in \[1, 10000\]"),
+    ("[block_on_ring]\npoisson_ratio = 0.6\n", "poisson_ratio = 0.6"),
+    ("[block_on_ring_mesh]\ncontact_zone_half_width_m = 0.001\n",
+     "contact_zone_half_width_m = 0.001: must exceed the scar's half-width"),
+    ("[block_on_ring]\nring_radius_m = 0.02\n", "unknown key.* ring_radius_m"),
+    ("[block_on_ring]\nnormal_force_N = -65.0\n", "normal_force_N = -65.0: must be a finite"),
+])
+def test_bad_input_is_one_line_naming_the_value(tmp_path, capsys, config, message):
+    path = tmp_path / "bad.toml"
+    path.write_text(config)
+    out = tmp_path / "out"
+    assert main(["scar", "--config", str(path), "--out", str(out)]) == 2
+    error = capsys.readouterr().err
+    assert error.startswith("fewear: error: ") and error.count("\n") == 1
+    assert "Traceback" not in error
+    assert re.search(message, error), error
+    assert not out.exists()
