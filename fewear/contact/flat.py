@@ -18,6 +18,11 @@ length L = ``length_m``, as the bushing's are times its width):
   Frictionless. The x component of the contact resultant is what the flat returns (zero on the
   symmetric mesh, to rounding): it is not balanced.
 
+Wear: an implicit (backward Euler) Archard step of slide ds wears every node by k p ds with p at
+the step's end, so the flat recedes by c p (c = k ds, m/Pa) while the contact is solved; this is
+the penalty law with c in series, p = <-g>_+ / (1/k + c), g the gap to the flat at the step's
+start (``solve(..., wear_compliance_m_per_Pa=c)``; :mod:`fewear.loop.flat_wear`).
+
 Admissible loads: the contact strip must lie inside the contact zone |x| < x_c that the mesh
 resolves with its contact elements. By Hertz line contact (Johnson, *Contact Mechanics*, 1985,
 sec. 4.3), a = sqrt(4 P' R / (pi E*)) with E* = E/(1-nu^2) against a rigid cylinder, a reaches
@@ -114,6 +119,9 @@ class FlatContactSolver(BushingContactSolver):
         if not (math.isfinite(compliance_m_per_Pa) and compliance_m_per_Pa >= 0.0):
             raise FewearInputError(f"wear compliance = {compliance_m_per_Pa!r} m/Pa: expected "
                                    "a finite number >= 0")
+        if compliance_m_per_Pa == 0.0:  # the plain contact, its penalty untouched to the bit
+            yield
+            return
         problem = self.problem
         penalty = problem.penalty_stiffness_Pa_per_m()
         series = 1.0 / (1.0 / penalty + compliance_m_per_Pa)

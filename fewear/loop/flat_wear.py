@@ -16,6 +16,9 @@ S is cut into N wear steps of ds = S/N; each step:
    y0 - h(x) exactly, bottom fixed), the solver's stiffness re-assembled. No re-mesh: the scar
    (tens of um) is a small fraction of the elements below it and its slope (b/R, 0.07 on the
    block on ring) shears them little (:class:`fewear.mesh.quality.QualityMeter` in the run).
+   Measured on the default 20 um elements, the 132 top-row cells under the 44 um scar: smallest
+   angle sine 0.971 as made (the middle patch's slanted columns), 0.984 worn; scaled Jacobian
+   0.9963 and 0.9959.
 
 Why implicit: the wear of a conformal contact is stiff. A node that stands out by e over a node
 spacing l carries an extra pressure of about E* e / l, so an explicit step (p at the step's start)
