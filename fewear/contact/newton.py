@@ -446,7 +446,8 @@ def pin_update(centre: np.ndarray, dc: np.ndarray, node_spacing_rad: float) -> n
     its radial position by (dc.e_t)^2 / (2|c|), far more than the penetrations. A smaller move
     keeps the pin on the same nodes, whose gaps |X_q - c| - R_p curve only with 1/R_p: it is
     applied as it is, c' = c + dc (the turn would add the radial error (dc.e_t)^2 / (2|c|),
-    R_p/|c| times more than the linearised gaps leave out, and lose a light contact).
+    R_p/|c| times more than the linearised gaps leave out, and lose a light contact). On a
+    straight surface (``node_spacing_rad`` = inf, the flat) every move is applied as it is.
     """
     radius = math.sqrt(centre[0] * centre[0] + centre[1] * centre[1])
     if radius == 0.0:
@@ -462,12 +463,15 @@ def pin_update(centre: np.ndarray, dc: np.ndarray, node_spacing_rad: float) -> n
 @compiled
 def slide_limit(centre: np.ndarray, dc: np.ndarray, element_size_m: float,
                 bore_radius_m: float) -> float:
-    """Step factor that lets the pin turn by at most one bore element, h / R_b, per step."""
+    """Step factor that lets the pin move along the surface by at most one element per step:
+    turn by h / R_b about the bushing centre on a bore of radius R_b, slide by h along a
+    straight surface (R_b = inf, the flat: :meth:`fewear.contact.params.FlatContactProblem.
+    contact_surface`)."""
     radius = math.sqrt(centre[0] * centre[0] + centre[1] * centre[1])
     if radius == 0.0:
         return 1.0
     tangential = abs(centre[0] * dc[1] - centre[1] * dc[0]) / radius
-    limit = radius * element_size_m / bore_radius_m
+    limit = element_size_m if math.isinf(bore_radius_m) else radius * element_size_m / bore_radius_m
     return min(1.0, limit / tangential) if tangential > 0.0 else 1.0
 
 
@@ -949,10 +953,20 @@ class ContactNewton:
         converge within ``newton_max_iterations``. The contact-angle fallback's inner problem,
         and the cylinder on a flat with its x held (:mod:`fewear.contact.flat`)."""
         self._onto_ray(a, load)
-        count = self._coupled_newton(load, a, np.ascontiguousarray(a[:, None]),
+        return self.solve_from_here(load, a, np.ascontiguousarray(a[:, None]),
+                                    "with the pin on a fixed ray")
+
+    def solve_from_here(self, load: np.ndarray, direction: np.ndarray, basis: np.ndarray,
+                        setting: str = "from the present state") -> int:
+        """The coupled Newton from the present state as it is (no start, no retry, no
+        fallback), the pin moving in the span of ``basis`` (2, k): force control of the
+        components basis^T F/L of the load (N/m), the pin's position across them held.
+        Returns the Newton iterations; raises :class:`ContactNotConverged` (naming the
+        ``setting``) if it does not converge within ``newton_max_iterations``."""
+        count = self._coupled_newton(load, direction, basis,
                                      self.path.problem.contact.newton_max_iterations)
         if count is None:
-            raise ContactNotConverged(load, "did not converge with the pin on a fixed ray")
+            raise ContactNotConverged(load, f"did not converge {setting}")
         return count
 
     def _coupled_newton(self, load, direction, basis, max_iterations) -> int | None:

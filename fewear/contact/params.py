@@ -81,7 +81,8 @@ class ContactSurface(NamedTuple):
     ``radius_m`` (m), the element size along it ``element_size_m`` (m) and the angle between
     neighbouring nodes about the origin ``node_spacing_rad``. A move of the indenter along the
     surface by more than one node spacing is a turn about the origin, and one step turns it by
-    at most h / radius."""
+    at most h / radius; a straight surface has radius and node spacing inf (moves along it are
+    translations, by at most h per step)."""
 
     radius_m: float
     element_size_m: float
@@ -154,15 +155,12 @@ class FlatContactProblem:
         return self.geometry.length_m
 
     def contact_surface(self) -> ContactSurface:
-        """The top as seen from the origin at x = 0, where the cylinder presses: at the
-        distance R + standoff, its contact elements of length h and nodes h/2 apart subtending
-        h/(R + standoff) and h/(2 (R + standoff)). The rules that turn the indenter about the
-        origin are the bore's; the flat is solved with the cylinder on its ray
-        (:meth:`fewear.contact.newton.ContactNewton.solve_on_ray`, x held), whose moves have
-        no part along the surface, so that they never apply."""
-        distance = -self.geometry.top_y_m
-        size = self.mesh.contact_element_length_m()
-        return ContactSurface(distance, size, 0.5 * size / distance)
+        """The top, a straight surface: radius and node spacing infinite, elements of length
+        h. The Newton's step rules then move the cylinder along the top as they find it (no
+        turn about the origin, which lies only R + standoff above the top while the cylinder's
+        centre stays within microns of it) by at most h per step (the frictional steps of
+        :mod:`fewear.contact.flat`); pressed on its ray it has no move along the top."""
+        return ContactSurface(math.inf, self.mesh.contact_element_length_m(), math.inf)
 
 
 CONFIG_SECTIONS = ["bushing", "pin", "joint", "mesh", "contact"]

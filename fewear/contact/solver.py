@@ -451,10 +451,13 @@ class BushingContactSolver:
         active set and is 0 without contact."""
         return self.comm.allreduce(fem.assemble_scalar(self._contact_length), op=MPI.SUM)
 
-    def _bordered_step(self, r_pin: np.ndarray, basis: np.ndarray):
+    def _bordered_step(self, r_pin: np.ndarray, basis: np.ndarray,
+                       prescribed: np.ndarray | None = None):
         """Newton direction (du, dc) of the bordered system by the Schur complement on the pin
         block (see the module docstring), with dc = basis dz restricted to the span of ``basis``
-        (2, k) and the pin equations projected on it; needs ``_assemble_contact`` just before."""
+        (2, k) and the pin equations projected on it, plus a ``prescribed`` move (m) across
+        that span where given (displacement control: dc = p + basis dz, basis^T S basis dz =
+        basis^T (rhs - S p)); needs ``_assemble_contact`` just before."""
         K = self._K
         self._K_elastic.copy(K, structure=PETSc.Mat.Structure.SAME_NONZERO_PATTERN)
         K.axpy(1.0, self._J, structure=PETSc.Mat.Structure.SUBSET_NONZERO_PATTERN)
@@ -474,7 +477,11 @@ class BushingContactSolver:
         D = np.array([[self.uniform[i].dot(self._work[j]) for j in range(2)] for i in range(2)])
         S = D + np.array([[self._work[2 + i].dot(Y[j]) for j in range(2)] for i in range(2)])
         rhs_c = -r_pin + np.array([self._work[2 + i].dot(y0) for i in range(2)])
-        dc = basis @ np.linalg.solve(basis.T @ S @ basis, basis.T @ rhs_c)
+        if prescribed is None:
+            dc = basis @ np.linalg.solve(basis.T @ S @ basis, basis.T @ rhs_c)
+        else:
+            dc = prescribed + basis @ np.linalg.solve(basis.T @ S @ basis,
+                                                      basis.T @ (rhs_c - S @ prescribed))
         du = self._du.vector
         y0.copy(du)
         du.axpy(-dc[0], Y[0])
@@ -487,12 +494,14 @@ class BushingContactSolver:
         return self._at_bore_nodes(self.displacement)
 
     def _at_bore_nodes(self, field: fem.Function) -> np.ndarray:
-        """A vector field of V at the gathered bore nodes (n, 2)."""
+        """A field at the gathered bore nodes (n, b), b its block size (2 for a vector field of
+        V)."""
         points = np.zeros((self.bore.local_nodes.size, 3))
         points[:, :2] = self.mesh.geometry.x[self.bore.local_nodes, :2]
-        values = np.zeros((points.shape[0], 2))
+        size = field.function_space.dofmap.index_map_bs
+        values = np.zeros((points.shape[0], size))
         if points.shape[0]:  # a rank may own no part of the bore
-            values = field.eval(points, self.bore.local_node_cells).reshape(-1, 2)
+            values = field.eval(points, self.bore.local_node_cells).reshape(-1, size)
         return self.bore.gather(values)
 
     def _result(self, force, rotation, iterations, displacement) -> ContactResult:
