@@ -18,6 +18,22 @@ length L = ``length_m``, as the bushing's are times its width):
   Frictionless. The x component of the contact resultant is what the flat returns (zero on the
   symmetric mesh, to rounding): it is not balanced.
 
+Friction (fretting; issue 22): after a :meth:`FlatContactSolver.solve` of P, frictional steps
+move the cylinder tangentially, under force control of Q
+(:meth:`~FlatContactSolver.solve_tangential_force`, the centre free) or with its centre's x
+prescribed (:meth:`~FlatContactSolver.solve_tangential_shift`, Q the reaction). The shear is
+Coulomb's law by a return mapping per contact node with a tangential penalty k_t = k
+(:meth:`~FlatContactSolver.shear`), its history (the last step's shear, displacement and centre)
+kept between steps and released by the next plain solve. The same coupled Newton solves it
+(:meth:`fewear.contact.newton.ContactNewton.solve_from_here`): the shear is part of the UFL
+traction, so the residual and its Jacobian come from the same forms. Prescribing the centre's
+x moves the cylinder inside the Newton's step (:meth:`~FlatContactSolver.newton_direction`),
+not before it; a step the Newton does not settle is split in halves
+(:meth:`~FlatContactSolver._in_halves`). Verified against Cattaneo-Mindlin partial slip
+(tests/contact/test_flat_mindlin.py) with the pressure frozen (``uncoupled=True``, a
+PROTOTYPE: the rigid cylinder on the elastic flat is not elastically similar, Dundurs
+beta != 0, so coupled, Q shifts the pressure and the stick zone).
+
 Wear: an implicit (backward Euler) Archard step of slide ds wears every node by k p ds with p at
 the step's end, so the flat recedes by c p (c = k ds, m/Pa) while the contact is solved; this is
 the penalty law with c in series, p = <-g>_+ / (1/k + c), g the gap to the flat at the step's
@@ -35,18 +51,56 @@ from __future__ import annotations
 import math
 from contextlib import contextmanager
 from dataclasses import replace
+from typing import NamedTuple
 
 import numpy as np
+import ufl
+from dolfinx import fem
 from mpi4py import MPI
+from petsc4py import PETSc
 
-from fewear.contact.newton import ContactNotConverged, newton_settings
+from fewear.contact.newton import ContactNotConverged, newton_settings, specialised
 from fewear.contact.params import FlatContactProblem
 from fewear.contact.result import ContactResult
 from fewear.contact.solver import BushingContactSolver
 from fewear.errors import FewearInputError
 from fewear.mesh.flat import flat_mesh
+from fewear.mesh.tags import CONTACT_TAG
 
 PRESS_DIRECTION = np.array([0.0, -1.0])  # the cylinder's ray and the normal force's direction
+BOTH_MOVES = np.eye(2)                      # force control of Q and P: the centre free
+VERTICAL_MOVES = np.array([[0.0], [1.0]])   # force control of P alone: the centre's x held
+HORIZONTAL_MOVES = np.array([[1.0], [0.0]])  # force control of Q alone: the centre's y held
+
+# A frictional step that does not converge is split in two halves, at most this many times
+# (:meth:`FlatContactSolver._in_halves`).
+STEP_HALVINGS = 6
+
+# The return mapping sticks up to |tau_trial| = mu p (1 + this): a node that slipped in the last
+# step starts the next at |tau_trial| = mu p to rounding, and on unloading must stick; taken
+# as slipping (no tangential stiffness) at the first Newton step, the step overshot into
+# reverse slip and the Newton cycled (Q from 3 mu P/4 down, h = a/16).
+STICK_TOLERANCE = 1e-9
+
+# A node in contact sticks where |tau| < mu p by more than this fraction (the slipping ones have
+# |tau| = mu p to rounding).
+STICK_MARGIN = 1e-9
+
+
+class FrictionalStep(NamedTuple):
+    """One frictional step on the flat (:meth:`FlatContactSolver.solve_tangential_force`,
+    :meth:`~FlatContactSolver.solve_tangential_shift`).
+
+    ``contact``: the :class:`ContactResult`, its ``slip_m`` the step's Coulomb slip per node
+    (m, the relative tangential motion of flat and cylinder less the tangential penalty's
+    elastic part); ``shear_Pa``: the tangential traction tau of the cylinder on the flat along
+    t = (-n_y, n_x) (Pa; +x under the cylinder); ``sticking``: the nodes in contact that stick,
+    |tau| < mu p; ``tangential_force_N``: Q, the x component of the contact resultant (N)."""
+
+    contact: ContactResult
+    shear_Pa: np.ndarray
+    sticking: np.ndarray
+    tangential_force_N: float
 
 
 class FlatLoadError(FewearInputError):
@@ -77,7 +131,8 @@ def checked_normal_force(normal_force_N) -> float:
 
 class FlatContactSolver(BushingContactSolver):
     """The rigid cylinder on the elastic flat (module docstring): the bushing's solver on the
-    flat's mesh and problem, solved with the cylinder on its ray.
+    flat's mesh and problem, solved with the cylinder on its ray; frictional steps after it
+    (module docstring).
 
     ``problem``: the :class:`FlatContactProblem`; ``comm``: MPI communicator; ``mesh_data``: an
     existing ``(mesh, cell_tags, facet_tags)`` from :func:`fewear.mesh.flat.flat_mesh` (built
@@ -89,6 +144,116 @@ class FlatContactSolver(BushingContactSolver):
             mesh_data = flat_mesh(problem.geometry, problem.mesh, comm)
         super().__init__(problem, comm, mesh_data)
 
+    # -- Coulomb friction: the forms ----------------------------------------------------------
+    def _build_forms(self) -> None:
+        """The bushing's forms, with the shear of :meth:`contact_traction`; its history (the
+        step's start) in degree-2 Lagrange functions, whose values at the top's nodes are the
+        values at the contact integral's Gauss-Lobatto points, and the centre as a constant."""
+        msh = self.mesh
+        self.coulomb = fem.Constant(msh, PETSc.ScalarType(0.0))  # mu in a frictional step
+        self.tangential_penalty = fem.Constant(
+            msh, PETSc.ScalarType(self.problem.penalty_stiffness_Pa_per_m()))
+        shear_space = fem.FunctionSpace(msh, ("Q", 2))
+        self.shear_before = fem.Function(shear_space, name="shear_before_Pa")
+        self._shear_now = fem.Function(shear_space)
+        self.displacement_before = fem.Function(fem.VectorFunctionSpace(msh, ("Q", 2)))
+        self.centre_before = fem.Constant(msh, np.zeros(2, dtype=PETSc.ScalarType))
+        self.frozen = fem.Constant(msh, PETSc.ScalarType(0.0))  # 1: the pressure frozen
+        self.frozen_pressure = fem.Function(shear_space, name="frozen_pressure_Pa")
+        self._centre_x_target_m: float | None = None  # displacement control of the centre's x
+        self.last_force_N = np.zeros(2)  # (Q, -P) at the end of the last solve or step (N)
+        self._loading_now = fem.Function(shear_space)
+        super()._build_forms()
+        deformed = ufl.SpatialCoordinate(msh) + self.displacement
+        points = shear_space.element.interpolation_points()
+        self._shear_expression = fem.Expression(self.shear(deformed), points)
+        self._pressure_expression = fem.Expression(self.contact_pressure(deformed), points)
+        self._loading_expression = fem.Expression(self.loading_pressure(deformed), points)
+        trial, bound = self._trial_shear(deformed)
+        sticking = ufl.And(ufl.gt(bound, 0.0), ufl.le(abs(trial), bound * (1.0 + STICK_TOLERANCE)))
+        self._stick_length = fem.form(ufl.conditional(sticking, 1.0, 0.0)
+                                      * self._ds(CONTACT_TAG))
+
+    def contact_traction(self, deformed):
+        """UFL: T = p n + tau t, the cylinder's traction on the flat (Pa): the penalty pressure
+        and the shear tau of Coulomb's law (:meth:`shear`) along t = (-n_y, n_x)."""
+        n = self._normal(deformed)
+        return self.loading_pressure(deformed) * n + self.shear(deformed) * ufl.as_vector(
+            (-n[1], n[0]))
+
+    def loading_pressure(self, deformed):
+        """UFL: the pressure p (Pa) of the traction: the penalty law's, or in an uncoupled
+        frictional step (:attr:`frozen` = 1) the one frozen at its start,
+        :attr:`frozen_pressure`."""
+        pressure = self.contact_pressure(deformed)
+        return pressure + self.frozen * (self.frozen_pressure - pressure)
+
+    def shear(self, deformed):
+        """UFL: the shear tau (Pa) by the return mapping of a tangential penalty k_t and
+        Coulomb's law (Wriggers, *Computational Contact Mechanics*, 2006, sec. 5.2.2; Simo &
+        Hughes, *Computational Inelasticity*, 1998, ch. 1): with ds = t . ((u - u_0) - (c - c_0))
+        the tangential motion of the flat's point relative to the cylinder since the step's
+        start (u_0, c_0: :attr:`displacement_before`, :attr:`centre_before`) and tau_0 the shear
+        then (:attr:`shear_before`),
+
+            tau_trial = tau_0 - k_t ds,   tau = tau_trial if |tau_trial| <= mu p (stick),
+                                          else mu p sign(tau_trial) (slip).
+
+        The cylinder dragged along +x shears the flat along +x. mu = :attr:`coulomb`, 0
+        outside a frictional step: then tau = 0."""
+        trial, bound = self._trial_shear(deformed)
+        return ufl.conditional(ufl.le(abs(trial), bound * (1.0 + STICK_TOLERANCE)), trial,
+                               ufl.conditional(ufl.gt(trial, 0.0), bound, -bound))
+
+    def _trial_shear(self, deformed):
+        """UFL: tau_trial and the bound mu p of :meth:`shear` (Pa)."""
+        n = self._normal(deformed)
+        t = ufl.as_vector((-n[1], n[0]))
+        moved = (deformed - ufl.SpatialCoordinate(self.mesh) - self.displacement_before
+                 - (self.pin_centre - self.centre_before))
+        trial = self.shear_before - self.tangential_penalty * ufl.inner(t, moved)
+        return trial, self.coulomb * self.loading_pressure(deformed)
+
+    def frictionless(self) -> bool:
+        """Whether the present solve is without friction (the Newton's Armijo test on the
+        penalty potential, which the return mapping's slip has not)."""
+        return float(self.coulomb.value) == 0.0
+
+    def linearise(self, load: np.ndarray) -> tuple[np.ndarray, float, None]:
+        """The bushing's linearisation; in a frictional step the active length (m) counts the
+        sticking nodes' weights once more, so that the Newton's step cap
+        (:func:`fewear.contact.newton.step_cap`) halves when the stick set alternates as it
+        does when the contact set does: a node flipping between stick (tangential stiffness
+        k_t) and slip (none) made the full steps overshoot in a growing cycle (h = a/16). The
+        rounding level the active length sets in the stopping test is at most doubled."""
+        pin_residual, active, linear = BushingContactSolver.linearise(self, load)
+        if not self.frictionless():
+            active += self.comm.allreduce(fem.assemble_scalar(self._stick_length), op=MPI.SUM)
+        return pin_residual, active, linear
+
+    def newton_direction(self, linear, pin_residual, load, basis):
+        """The bushing's Newton direction; under displacement control of the centre's x
+        (:meth:`solve_tangential_shift`) with the move to the target x prescribed: the first
+        step from the last state is the linearised (stick) response to the whole move. Moving
+        the centre there before the Newton instead started it with every node slipping
+        (k_t |dx| > mu p already for |dx| ~ 1e-10 m), from which it cycled."""
+        if self._centre_x_target_m is None:
+            return self._bordered_step(pin_residual, basis)
+        move = np.array([self._centre_x_target_m - self.pin_centre_m[0], 0.0])
+        return self._bordered_step(pin_residual, basis, prescribed=move)
+
+    @property
+    def operations(self) -> type:
+        """The Newton's operations: the bushing's, with the flat's :meth:`frictionless`,
+        :meth:`linearise` and :meth:`newton_direction` (the bushing's specialised Newton binds
+        the base class's methods and would not see these)."""
+        return FlatContactSolver
+
+    @property
+    def coupled_newton(self):
+        return FLAT_NEWTON
+
+    # -- solving -------------------------------------------------------------------------------
     def solve(self, normal_force_N: float, wear_compliance_m_per_Pa: float = 0.0
               ) -> ContactResult:
         """Press the cylinder on the flat with ``normal_force_N`` (N, along -y), x held at 0;
@@ -102,14 +267,160 @@ class FlatContactSolver(BushingContactSolver):
         force = normal * PRESS_DIRECTION
         self.friction.value = 0.0
         if normal == 0.0:
-            return self._no_contact_result(force, 0.0)
+            result = self._no_contact_result(force, 0.0)
+            self._release_shear()
+            return result
         with self._series_penalty(wear_compliance_m_per_Pa):
             try:
                 iterations = self.newton.solve_on_ray(
                     force / self.problem.out_of_plane_length_m, PRESS_DIRECTION)
             except ContactNotConverged:
                 self._refuse(force, "the contact Newton found no equilibrium")
-            return self._equilibrium_result(force, 0.0, iterations)
+            result = self._equilibrium_result(force, 0.0, iterations)
+        self._release_shear()
+        return result
+
+    def solve_tangential_force(self, tangential_force_N: float, normal_force_N: float,
+                               uncoupled: bool = False) -> FrictionalStep:
+        """A frictional step to the forces (Q, -P) on the cylinder (N) from the last solve's
+        state, with Coulomb's law (:meth:`shear`, mu the problem's friction coefficient) and
+        the history of the steps since the last :meth:`solve`: force control of both, the
+        centre free. Cattaneo-Mindlin partial slip for 0 < Q < mu P after a :meth:`solve` of
+        P; Q >= mu P has no equilibrium under force control (the cylinder slides away).
+
+        ``uncoupled``: a PROTOTYPE of the tangential problem alone. The pressure is frozen at
+        the last :meth:`solve`'s (the normal traction and Coulomb's bound; the penalty law off)
+        and the centre's y held, so that only Q is controlled: Mindlin's problem exactly as
+        posed, the normal and tangential problems uncoupled, which elastically similar bodies
+        are (Dundurs beta = 0; Johnson 1985, sec. 7.2). The rigid cylinder on the elastic
+        flat has beta = (1 - 2 nu)/(2 (1 - nu)) (0.29 at nu = 0.3): coupled, Q tilts the
+        pressure (its centroid measured 0.13 a behind at nu = 0.3, Q = mu P/2)."""
+        force = np.array([float(tangential_force_N), -checked_normal_force(normal_force_N)])
+        μ = self.problem.contact.friction_coefficient
+        if not (math.isfinite(force[0]) and abs(force[0]) < μ * -force[1]):
+            raise FewearInputError(
+                f"tangential force = {tangential_force_N!r} N: force control needs |Q| < mu P "
+                f"= {μ * -force[1]:g} N (beyond, the cylinder slides away: shift it instead)")
+        basis = HORIZONTAL_MOVES if uncoupled else BOTH_MOVES
+        try:
+            return self._in_halves(lambda f: self._frictional_step(f, basis, uncoupled),
+                                   self.last_force_N, force, STEP_HALVINGS)
+        except ContactNotConverged:
+            self.newton.reset()
+            raise FewearInputError(
+                f"tangential force = {force[0]:g} N under P = {-force[1]:g} N: the frictional "
+                "Newton found no equilibrium (force control needs Q < mu P); solve P afresh"
+            ) from None
+
+    def solve_tangential_shift(self, centre_x_m: float, normal_force_N: float
+                               ) -> FrictionalStep:
+        """A frictional step with the cylinder's centre moved to x = ``centre_x_m`` (m,
+        prescribed) under the normal force P (N, force control), from the last solve's state as
+        :meth:`solve_tangential_force`; Q (the step's ``tangential_force_N``) is the
+        reaction. The result's ``applied_force_N`` is (Q, -P)."""
+        force = np.array([0.0, -checked_normal_force(normal_force_N)])
+
+        def shifted(centre_x_m: np.ndarray) -> FrictionalStep:
+            self._centre_x_target_m = float(centre_x_m[0])
+            try:
+                step = self._frictional_step(force, VERTICAL_MOVES)
+            finally:
+                self._centre_x_target_m = None
+            applied = np.array([step.tangential_force_N, force[1]])
+            return step._replace(contact=replace(step.contact, applied_force_N=applied))
+
+        try:
+            return self._in_halves(shifted, self.centre_before.value[:1].copy(),
+                                   np.array([float(centre_x_m)]), STEP_HALVINGS)
+        except ContactNotConverged:
+            self.newton.reset()
+            raise FewearInputError(
+                f"cylinder shifted to x = {centre_x_m:g} m under P = {-force[1]:g} N: the "
+                "frictional Newton found no equilibrium; solve P afresh") from None
+
+    def _in_halves(self, step, start: np.ndarray, end: np.ndarray, halvings: int
+                   ) -> FrictionalStep:
+        """``step(end)``, a frictional step to the load ``end`` from the present state (at the
+        load ``start``); should its Newton not converge, the state restored and the two
+        halves one after the other, each split again at most ``halvings`` times in all
+        (then :class:`ContactNotConverged`). The semi-smooth Newton on the stick-slip law can
+        cycle with growing amplitude when a step turns many nodes from stick to slip (a node's
+        tangential stiffness is k_t or nothing; measured at h = a/16, Q from mu P/2 to
+        3 mu P/4 in one step); for a monotonic load the halves end in the same state
+        (Mindlin's solution depends on the final load alone)."""
+        centre, displacement = self.pin_centre_m.copy(), self.displacement.x.array.copy()
+        try:
+            return step(end)
+        except ContactNotConverged:
+            if halvings == 0:
+                raise
+            self.displacement.x.array[:] = displacement
+            self.place_pin(centre)
+            middle = 0.5 * (start + end)
+            self._in_halves(step, start, middle, halvings - 1)
+            return self._in_halves(step, middle, end, halvings - 1)
+
+    def _frictional_step(self, force: np.ndarray, basis: np.ndarray,
+                         frozen: bool = False) -> FrictionalStep:
+        """The coupled Newton from the present state with Coulomb friction on (and the
+        pressure ``frozen``), the centre's moves in the span of ``basis`` (force control of
+        basis^T F); the converged step's shear and slip, and its end as the next step's
+        history (:meth:`_close_step`)."""
+        if not np.any(self.pin_centre_m):
+            raise FewearInputError("a frictional step needs the cylinder pressed on the flat "
+                                   "first (solve the normal force P > 0)")
+        self.coulomb.value = self.problem.contact.friction_coefficient
+        self.frozen.value = float(frozen)
+        try:
+            iterations = self.newton.solve_from_here(
+                force / self.problem.out_of_plane_length_m, PRESS_DIRECTION, basis,
+                "in a frictional step")
+            result = self._equilibrium_result(force, 0.0, iterations)
+            return self._close_step(result)
+        finally:
+            self.coulomb.value = 0.0
+            self.frozen.value = 0.0
+
+    def _close_step(self, result: ContactResult) -> FrictionalStep:
+        """The converged step (:class:`FrictionalStep`): the nodal pressure of the traction,
+        shear tau (Pa) and Coulomb slip |ds + (tau - tau_0)/k_t| (m, 0 off contact;
+        :meth:`shear`'s notation); then its end becomes the history."""
+        shear_before = self._at_bore_nodes(self.shear_before)[:, 0]
+        relative = (self.nodal_displacement() - self._at_bore_nodes(self.displacement_before)
+                    - (self.pin_centre_m - self.centre_before.value))
+        normal = (self.bore.points + self.nodal_displacement() - self.pin_centre_m)
+        normal /= np.hypot(normal[:, 0], normal[:, 1])[:, None]
+        moved = -normal[:, 1] * relative[:, 0] + normal[:, 0] * relative[:, 1]
+        for function, expression in ((self._shear_now, self._shear_expression),
+                                     (self._loading_now, self._loading_expression)):
+            function.interpolate(expression)
+            function.x.scatter_forward()
+        shear = self._at_bore_nodes(self._shear_now)[:, 0]
+        pressure = self._at_bore_nodes(self._loading_now)[:, 0]
+        slip = np.where(pressure > 0.0, np.abs(
+            moved + (shear - shear_before) / float(self.tangential_penalty.value)), 0.0)
+        self.shear_before.x.array[:] = self._shear_now.x.array
+        self._hold_state()
+        self.last_force_N = result.resultant_force_N.copy()
+        bound = self.problem.contact.friction_coefficient * pressure
+        sticking = (pressure > 0.0) & (np.abs(shear) < bound * (1.0 - STICK_MARGIN))
+        return FrictionalStep(replace(result, pressure_Pa=pressure, slip_m=slip), shear,
+                              sticking, float(result.resultant_force_N[0]))
+
+    def _release_shear(self) -> None:
+        """No shear; the present state the history of the next frictional step, its pressure
+        the frozen one of an uncoupled step."""
+        self.shear_before.x.array[:] = 0.0
+        self.last_force_N = self.last_result.applied_force_N.copy()
+        self.frozen_pressure.interpolate(self._pressure_expression)
+        self.frozen_pressure.x.scatter_forward()
+        self._hold_state()
+
+    def _hold_state(self) -> None:
+        """The present displacement and centre as the next step's start."""
+        self.displacement_before.interpolate(self.displacement)
+        self.displacement_before.x.scatter_forward()
+        self.centre_before.value = self.pin_centre_m
 
     @contextmanager
     def _series_penalty(self, compliance_m_per_Pa: float):
@@ -159,3 +470,7 @@ class FlatContactSolver(BushingContactSolver):
         x_c = problem.mesh.contact_zone_half_width_m
         return (problem.out_of_plane_length_m * math.pi * problem.material.plane_strain_modulus_Pa
                 * x_c**2 / (4.0 * problem.indenter_radius_m))
+
+
+FLAT_NEWTON = specialised(FlatContactSolver)
+"""The coupled Newton of :mod:`fewear.contact.newton` on the flat solver's methods."""
