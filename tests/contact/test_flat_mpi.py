@@ -1,10 +1,13 @@
 """The cylinder on the flat under `mpirun -n 2` gives the serial pressures
-(tests/contact/flat_mpi_case.py).
+(tests/contact/flat_mpi_case.py) and the serial shear of its frictional steps
+(tests/contact/flat_friction_mpi_case.py).
 
 The only difference between the runs is the partition (assembly order, distributed LU). The
 nodal pressures k <-g>_+ are computed from gaps |X + u - c| - R known to about eps R, i.e. to
 k eps R ~ 20 Pa (1e-7 of p0 here): the runs may differ by a few times that, and are allowed
-1e-6 of the peak (measured: equal to the bit, the cylinder's centres 5e-20 m apart).
+1e-6 of the peak (measured: equal to the bit, the cylinder's centres 5e-20 m apart). The shear
+of the frictional steps (a tangential penalty as stiff, and stick-slip switches) is allowed
+1e-6 of its largest value (measured: 2e-8 to 4e-8).
 """
 
 import os
@@ -20,8 +23,8 @@ from tests.contact.test_mpi import MPI_ENV, mpirun_or_skip
 REPOSITORY = Path(__file__).resolve().parents[2]
 
 
-def run_case(out, *launcher):
-    command = [*launcher, sys.executable, "-m", "tests.contact.flat_mpi_case", str(out)]
+def run_case(out, *launcher, case="tests.contact.flat_mpi_case"):
+    command = [*launcher, sys.executable, "-m", case, str(out)]
     process = subprocess.run(command, capture_output=True, text=True, timeout=300,
                              cwd=REPOSITORY, env={**os.environ, **MPI_ENV})
     assert process.returncode == 0, process.stderr
@@ -45,3 +48,19 @@ def test_two_ranks_press_the_flat_as_serial(tmp_path):
     assert difference < 1e-6 * peak
     assert np.allclose(parallel["resultant_force_N"], serial["resultant_force_N"], rtol=1e-7,
                        atol=1e-9)
+
+
+@pytest.mark.mpi
+def test_two_ranks_shear_the_flat_as_serial(tmp_path):
+    mpirun = mpirun_or_skip()
+    case = "tests.contact.flat_friction_mpi_case"
+    serial = run_case(tmp_path / "serial.npz", case=case)
+    parallel = run_case(tmp_path / "mpi.npz", mpirun, "-n", "2", case=case)
+    assert (int(serial["ranks"]), int(parallel["ranks"])) == (1, 2)
+    for name in ("uncoupled", "coupled", "shifted"):
+        shear, other = serial[f"{name}_shear_Pa"], parallel[f"{name}_shear_Pa"]
+        difference = np.abs(other - shear).max() / np.abs(shear).max()
+        print(f"\n{name}: shear differs by {difference:.1e} of its largest value")
+        assert difference < 1e-6
+        assert float(parallel[f"{name}_Q_N"]) == pytest.approx(float(serial[f"{name}_Q_N"]),
+                                                               rel=1e-7)
