@@ -50,6 +50,7 @@ def test_two_ranks_press_the_flat_as_serial(tmp_path):
                        atol=1e-9)
 
 
+@pytest.mark.slow  # 7 s; the pressing case above keeps the flat's MPI path in the default suite
 @pytest.mark.mpi
 def test_two_ranks_shear_the_flat_as_serial(tmp_path):
     mpirun = mpirun_or_skip()
