@@ -5,6 +5,7 @@
   ``bore_profile``.
 - :mod:`fewear.mesh.flat`: the structured, contact-graded mesh of a flat under a rigid cylinder
   (``CONTACT_TAG`` on the top, ``CLAMPED_TAG`` on the bottom).
+- :mod:`fewear.mesh.gmsh_model`: a gmsh model built on rank 0, distributed as a DOLFINx mesh.
 - :mod:`fewear.mesh.tags`: ``CONTACT_TAG`` / ``CLAMPED_TAG``, the facet tags the contact solver
   reads (the bushing's ``BORE_TAG`` / ``OUTER_TAG`` are these).
 - :mod:`fewear.mesh.geometry`: ``BushingGeometry`` and ``MeshSettings``, ``FlatGeometry`` and

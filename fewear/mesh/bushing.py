@@ -33,6 +33,7 @@ from mpi4py import MPI
 
 from fewear.errors import FewearInputError
 from fewear.mesh.geometry import BushingGeometry, MeshSettings
+from fewear.mesh.gmsh_model import distributed_mesh
 from fewear.mesh.profile import checked_periodic_table, periodic_linear, polar_angle
 from fewear.mesh.tags import CLAMPED_TAG, CONTACT_TAG
 
@@ -57,24 +58,13 @@ def bushing_mesh(geometry: BushingGeometry, mesh_settings: MeshSettings, comm=MP
     the worn bore r_b(theta) as a periodic table (linear between its angles, every radius in
     (0, R_o)); ``None``, the circle R_b.
     """
-    from dolfinx.io import gmshio
-
     bore_radius_m = _bore_radius_function(geometry, bore_profile)
-    model_rank = 0
-    if comm.rank == model_rank:
-        gmsh.initialize()
-        gmsh.option.setNumber("General.Terminal", 0)
-        gmsh.model.add("fewear_bushing")
-        try:
-            _build_o_grid(geometry, mesh_settings)
-            _fit_nodes_to_bore(geometry, mesh_settings, bore_radius_m)
-            mesh, cell_tags, facet_tags = gmshio.model_to_mesh(gmsh.model, comm, model_rank, gdim=2)
-        finally:
-            gmsh.finalize()
-    else:
-        mesh, cell_tags, facet_tags = gmshio.model_to_mesh(gmsh.model, comm, model_rank, gdim=2)
-    mesh.name = "bushing"
-    return mesh, cell_tags, facet_tags
+
+    def build() -> None:
+        _build_o_grid(geometry, mesh_settings)
+        _fit_nodes_to_bore(geometry, mesh_settings, bore_radius_m)
+
+    return distributed_mesh(comm, "bushing", build)
 
 
 def _build_o_grid(geometry: BushingGeometry, mesh_settings: MeshSettings) -> None:

@@ -31,6 +31,7 @@ from mpi4py import MPI
 from scipy.optimize import brentq
 
 from fewear.mesh.geometry import FlatGeometry, FlatMeshSettings
+from fewear.mesh.gmsh_model import distributed_mesh
 from fewear.mesh.tags import CLAMPED_TAG, CONTACT_TAG
 
 FLAT_TAG = 3
@@ -52,23 +53,8 @@ def progression_ratio(first_size_m: float, length_m: float, count: int) -> float
 
 def flat_mesh(geometry: FlatGeometry, mesh_settings: FlatMeshSettings, comm=MPI.COMM_WORLD):
     """Mesh the flat (module docstring); returns ``(mesh, cell_tags, facet_tags)`` on ``comm``."""
-    from dolfinx.io import gmshio
-
     mesh_settings.require_fits(geometry)
-    model_rank = 0
-    if comm.rank == model_rank:
-        gmsh.initialize()
-        gmsh.option.setNumber("General.Terminal", 0)
-        gmsh.model.add("fewear_flat")
-        try:
-            _build_patches(geometry, mesh_settings)
-            mesh, cell_tags, facet_tags = gmshio.model_to_mesh(gmsh.model, comm, model_rank, gdim=2)
-        finally:
-            gmsh.finalize()
-    else:
-        mesh, cell_tags, facet_tags = gmshio.model_to_mesh(gmsh.model, comm, model_rank, gdim=2)
-    mesh.name = "flat"
-    return mesh, cell_tags, facet_tags
+    return distributed_mesh(comm, "flat", lambda: _build_patches(geometry, mesh_settings))
 
 
 def _build_patches(geometry: FlatGeometry, mesh_settings: FlatMeshSettings) -> None:
