@@ -70,11 +70,15 @@ def block_on_ring_from_config(config: dict) -> tuple[FlatContactProblem, Sliding
     return problem, settings
 
 
+def archard_area_m2(problem: FlatContactProblem, settings: SlidingWearSettings) -> float:
+    """Archard's worn area per unit length, k P' S with P' = P/L (m^2, :mod:`fewear.wear.scar`)."""
+    return (settings.wear_coefficient_m2_N * settings.normal_force_N
+            / problem.geometry.length_m * settings.sliding_distance_m)
+
+
 def closed_form_depth_m(problem: FlatContactProblem, settings: SlidingWearSettings) -> float:
     """The ring-arc scar's depth d of the worn area k P' S (m, :mod:`fewear.wear.scar`)."""
-    area = (settings.wear_coefficient_m2_N * settings.normal_force_N
-            / problem.geometry.length_m * settings.sliding_distance_m)
-    return ring_arc_depth_m(problem.geometry.cylinder_radius_m, area)
+    return ring_arc_depth_m(problem.geometry.cylinder_radius_m, archard_area_m2(problem, settings))
 
 
 def _require_zone_holds_the_scar(problem: FlatContactProblem,
@@ -111,9 +115,8 @@ def scar_figures(x_m: np.ndarray, depth_m: np.ndarray) -> dict[str, float]:
     the depth integrated over that width by the trapezoid rule on the nodes within it)."""
     depth, width = scar_depth_and_width_m(x_m, depth_m)
     worn = depth_m > EDGE_SHARE * depth
-    inside_x, inside_depth = x_m[worn], depth_m[worn]
-    area = float(np.sum(0.5 * (inside_depth[1:] + inside_depth[:-1]) * np.diff(inside_x)))
-    return {"max_depth_m": depth, "width_m": width, "worn_area_m2": area}
+    return {"max_depth_m": depth, "width_m": width,
+            "worn_area_m2": float(np.trapz(depth_m[worn], x_m[worn]))}
 
 
 def scar_summary(run, problem: FlatContactProblem, settings: SlidingWearSettings,
@@ -132,9 +135,7 @@ def scar_summary(run, problem: FlatContactProblem, settings: SlidingWearSettings
         "closed_form": {"max_depth_m": depth,
                         "width_m": ring_arc_width_m(radius, depth, EDGE_SHARE),
                         "chord_m": ring_arc_width_m(radius, depth),
-                        "worn_area_m2": (settings.wear_coefficient_m2_N * settings.normal_force_N
-                                         / problem.geometry.length_m
-                                         * settings.sliding_distance_m)},
+                        "worn_area_m2": archard_area_m2(problem, settings)},
         "measured": {"tests": tests, **spread},
         "edge_share": EDGE_SHARE,
         "wear_steps": len(run.steps),

@@ -3,10 +3,9 @@ from the config at the command's edge into typed stage inputs."""
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
-from fewear.errors import FewearInputError
+from fewear.errors import FewearInputError, require_finite_positive
 from fewear.wear.extrapolation import ExtrapolationSettings
 from fewear.wear.impact import NO_IMPACT_WEAR, ImpactWearLaw
 
@@ -117,9 +116,7 @@ class SlidingWearSettings:
 
     def __post_init__(self):
         for name in ("normal_force_N", "sliding_distance_m", "wear_coefficient_m2_N"):
-            value = getattr(self, name)
-            if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0.0):
-                raise FewearInputError(f"{name} = {value!r}: must be a finite number > 0")
+            require_finite_positive(name, getattr(self, name))
         steps = self.wear_steps
         if not (isinstance(steps, int) and not isinstance(steps, bool) and 1 <= steps <= 10000):
             raise FewearInputError(f"wear_steps = {steps!r}: must be a whole number in [1, 10000]")

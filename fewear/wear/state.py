@@ -184,4 +184,4 @@ class FlatWearState:
     def worn_area_m2(self) -> float:
         """Area removed from the flat's cross-section, integral of h dx (m^2, the worn volume
         per unit length; trapezoid rule between the nodes)."""
-        return float(np.sum(0.5 * (self.depth_m[1:] + self.depth_m[:-1]) * np.diff(self.x_m)))
+        return float(np.trapz(self.depth_m, self.x_m))
