@@ -5,6 +5,7 @@ The made-up model at depth-increment fraction f: the bore of a run is D (1 + 4 f
 constant +-a f for the runs started 1 and 2 deg later (0 for the first), so its runs' spread (the
 sample RMS about their mean) is exactly a f and halving f moves their mean by 2 f D."""
 
+import json
 import math
 from types import SimpleNamespace
 
@@ -17,6 +18,10 @@ from fewear.diagnose.joint.forward import WearHistory
 D_M, SPREAD_PER_F_M, SCATTER_M, LAST = 4e-6, 6e-6, 0.5e-6, 4000
 NODES = 12
 SCALE = LAST / (LAST + 1)  # the runs go one cycle past the last count; depth linear in cycles
+
+
+def _key(config: dict) -> str:
+    return json.dumps(config, sort_keys=True)
 
 
 def _made_up_run(config: dict) -> WearHistory:
@@ -34,12 +39,14 @@ def _made_up_run(config: dict) -> WearHistory:
 @pytest.fixture
 def made_up(monkeypatch):
     """The made-up runs in place of the wear loop, the scatter set to :data:`SCATTER_M`."""
-    made = []
+    made, memo = [], {}
 
-    def runs(requests):
-        made.extend(config["wear_loop"]["max_depth_increment_fraction"]
-                    for config, _ in requests)
-        return [_made_up_run(config) for config, _ in requests]
+    def runs(requests):  # memoised by config, as the wear loop's runs are
+        for config, _ in requests:
+            if _key(config) not in memo:
+                made.append(config["wear_loop"]["max_depth_increment_fraction"])
+                memo[_key(config)] = _made_up_run(config)
+        return [memo[_key(config)] for config, _ in requests]
 
     monkeypatch.setattr(resolution, "simulate_wears", runs)
     monkeypatch.setattr(resolution, "baseline_fit",
@@ -80,8 +87,10 @@ def test_the_coarsest_blocks_whose_noise_is_within_the_scatter_are_chosen(made_u
     assert found["doubled_recorded_cycles_rms_m"] == pytest.approx(0.1e-6 * rms_of_counts)
     assert resolution.model_noise_m(found) == pytest.approx(max(spreads[2],
                                                                 found["halved_blocks_rms_m"]))
-    # three runs per level and the doubled recorded cycles at the chosen one
-    assert made_up.count(0.0625) == 4 and len(made_up) == 13
+    # three runs per level, and beside each level the doubled recorded cycles of the level
+    # before (needed if that one is chosen): the chosen one's is not run again
+    assert made_up == ([0.25] * 3 + [0.125] * 3 + [0.25] + [0.0625] * 3 + [0.125]
+                       + [0.03125] * 3 + [0.0625])
 
 
 def test_the_finest_allowed_blocks_when_the_noise_stays_above_the_scatter(made_up):

@@ -79,6 +79,11 @@ class Cause:
         """The runs the cause is fitted on, one candidate per form (none: untestable)."""
         raise NotImplementedError
 
+    def runs_asked(self, config: dict, settings: RunGrids) -> list[tuple[dict, str]]:
+        """The runs ``[(config, label), ...]`` that :meth:`forms` asks for on the believed
+        ``config`` and do not depend on its run (made beside it, in one batch)."""
+        return []
+
     def extended_config(self, config: dict, params: dict, form: str) -> dict:
         """The believed ``config`` with the cause at a fit's ``params`` (in its ``form``), k
         scaled by the fitted level."""
@@ -205,15 +210,24 @@ class FlexibleLink(GridCause):
         return changed
 
     def forms(self, believed: Believed, settings: RunGrids) -> tuple[Candidate, ...]:
+        runs = iter(believed.make_runs(self.runs_asked(believed.config, settings)))
         forms = []
-        for form, grid, label in (("", settings.rod_modulus_factors, "E"),
-                                  ("damping", settings.rod_damping_factors, "damping")):
-            grid = sorted(grid)
-            if grid:
-                runs = believed.make_runs([(self.switched_on(believed.config, f, form),
-                                            f"flexible rod, {label} x {f:g}") for f in grid])
-                forms += lasting(self.candidate(runs, grid, form), believed.needed_cycles)
+        for form, grid in self._grids(settings):
+            made = [next(runs) for _ in grid]
+            forms += lasting(self.candidate(made, grid, form), believed.needed_cycles)
         return tuple(forms)
+
+    def runs_asked(self, config: dict, settings: RunGrids) -> list[tuple[dict, str]]:
+        return [(self.switched_on(config, f, form),
+                 f"flexible rod, {'damping' if form else 'E'} x {f:g}")
+                for form, grid in self._grids(settings) for f in grid]
+
+    @staticmethod
+    def _grids(settings: RunGrids) -> list[tuple[str, list[float]]]:
+        """(form, its sorted factors) of the forms with factors to run."""
+        return [(form, sorted(grid)) for form, grid in (("", settings.rod_modulus_factors),
+                                                        ("damping", settings.rod_damping_factors))
+                if grid]
 
 
 class Friction(GridCause):
@@ -232,10 +246,15 @@ class Friction(GridCause):
     def forms(self, believed: Believed, settings: RunGrids) -> tuple[Candidate, ...]:
         assumed = believed.config["joint"]["friction_coefficient"]
         grid = sorted(set(settings.friction_grid) | {assumed})
-        others = iter(believed.make_runs([(self.switched_on(believed.config, mu), f"mu = {mu:g}")
-                                          for mu in grid if mu != assumed]))
+        others = iter(believed.make_runs(self.runs_asked(believed.config, settings)))
         runs = [believed.run if mu == assumed else next(others) for mu in grid]
         return lasting(self.candidate(runs, grid), believed.needed_cycles)
+
+    def runs_asked(self, config: dict, settings: RunGrids) -> list[tuple[dict, str]]:
+        """The grid's values but the believed one (its run is the believed run)."""
+        assumed = config["joint"]["friction_coefficient"]
+        return [(self.switched_on(config, mu), f"mu = {mu:g}")
+                for mu in sorted(set(settings.friction_grid) | {assumed}) if mu != assumed]
 
 
 class ImpactWear(GridCause):

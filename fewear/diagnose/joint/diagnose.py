@@ -138,10 +138,11 @@ from fewear.diagnose.joint.fitting import (
 from fewear.diagnose.joint.forward import (
     RunMaker,
     WearHistory,
+    candidate_config,
     candidate_runner,
     cycle_on_worn_bore,
     model_config,
-    simulate_wear,
+    simulate_wears,
 )
 from fewear.diagnose.joint.measured import JointMeasurements
 from fewear.diagnose.joint.pairs import causes_of, fit_pairs, pair_candidates
@@ -375,10 +376,13 @@ def _round(data: JointMeasurements, obs: Observations, config: dict,
     which no cause is named (:func:`_noise_floor_m`)."""
     horizon, deepest_m = _reach(obs, settings.max_k_scale), float(obs.depth_m.max())
     label = " + ".join(("believed model",) + named)
-    base = simulate_wear(_believed_config(config, obs, settings), label)
+    names, untestable = _to_try(config, settings, named)
+    ahead = [(candidate_config(changed, horizon, deepest_m), run_label)
+             for name in names for changed, run_label in CAUSES[name].runs_asked(config, settings)]
+    # the candidates' runs that do not need the believed run are made beside it
+    base = simulate_wears([(_believed_config(config, obs, settings), label)] + ahead)[0]
     baseline = baseline_fit("baseline" if not named else label, base, obs,
                             settings.max_offset_deg)
-    names, untestable = _to_try(config, settings, named)
     make_runs = candidate_runner(horizon, deepest_m)
     believed_model = Believed(config, base, horizon, needed_cycles(obs, settings), make_runs)
     candidates = {name: CAUSES[name].forms(believed_model, settings) for name in names}

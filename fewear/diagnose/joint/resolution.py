@@ -92,10 +92,9 @@ def resolve_wear_step(config: dict, obs: Observations, max_halvings: int,
         if halving > 0 and (_resolved(levels[-2], change, scatter) or halving > max_halvings):
             break
         configs.append(with_halved_wear_steps(configs[-1]))
-        members.append(_members(configs[-1]))
+        members.append(_members(configs[-1], _doubled(configs[-2])))
     chosen = _chosen_level(levels, scatter, max_halvings)
-    doubled, = simulate_wears([(with_doubled_recorded_cycles(configs[chosen]),
-                                "believed model, recorded cycles doubled")])
+    doubled, = simulate_wears([_doubled(configs[chosen])])
     resolved = _with_blocks(config, levels[chosen].blocks)
     next_move = levels[chosen + 1].change_from_coarser_rms_m if chosen + 1 < len(levels) else None
     return resolved, {
@@ -133,15 +132,23 @@ def _chosen_level(levels: list[WearStepLevel], scatter_m: float | None,
     return min(len(levels) - 1, max_halvings)
 
 
-def _members(config: dict) -> list[WearHistory]:
+def _members(config: dict, beside: tuple[dict, str] | None = None) -> list[WearHistory]:
     """Runs of ``config`` whose crank starts 0 and :data:`MEMBER_START_OFFSETS_DEG` later, side
-    by side."""
+    by side, and the run ``beside`` with them: the level before's :func:`_doubled` run, which
+    is needed if that level is chosen (decided by these runs) and otherwise fills the core the
+    three runs leave idle on a two-core machine."""
     blocks = ", ".join(f"{key} = {value:g}" for key, value in _blocks(config).items())
     requests = [(config, f"believed model, {blocks}")]
     for offset in MEMBER_START_OFFSETS_DEG:
         requests.append((started_later(config, offset),
                          f"believed model, {blocks}, started {offset:g} deg later"))
-    return simulate_wears(requests)
+    return simulate_wears(requests + ([beside] if beside else []))[:len(requests)]
+
+
+def _doubled(config: dict) -> tuple[dict, str]:
+    """The run of ``config`` with twice the recorded cycles (the resolution's
+    ``doubled_recorded_cycles_rms_m``)."""
+    return (with_doubled_recorded_cycles(config), "believed model, recorded cycles doubled")
 
 
 _BLOCK_KEYS = {"adaptive": ("max_depth_increment_fraction", "max_extrapolation_factor"),
