@@ -55,6 +55,31 @@ Depths are relative to the unworn bore (the lab subtracts a reference trace of t
 which removes the set-up eccentricity and the form error). A bore gauge reads the deepest point
 of the wear at 5 further cycle counts between 2,000 and 20,000 (not the profile counts): the
 largest nodal depth plus N(0, 1 um), at 0.1 um resolution.
+
+An accelerometer on the slider (:class:`Accelerometer`, drawn per data set from its own stream
+``default_rng([seed, 7])``, so the files above do not change with it) records the slider's
+acceleration along the slide at the first and the last profile count, written to
+``acceleration.csv`` (``time_s, slider_acceleration_m_s2, cycles``; time from each trace's
+trigger). The signal is the truth's mechanism (its rod, rigid or the flexible rod, its friction;
+the believed mechanism for the causes that do not change it) on the truth's worn bore at that
+count (the clearance profile of the truth's nodal depth, impact pockets included), run from the
+ideal mechanism through the config's settling cycles and one revolution more, then up to one
+revolution to the trigger and the trace's revolutions (:func:`slider_acceleration`); the
+acceleration is the slope of the slider velocity on a uniform grid of 16 points per sample (the
+mean acceleration over each grid step, so an impact's velocity jump is kept whole). The instrument,
+an IEPE accelerometer into a DAQ:
+
+- 10,240 samples per second (512 per crank revolution at 1,200 rpm), 4-6 consecutive
+  revolutions per trace (drawn per data set);
+- the DAQ's anti-alias filter: 4th-order Butterworth low-pass at 0.4 of the rate (4,096 Hz), run
+  causally over the signal from one revolution before the trace;
+- the trigger: a free-running start, the crank angle at the first sample U(0, 360) degrees per
+  trace;
+- a sensitivity error of the accelerometer, U(-4, +4) %, and a DC offset of the amplifier,
+  U(-3, +3) m/s^2, both per data set;
+- white noise of standard deviation U(1, 3) % of the trace's RMS (per data set), and the DAQ's
+  24-bit resolution over +-5,000 m/s^2 (0.0006 m/s^2; the values are written to 6 significant
+  digits).
 """
 
 from __future__ import annotations
@@ -86,6 +111,8 @@ wear_steps_per_block = 1
 """The model the user believes: the coarse rigid-rod wear loop with a steel rod (the density this
 generator was written for; defaults otherwise)."""
 IMPACT_RECORDED_CYCLES = 3
+ACCELEROMETER_STREAM = 7
+"""The accelerometer's random stream: ``default_rng([seed, ACCELEROMETER_STREAM])``."""
 
 
 @dataclass(frozen=True)
@@ -138,6 +165,25 @@ class LabInstruments:
 
 
 @dataclass(frozen=True)
+class Accelerometer:
+    """The accelerometer on the slider for one data set (module doc): traces at
+    ``trace_cycles``, each of ``revolutions`` crank revolutions from the crank angle
+    ``trigger_deg`` (one per trace); SI units."""
+
+    trace_cycles: tuple[int, ...]
+    revolutions: int
+    trigger_deg: tuple[float, ...]
+    gain: float
+    offset_m_s2: float
+    noise_fraction: float
+    sample_rate_hz: float = 10240.0
+    cutoff_fraction: float = 0.4
+    filter_order: int = 4
+    oversampling: int = 16
+    resolution_m_s2: float = 10000.0 / 2**24
+
+
+@dataclass(frozen=True)
 class DataSet:
     """The files of one data set and what was hidden in them."""
 
@@ -147,6 +193,8 @@ class DataSet:
     truth: HiddenTruth
     lab: LabInstruments
     params: dict = field(default_factory=dict)
+    acceleration_csv: Path | None = None
+    accelerometer: Accelerometer | None = None
 
 
 def believed_config(path: Path) -> dict:
@@ -228,6 +276,81 @@ def write_measurements(history: WearHistory, lab: LabInstruments, rng: np.random
     lines = ["# bore gauge, deepest point of the wear", "cycles,max_wear_depth_m"]
     lines += [f"{c},{d:.4e}" for c, d in zip(lab.gauge_cycles, depth)]
     max_wear_csv.write_text("\n".join(lines) + "\n")
+
+
+# --- the accelerometer on the slider --------------------------------------------------------
+
+def draw_accelerometer(rng: np.random.Generator, lab: LabInstruments) -> Accelerometer:
+    """The accelerometer and its traces for one data set (module doc), from its own stream."""
+    cycles = (lab.profile_cycles[0], lab.profile_cycles[-1])
+    return Accelerometer(
+        cycles, revolutions=int(rng.integers(4, 7)),
+        trigger_deg=tuple(float(a) for a in rng.uniform(0.0, 360.0, len(cycles))),
+        gain=float(1.0 + rng.uniform(-0.04, 0.04)), offset_m_s2=float(rng.uniform(-3.0, 3.0)),
+        noise_fraction=float(rng.uniform(0.01, 0.03)))
+
+
+def slider_acceleration(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray,
+                        revolutions: int, step_s: float):
+    """The true slider acceleration (m/s^2) on a uniform grid of ``step_s`` over
+    ``revolutions`` + 2 revolutions (one of run-in, one in which the trigger falls), for the
+    config's rod on the bore worn by ``depth_m`` at the nodes ``angle_rad``; and the crank angle
+    (rad) of its first point. The slider velocity of the dynamics, linear between its steps, is
+    differenced on the grid."""
+    from fewear.loop.settings import run_inputs_from_config
+    from fewear.mbd.slider_crank import simulate
+    from fewear.wear.state import WearState
+
+    inputs = run_inputs_from_config(config)
+    state = replace(WearState.unworn(angle_rad), depth_m=np.asarray(depth_m, dtype=float))
+    geometry = inputs.contact.geometry
+    joint = replace(inputs.dynamics.joint,
+                    profile=state.clearance_profile(geometry.inner_radius_m,
+                                                    geometry.pin_radius_m))
+    crank = replace(inputs.dynamics.crank, rod=config["wear_loop"]["rod_models"][0],
+                    joint="clearance", recorded_cycles=revolutions + 2)
+    history, _, _ = simulate(replace(inputs.dynamics, crank=crank, joint=joint))
+    count = int(math.floor((history.time_s[-1] - history.time_s[0]) / step_s + 1e-9))
+    grid = history.time_s[0] + step_s * np.arange(count + 1)
+    velocity = np.interp(grid, history.time_s, history.slider_velocity_m_s)
+    return np.diff(velocity) / step_s, float(history.crank_angle_rad[0])
+
+
+def acceleration_trace(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray,
+                       meter: Accelerometer, trigger_deg: float,
+                       rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+    """One recorded trace (module doc): time from the trigger (s) and acceleration (m/s^2)."""
+    from scipy.signal import butter, sosfilt, sosfilt_zi
+
+    omega = config["mechanism"]["crank_speed_rpm"] * math.pi / 30.0
+    step = 1.0 / (meter.sample_rate_hz * meter.oversampling)
+    signal, start_rad = slider_acceleration(config, angle_rad, depth_m, meter.revolutions, step)
+    sos = butter(meter.filter_order, meter.cutoff_fraction * meter.sample_rate_hz, fs=1.0 / step,
+                 output="sos")
+    filtered, _ = sosfilt(sos, signal, zi=sosfilt_zi(sos) * signal[0])
+    # the trace starts one revolution in, at the trigger's crank angle
+    lead = 2.0 * math.pi + np.mod(math.radians(trigger_deg) - start_rad, 2.0 * math.pi)
+    first = int(round(lead / omega / step))
+    samples = int(round(meter.revolutions * 2.0 * math.pi / omega * meter.sample_rate_hz))
+    picked = filtered[first::meter.oversampling][:samples]
+    rms = float(np.sqrt(np.mean(picked**2)))
+    reading = (meter.gain * picked + meter.offset_m_s2
+               + rng.normal(0.0, meter.noise_fraction * rms, picked.size))
+    reading = np.round(reading / meter.resolution_m_s2) * meter.resolution_m_s2
+    return np.arange(picked.size) / meter.sample_rate_hz, reading
+
+
+def write_acceleration(truth: HiddenTruth, history: WearHistory, meter: Accelerometer,
+                       rng: np.random.Generator, path: Path) -> None:
+    """The accelerometer's traces at ``meter.trace_cycles`` into ``path``."""
+    lines = ["# slider accelerometer (IEPE, DAQ 10,240 S/s, anti-alias 4th-order Butterworth at "
+             "0.4 fs), along the slide; time from each trace's trigger",
+             "time_s,slider_acceleration_m_s2,cycles"]
+    for cycles, trigger in zip(meter.trace_cycles, meter.trigger_deg):
+        time_s, reading = acceleration_trace(truth.config, history.angle_rad,
+                                             history.nodal_depth_m(cycles), meter, trigger, rng)
+        lines += [f"{t:.8f},{a:.6g},{cycles}" for t, a in zip(time_s, reading)]
+    path.write_text("\n".join(lines) + "\n")
 
 
 # --- the hidden causes --------------------------------------------------------------------
@@ -358,8 +481,9 @@ def with_impact_wear(history: WearHistory, config: dict,
 # --- a whole data set ---------------------------------------------------------------------
 
 def write_data_set(cause: str, seed: int, folder: Path) -> DataSet:
-    """Draw the truth and the lab for ``cause`` and ``seed``, measure, and write the two CSV
-    files and the believed model's TOML into ``folder``."""
+    """Draw the truth and the lab for ``cause`` and ``seed``, measure, and write the three CSV
+    files (profiles, maximum depths, the slider's acceleration) and the believed model's TOML
+    into ``folder``."""
     rng = np.random.default_rng(seed)
     folder.mkdir(parents=True, exist_ok=True)
     believed_toml = folder / "believed.toml"
@@ -369,8 +493,12 @@ def write_data_set(cause: str, seed: int, folder: Path) -> DataSet:
     history, extra = true_history(truth)
     profiles_csv, max_wear_csv = folder / "profiles.csv", folder / "max_wear.csv"
     write_measurements(history, lab, rng, profiles_csv, max_wear_csv)
+    meter_rng = np.random.default_rng([seed, ACCELEROMETER_STREAM])
+    meter = draw_accelerometer(meter_rng, lab)
+    acceleration_csv = folder / "acceleration.csv"
+    write_acceleration(truth, history, meter, meter_rng, acceleration_csv)
     return DataSet(profiles_csv, max_wear_csv, believed_toml, truth, lab,
-                   {**truth.params, **extra})
+                   {**truth.params, **extra}, acceleration_csv, meter)
 
 
 def data_set_seed(cause: str, index: int) -> int:
