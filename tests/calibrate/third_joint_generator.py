@@ -103,6 +103,29 @@ geometric between (rounded to 100 cycles).
 Maximum-depth growth: a bore gauge with a spherical anvil of radius U[1.5, 3] mm (the same
 ball-probe filter) searches the deepest point at 3-4 other counts in [1,000, last]; Gaussian
 noise U[1.0, 2.5] um.
+Slider acceleration (:class:`Accelerometer`, ``acceleration.csv``: ``time_s,
+slider_acceleration_m_s2, cycles``, time from each trace's trigger): a piezoresistive
+accelerometer (DC response) on the slider, along the slide, read by a data logger at the first,
+the middle (index n // 2) and the last profile count. The signal is the truth's mechanism (the
+config of :func:`truth_run_config`: its rod, its friction) on the true bore at that count
+(:meth:`TrueBore.depth_m` on the fine grid: running-in's tau(N), the impact pockets included),
+from the ideal mechanism through the config's settling cycles, one revolution of filter run-in,
+up to one revolution to the trigger, then the trace (:func:`slider_acceleration`): the slider
+velocity of the dynamics (linear between the integrator's steps) differenced on a 2 us grid.
+- the logger's rate: 5,000, 6,400 or 8,000 samples per second (one per data set: 250, 320 or 400
+  per crank revolution at 1,200 rpm); 3 or 4 revolutions per trace (drawn per trace);
+- anti-alias: a 6th-order Butterworth low-pass at 0.35 of the rate, run causally from rest over
+  the run-in;
+- the trigger: a once-per-revolution tachometer mark at an unknown crank angle, U[0, 360) deg per
+  data set, plus N(0, 2 deg) of trigger jitter per trace;
+- sensitivity error N(0, 2.5 %) (clipped to +-6 %) and zero offset U[-15, 15] m/s^2, per data set;
+- a noise floor: white, standard deviation U[8, 20] m/s^2 per data set (the sensor's and
+  logger's broadband noise, not scaled with the signal), and the logger's 16-bit converter over
+  +-5,000 m/s^2 (0.153 m/s^2 steps).
+Its random draws come from the seed's :class:`numpy.random.SeedSequence` child numbered
+:data:`ACCELEROMETER_SPAWN_KEY` (apart from the lab's ``default_rng(seed)`` and the causes'
+children 0-5), so the other files do not change with it. ``noise=False`` drops the noise floor,
+the jitter and the quantisation (the gain, offset and trigger stay).
 
 Neglected
 ---------
@@ -157,6 +180,8 @@ FINE_POINTS = 2880
 IMPACT_EVALUATIONS = 12
 """Crank cycles simulated (on the bore worn so far) to find the impacts of impact wear."""
 TWO_PI = 2.0 * math.pi
+ACCELEROMETER_SPAWN_KEY = 100
+"""The accelerometer's random stream: the seed's SeedSequence child with this spawn key."""
 
 
 # --- the data set and the lab ---------------------------------------------------------------
@@ -197,6 +222,25 @@ class Lab:
                 "gauge_noise_um": self.gauge_noise_m * 1e6}
 
 
+@dataclass(frozen=True)
+class Accelerometer:
+    """The slider accelerometer and its plan (module doc); SI units, angles in degrees.
+    ``trace_cycles``, ``revolutions`` and ``trigger_deg`` per trace (the crank angle of the first
+    sample: the tachometer mark plus the jitter)."""
+
+    trace_cycles: tuple[int, ...]
+    revolutions: tuple[int, ...]
+    trigger_deg: tuple[float, ...]
+    sample_rate_hz: float
+    gain: float
+    offset_m_s2: float
+    noise_m_s2: float
+    filter_order: int = 6
+    cutoff_fraction: float = 0.35
+    grid_step_s: float = 2e-6
+    quantum_m_s2: float = 10000.0 / 2**16
+
+
 @dataclass(frozen=True, eq=False)
 class DataSet:
     """One generated data set: the believed config, the measured files and the hidden truth.
@@ -212,6 +256,8 @@ class DataSet:
     max_wear_csv: Path
     params: dict
     lab: Lab
+    acceleration_csv: Path | None = None
+    accelerometer: Accelerometer | None = None
 
     @property
     def causes(self) -> tuple[str, ...]:
@@ -507,6 +553,16 @@ def believed_history(config: dict, last_cycles: int):
     return _run(config, last_cycles)
 
 
+def truth_run_config(causes, params: dict, config: dict) -> dict:
+    """The config of the truth's forward run (and mechanism): ``config`` changed by every config
+    cause among ``causes`` (:data:`CONFIG_CAUSES`)."""
+    run_config = copy.deepcopy(config)
+    for cause in truth_causes(causes):
+        if cause in CONFIG_CAUSES:
+            run_config = truth_config(cause, params, run_config)
+    return run_config
+
+
 def true_bore(causes, params: dict, config: dict, last_cycles: int) -> tuple[TrueBore, dict]:
     """The true bore of ``causes`` (one cause's name, or several: :func:`truth_causes`) and the
     parameters derived on the way (for running-in the believed cycles at the last count, for
@@ -515,10 +571,7 @@ def true_bore(causes, params: dict, config: dict, last_cycles: int) -> tuple[Tru
     tau(N), impact wear taken on it (module doc)."""
     causes = truth_causes(causes)
     radius = config["bushing"]["inner_radius_m"]
-    run_config = copy.deepcopy(config)
-    for cause in causes:
-        if cause in CONFIG_CAUSES:
-            run_config = truth_config(cause, params, run_config)
+    run_config = truth_run_config(causes, params, config)
     timing, needed, derived = None, last_cycles, {}
     if "running_in" in causes:
         timing = (params["initial_rate_factor"], params["running_in_cycles"])
@@ -653,6 +706,83 @@ def write_max_wear_csv(path: Path, depth: np.ndarray, lab: Lab) -> None:
     path.write_text("\n".join(lines) + "\n")
 
 
+def draw_accelerometer(rng: np.random.Generator, lab: Lab, noise: bool = True) -> Accelerometer:
+    """The slider accelerometer of one data set (module doc), from its own stream."""
+    counts = lab.profile_cycles
+    cycles = tuple(sorted({counts[0], counts[len(counts) // 2], counts[-1]}))
+    rate = float(rng.choice([5000.0, 6400.0, 8000.0]))
+    revolutions = tuple(int(r) for r in rng.integers(3, 5, len(cycles)))
+    mark = float(rng.uniform(0.0, 360.0))
+    jitter = rng.normal(0.0, 2.0, len(cycles))
+    gain = 1.0 + float(np.clip(rng.normal(0.0, 0.025), -0.06, 0.06))
+    offset = float(rng.uniform(-15.0, 15.0))
+    floor = float(rng.uniform(8.0, 20.0))
+    if not noise:
+        jitter, floor = np.zeros(len(cycles)), 0.0
+    return Accelerometer(cycles, revolutions, tuple(float(mark + j) % 360.0 for j in jitter),
+                         rate, gain, offset, floor,
+                         quantum_m_s2=Accelerometer.quantum_m_s2 if noise else 0.0)
+
+
+def slider_acceleration(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray,
+                        revolutions: int, step_s: float) -> tuple[np.ndarray, float]:
+    """The slider's true acceleration (m/s^2) every ``step_s`` from the start of the recorded
+    revolutions (``revolutions`` + 2 of them: run-in, the trigger's, the trace's) of the config's
+    mechanism on the bore worn by ``depth_m`` at ``angle_rad``; and the crank angle (rad) there."""
+    from fewear.loop.settings import run_inputs_from_config
+    from fewear.mbd.slider_crank import simulate
+    from fewear.wear.state import WearState
+
+    inputs = run_inputs_from_config(config)
+    geometry = inputs.contact.geometry
+    state = replace(WearState.unworn(angle_rad), depth_m=np.asarray(depth_m, dtype=float))
+    joint = replace(inputs.dynamics.joint, profile=state.clearance_profile(
+        geometry.inner_radius_m, geometry.pin_radius_m))
+    crank = replace(inputs.dynamics.crank, rod=config["wear_loop"]["rod_models"][0],
+                    joint="clearance", recorded_cycles=revolutions + 2)
+    history, _, _ = simulate(replace(inputs.dynamics, crank=crank, joint=joint))
+    t = history.time_s
+    grid = np.arange(t[0], t[-1], step_s)
+    velocity = np.interp(grid, t, history.slider_velocity_m_s)
+    return np.diff(velocity) / step_s, float(history.crank_angle_rad[0])
+
+
+def measure_acceleration(bore: TrueBore, config: dict, meter: Accelerometer, trace: int,
+                         rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+    """Trace ``trace`` of the slider accelerometer (module doc): (time from the trigger in s,
+    reading in m/s^2)."""
+    from scipy.signal import butter, sosfilt
+
+    revolutions = meter.revolutions[trace]
+    step = meter.grid_step_s
+    truth, start_rad = slider_acceleration(config, bore.angle_rad,
+                                           bore.depth_m(meter.trace_cycles[trace]), revolutions,
+                                           step)
+    sos = butter(meter.filter_order, meter.cutoff_fraction * meter.sample_rate_hz, fs=1.0 / step,
+                 output="sos")
+    filtered = sosfilt(sos, truth)
+    omega = config["mechanism"]["crank_speed_rpm"] * TWO_PI / 60.0
+    to_trigger = TWO_PI + (math.radians(meter.trigger_deg[trace]) - start_rad) % TWO_PI
+    count = int(round(revolutions * TWO_PI / omega * meter.sample_rate_hz))
+    time_s = np.arange(count) / meter.sample_rate_hz
+    reading = np.interp(to_trigger / omega + time_s, step * np.arange(filtered.size), filtered)
+    reading = meter.gain * reading + meter.offset_m_s2
+    if meter.noise_m_s2 > 0.0:
+        reading = reading + rng.normal(0.0, meter.noise_m_s2, count)
+    if meter.quantum_m_s2 > 0.0:
+        reading = np.round(reading / meter.quantum_m_s2) * meter.quantum_m_s2
+    return time_s, reading
+
+
+def write_acceleration_csv(path: Path, traces, meter: Accelerometer) -> None:
+    lines = [f"# slider accelerometer (piezoresistive), logger {meter.sample_rate_hz:.0f} S/s, "
+             "6th-order Butterworth anti-alias; time from each trace's trigger",
+             "time_s,slider_acceleration_m_s2,cycles"]
+    for cycles, (time_s, reading) in zip(meter.trace_cycles, traces):
+        lines += [f"{float(t)!r},{float(a)!r},{cycles}" for t, a in zip(time_s, reading)]
+    path.write_text("\n".join(lines) + "\n")
+
+
 def believed_config(path: Path) -> dict:
     from fewear.io.config import load_config
     from fewear.loop.settings import run_sections
@@ -668,8 +798,9 @@ def rms_difference_m(bore: TrueBore, config: dict, cycles: int) -> float:
 
 def write_data_set(cause: str, seed: int, directory: Path, noise: bool = True) -> DataSet:
     """Draw the lab and the hidden truth of ``cause`` from ``seed``, run the truth, measure it and
-    write ``believed.toml``, ``profiles.csv`` and ``max_wear.csv`` into ``directory``.
-    ``noise=False``: the same data set without noise, jitter or centre offsets."""
+    write ``believed.toml``, ``profiles.csv``, ``max_wear.csv`` and ``acceleration.csv`` into
+    ``directory``. ``noise=False``: the same data set without noise, jitter or centre
+    offsets."""
     if cause not in CAUSES:
         raise ValueError(f"unknown cause {cause!r}; expected one of {CAUSES}")
     rng = np.random.default_rng(seed)
@@ -718,4 +849,13 @@ def _write(label: str, causes: tuple[str, ...], seed: int, directory: Path, nois
     write_max_wear_csv(max_wear_csv, max_wear, lab)
     truth = {**params, **derived,
              "effect_rms_um": rms_difference_m(bore, config, last) * 1e6}
-    return DataSet(label, seed, toml, profiles_csv, max_wear_csv, truth, lab)
+    meter_rng = np.random.default_rng(np.random.SeedSequence(
+        seed, spawn_key=(ACCELEROMETER_SPAWN_KEY,)))
+    meter = draw_accelerometer(meter_rng, lab, noise)
+    mechanism = truth_run_config(causes, params, config)
+    acceleration_csv = directory / "acceleration.csv"
+    write_acceleration_csv(acceleration_csv, [
+        measure_acceleration(bore, mechanism, meter, trace, meter_rng)
+        for trace in range(len(meter.trace_cycles))], meter)
+    return DataSet(label, seed, toml, profiles_csv, max_wear_csv, truth, lab, acceleration_csv,
+                   meter)
