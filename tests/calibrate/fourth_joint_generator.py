@@ -154,6 +154,38 @@ y = (1 - s) max h_f + N(0, 0.6 um), quantised to 0.1 um. ``noise=False`` drops t
 error, b, c, d, e, the bubbles and the quantisation, and keeps everything else (theta_0, s, the
 filter, the coverage and the counts): the same data set without the instrument's noise.
 
+Slider acceleration (:class:`AccelerometerPlan`, :func:`measure_acceleration`,
+``acceleration.csv``: ``time_s, slider_acceleration_m_s2, cycles``, time from each trace's first
+sample): the lab fits a piezoelectric accelerometer to the slider, along the slide, after the
+first replica is cast, and records with a dynamic signal analyser when the joint is stopped for
+the second and for the last replica (two traces). The signal is the truth's mechanism at that
+count (:func:`trace_mechanism`: the rod of the truth's config, flexible with its drawn damping
+and modulus for ``flexible_link``; the friction mu(N) of the friction cause at that real count;
+the believed mechanism otherwise) on the true worn bore at that count (the nodal depth of the
+truth, running-in's warp included), the dynamics started from the ideal mechanism, through the
+config's settling cycles, two revolutions more (the trigger falls in the second), then the trace
+(:func:`slider_acceleration`): the slider velocity, linear between the integrator's steps,
+differenced on a grid of 8 points per analyser sample. The analyser:
+
+    a(t_k) = (1 + g) [F a_true](t_k + t_0) + o + A_h sin(2 pi 50 Hz t_k + phi_h) + n_k,
+
+- t_k = k / 25,600 s (1,280 samples per crank revolution at 1,200 rpm), 4 revolutions per trace;
+  t_0: the acquisition starts at a crank angle uniform in [0, 360) deg, drawn per trace (the
+  analyser is armed by hand, not by a tachometer);
+- F: the analyser's anti-alias filter, a 7th-order Chebyshev type I low-pass (0.1 dB ripple) at
+  0.45 of the rate, applied forward and backward (zero phase, as a linear-phase decimation filter
+  whose delay the analyser removes);
+- g: the sensitivity error of the accelerometer's calibration, normal with 1.5 % standard
+  deviation; o: the DC-coupled conditioner's zero, uniform in [-8, 8] m/s^2 (both per data set);
+- mains hum: 50 Hz (2.5 crank orders: between the crank harmonics, 10 whole periods per trace),
+  A_h uniform in [1, 5] m/s^2 per data set, phi_h uniform per trace;
+- n_k: white noise, standard deviation 1.5 % of the trace's RMS; readings written to 7
+  significant digits.
+Its random draws come from the seed's fourth stream (the :class:`numpy.random.SeedSequence`
+child 3 after the truth, lab and noise streams of :func:`_streams`), so the other files do not
+change with it. ``noise=False`` drops the hum and the white noise (the gain, the zero and the
+start angles stay).
+
 Neglected
 ---------
 The replica's compliance and the confocal spot's footprint (40 um, 0.23 deg, far below the
@@ -244,6 +276,19 @@ PROFILE_COUNTS = (4, 5, 6)
 FIRST_COUNT = (1500, 2600)
 LAST_COUNT = (19000, 25000)
 MAX_DEPTH_READINGS = 3
+ANALYSER_RATE_HZ = 25600.0
+ANALYSER_GRID = 8
+"""Points of the velocity grid per analyser sample (the acceleration is differenced on it)."""
+TRACE_REVOLUTIONS = 4
+ANTI_ALIAS = (7, 0.1, 0.45)
+"""Chebyshev type I order, ripple (dB), cutoff as a fraction of the rate."""
+SENSITIVITY_ERROR = 0.015
+ZERO_M_S2 = 8.0
+HUM_HZ = 50.0
+HUM_M_S2 = (1.0, 5.0)
+TRACE_NOISE_FRACTION = 0.015
+ACCELERATION_STREAM = 3
+"""The accelerometer's stream: the seed's SeedSequence child 3 (:func:`_streams` uses 0-2)."""
 TWO_CAUSE_PAIRS = tuple(combinations([cause for cause in CAUSES if cause != "none"], 2))
 """The pairs of distinct hidden causes a two-cause data set hides, each in :data:`CAUSES` order
 (all ten: every pair combines in one truth, module doc)."""
@@ -276,6 +321,23 @@ class LabPlan:
 
 
 @dataclass(frozen=True)
+class AccelerometerPlan:
+    """The slider accelerometer's plan and fixed unknowns (module doc): the counts of its
+    traces, each trace's start angle (crank, deg) and hum phase (rad), the sensitivity error g,
+    the zero o (m/s^2) and the hum's amplitude (m/s^2; 0 without noise)."""
+
+    trace_cycles: tuple[int, ...]
+    start_deg: tuple[float, ...]
+    hum_phase_rad: tuple[float, ...]
+    sensitivity_error: float
+    zero_m_s2: float
+    hum_m_s2: float
+    noise_fraction: float = TRACE_NOISE_FRACTION
+    revolutions: int = TRACE_REVOLUTIONS
+    rate_hz: float = ANALYSER_RATE_HZ
+
+
+@dataclass(frozen=True)
 class DataSet:
     """One written data set: its hidden ``cause`` and ``params`` (the truth), the files, and the
     ``lab`` plan (:class:`LabPlan`). A two-cause set's ``cause`` is its pair joined by "+" in
@@ -288,6 +350,8 @@ class DataSet:
     max_wear_csv: Path
     params: dict
     lab: LabPlan
+    acceleration_csv: Path | None = None
+    accelerometer: AccelerometerPlan | None = None
 
     @property
     def causes(self) -> tuple[str, ...]:
@@ -784,8 +848,8 @@ def write_measurements(directory: Path, lab: LabPlan, truth, inner_radius_m: flo
 
 def write_data_set(cause: str, seed: int, directory: str | Path, noise: bool = True) -> DataSet:
     """Write one data set of ``cause`` (deterministic per ``seed``) into ``directory``:
-    believed.toml, profiles.csv, max_wear.csv (module doc). ``noise=False``: the same data set
-    without the instrument's noise."""
+    believed.toml, profiles.csv, max_wear.csv, acceleration.csv (module doc). ``noise=False``:
+    the same data set without the instrument's noise."""
     if cause not in CAUSES:
         raise ValueError(f"unknown cause {cause!r}; expected one of {', '.join(CAUSES)}")
     truth_rng, _, _ = _streams(seed)
@@ -821,7 +885,113 @@ def _write(label: str, causes: tuple[str, ...], params: dict, seed: int,
     profiles_csv, max_wear_csv = write_measurements(
         directory, lab, truth, believed["bushing"]["inner_radius_m"],
         noise_rng if noise else None)
-    return DataSet(label, int(seed), believed_toml, profiles_csv, max_wear_csv, params, lab)
+    meter_rng = np.random.default_rng(np.random.SeedSequence(seed,
+                                                             spawn_key=(ACCELERATION_STREAM,)))
+    meter = draw_accelerometer(meter_rng, lab, noise)
+    acceleration_csv = write_acceleration(directory, meter, causes, params,
+                                          with_truth_numerics(believed), truth, meter_rng)
+    return DataSet(label, int(seed), believed_toml, profiles_csv, max_wear_csv, params, lab,
+                   acceleration_csv, meter)
+
+
+# --- the slider accelerometer -------------------------------------------------------------------
+
+def draw_accelerometer(rng: np.random.Generator, lab: LabPlan,
+                       noise: bool = True) -> AccelerometerPlan:
+    """The accelerometer's plan (module doc), from its own stream."""
+    cycles = (lab.profile_cycles[1], lab.profile_cycles[-1])
+    start = tuple(float(a) for a in rng.uniform(0.0, 360.0, len(cycles)))
+    phase = tuple(float(a) for a in rng.uniform(0.0, 2.0 * math.pi, len(cycles)))
+    sensitivity = float(rng.normal(0.0, SENSITIVITY_ERROR))
+    zero = float(rng.uniform(-ZERO_M_S2, ZERO_M_S2))
+    hum = float(rng.uniform(*HUM_M_S2))
+    return AccelerometerPlan(cycles, start, phase, sensitivity, zero, hum if noise else 0.0,
+                             TRACE_NOISE_FRACTION if noise else 0.0)
+
+
+def trace_mechanism(causes, params: dict, believed: dict, cycles: float) -> dict:
+    """The truth's mechanism after ``cycles`` real crank cycles: the config causes' config
+    (:func:`truth_config`), with the friction cause's mu(N) at ``cycles``."""
+    config = copy.deepcopy(believed)
+    for cause in truth_causes(causes):
+        if cause in CONFIG_CAUSES:
+            config = truth_config(cause, params, config)
+    if "friction" in truth_causes(causes):
+        config["joint"]["friction_coefficient"] = float(friction_coefficient(
+            float(cycles), params["mu_0"], params["mu_dry"], params["n_g_cycles"]))
+    return config
+
+
+def slider_acceleration(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray,
+                        revolutions: int, step_s: float) -> tuple[np.ndarray, float]:
+    """The slider's acceleration (m/s^2) every ``step_s`` over ``revolutions`` + 2 recorded
+    revolutions of the config's mechanism (its rod model) on the bore worn by ``depth_m`` at
+    ``angle_rad``, and the crank angle (rad) at its start (module doc)."""
+    from dataclasses import replace
+
+    from fewear.loop.settings import run_inputs_from_config
+    from fewear.mbd.slider_crank import simulate
+    from fewear.wear.state import WearState
+
+    inputs = run_inputs_from_config(config)
+    worn = replace(WearState.unworn(angle_rad), depth_m=np.asarray(depth_m, dtype=float))
+    geometry = inputs.contact.geometry
+    joint = replace(inputs.dynamics.joint, profile=worn.clearance_profile(
+        geometry.inner_radius_m, geometry.pin_radius_m))
+    crank = replace(inputs.dynamics.crank, rod=config["wear_loop"]["rod_models"][0],
+                    joint="clearance", recorded_cycles=revolutions + 2)
+    history, _, _ = simulate(replace(inputs.dynamics, crank=crank, joint=joint))
+    points = int((history.time_s[-1] - history.time_s[0]) / step_s)
+    grid = history.time_s[0] + step_s * np.arange(points + 1)
+    velocity = np.interp(grid, history.time_s, history.slider_velocity_m_s)
+    return np.diff(velocity) / step_s, float(history.crank_angle_rad[0])
+
+
+def measure_acceleration(config: dict, truth_at: tuple[np.ndarray, np.ndarray],
+                         plan: AccelerometerPlan, trace: int,
+                         rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+    """Trace ``trace`` of the analyser (module doc) of the mechanism ``config`` on the bore
+    ``truth_at`` (node angles, depth): (time from the first sample in s, reading in m/s^2)."""
+    from scipy.signal import cheby1, sosfiltfilt
+
+    step = 1.0 / (plan.rate_hz * ANALYSER_GRID)
+    signal, start_rad = slider_acceleration(config, *truth_at, plan.revolutions, step)
+    order, ripple, cutoff = ANTI_ALIAS
+    sos = cheby1(order, ripple, cutoff * plan.rate_hz, fs=1.0 / step, output="sos")
+    filtered = sosfiltfilt(sos, signal)
+    omega = config["mechanism"]["crank_speed_rpm"] * math.pi / 30.0
+    lead = 2.0 * math.pi + (math.radians(plan.start_deg[trace]) - start_rad) % (2.0 * math.pi)
+    first = int(round(lead / omega / step))
+    count = int(round(plan.revolutions * 2.0 * math.pi / omega * plan.rate_hz))
+    true = filtered[first:first + count * ANALYSER_GRID:ANALYSER_GRID]
+    time_s = np.arange(count) / plan.rate_hz
+    reading = (1.0 + plan.sensitivity_error) * true + plan.zero_m_s2
+    reading = reading + plan.hum_m_s2 * np.sin(2.0 * math.pi * HUM_HZ * time_s
+                                               + plan.hum_phase_rad[trace])
+    if plan.noise_fraction > 0.0:
+        rms = float(np.sqrt(np.mean(true**2)))
+        reading = reading + rng.normal(0.0, plan.noise_fraction * rms, count)
+    return time_s, reading
+
+
+ACCELERATION_COMMENT = (
+    "Slider acceleration along the slide: piezoelectric accelerometer, dynamic signal analyser\n"
+    "25,600 S/s, anti-alias low-pass at 0.45 fs; time from the first sample of each trace.")
+
+
+def write_acceleration(directory: Path, plan: AccelerometerPlan, causes, params: dict,
+                       believed: dict, truth, rng: np.random.Generator) -> Path:
+    """The analyser's traces at ``plan.trace_cycles`` into acceleration.csv (7 significant
+    digits)."""
+    lines = [f"# {line}" for line in ACCELERATION_COMMENT.splitlines()]
+    lines.append("time_s,slider_acceleration_m_s2,cycles")
+    for trace, cycles in enumerate(plan.trace_cycles):
+        time_s, reading = measure_acceleration(
+            trace_mechanism(causes, params, believed, cycles), truth(cycles), plan, trace, rng)
+        lines += [f"{t:.9f},{a:.7g},{cycles}" for t, a in zip(time_s, reading)]
+    path = directory / "acceleration.csv"
+    path.write_text("\n".join(lines) + "\n")
+    return path
 
 
 def truth_text(data: DataSet) -> str:

@@ -717,3 +717,117 @@ def test_one_two_cause_data_set_of_each_pair_is_written_with_a_measurable_effect
     truth = gen.true_depth(pair, data.params, config, data.lab.last_cycles)(last)[1]
     belief = gen.believed_depth(config, data.lab.last_cycles)(last)[1]
     assert float(np.sqrt(np.mean((truth - belief) ** 2))) > 3e-6
+
+
+# --- the slider accelerometer (real dynamics on synthetic bores; no FE) --------------------------
+
+R_OMEGA2 = 0.1 * (2.0 * math.pi * 20.0) ** 2  # r omega^2 of the 1,200 rpm, 0.1 m crank (m/s^2)
+
+
+def read_acceleration(path) -> dict[int, tuple[np.ndarray, np.ndarray]]:
+    """{cycles: (time_s, acceleration)} of acceleration.csv, its header checked."""
+    rows = [line.split(",") for line in path.read_text().splitlines()
+            if not line.startswith("#")]
+    assert rows[0] == ["time_s", "slider_acceleration_m_s2", "cycles"]
+    traces: dict[int, tuple[list, list]] = {}
+    for time_s, value, cycles in rows[1:]:
+        assert re.fullmatch(r"\d+", cycles)
+        traces.setdefault(int(cycles), ([], []))
+        traces[int(cycles)][0].append(float(time_s))
+        traces[int(cycles)][1].append(float(value))
+    return {c: (np.array(t), np.array(a)) for c, (t, a) in traces.items()}
+
+
+def crank_orders(acceleration: np.ndarray, revolutions: int) -> np.ndarray:
+    """Amplitude of each crank order (0, 1, 2, ...) over whole revolutions."""
+    spectrum = 2.0 * np.abs(np.fft.rfft(acceleration)) / acceleration.size
+    spectrum[0] /= 2.0
+    return spectrum[::revolutions]
+
+
+def test_acceleration_traces_parse_at_the_second_and_last_profile_counts(synthetic, tmp_path):
+    data = gen.write_data_set("friction", gen.data_set_seed("friction", 2), tmp_path)
+    plan = data.accelerometer
+    traces = read_acceleration(data.acceleration_csv)
+    assert tuple(traces) == plan.trace_cycles == (data.lab.profile_cycles[1],
+                                                  data.lab.profile_cycles[-1])
+    for time_s, acceleration in traces.values():
+        assert time_s[0] == 0.0 and np.all(np.diff(time_s) > 0.0)
+        np.testing.assert_allclose(np.diff(time_s), 1.0 / 25600.0, atol=2e-9)
+        assert acceleration.size == plan.revolutions * 1280 == 4 * 1280
+        assert np.all(np.isfinite(acceleration))
+    assert abs(plan.zero_m_s2) <= 8.0 and 1.0 <= plan.hum_m_s2 <= 5.0
+
+
+def test_acceleration_mean_is_the_zero_and_the_first_order_r_omega_squared(synthetic,
+                                                                           tmp_path):
+    """The slider's acceleration averages to zero over whole revolutions (and the hum over its
+    10 periods); its first crank order is r omega^2 for the ideal mechanism (l cos beta has even
+    orders only), moved under 1 % by the clearance, times the sensitivity."""
+    for index in (0, 3):
+        data = gen.write_data_set("running_in", gen.data_set_seed("running_in", index),
+                                  tmp_path / str(index))
+        plan = data.accelerometer
+        for _, acceleration in read_acceleration(data.acceleration_csv).values():
+            noise = plan.noise_fraction * np.sqrt(np.mean(acceleration**2))
+            assert abs(acceleration.mean() - plan.zero_m_s2) < 0.5 + 5.0 * noise / math.sqrt(
+                acceleration.size)
+            spectrum = np.abs(np.fft.rfft(acceleration - acceleration.mean()))
+            assert np.argmax(spectrum) == plan.revolutions  # the crank's frequency
+            first = crank_orders(acceleration, plan.revolutions)[1]
+            assert first / ((1.0 + plan.sensitivity_error) * R_OMEGA2) == pytest.approx(
+                1.0, abs=0.015)
+            assert first / R_OMEGA2 == pytest.approx(1.0, abs=0.06)
+
+
+def test_acceleration_leaves_the_other_files_and_follows_the_truths_friction(synthetic,
+                                                                             tmp_path,
+                                                                             monkeypatch):
+    seed = gen.data_set_seed("friction", 5)
+    data = gen.write_data_set("friction", seed, tmp_path / "a")
+    params = data.params
+    for cycles in data.accelerometer.trace_cycles:
+        mechanism = gen.trace_mechanism("friction", params, {"joint": {}}, cycles)
+        assert mechanism["joint"]["friction_coefficient"] == pytest.approx(
+            gen.friction_coefficient(cycles, params["mu_0"], params["mu_dry"],
+                                     params["n_g_cycles"]))
+    quiet = gen.write_data_set("friction", seed, tmp_path / "q", noise=False)
+    assert quiet.accelerometer.hum_m_s2 == quiet.accelerometer.noise_fraction == 0.0
+    assert quiet.accelerometer.zero_m_s2 == data.accelerometer.zero_m_s2
+    monkeypatch.setattr(gen, "write_acceleration", lambda *args: None)
+    without = gen.write_data_set("friction", seed, tmp_path / "b")
+    for name in ("profiles_csv", "max_wear_csv", "believed_toml"):
+        assert getattr(without, name).read_bytes() == getattr(data, name).read_bytes()
+
+
+def order_difference(first, second, plan):
+    """RMS over crank orders 9-20 of the difference of two traces' amplitudes (each over its
+    first order: the sensitivity drops out), and the RMS the white noise puts there
+    (sigma sqrt(2 / N) on an amplitude)."""
+    ratios, noise = [], []
+    for acceleration in (first, second):
+        orders = crank_orders(acceleration, plan.revolutions)
+        ratios.append(orders[9:21] / orders[1])
+        sigma = plan.noise_fraction * np.sqrt(np.mean(acceleration**2))
+        noise.append(sigma * math.sqrt(2.0 / acceleration.size) / orders[1])
+    return float(np.sqrt(np.mean((ratios[1] - ratios[0]) ** 2))), float(math.hypot(*noise))
+
+
+def test_a_flexible_rod_parts_from_the_rigid_one_at_orders_9_to_20(believed):
+    """The believed rigid rod and a flexible rod of the generator's draw on one synthetic worn
+    bore through one analyser: at crank orders 9-20 the traces part by far more than the noise
+    there, and by more than the rigid rod's trace started at another crank angle."""
+    numerics = with_truth_numerics(believed)
+    params = gen.draw_truth("flexible_link", gen._streams(gen.data_set_seed("flexible_link", 0))[0])
+    plan = gen.AccelerometerPlan((8000,), (40.0,), (0.3,), 0.0, 0.0, 3.0)
+    traces = {}
+    for name, cause, start in (("rigid", "none", 40.0), ("flexible", "flexible_link", 40.0),
+                               ("rigid later", "none", 220.0)):
+        mechanism = gen.trace_mechanism(cause, params, numerics, 8000)
+        shifted = gen.AccelerometerPlan((8000,), (start,), (0.3,), 0.0, 0.0, 3.0)
+        traces[name] = gen.measure_acceleration(mechanism, synthetic_truth(8000), shifted, 0,
+                                                np.random.default_rng(len(traces)))[1]
+    rods, noise = order_difference(traces["rigid"], traces["flexible"], plan)
+    scatter, _ = order_difference(traces["rigid"], traces["rigid later"], plan)
+    print(f"orders 9-20 (of A1): rods {rods:.4f}, rigid scatter {scatter:.4f}, noise {noise:.5f}")
+    assert rods > 10.0 * noise and rods > 2.0 * scatter
