@@ -831,3 +831,19 @@ def test_a_flexible_rod_parts_from_the_rigid_one_at_orders_9_to_20(believed):
     scatter, _ = order_difference(traces["rigid"], traces["rigid later"], plan)
     print(f"orders 9-20 (of A1): rods {rods:.4f}, rigid scatter {scatter:.4f}, noise {noise:.5f}")
     assert rods > 10.0 * noise and rods > 2.0 * scatter
+
+
+@pytest.mark.slow
+def test_data_sets_of_the_two_rods_part_at_orders_9_to_20(tmp_path):
+    """A rigid-rod (``none``) and a flexible-rod (``flexible_link``) data set with their real
+    truths (minutes: the flexible truth's run): each pair of traces (second and last profile
+    count) parts at crank orders 9-20 by more than ten times the noise there."""
+    rigid = gen.write_data_set("none", gen.data_set_seed("none", 0), tmp_path / "rigid")
+    flexible = gen.write_data_set("flexible_link", gen.data_set_seed("flexible_link", 0),
+                                  tmp_path / "flexible")
+    pairs = zip(read_acceleration(rigid.acceleration_csv).values(),
+                read_acceleration(flexible.acceleration_csv).values())
+    for (_, first), (_, second) in pairs:
+        rods, noise = order_difference(first, second, rigid.accelerometer)
+        print(f"orders 9-20 (of A1): rods {rods:.4f}, noise {noise:.5f}")
+        assert rods > 10.0 * noise
