@@ -70,6 +70,8 @@ class Cause:
 
     name: str
     meaning: str
+    changes_dynamics = False
+    """Whether the cause changes the mechanism's dynamics (what measured traces can show)."""
 
     def untestable_because(self, config: dict) -> str | None:
         """Why the believed ``config`` cannot be extended by this cause (None: it can)."""
@@ -193,6 +195,7 @@ class FlexibleLink(GridCause):
     meaning = ("the connecting rod modelled rigid is flexible: its compliance changes the "
                "impacts and the continuous-contact sliding in the joint")
     discrete = True
+    changes_dynamics = True
 
     def parameter_of(self, form: str) -> str:
         return "rod_damping_factor" if form == "damping" else "rod_youngs_modulus_factor"
@@ -237,6 +240,7 @@ class Friction(GridCause):
     name = "friction"
     meaning = "the friction coefficient in the joint differs from the assumed one"
     parameter = "friction_coefficient"
+    changes_dynamics = True
 
     def switched_on(self, config: dict, value: float, form: str = "") -> dict:
         changed = copy.deepcopy(config)

@@ -20,7 +20,7 @@ the reference's and lower by more than the runs' own scatter: Welch's one-sided 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -92,6 +92,16 @@ def confirm(cause: str, extended: Realizations, reference: Realizations, against
                         tuple(map(float, reference_errors)), gain, p_value,
                         bool(gain >= settings.min_held_out_gain
                              and p_value < settings.significance))
+
+
+def confirm_no_worse(cause: str, extended: Realizations, reference: Realizations, against: str,
+                     settings: JointDiagnoseSettings) -> Confirmation:
+    """Whether ``cause``, named by other evidence (the measured traces,
+    :mod:`fewear.diagnose.joint.traces`), predicts the held-out bore data no worse than the
+    ``reference``: its realizations' mean held-out error at most ``min_held_out_gain`` above
+    the reference's (the bore need not tell it apart, only agree with it)."""
+    found = confirm(cause, extended, reference, against, settings)
+    return replace(found, confirmed=bool(found.gain >= -settings.min_held_out_gain))
 
 
 def extended_config(config: dict, cause: str, fitted: Fit) -> dict:

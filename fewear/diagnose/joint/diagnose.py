@@ -125,6 +125,7 @@ from fewear.diagnose.joint.catalogue import CAUSES, Believed
 from fewear.diagnose.joint.confirmation import (
     Confirmation,
     confirm,
+    confirm_no_worse,
     extended_config,
     realizations,
 )
@@ -132,6 +133,7 @@ from fewear.diagnose.joint.fitting import (
     RUNNING_IN_REACH,
     Fit,
     Observations,
+    fit_form,
     needed_cycles,
     observations,
 )
@@ -154,9 +156,20 @@ from fewear.diagnose.joint.resolution import (
     resolve_wear_step,
 )
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
+from fewear.diagnose.joint.traces import (
+    MIN_REVOLUTIONS,
+    MechanismOption,
+    TraceEvidence,
+    crank_period_s,
+    harmonics_readable,
+    measured_signature,
+    simulated_signature,
+    trace_misfit,
+    trace_verdict,
+)
 from fewear.errors import FewearInputError
 from fewear.mesh.profile import periodic_linear
-from fewear.parallel import workers_kept
+from fewear.parallel import side_by_side, workers_kept
 
 
 def f_test_p(nested: Fit, fuller: Fit) -> float:
@@ -224,6 +237,7 @@ class Round:
     extended_config: dict
     extended_fit: Fit
     extended_depth_m: np.ndarray
+    trace_evidence: TraceEvidence | None = None
 
     @property
     def not_confirmed(self) -> tuple[Confirmation, ...]:
@@ -397,14 +411,75 @@ def _round(data: JointMeasurements, obs: Observations, config: dict,
         accepted, pair_verdicts, pair_fits = _select_pairs(candidates, fits, obs, baseline,
                                                            settings, floor_m)
         verdicts, fits = verdicts + pair_verdicts, {**fits, **pair_fits}
+    evidence = None if named else _trace_evidence(data, config, candidates, fits, base,
+                                                   settings)
+    by_traces = evidence.named.cause if evidence and evidence.named else None
+    if by_traces:
+        fits = {**fits, by_traces: _fit_on_trace_choice(candidates[by_traces], evidence.named,
+                                                        obs, baseline, settings)}
+        accepted = [by_traces] + [cause for cause in accepted if cause != by_traces]
     entry, extended, final_fit, extended_depth, confirmations = _confirm(
-        config, accepted, fits, baseline, obs, settings, label)
+        config, accepted, fits, baseline, obs, settings, label, by_traces)
     return Round(baseline=baseline, base_run=base, verdicts=tuple(verdicts),
                  accepted=tuple(accepted), named=causes_of(entry) if entry else (),
                  confounded=_confounded(verdicts, accepted, entry),
                  confirmations=tuple(confirmations), untestable=tuple(untestable),
                  extended_config=extended, extended_fit=final_fit,
-                 extended_depth_m=extended_depth)
+                 extended_depth_m=extended_depth, trace_evidence=evidence)
+
+
+def _trace_evidence(data: JointMeasurements, config: dict, candidates: dict, fits: dict,
+                    base: WearHistory, settings: JointDiagnoseSettings) -> TraceEvidence | None:
+    """What the measured slider-acceleration traces say of the mechanism
+    (:mod:`fewear.diagnose.joint.traces`): the believed mechanism and each grid run of the
+    causes that change the dynamics, simulated on the bore the believed model wears by each
+    trace's count at the k level fitted on the bore data (side by side). None without traces
+    of at least :data:`~fewear.diagnose.joint.traces.MIN_REVOLUTIONS` revolutions and three
+    harmonics to read."""
+    period = crank_period_s(config)
+    usable = [trace for trace in data.acceleration or ()
+              if trace.time_s[-1] - trace.time_s[0] >= MIN_REVOLUTIONS * period]
+    if not usable:
+        return None
+    harmonics = min(harmonics_readable(trace.time_s, period) for trace in usable)
+    if harmonics < 3:
+        return None
+    level = fits["wear_coefficient"].params["k_scale"] if "wear_coefficient" in fits else 1.0
+    bores = [base.nodal_depth_m(level * trace.cycles) for trace in usable]
+    assumed_mu = config["joint"]["friction_coefficient"]
+    models = [("believed model", None, "", 0, config)]
+    for name, forms in candidates.items():
+        if not CAUSES[name].changes_dynamics:
+            continue
+        for candidate in forms:
+            for index, value in enumerate(candidate.grid):
+                if name == "friction" and value == assumed_mu:
+                    continue  # the believed mechanism
+                models.append((f"{name}{' (' + candidate.form + ')' if candidate.form else ''}"
+                               f", {candidate.parameter} = {value:g}", name, candidate.form,
+                               index, CAUSES[name].switched_on(config, value, candidate.form)))
+    simulated = iter(side_by_side(simulated_signature, [
+        (model[4], base.angle_rad, bore, trace.cycles, harmonics)
+        for model in models for trace, bore in zip(usable, bores)]))
+    measured = [measured_signature(trace, period, harmonics) for trace in usable]
+    misfits = [trace_misfit(measured, [next(simulated) for _ in usable]) for _ in models]
+    options = [MechanismOption(label, cause, form, index, misfit)
+               for (label, cause, form, index, _), misfit in zip(models[1:], misfits[1:])]
+    return trace_verdict(misfits[0], options, harmonics, settings.significance,
+                         settings.min_held_out_gain)
+
+
+def _fit_on_trace_choice(forms: tuple[Candidate, ...], option: MechanismOption,
+                         obs: Observations, baseline: Fit,
+                         settings: JointDiagnoseSettings) -> Fit:
+    """The cause fitted on the bore data on the one run the traces chose (its level and angle
+    offset free), its parameter the run's."""
+    candidate = next(c for c in forms if c.form == option.form)
+    alone = replace(candidate, runs=(candidate.runs[option.index],),
+                    grid=(candidate.grid[option.index],))
+    fitted = fit_form(alone, obs, float(baseline.x[0]), settings)
+    return replace(fitted, params={**fitted.params,
+                                   candidate.parameter: candidate.grid[option.index]})
 
 
 REFINED_REACH = 1.25
@@ -529,7 +604,8 @@ def _select_pairs(candidates: dict, fits: dict[str, Fit], obs: Observations, bas
 
 
 def _confirm(config: dict, accepted: list[str], fits: dict[str, Fit], baseline: Fit,
-             obs: Observations, settings: JointDiagnoseSettings, label: str):
+             obs: Observations, settings: JointDiagnoseSettings, label: str,
+             by_traces: str | None = None):
     """The first accepted cause (or pair) confirmed on realizations of its extended model
     (:mod:`fewear.diagnose.joint.confirmation`): a richer cause against the k level's when that
     was accepted, else against the round's model ``config`` (named ``label``). Every accepted
@@ -545,7 +621,8 @@ def _confirm(config: dict, accepted: list[str], fits: dict[str, Fit], baseline: 
     for cause in accepted:
         against = ("wear_coefficient" if "wear_coefficient" in accepted
                    and cause != "wear_coefficient" else label)
-        confirmations.append(confirm(cause, runs[cause], runs[against], against, settings))
+        judge = confirm_no_worse if cause == by_traces else confirm
+        confirmations.append(judge(cause, runs[cause], runs[against], against, settings))
         if confirmations[-1].confirmed:
             final = runs[cause].fits[0]
             return (cause, extended[cause], final, obs.depth_m - final.residuals_m,

@@ -239,10 +239,10 @@ def _key(config: dict) -> str:
 
 
 def cycle_on_worn_bore(config: dict, angle_rad: np.ndarray | None = None,
-                       depth_m: np.ndarray | None = None):
-    """One recorded crank cycle of the config's rod model (after its settling cycles) on the
-    bore worn by ``depth_m`` at the node angles ``angle_rad`` (None: the unworn bore): the
-    :class:`fewear.mbd.history.JointHistory` the wear stage would see."""
+                       depth_m: np.ndarray | None = None, recorded_cycles: int = 1):
+    """``recorded_cycles`` crank cycles of the config's rod model (after its settling cycles)
+    on the bore worn by ``depth_m`` at the node angles ``angle_rad`` (None: the unworn bore):
+    the :class:`fewear.mbd.history.JointHistory` the wear stage would see."""
     from dataclasses import replace
 
     from fewear.loop.settings import run_inputs_from_config
@@ -251,7 +251,7 @@ def cycle_on_worn_bore(config: dict, angle_rad: np.ndarray | None = None,
 
     inputs = run_inputs_from_config(config)
     crank = replace(inputs.dynamics.crank, rod=inputs.loop.rod_models[0], joint="clearance",
-                    recorded_cycles=1)
+                    recorded_cycles=recorded_cycles)
     joint = inputs.dynamics.joint
     if depth_m is not None:
         state = replace(WearState.unworn(angle_rad), depth_m=np.asarray(depth_m, dtype=float))

@@ -64,6 +64,8 @@ def summarise(diagnosis: JointDiagnosis) -> dict[str, Any]:
         "residual_structure": d.residual_structure,
         "resolution": d.resolution,
         "cause_gains": _cause_gains(d),
+        "trace_evidence": (d.rounds[0].trace_evidence.summary()
+                           if d.rounds[0].trace_evidence else None),
         "confirmations": [vars(entry) for entry in d.confirmations],
         "not_confirmed": [entry.cause for entry in d.not_confirmed],
         "unexplained": list(d.unexplained),

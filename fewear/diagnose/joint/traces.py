@@ -1,0 +1,227 @@
+"""Measured slider-acceleration traces as evidence on the mechanism (item 4 of the joint
+diagnosis): which rod and friction the traces say the joint runs in, beside what the bore says.
+
+The bore cannot tell a flexible rod from a level of k: on the generators' data a rod 3 % stiffer
+than the believed one's material, or another section, wears the bore as a k level x1.07-1.10 does
+(README, the joint diagnosis's accuracy). The slider's acceleration can: the rod's bending
+vibration and the way it softens the impacts move the crank harmonics 9-20 of the acceleration by
+1-3 % of the first (a rigid rod's 12th harmonic 8 m/s^2 against a flexible rod's 33 on the tests'
+mechanism, revolution to revolution +-1), a friction change by far less.
+
+A trace is read as its **harmonic signature**: the amplitude of each crank harmonic h = 2..H,
+per whole revolution, divided by the first harmonic's (the kinematic r omega^2 term: an
+accelerometer's sensitivity error cancels, and so does its offset, the trigger's crank phase
+and the trace's time origin). A measured revolution's amplitudes come from a least-squares fit
+of a Fourier series in the crank's period (:func:`revolution_amplitudes`); a simulated one's from
+the exact integrals of the slider velocity the dynamics record, a' integrated by parts
+(:func:`simulated_amplitudes`: the impacts' acceleration spikes are not resolved by any grid).
+H keeps the harmonics well inside an anti-aliasing filter's pass band: at most
+:data:`MAX_HARMONIC` and an eighth of the sampling rate.
+
+The misfit of a model to the traces (:func:`trace_misfit`) is the sum over traces and harmonics
+of (measured - simulated mean)^2 over the variance of that difference, from the revolutions'
+spread on both sides: chi-square with one degree per harmonic if the model is right.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import stats
+
+from fewear.diagnose.joint.forward import cycle_on_worn_bore
+
+MAX_HARMONIC = 40
+"""The highest crank harmonic read (800 Hz at the tests' 1,200 rpm)."""
+RATE_FRACTION = 8
+"""Harmonics up to the sampling rate / this (a low-pass at 0.4 of the rate passes them to 1e-4)."""
+MIN_REVOLUTIONS = 2
+"""A trace needs this many whole crank revolutions (the spread is measured between them)."""
+SIMULATED_REVOLUTIONS = 6
+"""Crank revolutions simulated per trace (after the config's settling cycles)."""
+
+
+@dataclass(frozen=True)
+class Signature:
+    """A trace's harmonic signature: per revolution (rows) the amplitudes of harmonics 2..H over
+    the first's (columns), and the cycle count it was recorded at."""
+
+    cycles: int
+    relative_amplitudes: np.ndarray  # (revolutions, H - 1)
+
+    @property
+    def harmonics(self) -> int:
+        return self.relative_amplitudes.shape[1] + 1
+
+    @property
+    def mean(self) -> np.ndarray:
+        return self.relative_amplitudes.mean(axis=0)
+
+    @property
+    def variance_of_mean(self) -> np.ndarray:
+        """The squared standard error of :attr:`mean` (sample variance / revolutions)."""
+        rows = self.relative_amplitudes.shape[0]
+        return self.relative_amplitudes.var(axis=0, ddof=1) / rows
+
+
+def harmonics_readable(time_s: np.ndarray, period_s: float) -> int:
+    """H for a trace sampled at ``time_s`` (:data:`MAX_HARMONIC`, :data:`RATE_FRACTION`)."""
+    rate_hz = (time_s.size - 1) / (time_s[-1] - time_s[0])
+    return int(min(MAX_HARMONIC, math.floor(rate_hz * period_s / RATE_FRACTION)))
+
+
+def revolution_amplitudes(time_s: np.ndarray, signal: np.ndarray, period_s: float,
+                          harmonics: int) -> np.ndarray:
+    """Amplitudes of harmonics 1..``harmonics`` of the crank period in each whole revolution
+    of a sampled ``signal`` from its first sample: least squares of a constant plus cosines and
+    sines (revolutions, harmonics)."""
+    revolutions = int(math.floor((time_s[-1] - time_s[0]) / period_s + 1e-9))
+    orders = np.arange(1, harmonics + 1)
+    rows = []
+    for revolution in range(revolutions):
+        start = time_s[0] + revolution * period_s
+        inside = (time_s >= start) & (time_s < start + period_s)
+        phase = 2.0 * math.pi * np.outer(time_s[inside] - start, orders) / period_s
+        design = np.hstack([np.ones((phase.shape[0], 1)), np.cos(phase), np.sin(phase)])
+        coefficients = np.linalg.lstsq(design, signal[inside], rcond=None)[0]
+        rows.append(np.hypot(coefficients[1:harmonics + 1], coefficients[harmonics + 1:]))
+    return np.array(rows).reshape(revolutions, harmonics)
+
+
+def simulated_amplitudes(time_s: np.ndarray, velocity_m_s: np.ndarray, period_s: float,
+                         harmonics: int) -> np.ndarray:
+    """Amplitudes of harmonics 1..``harmonics`` of the slider's acceleration v' in each whole
+    revolution of a simulated velocity history, without differentiating it: over a revolution
+    from t0, (2/T) int v' cos(h w t) dt = (2/T) [v(t0 + T) - v(t0) + h w int v sin(h w t) dt] and
+    (2/T) int v' sin(h w t) dt = -(2/T) h w int v cos(h w t) dt (integration by parts, w =
+    2 pi / T; trapezoids on the integrator's steps)."""
+    omega = 2.0 * math.pi / period_s
+    revolutions = int(math.floor((time_s[-1] - time_s[0]) / period_s + 1e-9))
+    orders = np.arange(1, harmonics + 1)
+    rows = []
+    for revolution in range(revolutions):
+        start = time_s[0] + revolution * period_s
+        grid = np.concatenate([[start], time_s[(time_s > start) & (time_s < start + period_s)],
+                               [start + period_s]])
+        v = np.interp(grid, time_s, velocity_m_s)
+        phase = omega * np.outer(grid - start, orders)
+        sine = np.trapz(v[:, None] * np.sin(phase), grid, axis=0)
+        cosine = np.trapz(v[:, None] * np.cos(phase), grid, axis=0)
+        a = (2.0 / period_s) * (v[-1] - v[0] + orders * omega * sine)
+        b = -(2.0 / period_s) * orders * omega * cosine
+        rows.append(np.hypot(a, b))
+    return np.array(rows)
+
+
+def simulated_signature(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray, cycles: int,
+                        harmonics: int) -> Signature:
+    """The signature of :data:`SIMULATED_REVOLUTIONS` revolutions of the config's mechanism on
+    the bore worn by ``depth_m`` (at the node angles ``angle_rad``), as at ``cycles``."""
+    history = cycle_on_worn_bore(config, angle_rad, depth_m, SIMULATED_REVOLUTIONS)
+    return signature(cycles, simulated_amplitudes(history.time_s, history.slider_velocity_m_s,
+                                                  crank_period_s(config), harmonics))
+
+
+def crank_period_s(config: dict) -> float:
+    """The crank's period (s) of the config's mechanism."""
+    return 60.0 / config["mechanism"]["crank_speed_rpm"]
+
+
+def signature(cycles: int, amplitudes: np.ndarray) -> Signature:
+    """The signature of per-revolution amplitudes of harmonics 1..H."""
+    return Signature(int(cycles), amplitudes[:, 1:] / amplitudes[:, :1])
+
+
+def measured_signature(trace, period_s: float, harmonics: int) -> Signature:
+    """The signature of a measured :class:`fewear.diagnose.joint.measured.AccelerationTrace`."""
+    return signature(trace.cycles, revolution_amplitudes(
+        trace.time_s, trace.slider_acceleration_m_s2, period_s, harmonics))
+
+
+@dataclass(frozen=True)
+class TraceMisfit:
+    """A model's misfit to the traces: ``chi2`` over ``dof`` harmonics (all traces), its
+    p-value if the model were right, and the RMS difference of the relative amplitudes."""
+
+    chi2: float
+    dof: int
+    rms_difference: float
+
+    @property
+    def p_value(self) -> float:
+        return float(stats.chi2.sf(self.chi2, self.dof))
+
+
+def trace_misfit(measured: list[Signature], simulated: list[Signature]) -> TraceMisfit:
+    """(module docstring) of ``simulated`` signatures (one per measured trace, at its count)
+    against the ``measured`` ones. Each harmonic's difference of means is a Welch t statistic
+    (a few revolutions estimate each side's spread: Welch-Satterthwaite degrees of freedom),
+    turned into the normal deviate of the same two-sided p, whose squares sum to chi-square."""
+    chi2, dof, squares = 0.0, 0, []
+    for seen, model in zip(measured, simulated):
+        difference = seen.mean - model.mean
+        seen_var, model_var = seen.variance_of_mean, model.variance_of_mean
+        variance = np.maximum(seen_var + model_var, np.finfo(float).tiny)
+        freedom = variance**2 / (seen_var**2 / (seen.relative_amplitudes.shape[0] - 1)
+                                 + model_var**2 / (model.relative_amplitudes.shape[0] - 1)
+                                 + np.finfo(float).tiny)
+        p_two_sided = 2.0 * stats.t.sf(np.abs(difference) / np.sqrt(variance), freedom)
+        chi2 += float(np.sum(stats.norm.isf(np.maximum(p_two_sided, 1e-300) / 2.0) ** 2))
+        dof += difference.size
+        squares.append(difference**2)
+    return TraceMisfit(chi2, dof, float(np.sqrt(np.mean(np.concatenate(squares)))))
+
+
+@dataclass(frozen=True)
+class MechanismOption:
+    """A mechanism the traces are read against: the believed one (``cause`` None) or a grid run
+    of a cause that changes the dynamics (its ``form`` and the run's index in that form's
+    grid), with its misfit."""
+
+    label: str
+    cause: str | None
+    form: str
+    index: int
+    misfit: TraceMisfit
+
+
+@dataclass(frozen=True)
+class TraceEvidence:
+    """What the traces say (:func:`trace_verdict`): the believed mechanism's and each option's
+    misfit, and the option they name (None: the traces do not reject the believed mechanism,
+    or no option explains them clearly better)."""
+
+    harmonics: int
+    believed: TraceMisfit
+    options: tuple[MechanismOption, ...]
+    named: MechanismOption | None
+
+    def summary(self) -> dict:
+        """JSON-ready."""
+        def row(label, misfit):
+            return {"model": label, "chi2": misfit.chi2, "dof": misfit.dof,
+                    "p_value": misfit.p_value, "rms_relative_difference": misfit.rms_difference}
+        return {"harmonics": self.harmonics, "believed": row("believed model", self.believed),
+                "options": [row(o.label, o.misfit) for o in self.options],
+                "named": self.named.label if self.named else None}
+
+
+def trace_verdict(believed: TraceMisfit, options: list[MechanismOption], harmonics: int,
+                  significance: float, min_gain: float) -> TraceEvidence:
+    """The traces name the option with the lowest misfit when (1) they reject the believed
+    mechanism (p below ``significance`` over the options tried, Bonferroni), (2) that option's
+    chi-square is below the believed one's by more than one parameter's chi-square at the same
+    level (a likelihood-ratio test: the cause adds one value) and (3) its RMS difference of the
+    relative amplitudes is at least ``min_gain`` below the believed mechanism's (an effect the
+    traces resolve, as the bore's held-out gain)."""
+    level = significance / max(len(options), 1)
+    named = None
+    if options and believed.p_value < level:
+        best = min(options, key=lambda option: option.misfit.chi2)
+        drop = believed.chi2 - best.misfit.chi2
+        gain = 1.0 - best.misfit.rms_difference / believed.rms_difference
+        if drop > stats.chi2.isf(level, 1) and gain >= min_gain:
+            named = best
+    return TraceEvidence(harmonics, believed, tuple(options), named)
