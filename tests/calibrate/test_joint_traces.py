@@ -88,3 +88,14 @@ def test_the_traces_name_a_mechanism_only_when_they_reject_the_believed_one():
     # rejected, closer, but its chi-square lower by less than one parameter's 3.84 (p 0.05)
     barely = [_option(112.0, 0.008, 0)]
     assert traces.trace_verdict(_misfit(115.0, 0.01), barely, 40, 0.05, 0.1).named is None
+
+
+def test_a_believed_model_no_worse_than_every_option_is_never_rejected():
+    """Overdispersion: every misfit three times its degrees of freedom (as on null data, where
+    runs of the right model vary more than one run's revolutions): the believed model, the best,
+    stands; an option 40 % below it on a misfit dispersed alike is named."""
+    options = [_option(500.0, 0.02, 0), _option(480.0, 0.012, 1)]
+    assert traces.trace_verdict(_misfit(360.0, 0.01), options, 40, 0.05, 0.1).named is None
+    options.append(_option(120.0 * 3, 0.004, 2))
+    assert traces.trace_verdict(_misfit(600.0, 0.01), options, 40, 0.05, 0.1).named is options[2]
+    assert traces.overdispersion(_misfit(600.0, 0.01), _misfit(117.0, 0.01)) == 3.0
