@@ -312,18 +312,23 @@ class FlatContactSolver(BushingContactSolver):
                 "Newton found no equilibrium (force control needs Q < mu P); solve P afresh"
             ) from None
 
-    def solve_tangential_shift(self, centre_x_m: float, normal_force_N: float
-                               ) -> FrictionalStep:
+    def solve_tangential_shift(self, centre_x_m: float, normal_force_N: float,
+                               wear_compliance_m_per_Pa: float = 0.0) -> FrictionalStep:
         """A frictional step with the cylinder's centre moved to x = ``centre_x_m`` (m,
         prescribed) under the normal force P (N, force control), from the last solve's state as
         :meth:`solve_tangential_force`; Q (the step's ``tangential_force_N``) is the
-        reaction. The result's ``applied_force_N`` is (Q, -P)."""
+        reaction. The result's ``applied_force_N`` is (Q, -P).
+
+        ``wear_compliance_m_per_Pa``: c >= 0, the step's wear solved implicitly as in
+        :meth:`solve` (the penalty law with c in series; the caller moves the top by c p
+        afterwards); 0, the plain contact."""
         force = np.array([0.0, -checked_normal_force(normal_force_N)])
 
         def shifted(centre_x_m: np.ndarray) -> FrictionalStep:
             self._centre_x_target_m = float(centre_x_m[0])
             try:
-                step = self._frictional_step(force, VERTICAL_MOVES)
+                with self._series_penalty(wear_compliance_m_per_Pa):
+                    step = self._frictional_step(force, VERTICAL_MOVES)
             finally:
                 self._centre_x_target_m = None
             applied = np.array([step.tangential_force_N, force[1]])

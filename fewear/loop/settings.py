@@ -125,3 +125,47 @@ class SlidingWearSettings:
     def slide_m(self) -> float:
         """The slide of one wear step, S/N (m)."""
         return self.sliding_distance_m / self.wear_steps
+
+
+@dataclass(frozen=True)
+class FrettingWearSettings:
+    """A flat worn by a cylinder fretting over it at constant normal force
+    (:mod:`fewear.loop.fretting`).
+
+    ``normal_force_N``: P (N); ``stroke_amplitude_m``: d (m), the centre's stroke +-d;
+    ``increments_per_cycle``: n, the stroke cycle's frictional steps (a whole multiple of 4);
+    ``cycles``: the test's cycles; ``cycles_per_block``: the cycles one solved cycle stands for
+    (a divisor of ``cycles``); ``wear_coefficient_m2_N``: Archard's dimensional k of the flat
+    (m^2/N = 1/Pa).
+    """
+
+    normal_force_N: float
+    stroke_amplitude_m: float
+    increments_per_cycle: int
+    cycles: int
+    cycles_per_block: int
+    wear_coefficient_m2_N: float
+
+    def __post_init__(self):
+        for name in ("normal_force_N", "stroke_amplitude_m", "wear_coefficient_m2_N"):
+            require_finite_positive(name, getattr(self, name))
+        for name, largest in (("increments_per_cycle", 10000), ("cycles", 10**9),
+                              ("cycles_per_block", 10**9)):
+            value = getattr(self, name)
+            if not (isinstance(value, int) and not isinstance(value, bool)
+                    and 1 <= value <= largest):
+                raise FewearInputError(f"{name} = {value!r}: must be a whole number in "
+                                       f"[1, {largest}]")
+        if self.increments_per_cycle % 4:
+            raise FewearInputError(
+                f"increments_per_cycle = {self.increments_per_cycle!r}: must be a whole "
+                "multiple of 4 (the stroke's ends and middle at increments)")
+        if self.cycles % self.cycles_per_block:
+            raise FewearInputError(
+                f"cycles_per_block = {self.cycles_per_block!r}: must divide cycles = "
+                f"{self.cycles!r} (every block stands for the same number of cycles)")
+
+    @property
+    def blocks(self) -> int:
+        """The wear blocks, cycles / cycles_per_block."""
+        return self.cycles // self.cycles_per_block
