@@ -97,7 +97,8 @@ def build_parser() -> argparse.ArgumentParser:
                           "process). Under mpirun the ranks are split among the rod models "
                           "instead")
 
-    scar = sub.add_parser("scar", help="a block-on-ring wear scar beside the measured ones")
+    scar = sub.add_parser("scar", help="a block-on-ring or fretting wear scar beside the "
+                                       "measured one(s)")
     _add_config_and_out(scar, "out/scar")
 
     plot = sub.add_parser("plot", help="PyVista view of a run's worn bushing, coloured by depth")

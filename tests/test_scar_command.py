@@ -103,3 +103,55 @@ def test_bad_input_is_one_line_naming_the_value(tmp_path, capsys, config, messag
     assert "Traceback" not in error
     assert re.search(message, error), error
     assert not out.exists()
+
+
+FRETTING_COARSE = """
+[scar]
+case = "fretting"
+
+[fretting]
+increments_per_cycle = 8
+cycles = 2000
+
+[fretting_mesh]
+width_m = 0.002
+height_m = 0.001
+contact_element_size_m = 4e-5
+contact_zone_half_width_m = 0.0004
+side_element_count = 8
+depth_element_count = 12
+"""
+
+
+def test_fretting_case_writes_the_comparison(tmp_path, capsys):
+    """The fretting case, coarse and short (2 blocks of 1000 cycles): the files, a U scar, the
+    worn area near Archard's k P' 4 d N (less the stick), and the measured figures of the
+    research note (2.89 um deep, about 0.66 mm wide at 5 % of the depth, a U)."""
+    config = tmp_path / "fretting.toml"
+    config.write_text(FRETTING_COARSE)
+    out = tmp_path / "out"
+    assert main(["scar", "--config", str(config), "--out", str(out)]) == 0
+    assert "fewear scar: block 2/2, 2000 cycles" in capsys.readouterr().err
+    assert {path.name for path in out.iterdir()} == {"profiles.csv", "predicted_nodes.csv",
+                                                     "summary.json", "scar.png"}
+    summary = json.loads((out / "summary.json").read_text())
+    predicted, measured = summary["predicted"], summary["measured"]
+    assert predicted["shape"] == "U" and measured["shape"] == "U"
+    archard = 2.9e-14 * 185.0 / 0.010 * 4 * 25e-6 * 2000
+    assert summary["archard_gross_slip_area_m2"] == pytest.approx(archard, rel=1e-12)
+    assert 0.95 < predicted["whole_worn_area_m2"] / archard < 1.0
+    assert measured["max_depth_m"] == pytest.approx(2.89e-6, abs=0.01e-6)
+    assert measured["width_m"] == pytest.approx(0.66e-3, rel=0.03)
+    table = np.genfromtxt(out / "profiles.csv", delimiter=",", names=True)
+    assert list(table.dtype.names) == ["x_m", "predicted_depth_m", "measured_depth_m"]
+    rms = np.sqrt(np.mean((table["predicted_depth_m"] - table["measured_depth_m"]) ** 2))
+    assert summary["rms_difference_m"] == pytest.approx(rms, rel=1e-6)
+
+
+def test_unknown_case_is_refused(tmp_path, capsys):
+    path = tmp_path / "bad.toml"
+    path.write_text('[scar]\ncase = "pin_on_disc"\n')
+    assert main(["scar", "--config", str(path), "--out", str(tmp_path / "out")]) == 2
+    error = capsys.readouterr().err
+    assert "[scar] case = 'pin_on_disc': expected one of 'block_on_ring', 'fretting'" in error
+    assert not (tmp_path / "out").exists()

@@ -1,5 +1,18 @@
-"""``fewear scar [--config FILE.toml] [--out DIR]``: a block-on-ring wear scar predicted by the FE
-wear loop on the flat (:mod:`fewear.loop.flat_wear`) beside the three measured ones of Cruzado et
+"""``fewear scar [--config FILE.toml] [--out DIR]``: a wear scar predicted by the FE wear loop on
+the flat beside the measured one(s); ``[scar] case`` chooses the case.
+
+``case = "fretting"``: the fretting scar of McColl, Ding & Leen, Wear 256 (2004) 1114-1127
+(``fewear/data/scar_fretting_mccoll2004.csv``) by :mod:`fewear.loop.fretting`, from
+``[fretting]`` and ``[fretting_mesh]`` (and ``[contact]``'s penalty and Newton settings): a
+progress line per wear block on stderr; ``profiles.csv`` (x_m on the measured grid, predicted and
+measured depth), ``predicted_nodes.csv``, ``scar.png`` as below; ``summary.json``: predicted and
+measured largest depth, width (5 % of the depth), worn area (over that width), shape (U or W,
+:func:`fewear.wear.scar.scar_shape`), the RMS of predicted less measured depth on the measured
+grid, Archard's global area k P' 4 d N beside (gross slip, d_stick neglected), the run's blocks and
+wall time, and the config. The cylinder's wear is not modelled (:mod:`fewear.loop.fretting`).
+
+``case = "block_on_ring"`` (the default): a block-on-ring wear scar predicted by the FE wear
+loop on the flat (:mod:`fewear.loop.flat_wear`) beside the three measured ones of Cruzado et
 al., Rev. Metal. 46 (2010) 106-114 (``fewear/data/scar_block_on_ring_cruzado2010.csv``).
 
 Reads ``[block_on_ring]``, ``[block_on_ring_mesh]`` and ``[contact]`` (penalty and Newton
@@ -29,16 +42,19 @@ import numpy as np
 
 from fewear.contact.params import BushingMaterial, ContactSettings, FlatContactProblem
 from fewear.errors import FewearInputError
-from fewear.loop.settings import SlidingWearSettings
+from fewear.loop.settings import FrettingWearSettings, SlidingWearSettings
 from fewear.mesh.geometry import FlatGeometry, FlatMeshSettings
 from fewear.wear.scar import (
     EDGE_SHARE,
     ring_arc_depth_m,
     ring_arc_width_m,
     scar_depth_and_width_m,
+    scar_shape,
 )
 
-SCAR_SECTIONS = ["block_on_ring", "block_on_ring_mesh", "contact"]
+SCAR_SECTIONS = ["scar", "block_on_ring", "block_on_ring_mesh", "fretting", "fretting_mesh",
+                 "contact"]
+SCAR_CASES = ("block_on_ring", "fretting")
 STANDOFF_SHARE = 1e-3
 """The gap between the ring and the unworn block, a share of the ring's radius."""
 
@@ -68,6 +84,38 @@ def block_on_ring_from_config(config: dict) -> tuple[FlatContactProblem, Sliding
         raise FewearInputError(f"[block_on_ring_mesh]: {exc}") from None
     _require_zone_holds_the_scar(problem, settings)
     return problem, settings
+
+
+def fretting_from_config(config: dict) -> tuple[FlatContactProblem, FrettingWearSettings]:
+    """The contact problem and the wear settings of ``[fretting]`` and ``[fretting_mesh]``;
+    every check of the dataclasses named with its section, the contact zone checked to hold the
+    stroke and the contact."""
+    case, mesh = config["fretting"], config["fretting_mesh"]
+    try:
+        geometry = FlatGeometry(case["cylinder_radius_m"], mesh["width_m"], mesh["height_m"],
+                                case["length_m"], STANDOFF_SHARE * case["cylinder_radius_m"])
+        material = BushingMaterial(case["youngs_modulus_Pa"], case["poisson_ratio"])
+        settings = FrettingWearSettings(
+            case["normal_force_N"], case["stroke_amplitude_m"], case["increments_per_cycle"],
+            case["cycles"], case["cycles_per_block"], case["wear_coefficient_m2_N"])
+        mesh_settings = FlatMeshSettings(
+            mesh["contact_element_size_m"], mesh["contact_zone_half_width_m"],
+            mesh["side_element_count"], mesh["depth_element_count"])
+        contact = config["contact"]
+        problem = FlatContactProblem(geometry, material, mesh_settings, ContactSettings(
+            contact["penalty_factor"], case["friction_coefficient"],
+            contact["newton_tolerance"], contact["newton_max_iterations"]))
+    except FewearInputError as exc:
+        raise FewearInputError(f"[fretting] or [fretting_mesh]: {exc}") from None
+    return problem, settings
+
+
+def fretting_archard_area_m2(problem: FlatContactProblem,
+                             settings: FrettingWearSettings) -> float:
+    """Archard's worn area per unit length in gross slip, k P' 4 d N (m^2; the slip per cycle
+    4 d, the elastic d_stick neglected: the research note's section 3.3)."""
+    return (settings.wear_coefficient_m2_N * settings.normal_force_N / problem.geometry.length_m
+            * 4.0 * settings.stroke_amplitude_m * settings.cycles)
 
 
 def archard_area_m2(problem: FlatContactProblem, settings: SlidingWearSettings) -> float:
@@ -108,6 +156,39 @@ def measured_scars() -> dict[str, tuple[np.ndarray, np.ndarray]]:
     table = np.genfromtxt(rows, delimiter=",", names=True)
     return {name.removesuffix("_um"): (1e-3 * table["x_mm"], -1e-6 * table[name])
             for name in table.dtype.names[1:]}
+
+
+def measured_fretting_scar() -> tuple[np.ndarray, np.ndarray]:
+    """The measured fretting profile as (x_m, depth_m), depth positive where worn."""
+    from fewear.data import FRETTING_MCCOLL2004_CSV
+
+    rows = [line for line in FRETTING_MCCOLL2004_CSV.read_text().splitlines()
+            if not line.startswith("#")]
+    table = np.genfromtxt(rows, delimiter=",", names=True)
+    return 1e-3 * table["x_mm"], -1e-6 * table["y_um"]
+
+
+def fretting_summary(run, problem: FlatContactProblem, settings: FrettingWearSettings,
+                     config: dict) -> dict:
+    """summary.json of the fretting case (module docstring)."""
+    x, measured = measured_fretting_scar()
+    predicted = {**scar_figures(run.state.x_m, run.state.depth_m),
+                 "shape": scar_shape(run.state.x_m, run.state.depth_m)}
+    predicted["whole_worn_area_m2"] = run.state.worn_area_m2()
+    difference = run.state.depth_at(x) - measured
+    return {
+        "predicted": predicted,
+        "measured": {**scar_figures(x, measured), "shape": scar_shape(x, measured)},
+        "rms_difference_m": float(np.sqrt(np.mean(difference**2))),
+        "archard_gross_slip_area_m2": fretting_archard_area_m2(problem, settings),
+        "edge_share": EDGE_SHARE,
+        "cylinder_wear": "not modelled: the flat wears, the cylinder stays a circle",
+        "blocks": [{"cycles": block.cycles, "max_depth_m": block.max_depth_m,
+                    "max_pressure_Pa": block.max_pressure_Pa,
+                    "tangential_force_N": block.tangential_force_N} for block in run.blocks],
+        "wall_time_s": run.wall_time_s,
+        "config": config,
+    }
 
 
 def scar_figures(x_m: np.ndarray, depth_m: np.ndarray) -> dict[str, float]:
@@ -161,6 +242,12 @@ def main(args: argparse.Namespace) -> int:
 
     comm = MPI.COMM_WORLD
     config = load_config(args.config, SCAR_SECTIONS)
+    case = config["scar"]["case"]
+    if case not in SCAR_CASES:
+        raise FewearInputError(f"[scar] case = {case!r}: expected one of "
+                               + ", ".join(repr(name) for name in SCAR_CASES))
+    if case == "fretting":
+        return _fretting_main(args, config, comm)
     problem, settings = block_on_ring_from_config(config)
     with staged_output(args.out, comm) as stage:
         run = _run(problem, settings, comm)
@@ -198,3 +285,35 @@ def _write_outputs(stage, run, problem, settings, config) -> None:
     write_json(stage / "summary.json", scar_summary(run, problem, settings, measured, config))
     plot_scar(stage / "scar.png", (run.state.x_m, run.state.depth_m), measured,
               f"block on ring after {settings.sliding_distance_m:g} m")
+
+
+def _fretting_main(args, config, comm) -> int:
+    from fewear.io.output import staged_output, write_json
+    from fewear.loop.fretting import run_fretting_wear
+    from fewear.plot.scar import plot_scar
+
+    problem, settings = fretting_from_config(config)
+
+    def progress(block) -> None:
+        if comm.rank == 0:
+            print(f"fewear scar: block {block.cycles // settings.cycles_per_block}/"
+                  f"{settings.blocks}, {block.cycles} cycles: depth "
+                  f"{block.max_depth_m * 1e6:.3f} um, peak pressure "
+                  f"{block.max_pressure_Pa / 1e6:.3g} MPa, Q {block.tangential_force_N:.4g} N",
+                  file=sys.stderr, flush=True)
+
+    with staged_output(args.out, comm) as stage:
+        run = run_fretting_wear(problem, settings, comm, report=progress)
+        if comm.rank == 0:
+            x, measured = measured_fretting_scar()
+            np.savetxt(stage / "profiles.csv",
+                       np.column_stack([x, run.state.depth_at(x), measured]), delimiter=",",
+                       header="x_m,predicted_depth_m,measured_depth_m", comments="", fmt="%.9g")
+            np.savetxt(stage / "predicted_nodes.csv",
+                       np.column_stack([run.state.x_m, run.state.depth_m]), delimiter=",",
+                       header="x_m,depth_m", comments="", fmt="%.12g")
+            write_json(stage / "summary.json", fretting_summary(run, problem, settings, config))
+            plot_scar(stage / "scar.png", (run.state.x_m, run.state.depth_m),
+                      {"McColl et al. 2004": (x, measured)},
+                      f"fretting cylinder on flat after {settings.cycles} cycles")
+    return 0

@@ -66,3 +66,19 @@ def scar_depth_and_width_m(x_m, depth_m, edge_share: float = EDGE_SHARE) -> tupl
         return float(x[inside] + share * (x[outside] - x[inside]))
 
     return deepest, crossing(worn[-1], worn[-1] + 1) - crossing(worn[0], worn[0] - 1)
+
+
+MIDDLE_SHARE = 0.9
+"""A scar is a W where its middle is shallower than this share of its depth, else a U."""
+
+
+def scar_shape(x_m, depth_m, edge_share: float = EDGE_SHARE) -> str:
+    """"U" or "W": the depth half way between the scar's edges (:func:`scar_depth_and_width_m`)
+    against ``MIDDLE_SHARE`` of the largest. A gross-slip fretting scar is a U (deepest in the
+    middle), a partial-slip one a W (the stick zone in the middle unworn; Vingsbo & Soderberg,
+    Wear 126 (1988) 131)."""
+    x, depth = np.asarray(x_m, dtype=float), np.asarray(depth_m, dtype=float)
+    deepest = float(depth.max())
+    worn = x[depth > edge_share * deepest]
+    middle = float(np.interp(0.5 * (worn[0] + worn[-1]), x, depth))
+    return "W" if middle < MIDDLE_SHARE * deepest else "U"
