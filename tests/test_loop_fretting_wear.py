@@ -1,20 +1,22 @@
-"""Fretting wear blocks on the flat (fewear.loop.fretting.run_fretting_wear) against Archard's
-global estimate and the scar's symmetry.
+"""Fretting wear blocks on the flat and the cylinder (fewear.loop.fretting.run_fretting_wear)
+against Archard's global estimate and the scar's symmetry.
 
 The case: McColl, Ding & Leen 2004 as the scar command models it (rigid cylinder R = 6 mm on a
 flat of E = 100 GPa, nu = 0.3: the steel pair's E*; P = 185 N over 10 mm, mu = 0.9, stroke
-+-25 um, k = 2.9e-14 m^2/N), on a small flat (2 x 1 mm, contact elements of 20 um over
-|x| < 0.2 mm): 2 blocks of 1000 cycles, 8 increments per cycle.
++-25 um, k = 2.9e-14 m^2/N on the flat, k_c = 1.9e-14 m^2/N on the cylinder), on a small flat
+(2 x 1 mm, contact elements of 20 um over |x| < 0.2 mm): 2 blocks of 1000 cycles, 8 increments
+per cycle.
 
 Archard (J. Appl. Phys. 24 (1953) 981): the worn area is k times the integral of p s over the
-top and the cycles. Every slipping node carries |tau| = mu p, so that integral is the friction
-work over mu: area = k N sum_blocks E_d / (mu L), E_d the energy a cycle dissipates (the
-bookkeeping, to the quadrature: trapezoid rule on the profile, the contact's node weights on
-E_d). In gross slip E_d = 4 Q* (d - d_stick) (tests/test_loop_fretting_cycle.py), so the area is
-k P' 4 (d - d_stick) N_total to the normals' tilt: measured 0.971 of k P' 4 d N_total (d_stick
-about 0.7 um). The scar is a U (gross slip): deepest in the middle, its mirrored flanks 9 % of the
-depth apart (the increments wear in turn, each block lopsided towards its first sense, the
-blocks alternating it: coarse here, 8 increments and blocks of 1000).
+top and the cycles; flat and cylinder share p and s, so their areas stand as k : k_c (measured
+to 1e-5), and together they are (k + k_c) times the integral. Every slipping node carries
+|tau| = mu p, so that integral is the friction work over mu, N sum_blocks E_d / (mu L), E_d the
+energy a cycle dissipates. In gross slip E_d = 4 Q* (d - d_stick)
+(tests/test_loop_fretting_cycle.py), so the area is (k + k_c) P' 4 (d - d_stick) N_total to the
+normals' tilt: measured 0.973 of (k + k_c) P' 4 d N_total (d_stick about 0.7 um). The scar is a
+U (gross slip): deepest in the middle, its mirrored flanks 13 % of the depth apart (the
+increments wear in turn, each block lopsided towards its first sense, the blocks alternating
+it: coarse here, 8 increments and blocks of 1000).
 """
 
 import numpy as np
@@ -27,6 +29,7 @@ from fewear.mesh.geometry import FlatGeometry, FlatMeshSettings
 from fewear.wear.scar import scar_depth_and_width_m
 
 FORCE_N, LENGTH_M, FRICTION, STROKE_M, K_M2_N = 185.0, 0.010, 0.9, 25e-6, 2.9e-14
+K_CYLINDER_M2_N = 1.9e-14
 
 
 @pytest.fixture(scope="module")
@@ -38,18 +41,20 @@ def run():
     problem = FlatContactProblem(geometry, BushingMaterial(100e9, 0.3), mesh,
                                  ContactSettings(friction_coefficient=FRICTION))
     blocks = []
-    result = run_fretting_wear(problem, FrettingWearSettings(FORCE_N, STROKE_M, 8, 2000, 1000,
-                                                             K_M2_N), report=blocks.append)
+    result = run_fretting_wear(problem, FrettingWearSettings(
+        FORCE_N, STROKE_M, 8, 2000, 1000, K_M2_N, K_CYLINDER_M2_N), report=blocks.append)
     return result, blocks
 
 
 def test_worn_area_is_archards_on_the_friction_work(run):
     result, blocks = run
-    area = result.state.worn_area_m2()
-    archard = K_M2_N * FORCE_N / LENGTH_M * 4.0 * STROKE_M * 2000
-    print(f"\nworn area {area:.5g} m^2 = {area / archard:.4f} of k P' 4 d N; blocks "
+    area, cylinder = result.state.worn_area_m2(), result.cylinder.worn_area_m2()
+    archard = (K_M2_N + K_CYLINDER_M2_N) * FORCE_N / LENGTH_M * 4.0 * STROKE_M * 2000
+    print(f"\nworn areas {area:.5g} + {cylinder:.5g} m^2 = {(area + cylinder) / archard:.4f} of "
+          f"(k + k_c) P' 4 d N, ratio {area / cylinder:.5f}; blocks "
           f"{[round(b.max_depth_m * 1e9) for b in blocks]} nm")
-    assert 0.95 < area / archard < 1.0
+    assert 0.95 < (area + cylinder) / archard < 1.0
+    assert area / cylinder == pytest.approx(K_M2_N / K_CYLINDER_M2_N, rel=2e-3)
     # the first cycle (unworn flat) dissipates what the wear of its N cycles says
     first = result.first_cycle
     assert first.dissipated_energy_J == pytest.approx(
@@ -64,7 +69,7 @@ def test_the_scar_is_a_symmetric_u(run):
     x, depth = result.state.x_m, result.state.depth_m
     deepest, width = scar_depth_and_width_m(x, depth)
     mirrored = np.interp(-x, x, depth)
-    assert np.max(np.abs(depth - mirrored)) < 0.12 * deepest
+    assert np.max(np.abs(depth - mirrored)) < 0.15 * deepest
     assert result.state.depth_at(0.0) > 0.95 * deepest
     assert 2 * STROKE_M < width < 0.4e-3
 
@@ -74,6 +79,7 @@ def test_the_scar_is_a_symmetric_u(run):
     ({"cycles_per_block": 7}, "must divide cycles"),
     ({"stroke_amplitude_m": -1.0}, "stroke_amplitude_m"),
     ({"cycles": 0}, r"cycles = 0: must be a whole number"),
+    ({"cylinder_wear_coefficient_m2_N": -1e-14}, "cylinder_wear_coefficient_m2_N = -1e-14"),
 ])
 def test_settings_refuse_bad_values(changes, message):
     values = dict(normal_force_N=FORCE_N, stroke_amplitude_m=STROKE_M, increments_per_cycle=8,

@@ -112,6 +112,7 @@ case = "fretting"
 [fretting]
 increments_per_cycle = 8
 cycles = 2000
+cylinder_wear_coefficient_m2_N = 1.9e-14
 
 [fretting_mesh]
 width_m = 0.002
@@ -124,9 +125,10 @@ depth_element_count = 12
 
 
 def test_fretting_case_writes_the_comparison(tmp_path, capsys):
-    """The fretting case, coarse and short (2 blocks of 1000 cycles): the files, a U scar, the
-    worn area near Archard's k P' 4 d N (less the stick), and the measured figures of the
-    research note (2.89 um deep, about 0.66 mm wide at 5 % of the depth, a U)."""
+    """The fretting case, coarse and short (2 blocks of 1000 cycles), both bodies wearing: the
+    files, a U scar, the flat's worn area near Archard's k P' 4 d N (less the stick), the
+    cylinder's k_c/k of it, and the measured figures of the research note (2.89 um deep, about
+    0.66 mm wide at 5 % of the depth, a U)."""
     config = tmp_path / "fretting.toml"
     config.write_text(FRETTING_COARSE)
     out = tmp_path / "out"
@@ -140,6 +142,8 @@ def test_fretting_case_writes_the_comparison(tmp_path, capsys):
     archard = 2.9e-14 * 185.0 / 0.010 * 4 * 25e-6 * 2000
     assert summary["archard_gross_slip_area_m2"] == pytest.approx(archard, rel=1e-12)
     assert 0.95 < predicted["whole_worn_area_m2"] / archard < 1.0
+    assert summary["cylinder"]["worn_area_m2"] == pytest.approx(
+        predicted["whole_worn_area_m2"] * 1.9 / 2.9, rel=1e-3)
     assert measured["max_depth_m"] == pytest.approx(2.89e-6, abs=0.01e-6)
     assert measured["width_m"] == pytest.approx(0.66e-3, rel=0.03)
     table = np.genfromtxt(out / "profiles.csv", delimiter=",", names=True)

@@ -34,6 +34,17 @@ not before it; a step the Newton does not settle is split in halves
 PROTOTYPE: the rigid cylinder on the elastic flat is not elastically similar, Dundurs
 beta != 0, so coupled, Q shifts the pressure and the stick zone).
 
+A worn cylinder (fretting: both bodies wear): its worn depth h_c(s), s along its bottom from
+below its centre, set by :meth:`FlatContactSolver.set_cylinder_wear` and placed at the centre's
+x of each solve. The gap to the worn cylinder is |x + u - c| - (R - h_c(x - c_x)) to first order
+in h_c/R and in the cylinder's slope (h_c is microns over a contact of tenths of a millimetre):
+the gap of the flat's point lowered by h_c to the circle. So the forms see the deformed point
+lowered by the Function :attr:`cylinder_wear` (h_c at the top's points,
+:meth:`_against_worn_cylinder`), and the Newton's nodal gaps the nodes lowered alike
+(:meth:`contact_points`). h_c is taken at the point's undeformed x (the error: the flat's
+tangential displacement, below a micron, times h_c's slope, about 0.01), and the Jacobian leaves
+h_c's dependence on u out.
+
 Wear: an implicit (backward Euler) Archard step of slide ds wears every node by k p ds with p at
 the step's end, so the flat recedes by c p (c = k ds, m/Pa) while the contact is solved; this is
 the penalty law with c in series, p = <-g>_+ / (1/k + c), g the gap to the flat at the step's
@@ -163,6 +174,10 @@ class FlatContactSolver(BushingContactSolver):
         self._centre_x_target_m: float | None = None  # displacement control of the centre's x
         self.last_force_N = np.zeros(2)  # (Q, -P) at the end of the last solve or step (N)
         self._loading_now = fem.Function(shear_space)
+        # the cylinder's worn depth under each point of the top, at the cylinder's position
+        self.cylinder_wear = fem.Function(shear_space, name="cylinder_wear_m")
+        self._cylinder_profile: tuple[np.ndarray, np.ndarray] | None = None
+        self._cylinder_wear_at_nodes: np.ndarray | None = None
         super()._build_forms()
         deformed = ufl.SpatialCoordinate(msh) + self.displacement
         points = shear_space.element.interpolation_points()
@@ -180,6 +195,52 @@ class FlatContactSolver(BushingContactSolver):
         n = self._normal(deformed)
         return self.loading_pressure(deformed) * n + self.shear(deformed) * ufl.as_vector(
             (-n[1], n[0]))
+
+    def contact_pressure(self, deformed):
+        """UFL: the penalty pressure against the worn cylinder (:meth:`_against_worn_cylinder`)."""
+        return BushingContactSolver.contact_pressure(self, self._against_worn_cylinder(deformed))
+
+    def _normal(self, deformed):
+        return BushingContactSolver._normal(self, self._against_worn_cylinder(deformed))
+
+    def _against_worn_cylinder(self, deformed):
+        """UFL: the flat's deformed point lowered by the cylinder's worn depth h_c above it
+        (:meth:`set_cylinder_wear`): the gap to the worn cylinder, |x + u - c| - (R - h_c) to
+        first order in h_c/R, is the gap of the lowered point to the circle."""
+        return deformed - ufl.as_vector((0.0, self.cylinder_wear))
+
+    def set_cylinder_wear(self, position_m: np.ndarray, depth_m: np.ndarray) -> None:
+        """The cylinder's worn depth h_c (m, into the cylinder) at the positions s (m, along its
+        bottom from below its centre, increasing), linear between them and 0 beyond; applied
+        at the centre's x of every later solve (the prescribed x of a shift, 0 for
+        :meth:`solve`, the step's start for a force-controlled step)."""
+        self._cylinder_profile = (np.asarray(position_m, dtype=float).copy(),
+                                  np.asarray(depth_m, dtype=float).copy())
+
+    def _place_cylinder_wear(self, centre_x_m: float) -> None:
+        """The cylinder's wear under the top's points with its centre at x = ``centre_x_m``."""
+        if self._cylinder_profile is None:
+            return
+        position, depth = self._cylinder_profile
+        self.cylinder_wear.interpolate(
+            lambda x: np.interp(x[0] - centre_x_m, position, depth, left=0.0, right=0.0))
+        self.cylinder_wear.x.scatter_forward()
+        self._cylinder_wear_at_nodes = np.interp(self.bore.points[:, 0] - centre_x_m, position,
+                                                 depth, left=0.0, right=0.0)
+
+    def contact_points(self) -> np.ndarray:
+        """The top's nodes lowered by the cylinder's wear above them (m;
+        :meth:`_against_worn_cylinder`), so that the Newton's nodal gaps are the forms'."""
+        if self._cylinder_wear_at_nodes is None:
+            return self.bore.points
+        return self.bore.points - np.column_stack(
+            [np.zeros(self.bore.points.shape[0]), self._cylinder_wear_at_nodes])
+
+    def _result(self, force, rotation, iterations, displacement) -> ContactResult:
+        """The bushing's result; its y_m the top nodes' own (not lowered by the cylinder's
+        wear)."""
+        result = BushingContactSolver._result(self, force, rotation, iterations, displacement)
+        return replace(result, y_m=self.bore.points[:, 1].copy())
 
     def loading_pressure(self, deformed):
         """UFL: the pressure p (Pa) of the traction: the penalty law's, or in an uncoupled
@@ -266,6 +327,7 @@ class FlatContactSolver(BushingContactSolver):
         normal = checked_normal_force(normal_force_N)
         force = normal * PRESS_DIRECTION
         self.friction.value = 0.0
+        self._place_cylinder_wear(0.0)
         if normal == 0.0:
             result = self._no_contact_result(force, 0.0)
             self._release_shear()
@@ -302,6 +364,7 @@ class FlatContactSolver(BushingContactSolver):
                 f"tangential force = {tangential_force_N!r} N: force control needs |Q| < mu P "
                 f"= {μ * -force[1]:g} N (beyond, the cylinder slides away: shift it instead)")
         basis = HORIZONTAL_MOVES if uncoupled else BOTH_MOVES
+        self._place_cylinder_wear(float(self.pin_centre_m[0]))
         try:
             return self._in_halves(lambda f: self._frictional_step(f, basis, uncoupled),
                                    self.last_force_N, force, STEP_HALVINGS)
@@ -326,6 +389,7 @@ class FlatContactSolver(BushingContactSolver):
 
         def shifted(centre_x_m: np.ndarray) -> FrictionalStep:
             self._centre_x_target_m = float(centre_x_m[0])
+            self._place_cylinder_wear(self._centre_x_target_m)
             try:
                 with self._series_penalty(wear_compliance_m_per_Pa):
                     step = self._frictional_step(force, VERTICAL_MOVES)

@@ -343,7 +343,7 @@ class BushingContactSolver:
         self.newton.reset()
         zeros = np.zeros((self.bore.points.shape[0], 2))
         self.last_result = nodal_result(
-            self.problem, self.bore.points, self.bore.angles, zeros, self.pin_centre_m, force,
+            self.problem, self.contact_points(), self.bore.angles, zeros, self.pin_centre_m, force,
             np.zeros(2), np.zeros(2), rotation, 0)
         return self.last_result
 
@@ -393,7 +393,8 @@ class BushingContactSolver:
         if du is not self._du.vector:  # the nodal update is evaluated from the function _du
             du.copy(self._du.vector)
         self._du.x.scatter_forward()
-        return LineData(slope, self.bore.points, np.ascontiguousarray(self.nodal_displacement()),
+        return LineData(slope, self.contact_points(),
+                        np.ascontiguousarray(self.nodal_displacement()),
                         np.ascontiguousarray(self._at_bore_nodes(self._du)), elastic), None
 
     def try_step(self, base, du, step: float, pin_centre: np.ndarray) -> None:
@@ -405,7 +406,12 @@ class BushingContactSolver:
         self.place_pin(pin_centre)
 
     def deformed_points(self) -> np.ndarray:
-        return self.bore.points + self.nodal_displacement()
+        return self.contact_points() + self.nodal_displacement()
+
+    def contact_points(self) -> np.ndarray:
+        """The bore nodes as the penalty law sees them (m): the bore's own; a worn indenter
+        shifts them (:meth:`fewear.contact.flat.FlatContactSolver.contact_points`)."""
+        return self.bore.points
 
     def node_weights(self) -> np.ndarray:
         return self.weights_m
@@ -509,7 +515,7 @@ class BushingContactSolver:
         resultant = L * np.array([-self.uniform[i].dot(self._r) for i in range(2)])  # E^T r
         normal = L * np.array([self.comm.allreduce(fem.assemble_scalar(form), op=MPI.SUM)
                                for form in self._normal_force])
-        return nodal_result(self.problem, self.bore.points, self.bore.angles, displacement,
+        return nodal_result(self.problem, self.contact_points(), self.bore.angles, displacement,
                             self.pin_centre_m, force, resultant, normal, rotation, iterations)
 
     def pressure_function(self) -> fem.Function:

@@ -8,8 +8,9 @@ progress line per wear block on stderr; ``profiles.csv`` (x_m on the measured gr
 measured depth), ``predicted_nodes.csv``, ``scar.png`` as below; ``summary.json``: predicted and
 measured largest depth, width (5 % of the depth), worn area (over that width), shape (U or W,
 :func:`fewear.wear.scar.scar_shape`), the RMS of predicted less measured depth on the measured
-grid, Archard's global area k P' 4 d N beside (gross slip, d_stick neglected), the run's blocks and
-wall time, and the config. The cylinder's wear is not modelled (:mod:`fewear.loop.fretting`).
+grid, Archard's global area k P' 4 d N beside (gross slip, d_stick neglected), the cylinder's
+largest depth and worn area (when it wears: ``cylinder_wear_coefficient_m2_N`` > 0,
+:mod:`fewear.loop.fretting`), the run's blocks and wall time, and the config.
 
 ``case = "block_on_ring"`` (the default): a block-on-ring wear scar predicted by the FE wear
 loop on the flat (:mod:`fewear.loop.flat_wear`) beside the three measured ones of Cruzado et
@@ -97,7 +98,8 @@ def fretting_from_config(config: dict) -> tuple[FlatContactProblem, FrettingWear
         material = BushingMaterial(case["youngs_modulus_Pa"], case["poisson_ratio"])
         settings = FrettingWearSettings(
             case["normal_force_N"], case["stroke_amplitude_m"], case["increments_per_cycle"],
-            case["cycles"], case["cycles_per_block"], case["wear_coefficient_m2_N"])
+            case["cycles"], case["cycles_per_block"], case["wear_coefficient_m2_N"],
+            case["cylinder_wear_coefficient_m2_N"])
         mesh_settings = FlatMeshSettings(
             mesh["contact_element_size_m"], mesh["contact_zone_half_width_m"],
             mesh["side_element_count"], mesh["depth_element_count"])
@@ -112,8 +114,8 @@ def fretting_from_config(config: dict) -> tuple[FlatContactProblem, FrettingWear
 
 def fretting_archard_area_m2(problem: FlatContactProblem,
                              settings: FrettingWearSettings) -> float:
-    """Archard's worn area per unit length in gross slip, k P' 4 d N (m^2; the slip per cycle
-    4 d, the elastic d_stick neglected: the research note's section 3.3)."""
+    """Archard's worn area of the flat per unit length in gross slip, k P' 4 d N (m^2; the slip
+    per cycle 4 d, the elastic d_stick neglected: the research note's section 3.3)."""
     return (settings.wear_coefficient_m2_N * settings.normal_force_N / problem.geometry.length_m
             * 4.0 * settings.stroke_amplitude_m * settings.cycles)
 
@@ -182,7 +184,9 @@ def fretting_summary(run, problem: FlatContactProblem, settings: FrettingWearSet
         "rms_difference_m": float(np.sqrt(np.mean(difference**2))),
         "archard_gross_slip_area_m2": fretting_archard_area_m2(problem, settings),
         "edge_share": EDGE_SHARE,
-        "cylinder_wear": "not modelled: the flat wears, the cylinder stays a circle",
+        "cylinder": {"wear_coefficient_m2_N": settings.cylinder_wear_coefficient_m2_N,
+                     "max_depth_m": float(run.cylinder.depth_m.max()),
+                     "worn_area_m2": run.cylinder.worn_area_m2()},
         "blocks": [{"cycles": block.cycles, "max_depth_m": block.max_depth_m,
                     "max_pressure_Pa": block.max_pressure_Pa,
                     "tangential_force_N": block.tangential_force_N} for block in run.blocks],

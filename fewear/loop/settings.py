@@ -3,6 +3,7 @@ from the config at the command's edge into typed stage inputs."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from fewear.errors import FewearInputError, require_finite_positive
@@ -136,7 +137,8 @@ class FrettingWearSettings:
     ``increments_per_cycle``: n, the stroke cycle's frictional steps (a whole multiple of 4);
     ``cycles``: the test's cycles; ``cycles_per_block``: the cycles one solved cycle stands for
     (a divisor of ``cycles``); ``wear_coefficient_m2_N``: Archard's dimensional k of the flat
-    (m^2/N = 1/Pa).
+    (m^2/N = 1/Pa); ``cylinder_wear_coefficient_m2_N``: the cylinder's (>= 0; 0: it does not
+    wear).
     """
 
     normal_force_N: float
@@ -145,10 +147,15 @@ class FrettingWearSettings:
     cycles: int
     cycles_per_block: int
     wear_coefficient_m2_N: float
+    cylinder_wear_coefficient_m2_N: float = 0.0
 
     def __post_init__(self):
         for name in ("normal_force_N", "stroke_amplitude_m", "wear_coefficient_m2_N"):
             require_finite_positive(name, getattr(self, name))
+        cylinder = self.cylinder_wear_coefficient_m2_N
+        if not (isinstance(cylinder, (int, float)) and math.isfinite(cylinder) and cylinder >= 0):
+            raise FewearInputError(f"cylinder_wear_coefficient_m2_N = {cylinder!r}: must be a "
+                                   "finite number >= 0")
         for name, largest in (("increments_per_cycle", 10000), ("cycles", 10**9),
                               ("cycles_per_block", 10**9)):
             value = getattr(self, name)

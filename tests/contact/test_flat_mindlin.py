@@ -252,3 +252,24 @@ def test_frictional_steps_refused_without_pressing_or_beyond_mu_p():
     solver.solve_tangential_force(0.5 * FRICTION * FORCE_N, FORCE_N)
     again = solver.solve(FORCE_N)
     assert again.resultant_force_N[0] == pytest.approx(0.0, abs=1e-6 * FORCE_N)
+
+
+def test_a_uniformly_worn_cylinder_presses_as_the_unworn_one_lowered():
+    """The cylinder worn by h0 everywhere (fewear.contact.flat.set_cylinder_wear) is the circle
+    of radius R - h0: the same contact with the centre h0 lower. Worn only over |s| < 4 a (zero
+    beyond, out of contact): the same."""
+    a, _ = hertz()
+    solver = flat_solver(8)
+    unworn = solver.solve(FORCE_N)
+    worn_depth = 0.5e-6
+    solver.set_cylinder_wear(np.array([-4 * a, 4 * a]), np.array([worn_depth, worn_depth]))
+    worn = solver.solve(FORCE_N)
+    assert worn.pin_centre_m[1] == pytest.approx(unworn.pin_centre_m[1] - worn_depth,
+                                                 abs=1e-6 * worn_depth)
+    np.testing.assert_allclose(worn.pressure_Pa, unworn.pressure_Pa, rtol=1e-6,
+                               atol=1e-6 * unworn.max_pressure_Pa)
+    np.testing.assert_array_equal(worn.y_m, unworn.y_m)
+    # a shift carries the worn cylinder along: gross slip as before, the centre lowered
+    step = solver.solve_tangential_shift(3e-6, FORCE_N)
+    assert not np.any(step.sticking)
+    assert step.contact.pin_centre_m[1] < unworn.pin_centre_m[1] - 0.9 * worn_depth
