@@ -416,7 +416,9 @@ class FlatContactSolver(BushingContactSolver):
         cycle with growing amplitude when a step turns many nodes from stick to slip (a node's
         tangential stiffness is k_t or nothing; measured at h = a/16, Q from mu P/2 to
         3 mu P/4 in one step); for a monotonic load the halves end in the same state
-        (Mindlin's solution depends on the final load alone)."""
+        (Mindlin's solution depends on the final load alone). The split step's result is the
+        second half's, its Coulomb slip the two halves' sum (the whole step's, as Archard needs
+        it: :mod:`fewear.loop.fretting`)."""
         centre, displacement = self.pin_centre_m.copy(), self.displacement.x.array.copy()
         try:
             return step(end)
@@ -426,8 +428,10 @@ class FlatContactSolver(BushingContactSolver):
             self.displacement.x.array[:] = displacement
             self.place_pin(centre)
             middle = 0.5 * (start + end)
-            self._in_halves(step, start, middle, halvings - 1)
-            return self._in_halves(step, middle, end, halvings - 1)
+            first = self._in_halves(step, start, middle, halvings - 1)
+            second = self._in_halves(step, middle, end, halvings - 1)
+            return second._replace(contact=replace(
+                second.contact, slip_m=first.contact.slip_m + second.contact.slip_m))
 
     def _frictional_step(self, force: np.ndarray, basis: np.ndarray,
                          frozen: bool = False) -> FrictionalStep:

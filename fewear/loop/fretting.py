@@ -213,10 +213,12 @@ class FrettingBlock:
 
 @dataclass(frozen=True)
 class FrettingRun:
-    """The worn flat after the run: ``state``; ``cylinder``: the cylinder's wear, its x_m the
-    position s along the cylinder's bottom from below its centre (m), its depth_m h_c into the
-    cylinder (zero when its k is 0); ``blocks`` (a :class:`FrettingBlock` each);
-    ``first_cycle``: the stroke cycle on the unworn flat; ``wall_time_s``."""
+    """The worn flat after the run: ``state`` (its ``steps`` count the increments that wore it;
+    its ``sliding_distance_m`` is not kept, 0: the slip differs from node to node);
+    ``cylinder``: the cylinder's wear alike, its x_m the position s along the cylinder's bottom
+    from below its centre (m), its depth_m h_c into the cylinder (zero when its k is 0);
+    ``blocks`` (a :class:`FrettingBlock` each); ``first_cycle``: the first block's stroke cycle
+    (from the unworn flat, which it wears as it goes); ``wall_time_s``."""
 
     state: FlatWearState
     cylinder: FlatWearState
