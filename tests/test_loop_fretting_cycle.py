@@ -99,6 +99,7 @@ def test_gross_slip_dissipates_four_mu_p_per_stroke_length(solver):
     assert 1.0 - HALF_WIDTH_M / RADIUS_M < slope < 1.0
 
 
+@pytest.mark.slow  # 4-8 s; the default suite keeps under 6 minutes
 def test_partial_slip_loop_area_is_the_dissipated_energy(solver):
     cycle, start_force = steady_cycle(solver, 0.3e-6, 16)
     mu_p = FRICTION * FORCE_N

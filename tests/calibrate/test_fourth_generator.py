@@ -813,6 +813,7 @@ def order_difference(first, second, plan):
     return float(np.sqrt(np.mean((ratios[1] - ratios[0]) ** 2))), float(math.hypot(*noise))
 
 
+@pytest.mark.slow  # 4-8 s; the default suite keeps under 6 minutes
 def test_a_flexible_rod_parts_from_the_rigid_one_at_orders_9_to_20(believed):
     """The believed rigid rod and a flexible rod of the generator's draw on one synthetic worn
     bore through one analyser: at crank orders 9-20 the traces part by far more than the noise

@@ -123,6 +123,7 @@ def _rod_difference(rigid, flexible, meter_rigid, meter_flexible):
             float(math.hypot(*noise)))
 
 
+@pytest.mark.slow  # 4-8 s; the default suite keeps under 6 minutes
 def test_a_flexible_rod_differs_from_a_rigid_one_at_higher_harmonics(tmp_path):
     """The two rods on the same worn bore through the same instrument (the dynamics alone, no
     wear run): at harmonics 9-20 the traces part by far more than the noise, and by more than

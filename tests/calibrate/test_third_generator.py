@@ -231,6 +231,7 @@ def test_noiseless_none_is_the_believed_run_within_the_stylus_effect(tmp_path):
         assert np.sqrt(np.mean((profile.depth_m - believed) ** 2)) < 1e-6
 
 
+@pytest.mark.slow  # 4-8 s; the default suite keeps under 6 minutes
 def test_a_data_set_is_reproducible_from_its_seed(tmp_path):
     seed = gen.data_set_seed("none", 0)
     first = gen.write_data_set("none", seed, tmp_path / "a")
