@@ -116,14 +116,19 @@ def fretting_archard_area_m2(problem: FlatContactProblem,
                              settings: FrettingWearSettings) -> float:
     """Archard's worn area of the flat per unit length in gross slip, k P' 4 d N (m^2; the slip
     per cycle 4 d, the elastic d_stick neglected: the research note's section 3.3)."""
-    return (settings.wear_coefficient_m2_N * settings.normal_force_N / problem.geometry.length_m
-            * 4.0 * settings.stroke_amplitude_m * settings.cycles)
+    return _archard_area_m2(settings, problem,
+                            4.0 * settings.stroke_amplitude_m * settings.cycles)
 
 
 def archard_area_m2(problem: FlatContactProblem, settings: SlidingWearSettings) -> float:
     """Archard's worn area per unit length, k P' S with P' = P/L (m^2, :mod:`fewear.wear.scar`)."""
+    return _archard_area_m2(settings, problem, settings.sliding_distance_m)
+
+
+def _archard_area_m2(settings, problem: FlatContactProblem, sliding_m: float) -> float:
+    """k P' S: the settings' k and P over the problem's length L, slid ``sliding_m`` (m^2)."""
     return (settings.wear_coefficient_m2_N * settings.normal_force_N
-            / problem.geometry.length_m * settings.sliding_distance_m)
+            / problem.geometry.length_m * sliding_m)
 
 
 def closed_form_depth_m(problem: FlatContactProblem, settings: SlidingWearSettings) -> float:

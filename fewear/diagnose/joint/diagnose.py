@@ -446,18 +446,18 @@ def _trace_evidence(data: JointMeasurements, config: dict, candidates: dict, fit
         return None
     level = fits["wear_coefficient"].params["k_scale"] if "wear_coefficient" in fits else 1.0
     bores = [base.nodal_depth_m(level * trace.cycles) for trace in usable]
-    assumed_mu = config["joint"]["friction_coefficient"]
     models = [("believed model", None, "", 0, config)]
     for name, forms in candidates.items():
         if not CAUSES[name].changes_dynamics:
             continue
         for candidate in forms:
             for index, value in enumerate(candidate.grid):
-                if name == "friction" and value == assumed_mu:
-                    continue  # the believed mechanism
+                changed = CAUSES[name].switched_on(config, value, candidate.form)
+                if changed == config:
+                    continue  # the grid's believed value (friction's grid holds it)
                 models.append((f"{name}{' (' + candidate.form + ')' if candidate.form else ''}"
                                f", {candidate.parameter} = {value:g}", name, candidate.form,
-                               index, CAUSES[name].switched_on(config, value, candidate.form)))
+                               index, changed))
     simulated = iter(side_by_side(simulated_signature, [
         (model[4], base.angle_rad, bore, trace.cycles, harmonics)
         for model in models for trace, bore in zip(usable, bores)]))
