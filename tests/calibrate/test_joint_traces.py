@@ -1,6 +1,7 @@
-"""Measured slider-acceleration traces as evidence on the mechanism
+"""Measured slider-acceleration and joint force traces as evidence on the mechanism
 (fewear.diagnose.joint.traces): harmonic amplitudes against closed forms, the misfit's
-calibration on draws of one distribution, and the rule that names a mechanism."""
+calibration on draws of one distribution, the kinds' combination, and the rule that names a
+mechanism."""
 
 import math
 
@@ -8,6 +9,7 @@ import numpy as np
 import pytest
 
 from fewear.diagnose.joint import traces
+from fewear.diagnose.joint.measured import ForceTrace
 
 PERIOD_S = 0.05  # 1,200 rpm
 OMEGA = 2.0 * math.pi / PERIOD_S
@@ -39,6 +41,62 @@ def test_a_simulated_velocity_gives_the_harmonics_of_its_derivative():
     v = np.sum(velocity * np.sin(OMEGA * np.outer(time_s, orders) + phases), axis=1)
     found = traces.simulated_amplitudes(time_s, v, PERIOD_S, velocity.size)
     assert found == pytest.approx(np.tile(orders * OMEGA * velocity, (2, 1)), rel=1e-4)
+
+
+def test_a_simulated_force_gives_its_harmonics_and_an_impact_counts_by_its_impulse():
+    """|F| = F0 + sum C_h cos(h w t + phi_h) on an irregular grid gives C_h back; a triangular
+    spike of impulse J = 0.5 N s, 4 us wide and resolved by the integrator's steps only, adds
+    (2/T) J to each low harmonic's amplitude when it sits at the revolution's phase 0 of every
+    harmonic's cosine (its spectrum is flat far below 1/width)."""
+    rng = np.random.default_rng(6)
+    amplitudes = np.array([800.0, 300.0, 25.0, 10.0])
+    phases = np.zeros(amplitudes.size)
+    orders = np.arange(1, amplitudes.size + 1)
+    time_s = np.sort(rng.uniform(0.0, 2.0 * PERIOD_S, 20000))
+    time_s[0], time_s[-1] = 0.0, 2.0 * PERIOD_S
+    force = 1000.0 + np.sum(amplitudes * np.cos(OMEGA * np.outer(time_s, orders) + phases),
+                            axis=1)
+    found = traces.integrated_amplitudes(time_s, force, PERIOD_S, amplitudes.size)
+    assert found == pytest.approx(np.tile(amplitudes, (2, 1)), rel=1e-4)
+    impulse_N_s, width_s, at_s = 0.5, 4e-6, PERIOD_S  # at the second revolution's start
+    spike_t = at_s + width_s * np.array([-0.5, -0.25, 0.0, 0.25, 0.5])
+    spike = impulse_N_s / (width_s / 2.0) * (1.0 - np.abs(spike_t - at_s) / (width_s / 2.0))
+    grid = np.concatenate([time_s[time_s < spike_t[0]], spike_t, time_s[time_s > spike_t[-1]]])
+    with_spike = np.interp(grid, time_s, force) + np.interp(grid, spike_t, spike, 0.0, 0.0)
+    found = traces.integrated_amplitudes(grid, with_spike, PERIOD_S, amplitudes.size)
+    # the spike's halves fall in the first revolution's end and the second's start
+    assert found == pytest.approx(np.tile(amplitudes + impulse_N_s / PERIOD_S, (2, 1)),
+                                  rel=1e-4)
+
+
+def test_a_force_trace_is_read_by_its_magnitude_in_any_frame():
+    """The load cell's axes turned by 30 deg and its gain 3 % high: the same signature."""
+    time_s = np.arange(0.0, 2.0 * PERIOD_S, 1e-4)
+    fx = 500.0 + 400.0 * np.cos(OMEGA * time_s) + 60.0 * np.cos(3 * OMEGA * time_s + 0.4)
+    fy = -300.0 + 200.0 * np.sin(2 * OMEGA * time_s)
+    turn = math.radians(30.0)
+    turned = ForceTrace(5, time_s, 1.03 * (math.cos(turn) * fx - math.sin(turn) * fy),
+                        1.03 * (math.sin(turn) * fx + math.cos(turn) * fy))
+    plain = traces.measured_signature(ForceTrace(5, time_s, fx, fy), PERIOD_S, 10)
+    seen = traces.measured_signature(turned, PERIOD_S, 10)
+    assert traces.trace_kind(turned) == "force" and seen.cycles == 5
+    assert seen.relative_amplitudes == pytest.approx(plain.relative_amplitudes, rel=1e-9)
+    assert plain.relative_amplitudes[0, 2] > 0.01  # the magnitude's harmonics are read
+
+
+def test_each_kind_of_trace_counts_in_the_units_of_its_own_spread():
+    """Acceleration misfits three times their dof at best, force misfits ten times: each kind
+    divided by its own dispersion, then summed; the RMS difference pooled by harmonics."""
+    acceleration = [traces.TraceMisfit(117.0, 39, 0.01), traces.TraceMisfit(234.0, 39, 0.02)]
+    force = [traces.TraceMisfit(790.0, 79, 0.03), traces.TraceMisfit(395.0, 79, 0.01)]
+    combined, dispersions = traces.combined_misfits([acceleration, force])
+    assert dispersions == pytest.approx([3.0, 5.0])
+    assert [m.chi2 for m in combined] == pytest.approx([39.0 + 158.0, 78.0 + 79.0])
+    assert [m.dof for m in combined] == [118, 118]
+    assert combined[0].rms_difference == pytest.approx(
+        math.sqrt((0.01**2 * 39 + 0.03**2 * 79) / 118))
+    alone, (dispersion,) = traces.combined_misfits([acceleration])
+    assert dispersion == 3.0 and alone[0].chi2 == pytest.approx(39.0)
 
 
 def _signature(mean: np.ndarray, spread: np.ndarray, revolutions: int, rng) -> traces.Signature:

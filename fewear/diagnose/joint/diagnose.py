@@ -158,12 +158,15 @@ from fewear.diagnose.joint.resolution import (
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
 from fewear.diagnose.joint.traces import (
     MIN_REVOLUTIONS,
+    TRACE_KINDS,
     MechanismOption,
     TraceEvidence,
+    combined_misfits,
     crank_period_s,
     harmonics_readable,
     measured_signature,
-    simulated_signature,
+    simulated_signatures,
+    trace_kind,
     trace_misfit,
     trace_verdict,
 )
@@ -430,14 +433,15 @@ def _round(data: JointMeasurements, obs: Observations, config: dict,
 
 def _trace_evidence(data: JointMeasurements, config: dict, candidates: dict, fits: dict,
                     base: WearHistory, settings: JointDiagnoseSettings) -> TraceEvidence | None:
-    """What the measured slider-acceleration traces say of the mechanism
+    """What the measured slider-acceleration and joint force traces say of the mechanism
     (:mod:`fewear.diagnose.joint.traces`): the believed mechanism and each grid run of the
     causes that change the dynamics, simulated on the bore the believed model wears by each
-    trace's count at the k level fitted on the bore data (side by side). None without traces
-    of at least :data:`~fewear.diagnose.joint.traces.MIN_REVOLUTIONS` revolutions and three
-    harmonics to read."""
+    trace's count at the k level fitted on the bore data (one run per model and count, side by
+    side). None without traces of at least
+    :data:`~fewear.diagnose.joint.traces.MIN_REVOLUTIONS` revolutions and three harmonics to
+    read."""
     period = crank_period_s(config)
-    usable = [trace for trace in data.acceleration or ()
+    usable = [trace for trace in (*(data.acceleration or ()), *(data.force or ()))
               if trace.time_s[-1] - trace.time_s[0] >= MIN_REVOLUTIONS * period]
     if not usable:
         return None
@@ -445,8 +449,37 @@ def _trace_evidence(data: JointMeasurements, config: dict, candidates: dict, fit
     if harmonics < 3:
         return None
     level = fits["wear_coefficient"].params["k_scale"] if "wear_coefficient" in fits else 1.0
-    bores = [base.nodal_depth_m(level * trace.cycles) for trace in usable]
-    models = [("believed model", None, "", 0, config)]
+    counts = sorted({trace.cycles for trace in usable})
+    kinds_at = {count: tuple(trace_kind(t) for t in usable if t.cycles == count)
+                for count in counts}
+    models = [("believed model", None, "", 0, config)] + _dynamics_options(config, candidates)
+    runs = iter(side_by_side(simulated_signatures, [
+        (model[4], base.angle_rad, base.nodal_depth_m(level * count), count, harmonics,
+         kinds_at[count]) for model in models for count in counts]))
+    simulated = []  # per model: {(count, kind): signature}
+    for _ in models:
+        signatures = {}
+        for count in counts:
+            signatures.update(zip(((count, kind) for kind in kinds_at[count]), next(runs)))
+        simulated.append(signatures)
+    kinds = [kind for kind in TRACE_KINDS if any(trace_kind(t) == kind for t in usable)]
+    by_kind = []
+    for kind in kinds:
+        mine = [trace for trace in usable if trace_kind(trace) == kind]
+        measured = [measured_signature(trace, period, harmonics) for trace in mine]
+        by_kind.append([trace_misfit(measured, [model[(t.cycles, kind)] for t in mine])
+                        for model in simulated])
+    misfits, dispersions = combined_misfits(by_kind)
+    options = [MechanismOption(label, cause, form, index, misfit)
+               for (label, cause, form, index, _), misfit in zip(models[1:], misfits[1:])]
+    return trace_verdict(misfits[0], options, harmonics, settings.significance,
+                         settings.min_held_out_gain, tuple(zip(kinds, dispersions)))
+
+
+def _dynamics_options(config: dict, candidates: dict) -> list[tuple]:
+    """(label, cause, form, grid index, config) of each grid run of the candidate causes that
+    change the dynamics, but the run whose config is the believed one."""
+    models = []
     for name, forms in candidates.items():
         if not CAUSES[name].changes_dynamics:
             continue
@@ -458,15 +491,7 @@ def _trace_evidence(data: JointMeasurements, config: dict, candidates: dict, fit
                 models.append((f"{name}{' (' + candidate.form + ')' if candidate.form else ''}"
                                f", {candidate.parameter} = {value:g}", name, candidate.form,
                                index, changed))
-    simulated = iter(side_by_side(simulated_signature, [
-        (model[4], base.angle_rad, bore, trace.cycles, harmonics)
-        for model in models for trace, bore in zip(usable, bores)]))
-    measured = [measured_signature(trace, period, harmonics) for trace in usable]
-    misfits = [trace_misfit(measured, [next(simulated) for _ in usable]) for _ in models]
-    options = [MechanismOption(label, cause, form, index, misfit)
-               for (label, cause, form, index, _), misfit in zip(models[1:], misfits[1:])]
-    return trace_verdict(misfits[0], options, harmonics, settings.significance,
-                         settings.min_held_out_gain)
+    return models
 
 
 def _fit_on_trace_choice(forms: tuple[Candidate, ...], option: MechanismOption,

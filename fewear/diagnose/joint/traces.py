@@ -1,5 +1,6 @@
-"""Measured slider-acceleration traces as evidence on the mechanism (item 4 of the joint
-diagnosis): which rod and friction the traces say the joint runs in, beside what the bore says.
+"""Measured traces as evidence on the mechanism (item 4 of the joint diagnosis): which rod and
+friction the slider's acceleration and the joint's force say the joint runs in, beside what the
+bore says.
 
 The bore cannot tell a flexible rod from a level of k: on the generators' data a rod 3 % stiffer
 than the believed one's material, or another section, wears the bore as a k level x1.07-1.10 does
@@ -10,17 +11,21 @@ mechanism, revolution to revolution +-1), a friction change by far less.
 
 A trace is read as its **harmonic signature**: the amplitude of each crank harmonic h = 2..H,
 per whole revolution, divided by the first harmonic's (the kinematic r omega^2 term: an
-accelerometer's sensitivity error cancels, and so does its offset, the trigger's crank phase
-and the trace's time origin). A measured revolution's amplitudes come from a least-squares fit
-of a Fourier series in the crank's period (:func:`revolution_amplitudes`); a simulated one's from
-the exact integrals of the slider velocity the dynamics record, a' integrated by parts
-(:func:`simulated_amplitudes`: the impacts' acceleration spikes are not resolved by any grid).
-H keeps the harmonics well inside an anti-aliasing filter's pass band: at most
-:data:`MAX_HARMONIC` and an eighth of the sampling rate.
+instrument's sensitivity error cancels, and so does its offset, the trigger's crank phase
+and the trace's time origin). Of a joint force trace the signal is the force's magnitude
+|F| = hypot(fx, fy), which does not depend on the frame the load cell's axes are in. A measured
+revolution's amplitudes come from a least-squares fit of a Fourier series in the crank's period
+(:func:`revolution_amplitudes`); a simulated one's from exact integrals over the integrator's
+steps: of the slider velocity, a' integrated by parts (:func:`simulated_amplitudes`), and of
+|F| directly (:func:`integrated_amplitudes`), so the impacts' spikes, which no grid resolves,
+count by their impulse. H keeps the harmonics well inside an anti-aliasing filter's pass band:
+at most :data:`MAX_HARMONIC` and an eighth of the sampling rate.
 
-The misfit of a model to the traces (:func:`trace_misfit`) is the sum over traces and harmonics
-of (measured - simulated mean)^2 over the variance of that difference, from the revolutions'
-spread on both sides: chi-square with one degree per harmonic if the model is right.
+The misfit of a model to the traces of one kind (:func:`trace_misfit`) is the sum over traces
+and harmonics of (measured - simulated mean)^2 over the variance of that difference, from the
+revolutions' spread on both sides: chi-square with one degree per harmonic if the model is
+right. The kinds' misfits are combined after each is divided by its own overdispersion
+(:func:`combined_misfits`).
 """
 
 from __future__ import annotations
@@ -32,6 +37,7 @@ import numpy as np
 from scipy import stats
 
 from fewear.diagnose.joint.forward import cycle_on_worn_bore
+from fewear.diagnose.joint.measured import AccelerationTrace, ForceTrace
 
 MAX_HARMONIC = 40
 """The highest crank harmonic read (800 Hz at the tests' 1,200 rpm)."""
@@ -72,22 +78,47 @@ def harmonics_readable(time_s: np.ndarray, period_s: float) -> int:
     return int(min(MAX_HARMONIC, math.floor(rate_hz * period_s / RATE_FRACTION)))
 
 
+TRACE_KINDS = ("acceleration", "force")
+"""The kinds of trace read: the slider's acceleration and the joint force's magnitude."""
+
+
+def whole_revolutions(time_s: np.ndarray, period_s: float) -> int:
+    """The number of whole crank revolutions ``time_s`` spans."""
+    return int(math.floor((time_s[-1] - time_s[0]) / period_s + 1e-9))
+
+
 def revolution_amplitudes(time_s: np.ndarray, signal: np.ndarray, period_s: float,
                           harmonics: int) -> np.ndarray:
     """Amplitudes of harmonics 1..``harmonics`` of the crank period in each whole revolution
     of a sampled ``signal`` from its first sample: least squares of a constant plus cosines and
     sines (revolutions, harmonics)."""
-    revolutions = int(math.floor((time_s[-1] - time_s[0]) / period_s + 1e-9))
     orders = np.arange(1, harmonics + 1)
     rows = []
-    for revolution in range(revolutions):
+    for revolution in range(whole_revolutions(time_s, period_s)):
         start = time_s[0] + revolution * period_s
         inside = (time_s >= start) & (time_s < start + period_s)
         phase = 2.0 * math.pi * np.outer(time_s[inside] - start, orders) / period_s
         design = np.hstack([np.ones((phase.shape[0], 1)), np.cos(phase), np.sin(phase)])
         coefficients = np.linalg.lstsq(design, signal[inside], rcond=None)[0]
         rows.append(np.hypot(coefficients[1:harmonics + 1], coefficients[harmonics + 1:]))
-    return np.array(rows).reshape(revolutions, harmonics)
+    return np.array(rows).reshape(-1, harmonics)
+
+
+def _revolution_integrals(time_s: np.ndarray, signal: np.ndarray, period_s: float,
+                          harmonics: int):
+    """Per whole revolution from ``time_s[0]``: the signal at its start and end, and the
+    integrals of signal x cos(h w t) and signal x sin(h w t) (h = 1..``harmonics``, w = 2 pi /
+    T, t from the revolution's start), the signal linear between its steps (trapezoids)."""
+    omega = 2.0 * math.pi / period_s
+    orders = np.arange(1, harmonics + 1)
+    for revolution in range(whole_revolutions(time_s, period_s)):
+        start = time_s[0] + revolution * period_s
+        grid = np.concatenate([[start], time_s[(time_s > start) & (time_s < start + period_s)],
+                               [start + period_s]])
+        values = np.interp(grid, time_s, signal)
+        phase = omega * np.outer(grid - start, orders)
+        yield (values[0], values[-1], np.trapz(values[:, None] * np.cos(phase), grid, axis=0),
+               np.trapz(values[:, None] * np.sin(phase), grid, axis=0))
 
 
 def simulated_amplitudes(time_s: np.ndarray, velocity_m_s: np.ndarray, period_s: float,
@@ -98,30 +129,39 @@ def simulated_amplitudes(time_s: np.ndarray, velocity_m_s: np.ndarray, period_s:
     (2/T) int v' sin(h w t) dt = -(2/T) h w int v cos(h w t) dt (integration by parts, w =
     2 pi / T; trapezoids on the integrator's steps)."""
     omega = 2.0 * math.pi / period_s
-    revolutions = int(math.floor((time_s[-1] - time_s[0]) / period_s + 1e-9))
     orders = np.arange(1, harmonics + 1)
-    rows = []
-    for revolution in range(revolutions):
-        start = time_s[0] + revolution * period_s
-        grid = np.concatenate([[start], time_s[(time_s > start) & (time_s < start + period_s)],
-                               [start + period_s]])
-        v = np.interp(grid, time_s, velocity_m_s)
-        phase = omega * np.outer(grid - start, orders)
-        sine = np.trapz(v[:, None] * np.sin(phase), grid, axis=0)
-        cosine = np.trapz(v[:, None] * np.cos(phase), grid, axis=0)
-        a = (2.0 / period_s) * (v[-1] - v[0] + orders * omega * sine)
-        b = -(2.0 / period_s) * orders * omega * cosine
-        rows.append(np.hypot(a, b))
-    return np.array(rows)
+    rows = [np.hypot((2.0 / period_s) * (end - begin + orders * omega * sine),
+                     (2.0 / period_s) * orders * omega * cosine)
+            for begin, end, cosine, sine in _revolution_integrals(time_s, velocity_m_s,
+                                                                   period_s, harmonics)]
+    return np.array(rows).reshape(-1, harmonics)
 
 
-def simulated_signature(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray, cycles: int,
-                        harmonics: int) -> Signature:
-    """The signature of :data:`SIMULATED_REVOLUTIONS` revolutions of the config's mechanism on
-    the bore worn by ``depth_m`` (at the node angles ``angle_rad``), as at ``cycles``."""
+def integrated_amplitudes(time_s: np.ndarray, signal: np.ndarray, period_s: float,
+                          harmonics: int) -> np.ndarray:
+    """Amplitudes of harmonics 1..``harmonics`` in each whole revolution of a simulated
+    ``signal`` linear between the integrator's steps: (2/T) |int signal e^(i h w t) dt|
+    (trapezoids; a spike a few steps wide counts by its integral)."""
+    rows = [(2.0 / period_s) * np.hypot(cosine, sine)
+            for _, _, cosine, sine in _revolution_integrals(time_s, signal, period_s,
+                                                             harmonics)]
+    return np.array(rows).reshape(-1, harmonics)
+
+
+def simulated_signatures(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray, cycles: int,
+                         harmonics: int, kinds: tuple[str, ...]) -> tuple[Signature, ...]:
+    """The signatures of the trace ``kinds`` (:data:`TRACE_KINDS`) of one run of
+    :data:`SIMULATED_REVOLUTIONS` revolutions of the config's mechanism on the bore worn by
+    ``depth_m`` (at the node angles ``angle_rad``), as at ``cycles``."""
     history = cycle_on_worn_bore(config, angle_rad, depth_m, SIMULATED_REVOLUTIONS)
-    return signature(cycles, simulated_amplitudes(history.time_s, history.slider_velocity_m_s,
-                                                  crank_period_s(config), harmonics))
+    period = crank_period_s(config)
+    found = {
+        "acceleration": lambda: simulated_amplitudes(
+            history.time_s, history.slider_velocity_m_s, period, harmonics),
+        "force": lambda: integrated_amplitudes(
+            history.time_s, np.linalg.norm(history.reaction_force_N, axis=1), period,
+            harmonics)}
+    return tuple(signature(cycles, found[kind]()) for kind in kinds)
 
 
 def crank_period_s(config: dict) -> float:
@@ -134,10 +174,19 @@ def signature(cycles: int, amplitudes: np.ndarray) -> Signature:
     return Signature(int(cycles), amplitudes[:, 1:] / amplitudes[:, :1])
 
 
-def measured_signature(trace, period_s: float, harmonics: int) -> Signature:
-    """The signature of a measured :class:`fewear.diagnose.joint.measured.AccelerationTrace`."""
-    return signature(trace.cycles, revolution_amplitudes(
-        trace.time_s, trace.slider_acceleration_m_s2, period_s, harmonics))
+def trace_kind(trace: AccelerationTrace | ForceTrace) -> str:
+    """The kind (:data:`TRACE_KINDS`) of a measured trace."""
+    return "force" if isinstance(trace, ForceTrace) else "acceleration"
+
+
+def measured_signature(trace: AccelerationTrace | ForceTrace, period_s: float,
+                       harmonics: int) -> Signature:
+    """The signature of a measured trace: the slider's acceleration, or the magnitude of the
+    joint force."""
+    signal = (np.hypot(trace.fx_N, trace.fy_N) if isinstance(trace, ForceTrace)
+              else trace.slider_acceleration_m_s2)
+    return signature(trace.cycles, revolution_amplitudes(trace.time_s, signal, period_s,
+                                                         harmonics))
 
 
 @dataclass(frozen=True)
@@ -174,6 +223,22 @@ def trace_misfit(measured: list[Signature], simulated: list[Signature]) -> Trace
     return TraceMisfit(chi2, dof, float(np.sqrt(np.mean(np.concatenate(squares)))))
 
 
+def combined_misfits(by_kind: list[list[TraceMisfit]]) -> tuple[list[TraceMisfit], dict]:
+    """One misfit per model from its misfits to each kind of trace (``by_kind[k][m]``: kind
+    k, model m): each kind's chi-square divided by that kind's :func:`overdispersion` over the
+    models (the kinds vary alike only by chance: a load cell sees every impact, an
+    accelerometer on the slider less), then summed with their degrees of freedom; the RMS
+    difference pooled over all harmonics. Also the dispersions, in ``by_kind``'s order."""
+    dispersions = [overdispersion(*misfits) for misfits in by_kind]
+    combined = []
+    for model in zip(*by_kind):
+        dof = sum(m.dof for m in model)
+        chi2 = sum(m.chi2 / d for m, d in zip(model, dispersions))
+        squares = sum(m.rms_difference**2 * m.dof for m in model)
+        combined.append(TraceMisfit(chi2, dof, math.sqrt(squares / dof)))
+    return combined, dispersions
+
+
 @dataclass(frozen=True)
 class MechanismOption:
     """A mechanism the traces are read against: the believed one (``cause`` None) or a grid run
@@ -197,19 +262,23 @@ class TraceEvidence:
     believed: TraceMisfit
     options: tuple[MechanismOption, ...]
     named: MechanismOption | None
+    dispersions: tuple[tuple[str, float], ...] = ()
+    """The kinds of trace read, each with the overdispersion its misfits were divided by."""
 
     def summary(self) -> dict:
         """JSON-ready."""
         def row(label, misfit):
             return {"model": label, "chi2": misfit.chi2, "dof": misfit.dof,
                     "p_value": misfit.p_value, "rms_relative_difference": misfit.rms_difference}
-        return {"harmonics": self.harmonics, "believed": row("believed model", self.believed),
+        return {"harmonics": self.harmonics, "overdispersion_by_kind": dict(self.dispersions),
+                "believed": row("believed model", self.believed),
                 "options": [row(o.label, o.misfit) for o in self.options],
                 "named": self.named.label if self.named else None}
 
 
 def trace_verdict(believed: TraceMisfit, options: list[MechanismOption], harmonics: int,
-                  significance: float, min_gain: float) -> TraceEvidence:
+                  significance: float, min_gain: float,
+                  dispersions: tuple[tuple[str, float], ...] = ()) -> TraceEvidence:
     """The traces name the option with the lowest misfit when, the misfits divided by their
     :func:`overdispersion`, (1) they reject the believed mechanism (p below ``significance``
     over the options tried, Bonferroni), (2) that option's chi-square is below the believed
@@ -227,7 +296,7 @@ def trace_verdict(believed: TraceMisfit, options: list[MechanismOption], harmoni
         gain = 1.0 - best.misfit.rms_difference / believed.rms_difference
         if rejected and drop > stats.chi2.isf(level, 1) and gain >= min_gain:
             named = best
-    return TraceEvidence(harmonics, believed, tuple(options), named)
+    return TraceEvidence(harmonics, believed, tuple(options), named, dispersions)
 
 
 def overdispersion(*misfits: TraceMisfit) -> float:
