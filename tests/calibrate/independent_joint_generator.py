@@ -80,6 +80,37 @@ an IEPE accelerometer into a DAQ:
 - white noise of standard deviation U(1, 3) % of the trace's RMS (per data set), and the DAQ's
   24-bit resolution over +-5,000 m/s^2 (0.0006 m/s^2; the values are written to 6 significant
   digits).
+
+A load cell under the bushing (:class:`LoadCell`, drawn per data set from its own stream
+``default_rng([seed, 11])``, so none of the files above changes with it) records the force the pin
+exerts on the bushing (minus the dynamics' ``reaction_force_N``), in the bushing frame, at the
+accelerometer's counts and over its number of revolutions, written to ``force.csv`` (``time_s,
+fx_N, fy_N, cycles``; time from each trace's first sample). The force is that of the same
+simulated run as the acceleration trace at that count (one simulation per count gives both),
+taken linear between the integrator's steps. The instrument, a two-component piezoelectric
+(quartz) force link preloaded under the bushing's housing, a two-channel charge amplifier and a
+24-bit delta-sigma DAQ:
+
+- the force's components along the link's axes, which are turned by a misalignment angle
+  U(-4, 4) degrees (per data set) from the bushing frame;
+- each axis a mounted resonance (mass-spring-damper, unit static gain) of natural frequency
+  U(10, 15) kHz and damping ratio U(0.03, 0.08), drawn per axis; its response to the
+  piecewise-linear force is integrated exactly (the modal convolution over every piece: an
+  impact's microsecond spike counts by its impulse) onto the DAQ's modulator grid, 32 points per
+  sample;
+- the DAQ's digital anti-alias filter: a linear-phase FIR (Kaiser window, passband to 0.45, 100 dB
+  stopband from 0.55 of the rate; its delay removed), then decimation to 12,800 samples per second
+  (640 per crank revolution at 1,200 rpm); the start is free-running, the crank angle at the first
+  sample U(0, 360) degrees per trace;
+- cross-talk between the channels (x reads s_xy fy, y reads s_yx fx), |s| U(0.5, 2) % of either
+  sign each way, and channel gains 1 + U(-2, +2) % (per data set);
+- the charge amplifier's zero, U(-5, 5) N per channel, and its drift (insulation leakage),
+  U(-20, 20) N/s per channel from the trace's first sample;
+- white noise of standard deviation U(0.5, 2) N (per data set, both channels), and the DAQ's
+  24-bit resolution over +-10 kN (0.0012 N; values written to 0.1 mN), clipped at full scale.
+
+The crank harmonics up to 1/8 of the rate (1.6 kHz) pass with the resonance's rise, 1/(1 - (f /
+f_n)^2): at most 2.6 %.
 """
 
 from __future__ import annotations
@@ -113,6 +144,8 @@ generator was written for; defaults otherwise)."""
 IMPACT_RECORDED_CYCLES = 3
 ACCELEROMETER_STREAM = 7
 """The accelerometer's random stream: ``default_rng([seed, ACCELEROMETER_STREAM])``."""
+LOAD_CELL_STREAM = 11
+"""The load cell's random stream: ``default_rng([seed, LOAD_CELL_STREAM])``."""
 
 
 @dataclass(frozen=True)
@@ -184,6 +217,46 @@ class Accelerometer:
 
 
 @dataclass(frozen=True)
+class LoadCell:
+    """The piezoelectric force link under the bushing for one data set (module doc): traces at
+    ``trace_cycles``, each of ``revolutions`` crank revolutions from the crank angle ``start_deg``
+    (one per trace); per axis of the link (x, y) the mounted resonance ``natural_hz`` and its
+    damping ratio ``damping``; the axes turned by ``misalignment_deg`` from the bushing frame;
+    ``crosstalk`` (x from fy, y from fx) and ``gain`` per channel; the charge amplifier's zero
+    ``offset_N`` and drift ``drift_N_s`` per channel; white noise ``noise_N``; SI units."""
+
+    trace_cycles: tuple[int, ...]
+    revolutions: int
+    start_deg: tuple[float, ...]
+    natural_hz: tuple[float, float]
+    damping: tuple[float, float]
+    misalignment_deg: float
+    crosstalk: tuple[float, float]
+    gain: tuple[float, float]
+    offset_N: tuple[float, float]
+    drift_N_s: tuple[float, float]
+    noise_N: float
+    sample_rate_hz: float = 12800.0
+    oversampling: int = 32
+    passband_fraction: float = 0.45
+    stopband_fraction: float = 0.55
+    stopband_db: float = 100.0
+    full_scale_N: float = 10000.0
+    resolution_N: float = 20000.0 / 2**24
+
+    def channel_matrix(self) -> np.ndarray:
+        """The static part of the channels: gains times cross-talk (applied to the link's axes'
+        responses)."""
+        return np.diag(self.gain) @ np.array([[1.0, self.crosstalk[0]],
+                                              [self.crosstalk[1], 1.0]])
+
+    def axes_matrix(self) -> np.ndarray:
+        """Bushing-frame force to its components along the link's axes (turned by the
+        misalignment)."""
+        c, s = math.cos(math.radians(self.misalignment_deg)), math.sin(
+            math.radians(self.misalignment_deg))
+        return np.array([[c, s], [-s, c]])
+@dataclass(frozen=True)
 class DataSet:
     """The files of one data set and what was hidden in them."""
 
@@ -195,6 +268,8 @@ class DataSet:
     params: dict = field(default_factory=dict)
     acceleration_csv: Path | None = None
     accelerometer: Accelerometer | None = None
+    force_csv: Path | None = None
+    load_cell: LoadCell | None = None
 
 
 def believed_config(path: Path) -> dict:
@@ -290,13 +365,13 @@ def draw_accelerometer(rng: np.random.Generator, lab: LabInstruments) -> Acceler
         noise_fraction=float(rng.uniform(0.01, 0.03)))
 
 
-def slider_acceleration(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray,
-                        revolutions: int, step_s: float):
-    """The true slider acceleration (m/s^2) on a uniform grid of ``step_s`` over
-    ``revolutions`` + 2 revolutions (one of run-in, one in which the trigger falls), for the
-    config's rod on the bore worn by ``depth_m`` at the nodes ``angle_rad``; and the crank angle
-    (rad) of its first point. The slider velocity of the dynamics, linear between its steps, is
-    differenced on the grid."""
+def trace_dynamics(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray,
+                   revolutions: int):
+    """The joint history (:class:`fewear.mbd.history.JointHistory`) of ``revolutions`` + 2
+    recorded revolutions (one of run-in, one in which the trigger falls) of the config's
+    mechanism (its rod) on the bore worn by ``depth_m`` at the nodes ``angle_rad``, from the ideal
+    mechanism through the config's settling cycles: the one run both instruments record at a
+    count."""
     from fewear.loop.settings import run_inputs_from_config
     from fewear.mbd.slider_crank import simulate
     from fewear.wear.state import WearState
@@ -310,6 +385,18 @@ def slider_acceleration(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray
     crank = replace(inputs.dynamics.crank, rod=config["wear_loop"]["rod_models"][0],
                     joint="clearance", recorded_cycles=revolutions + 2)
     history, _, _ = simulate(replace(inputs.dynamics, crank=crank, joint=joint))
+    return history
+
+
+def slider_acceleration(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray,
+                        revolutions: int, step_s: float, history=None):
+    """The true slider acceleration (m/s^2) on a uniform grid of ``step_s`` over
+    ``revolutions`` + 2 revolutions (one of run-in, one in which the trigger falls), for the
+    config's rod on the bore worn by ``depth_m`` at the nodes ``angle_rad``; and the crank angle
+    (rad) of its first point. The slider velocity of the dynamics, linear between its steps, is
+    differenced on the grid. ``history``: that run's :func:`trace_dynamics`, if made already."""
+    if history is None:
+        history = trace_dynamics(config, angle_rad, depth_m, revolutions)
     count = int(math.floor((history.time_s[-1] - history.time_s[0]) / step_s + 1e-9))
     grid = history.time_s[0] + step_s * np.arange(count + 1)
     velocity = np.interp(grid, history.time_s, history.slider_velocity_m_s)
@@ -318,13 +405,15 @@ def slider_acceleration(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray
 
 def acceleration_trace(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray,
                        meter: Accelerometer, trigger_deg: float,
-                       rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
-    """One recorded trace (module doc): time from the trigger (s) and acceleration (m/s^2)."""
+                       rng: np.random.Generator, history=None) -> tuple[np.ndarray, np.ndarray]:
+    """One recorded trace (module doc): time from the trigger (s) and acceleration (m/s^2).
+    ``history``: the run's :func:`trace_dynamics`, if made already."""
     from scipy.signal import butter, sosfilt, sosfilt_zi
 
     omega = config["mechanism"]["crank_speed_rpm"] * math.pi / 30.0
     step = 1.0 / (meter.sample_rate_hz * meter.oversampling)
-    signal, start_rad = slider_acceleration(config, angle_rad, depth_m, meter.revolutions, step)
+    signal, start_rad = slider_acceleration(config, angle_rad, depth_m, meter.revolutions, step,
+                                            history)
     sos = butter(meter.filter_order, meter.cutoff_fraction * meter.sample_rate_hz, fs=1.0 / step,
                  output="sos")
     filtered, _ = sosfilt(sos, signal, zi=sosfilt_zi(sos) * signal[0])
@@ -341,15 +430,142 @@ def acceleration_trace(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray,
 
 
 def write_acceleration(truth: HiddenTruth, history: WearHistory, meter: Accelerometer,
-                       rng: np.random.Generator, path: Path) -> None:
-    """The accelerometer's traces at ``meter.trace_cycles`` into ``path``."""
+                       rng: np.random.Generator, path: Path, dynamics=None) -> None:
+    """The accelerometer's traces at ``meter.trace_cycles`` into ``path``. ``dynamics``: the
+    :func:`trace_dynamics` of each trace (a list in the order of the traces), if made already."""
     lines = ["# slider accelerometer (IEPE, DAQ 10,240 S/s, anti-alias 4th-order Butterworth at "
              "0.4 fs), along the slide; time from each trace's trigger",
              "time_s,slider_acceleration_m_s2,cycles"]
-    for cycles, trigger in zip(meter.trace_cycles, meter.trigger_deg):
+    for index, (cycles, trigger) in enumerate(zip(meter.trace_cycles, meter.trigger_deg)):
         time_s, reading = acceleration_trace(truth.config, history.angle_rad,
-                                             history.nodal_depth_m(cycles), meter, trigger, rng)
+                                             history.nodal_depth_m(cycles), meter, trigger, rng,
+                                             None if dynamics is None else dynamics[index])
         lines += [f"{t:.8f},{a:.6g},{cycles}" for t, a in zip(time_s, reading)]
+    path.write_text("\n".join(lines) + "\n")
+
+
+# --- the load cell under the bushing ------------------------------------------------------
+
+def draw_load_cell(rng: np.random.Generator, meter: Accelerometer) -> LoadCell:
+    """The load cell and its traces for one data set (module doc), from its own stream: at the
+    accelerometer's counts, over its number of revolutions."""
+    count = len(meter.trace_cycles)
+    start = tuple(float(a) for a in rng.uniform(0.0, 360.0, count))
+    natural = tuple(float(f) for f in rng.uniform(10e3, 15e3, 2))
+    damping = tuple(float(z) for z in rng.uniform(0.03, 0.08, 2))
+    misalignment = float(rng.uniform(-4.0, 4.0))
+    crosstalk = tuple(float(sign * size) for sign, size in
+                      zip(rng.choice([-1.0, 1.0], 2), rng.uniform(0.005, 0.02, 2)))
+    gain = tuple(float(g) for g in 1.0 + rng.uniform(-0.02, 0.02, 2))
+    offset = tuple(float(o) for o in rng.uniform(-5.0, 5.0, 2))
+    drift = tuple(float(d) for d in rng.uniform(-20.0, 20.0, 2))
+    noise = float(rng.uniform(0.5, 2.0))
+    return LoadCell(meter.trace_cycles, meter.revolutions, start, natural, damping, misalignment,
+                    crosstalk, gain, offset, drift, noise)
+
+
+def _phi(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(e^x - 1) / x and (e^x - 1 - x) / x^2 (complex x; their series near 0)."""
+    small = np.abs(x) < 1e-2
+    safe = np.where(small, 1.0, x)
+    em1 = np.expm1(safe)
+    first = np.where(small, 1.0 + x / 2.0 + x**2 / 6.0 + x**3 / 24.0 + x**4 / 120.0,
+                     em1 / safe)
+    second = np.where(small, 0.5 + x / 6.0 + x**2 / 24.0 + x**3 / 120.0 + x**4 / 720.0,
+                      (em1 - safe) / safe**2)
+    return first, second
+
+
+def resonance_on_grid(time_s: np.ndarray, force_N: np.ndarray, natural_hz: float,
+                      damping: float, step_s: float, count: int) -> np.ndarray:
+    """The response y of y'' + 2 zeta w y' + w^2 y = w^2 f (w = 2 pi ``natural_hz``, zeta
+    ``damping``: unit static gain) at ``time_s[0]`` + k ``step_s``, k < ``count``, to the force
+    ``force_N`` linear between the instants ``time_s``, from rest at the static deflection
+    f(time_s[0]). Exact for the piecewise-linear force: y = 2 Re(r z), z' = lambda z + f with
+    the pole lambda = w (-zeta + i sqrt(1 - zeta^2)) and r = w^2 / (lambda - conj(lambda)); every
+    piece between consecutive instants of ``time_s`` and of the grid adds its exact convolution
+    integral to z at the grid point that ends it."""
+    from scipy.signal import lfilter
+
+    omega = 2.0 * math.pi * natural_hz
+    pole = omega * complex(-damping, math.sqrt(1.0 - damping**2))
+    residue = omega**2 / (pole - pole.conjugate())
+    grid = time_s[0] + step_s * np.arange(count)
+    inside = time_s[(time_s > grid[0]) & (time_s < grid[-1])]
+    points = np.union1d(grid, inside)
+    values = np.interp(points, time_s, force_N)
+    width = np.diff(points)
+    first, second = _phi(pole * width)
+    piece = width * (values[:-1] * first + np.diff(values) * second)
+    end = np.searchsorted(grid, points[1:], side="left")
+    carried = piece * np.exp(pole * (grid[end] - points[1:]))
+    kick = (np.bincount(end, carried.real, count) + 1j * np.bincount(end, carried.imag, count))
+    kick[0] = -values[0] / pole  # at rest: z = -f / lambda gives y = f, y' = 0
+    z = lfilter([1.0], [1.0, -np.exp(pole * step_s)], kick)
+    return 2.0 * (residue * z).real
+
+
+def daq_filter_taps(cell: LoadCell) -> np.ndarray:
+    """The DAQ's linear-phase FIR anti-alias filter at the modulator rate (module doc): Kaiser
+    window, -6 dB at half the output rate, the transition from ``passband_fraction`` to
+    ``stopband_fraction`` of the rate, ``stopband_db`` down beyond."""
+    from scipy.signal import firwin, kaiserord
+
+    fine_rate = cell.sample_rate_hz * cell.oversampling
+    width = (cell.stopband_fraction - cell.passband_fraction) * cell.sample_rate_hz
+    taps, beta = kaiserord(cell.stopband_db, width / (0.5 * fine_rate))
+    taps += 1 - taps % 2  # odd: the delay is a whole number of points
+    return firwin(taps, 0.5 * cell.sample_rate_hz, window=("kaiser", beta), fs=fine_rate)
+
+
+def load_cell_trace(time_s: np.ndarray, force_N: np.ndarray, start_rad: float, omega: float,
+                    cell: LoadCell, trace: int,
+                    rng: np.random.Generator | None) -> tuple[np.ndarray, np.ndarray]:
+    """Trace ``trace`` of the load cell (module doc) of the bushing-frame force ``force_N``
+    (n, 2) (N), linear between the instants ``time_s`` (s; the crank at ``start_rad`` at the
+    first, turning at ``omega`` rad/s): time from the first sample (s) and the readings (n, 2)
+    (N). The trace starts half a revolution in, at the crank angle ``cell.start_deg[trace]``;
+    ``rng`` None: without the white noise and the quantisation."""
+    from scipy.signal import oaconvolve
+
+    step = 1.0 / (cell.sample_rate_hz * cell.oversampling)
+    count = int(math.floor((time_s[-1] - time_s[0]) / step)) + 1
+    along = np.asarray(force_N, dtype=float) @ cell.axes_matrix().T
+    taps = daq_filter_taps(cell)
+    response = np.column_stack([
+        oaconvolve(resonance_on_grid(time_s, along[:, axis], cell.natural_hz[axis],
+                                     cell.damping[axis], step, count), taps, mode="same")
+        for axis in range(2)])
+    lead = math.pi + np.mod(math.radians(cell.start_deg[trace]) - start_rad, 2.0 * math.pi)
+    first = int(round(lead / omega / step))
+    samples = int(round(cell.revolutions * 2.0 * math.pi / omega * cell.sample_rate_hz))
+    last = first + cell.oversampling * (samples - 1)
+    if last + taps.size // 2 >= count:
+        raise ValueError("the force history ends before the load cell's trace and its filter")
+    picked = response[first:last + 1:cell.oversampling]
+    time = np.arange(samples) / cell.sample_rate_hz
+    reading = (picked @ cell.channel_matrix().T + np.array(cell.offset_N)
+               + np.outer(time, cell.drift_N_s))
+    if rng is not None:
+        reading = reading + rng.normal(0.0, cell.noise_N, reading.shape)
+        reading = np.round(reading / cell.resolution_N) * cell.resolution_N
+    return time, np.clip(reading, -cell.full_scale_N, cell.full_scale_N)
+
+
+def write_force(truth: HiddenTruth, dynamics, cell: LoadCell, rng: np.random.Generator,
+                path: Path) -> None:
+    """The load cell's traces at ``cell.trace_cycles`` into ``path``: the force of the pin on the
+    bushing of each trace's :func:`trace_dynamics` (``dynamics``, in the order of the traces)."""
+    omega = truth.config["mechanism"]["crank_speed_rpm"] * math.pi / 30.0
+    lines = ["# load cell under the bushing (two-component piezoelectric force link, charge "
+             "amplifier, delta-sigma DAQ 12,800 S/s): force of the pin on the bushing, bushing "
+             "frame; time from each trace's first sample",
+             "time_s,fx_N,fy_N,cycles"]
+    for trace, (cycles, history) in enumerate(zip(cell.trace_cycles, dynamics)):
+        time_s, reading = load_cell_trace(history.time_s, -history.reaction_force_N,
+                                          float(history.crank_angle_rad[0]), omega, cell, trace,
+                                          rng)
+        lines += [f"{t:.9f},{fx:.4f},{fy:.4f},{cycles}" for t, (fx, fy) in zip(time_s, reading)]
     path.write_text("\n".join(lines) + "\n")
 
 
@@ -481,9 +697,9 @@ def with_impact_wear(history: WearHistory, config: dict,
 # --- a whole data set ---------------------------------------------------------------------
 
 def write_data_set(cause: str, seed: int, folder: Path) -> DataSet:
-    """Draw the truth and the lab for ``cause`` and ``seed``, measure, and write the three CSV
-    files (profiles, maximum depths, the slider's acceleration) and the believed model's TOML
-    into ``folder``."""
+    """Draw the truth and the lab for ``cause`` and ``seed``, measure, and write the four CSV
+    files (profiles, maximum depths, the slider's acceleration, the joint force) and the believed
+    model's TOML into ``folder``."""
     rng = np.random.default_rng(seed)
     folder.mkdir(parents=True, exist_ok=True)
     believed_toml = folder / "believed.toml"
@@ -495,10 +711,16 @@ def write_data_set(cause: str, seed: int, folder: Path) -> DataSet:
     write_measurements(history, lab, rng, profiles_csv, max_wear_csv)
     meter_rng = np.random.default_rng([seed, ACCELEROMETER_STREAM])
     meter = draw_accelerometer(meter_rng, lab)
+    dynamics = [trace_dynamics(truth.config, history.angle_rad, history.nodal_depth_m(cycles),
+                               meter.revolutions) for cycles in meter.trace_cycles]
     acceleration_csv = folder / "acceleration.csv"
-    write_acceleration(truth, history, meter, meter_rng, acceleration_csv)
+    write_acceleration(truth, history, meter, meter_rng, acceleration_csv, dynamics)
+    cell_rng = np.random.default_rng([seed, LOAD_CELL_STREAM])
+    cell = draw_load_cell(cell_rng, meter)
+    force_csv = folder / "force.csv"
+    write_force(truth, dynamics, cell, cell_rng, force_csv)
     return DataSet(profiles_csv, max_wear_csv, believed_toml, truth, lab,
-                   {**truth.params, **extra}, acceleration_csv, meter)
+                   {**truth.params, **extra}, acceleration_csv, meter, force_csv, cell)
 
 
 def data_set_seed(cause: str, index: int) -> int:

@@ -158,3 +158,111 @@ def test_data_sets_of_the_two_rods_differ_at_higher_harmonics(tmp_path):
                                       flexible.accelerometer)
         print(f"harmonics 9-20: RMS difference {rods:.4f}, noise {noise:.5f} (of A1)")
         assert rods > 10.0 * noise
+
+
+# --- the load cell (force.csv) ----------------------------------------------------------------
+
+def _force_harmonics(force, revolutions):
+    """Complex amplitudes of crank harmonics 0-5 of each column of ``force`` (whole
+    ``revolutions``): c_h with f = Re(sum c_h e^(i h w t))."""
+    spectrum = np.fft.rfft(force, axis=0) * 2.0 / force.shape[0]
+    spectrum[0] /= 2.0
+    return spectrum[: 6 * revolutions: revolutions]
+
+
+def _quiet(cell, **changes):
+    """``cell`` without its zero and drift (and with ``changes``)."""
+    from dataclasses import replace
+
+    return replace(cell, offset_N=(0.0, 0.0), drift_N_s=(0.0, 0.0), **changes)
+
+
+def test_the_force_file_parses_at_the_accelerometer_counts(synthetic_wear, tmp_path,
+                                                           monkeypatch):
+    """force.csv reads as the joint force with the accelerometer's counts and revolutions, and
+    none of the other files changes with it."""
+    from fewear.diagnose.joint.measured import read_joint_measurements
+
+    seed = gen.data_set_seed("none", 1)
+    data = gen.write_data_set("none", seed, tmp_path / "a")
+    cell, meter = data.load_cell, data.accelerometer
+    header = [line for line in data.force_csv.read_text().splitlines()
+              if not line.startswith("#")][0]
+    assert header == "time_s,fx_N,fy_N,cycles"
+    measured = read_joint_measurements([data.profiles_csv, data.max_wear_csv, data.force_csv])
+    assert tuple(trace.cycles for trace in measured.force) == cell.trace_cycles == \
+        meter.trace_cycles
+    for trace in measured.force:
+        assert trace.time_s[0] == 0.0 and np.all(np.diff(trace.time_s) > 0.0)
+        np.testing.assert_allclose(np.diff(trace.time_s), 1.0 / 12800.0, atol=1e-9)
+        assert trace.fx_N.size == trace.fy_N.size == meter.revolutions * 640
+        assert np.all(np.isfinite(trace.fx_N)) and np.all(np.isfinite(trace.fy_N))
+        assert 100.0 < np.std(trace.fx_N) < 5000.0
+    monkeypatch.setattr(gen, "write_force", lambda *args: None)
+    without = gen.write_data_set("none", seed, tmp_path / "b")
+    assert not (tmp_path / "b" / "force.csv").exists()
+    for name in ("profiles_csv", "max_wear_csv", "believed_toml", "acceleration_csv"):
+        assert getattr(without, name).read_bytes() == getattr(data, name).read_bytes()
+
+
+def test_the_load_cell_keeps_an_impulse_and_passes_slow_sinusoids():
+    """A 20 us rectangular pulse's impulse is the integral of the readings (the link's resonance
+    and the DAQ's filter keep it; the static matrices act on it); a crank-frequency sinusoid
+    passes at the channel's gain, one at 1/8 of the rate with at most the resonance's rise."""
+    omega = 40.0 * math.pi
+    pulse_t = np.array([0.0, 0.1, 0.1 + 1e-9, 0.1 + 20e-6, 0.1 + 20e-6 + 1e-9, 0.3])
+    pulse = np.zeros((6, 2))
+    pulse[2:4] = [4000.0, -2500.0]
+    impulse = pulse[2] * (20e-6 + 1e-9)
+    for seed in range(3):
+        cell = _quiet(gen.draw_load_cell(np.random.default_rng([seed, 11]),
+                                         gen.Accelerometer((0,), 4, (0.0,), 1.0, 0.0, 0.01)),
+                      start_deg=(0.0,))
+        _, reading = gen.load_cell_trace(pulse_t, pulse, 0.0, omega, cell, 0, None)
+        expected = cell.channel_matrix() @ cell.axes_matrix() @ impulse
+        np.testing.assert_allclose(reading.sum(axis=0) / cell.sample_rate_hz, expected,
+                                   rtol=0.01)
+    ideal = _quiet(cell, misalignment_deg=0.0, crosstalk=(0.0, 0.0), gain=(1.0, 1.0),
+                   natural_hz=(10e3, 10e3))  # the lowest resonance: the largest rise
+    time_s = np.linspace(0.0, 0.3, 60001)  # a sine linear between 5 us steps: 2e-4 low
+    for frequency, low, high in ((20.0, 0.999, 1.001), (1600.0, 1.0, 1.027)):
+        wave = np.column_stack([1000.0 * np.sin(2.0 * math.pi * frequency * time_s),
+                                np.zeros_like(time_s)])
+        _, reading = gen.load_cell_trace(time_s, wave, 0.0, omega, ideal, 0, None)
+        amplitude = np.abs(np.fft.rfft(reading[:, 0])).max() * 2.0 / reading.shape[0]
+        assert low * 1000.0 <= amplitude <= high * 1000.0
+        assert np.abs(reading[:, 1]).max() < 1e-6
+
+
+def test_the_noise_free_force_trace_has_the_simulated_crank_harmonics(tmp_path):
+    """The real dynamics on a worn bore through a load cell without noise: crank harmonics 1-5
+    of the readings are the simulated force's (the pin on the bushing), through the cell's
+    static matrices, to 1 % of the largest; with an ideal cell, the force's own."""
+    believed = with_truth_numerics(gen.believed_config(tmp_path / "believed.toml"))
+    config = model_config(believed, "rigid", 5000)
+    angle = np.arange(96) * (2.0 * math.pi / 96)
+    depth = 60e-6 * np.maximum(np.cos(angle - 0.4), 0.0) ** 3
+    history = gen.trace_dynamics(config, angle, depth, 4)
+    omega = 40.0 * math.pi
+    force = -history.reaction_force_N
+    drawn = gen.draw_load_cell(np.random.default_rng([3, 11]),
+                               gen.Accelerometer((5000,), 4, (70.0,), 1.0, 0.0, 0.01))
+    for cell in (drawn, _quiet(drawn, misalignment_deg=0.0, crosstalk=(0.0, 0.0),
+                               gain=(1.0, 1.0))):
+        time_s, reading = gen.load_cell_trace(history.time_s, force,
+                                              float(history.crank_angle_rad[0]), omega, cell, 0,
+                                              None)
+        reading = reading - np.array(cell.offset_N) - np.outer(time_s, cell.drift_N_s)
+        lead = math.pi + np.mod(math.radians(cell.start_deg[0]) - history.crank_angle_rad[0],
+                                2.0 * math.pi)
+        step = 1.0 / (cell.sample_rate_hz * cell.oversampling)
+        start = history.time_s[0] + round(lead / omega / step) * step
+        fine = start + np.arange(4 * 50000) * 1e-6  # 4 revolutions every microsecond
+        simulated = np.column_stack([np.interp(fine, history.time_s, force[:, axis])
+                                     for axis in range(2)])
+        expected = _force_harmonics(simulated, 4) @ (cell.channel_matrix()
+                                                     @ cell.axes_matrix()).T
+        recorded = _force_harmonics(reading, 4)
+        scale = np.abs(expected[1:]).max(axis=0)
+        assert np.all(np.abs(recorded[1:] - expected[1:]) <= 0.01 * scale)
+        assert scale[0] > 300.0  # the slider's inertia: several hundred newtons along x
