@@ -718,3 +718,100 @@ def test_data_sets_of_the_two_rods_part_at_harmonics_9_to_20(tmp_path):
                          for trace in traces))
     print(f"harmonics 9-20 (of A1): rods {rods:.4f}, noise {noise:.5f}")
     assert rods > 10.0 * noise
+
+
+# --- the load cell (force.csv; the dynamics are real, the wear runs synthetic) ------------------
+
+def _crank_harmonics_of(force, revolutions):
+    """Complex amplitudes of crank harmonics 0-5 of each column of ``force`` (whole
+    ``revolutions``)."""
+    spectrum = np.fft.rfft(force, axis=0) * 2.0 / force.shape[0]
+    spectrum[0] /= 2.0
+    return spectrum[: 6 * revolutions: revolutions]
+
+
+def _ideal(cell, **changes):
+    """``cell`` without coupling, gain errors or zeros (and with ``changes``)."""
+    return replace(cell, crosstalk=0.0, gain=(1.0, 1.0), zero_N=(0.0, 0.0), **changes)
+
+
+def test_force_file_parses_at_the_accelerometer_counts_and_changes_no_other_file(
+        synthetic, tmp_path, monkeypatch):
+    seed = gen.data_set_seed("none", 2)
+    data = gen.write_data_set("none", seed, tmp_path / "a")
+    cell = data.load_cell
+    lines = [line for line in data.force_csv.read_text().splitlines()
+             if not line.startswith("#")]
+    assert lines[0] == "time_s,fx_N,fy_N,cycles"
+    measured = read_joint_measurements([data.profiles_csv, data.max_wear_csv, data.force_csv])
+    assert tuple(trace.cycles for trace in measured.force) == cell.trace_cycles == \
+        data.accelerometer.trace_cycles
+    for trace in measured.force:
+        assert trace.time_s[0] == 0.0 and np.all(np.diff(trace.time_s) > 0.0)
+        np.testing.assert_allclose(np.diff(trace.time_s), 1.0 / 5000.0, rtol=1e-9)
+        assert trace.fx_N.size == trace.fy_N.size == 4 * 250
+        assert 100.0 < np.std(trace.fx_N) < 5000.0
+    assert 4e3 <= cell.natural_hz <= 6e3 and 0.005 <= abs(cell.crosstalk) <= 0.03
+    monkeypatch.setattr(gen, "write_force_csv", lambda *args: None)
+    monkeypatch.setattr(gen, "measure_force", lambda *args: None)
+    without = gen.write_data_set("none", seed, tmp_path / "b")
+    assert not (tmp_path / "b" / "force.csv").exists()
+    for name in ("profiles_csv", "max_wear_csv", "believed_toml", "acceleration_csv"):
+        assert getattr(without, name).read_bytes() == getattr(data, name).read_bytes()
+
+
+def test_load_cell_keeps_an_impulse_and_passes_slow_sinusoids():
+    """A 20 us rectangular pulse's impulse is the sum of the readings over the rate (through the
+    ring's resonance, the exact cell impulses and the amplifier's filter; the coupling and the
+    gains act on it); a crank-frequency sinusoid passes at the gain, one at 1/8 of the rate
+    (625 Hz) with at most the ring's resonance rise."""
+    omega = 40.0 * math.pi
+    pulse_t = np.array([0.0, 0.12, 0.12 + 1e-9, 0.12 + 20e-6, 0.12 + 20e-6 + 1e-9, 0.27])
+    pulse = np.zeros((6, 2))
+    pulse[2:4] = [3000.0, 4500.0]
+    impulse = pulse[2] * (20e-6 + 1e-9)
+    meter = gen.Accelerometer((8000,), (3,), (0.0,), 5000.0, 1.0, 0.0, 12.0)
+    for seed in range(3):
+        cell = replace(gen.draw_load_cell(np.random.default_rng(seed), meter, noise=False),
+                       zero_N=(0.0, 0.0), start_deg=(0.0,))
+        _, reading = gen.measure_force(pulse_t, pulse, 0.0, omega, cell, 0, None)
+        expected = np.array(cell.gain) * (cell.coupling() @ impulse)
+        np.testing.assert_allclose(reading.sum(axis=0) / cell.sample_rate_hz, expected,
+                                   rtol=0.01)
+    ideal = _ideal(cell, natural_hz=4e3)  # the lowest resonance: the largest rise
+    time_s = np.linspace(0.0, 0.27, 54001)  # a sine linear between 5 us steps
+    for frequency, low, high in ((20.0, 0.999, 1.001), (625.0, 1.0, 1.026)):
+        wave = np.column_stack([np.zeros_like(time_s),
+                                800.0 * np.sin(2.0 * math.pi * frequency * time_s)])
+        _, reading = gen.measure_force(time_s, wave, 0.0, omega, ideal, 0, None)
+        amplitude = np.abs(np.fft.rfft(reading[:, 1])).max() * 2.0 / reading.shape[0]
+        assert low * 800.0 <= amplitude <= high * 800.0
+        assert np.abs(reading[:, 0]).max() < 1e-6
+
+
+def test_noise_free_force_trace_has_the_simulated_crank_harmonics(tmp_path):
+    """The real dynamics on a worn bore through the load cell without noise: the amplitudes of
+    crank harmonics 1-5 are the simulated force's (the pin on the bushing), coupled and scaled by
+    the cell, to 1 % of the largest (the amplifier's filter delays them: the phases move)."""
+    config = with_truth_numerics(_believed(tmp_path))
+    angle = gen.fine_grid()
+    depth = 50e-6 * np.maximum(np.cos(angle - 0.5), 0.0) ** 3
+    history = gen.trace_dynamics(config, angle, depth, 4)
+    force = -history.reaction_force_N
+    omega = 40.0 * math.pi
+    meter = gen.Accelerometer((8000,), (4,), (30.0,), 5000.0, 1.0, 0.0, 12.0)
+    drawn = gen.draw_load_cell(np.random.default_rng(5), meter, noise=False)
+    for cell in (drawn, _ideal(drawn)):
+        _, reading = gen.measure_force(history.time_s, force, float(history.crank_angle_rad[0]),
+                                       omega, cell, 0, None)
+        lead = 2.0 * math.pi + (math.radians(cell.start_deg[0]) - history.crank_angle_rad[0]) \
+            % (2.0 * math.pi)
+        fine = history.time_s[0] + lead / omega + np.arange(4 * 50000) * 1e-6
+        simulated = np.column_stack([np.interp(fine, history.time_s, force[:, axis])
+                                     for axis in range(2)])
+        expected = np.abs(_crank_harmonics_of(simulated, 4) @ cell.coupling().T
+                          * np.array(cell.gain))
+        recorded = np.abs(_crank_harmonics_of(reading - np.array(cell.zero_N), 4))
+        scale = expected[1:].max(axis=0)
+        assert np.all(np.abs(recorded[1:] - expected[1:]) <= 0.01 * scale)
+        assert scale[0] > 300.0

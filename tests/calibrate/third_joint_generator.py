@@ -126,6 +126,34 @@ Its random draws come from the seed's :class:`numpy.random.SeedSequence` child n
 :data:`ACCELEROMETER_SPAWN_KEY` (apart from the lab's ``default_rng(seed)`` and the causes'
 children 0-5), so the other files do not change with it. ``noise=False`` drops the noise floor,
 the jitter and the quantisation (the gain, offset and trigger stay).
+Joint force (:class:`LoadCell`, ``force.csv``: ``time_s, fx_N, fy_N, cycles``, time from each
+trace's first sample): a two-axis strain-gauge load cell (an octagonal ring, one full bridge per
+axis) between the bushing and the slider, read through a DC bridge amplifier by the logger, at
+the accelerometer's three counts, 4 revolutions per trace. The signal is the force the pin exerts
+on the bushing (minus the dynamics' ``reaction_force_N``), bushing frame, of the same simulated
+run as the acceleration trace at that count (one simulation per count serves both; for a 3
+revolution acceleration trace it records one revolution more, which leaves that trace as it
+was), the force taken linear between the integrator's steps:
+- the ring's mechanical coupling: each channel reads c times the other component, c of either
+  sign with |c| in U[0.5, 3] % (per data set); the cell is keyed to the slider (no misalignment);
+- the ring's resonance: a mass-spring-damper of unit static gain, natural frequency U[4, 6] kHz,
+  damping ratio U[0.02, 0.05] (steel, lightly damped), both axes; driven by the force's exact
+  impulse over each 1 us step of a uniform grid (the integral of the piecewise-linear force:
+  an impact's microsecond spike counts by its impulse) and integrated exactly for an input held
+  over each step;
+- the bridge calibration: a gain error N(0, 1 %) per channel (clipped to +-3 %);
+- the bridge amplifier's low-pass, the anti-alias filter: an 8th-order Butterworth at 1,250 Hz,
+  causal (its delay of about 0.65 ms stays in the trace);
+- the logger: 5,000 samples per second (250 per crank revolution), triggered by its own
+  once-per-revolution tachometer mark at an unknown crank angle, U[0, 360) deg per data set,
+  plus N(0, 1 deg) of trigger jitter per trace, one revolution after the run's start;
+- the bridge's zero (unbalance left after taring), U[-20, 20] N per channel; white noise of
+  standard deviation U[1, 3] N and a 1/f (pink) noise of U[1, 4] N over the trace, both per data
+  set and channel; the logger's 16-bit converter over +-10 kN (0.305 N steps), clipped there.
+The crank harmonics up to 1/8 of the rate (625 Hz) pass with the ring's resonance rise,
+1/(1 - (f / f_n)^2), at most 2.5 %, and the Butterworth's delay. Its draws come from the seed's
+SeedSequence child :data:`LOAD_CELL_SPAWN_KEY`; ``noise=False`` drops the white and pink noise,
+the jitter and the quantisation (the coupling, gains, zeros and the mark stay).
 
 Neglected
 ---------
@@ -182,6 +210,8 @@ IMPACT_EVALUATIONS = 12
 TWO_PI = 2.0 * math.pi
 ACCELEROMETER_SPAWN_KEY = 100
 """The accelerometer's random stream: the seed's SeedSequence child with this spawn key."""
+LOAD_CELL_SPAWN_KEY = 101
+"""The load cell's random stream: the seed's SeedSequence child with this spawn key."""
 
 
 # --- the data set and the lab ---------------------------------------------------------------
@@ -241,6 +271,36 @@ class Accelerometer:
     quantum_m_s2: float = 10000.0 / 2**16
 
 
+@dataclass(frozen=True)
+class LoadCell:
+    """The strain-gauge load cell under the bushing and its plan (module doc); SI units, angles
+    in degrees. ``trace_cycles`` and ``start_deg`` per trace (the crank angle of the first
+    sample: the tachometer mark plus the jitter); ``natural_hz`` and ``damping``: the ring's
+    resonance; ``crosstalk``: the share of the other component each channel reads; ``gain`` and
+    ``zero_N`` per channel; ``white_N`` and ``pink_N``: the noises' standard deviations."""
+
+    trace_cycles: tuple[int, ...]
+    start_deg: tuple[float, ...]
+    natural_hz: float
+    damping: float
+    crosstalk: float
+    gain: tuple[float, float]
+    zero_N: tuple[float, float]
+    white_N: float
+    pink_N: float
+    revolutions: int = 4
+    sample_rate_hz: float = 5000.0
+    filter_order: int = 8
+    cutoff_hz: float = 1250.0
+    grid_step_s: float = 1e-6
+    full_scale_N: float = 10000.0
+    quantum_N: float = 20000.0 / 2**16
+
+    def coupling(self) -> np.ndarray:
+        """The ring's coupling matrix (bushing-frame force to the bridges' forces)."""
+        return np.array([[1.0, self.crosstalk], [self.crosstalk, 1.0]])
+
+
 @dataclass(frozen=True, eq=False)
 class DataSet:
     """One generated data set: the believed config, the measured files and the hidden truth.
@@ -258,6 +318,8 @@ class DataSet:
     lab: Lab
     acceleration_csv: Path | None = None
     accelerometer: Accelerometer | None = None
+    force_csv: Path | None = None
+    load_cell: LoadCell | None = None
 
     @property
     def causes(self) -> tuple[str, ...]:
@@ -724,11 +786,12 @@ def draw_accelerometer(rng: np.random.Generator, lab: Lab, noise: bool = True) -
                          quantum_m_s2=Accelerometer.quantum_m_s2 if noise else 0.0)
 
 
-def slider_acceleration(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray,
-                        revolutions: int, step_s: float) -> tuple[np.ndarray, float]:
-    """The slider's true acceleration (m/s^2) every ``step_s`` from the start of the recorded
-    revolutions (``revolutions`` + 2 of them: run-in, the trigger's, the trace's) of the config's
-    mechanism on the bore worn by ``depth_m`` at ``angle_rad``; and the crank angle (rad) there."""
+def trace_dynamics(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray,
+                   revolutions: int):
+    """The joint history (:class:`fewear.mbd.history.JointHistory`) of ``revolutions`` + 2
+    recorded revolutions of the config's mechanism on the bore worn by ``depth_m`` at
+    ``angle_rad``, from the ideal mechanism through the config's settling cycles: the one run
+    the accelerometer and the load cell record at a count."""
     from fewear.loop.settings import run_inputs_from_config
     from fewear.mbd.slider_crank import simulate
     from fewear.wear.state import WearState
@@ -741,6 +804,18 @@ def slider_acceleration(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray
     crank = replace(inputs.dynamics.crank, rod=config["wear_loop"]["rod_models"][0],
                     joint="clearance", recorded_cycles=revolutions + 2)
     history, _, _ = simulate(replace(inputs.dynamics, crank=crank, joint=joint))
+    return history
+
+
+def slider_acceleration(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray,
+                        revolutions: int, step_s: float,
+                        history=None) -> tuple[np.ndarray, float]:
+    """The slider's true acceleration (m/s^2) every ``step_s`` from the start of the recorded
+    revolutions (``revolutions`` + 2 of them: run-in, the trigger's, the trace's) of the config's
+    mechanism on the bore worn by ``depth_m`` at ``angle_rad``; and the crank angle (rad) there.
+    ``history``: that run's :func:`trace_dynamics` (or a longer one), if made already."""
+    if history is None:
+        history = trace_dynamics(config, angle_rad, depth_m, revolutions)
     t = history.time_s
     grid = np.arange(t[0], t[-1], step_s)
     velocity = np.interp(grid, t, history.slider_velocity_m_s)
@@ -748,16 +823,17 @@ def slider_acceleration(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray
 
 
 def measure_acceleration(bore: TrueBore, config: dict, meter: Accelerometer, trace: int,
-                         rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+                         rng: np.random.Generator,
+                         history=None) -> tuple[np.ndarray, np.ndarray]:
     """Trace ``trace`` of the slider accelerometer (module doc): (time from the trigger in s,
-    reading in m/s^2)."""
+    reading in m/s^2). ``history``: the run's :func:`trace_dynamics`, if made already."""
     from scipy.signal import butter, sosfilt
 
     revolutions = meter.revolutions[trace]
     step = meter.grid_step_s
     truth, start_rad = slider_acceleration(config, bore.angle_rad,
                                            bore.depth_m(meter.trace_cycles[trace]), revolutions,
-                                           step)
+                                           step, history)
     sos = butter(meter.filter_order, meter.cutoff_fraction * meter.sample_rate_hz, fs=1.0 / step,
                  output="sos")
     filtered = sosfilt(sos, truth)
@@ -783,6 +859,103 @@ def write_acceleration_csv(path: Path, traces, meter: Accelerometer) -> None:
     path.write_text("\n".join(lines) + "\n")
 
 
+def draw_load_cell(rng: np.random.Generator, meter: Accelerometer,
+                   noise: bool = True) -> LoadCell:
+    """The load cell of one data set (module doc), from its own stream: at the accelerometer's
+    counts."""
+    count = len(meter.trace_cycles)
+    mark = float(rng.uniform(0.0, 360.0))
+    jitter = rng.normal(0.0, 1.0, count)
+    natural = float(rng.uniform(4.0e3, 6.0e3))
+    damping = float(rng.uniform(0.02, 0.05))
+    crosstalk = float(rng.choice([-1.0, 1.0]) * rng.uniform(0.005, 0.03))
+    gain = tuple(float(1.0 + g) for g in np.clip(rng.normal(0.0, 0.01, 2), -0.03, 0.03))
+    zero = tuple(float(z) for z in rng.uniform(-20.0, 20.0, 2))
+    white, pink = float(rng.uniform(1.0, 3.0)), float(rng.uniform(1.0, 4.0))
+    if not noise:
+        jitter, white, pink = np.zeros(count), 0.0, 0.0
+    return LoadCell(meter.trace_cycles, tuple(float(mark + j) % 360.0 for j in jitter), natural,
+                    damping, crosstalk, gain, zero, white, pink,
+                    quantum_N=LoadCell.quantum_N if noise else 0.0)
+
+
+def cell_impulses(time_s: np.ndarray, force_N: np.ndarray, step_s: float) -> np.ndarray:
+    """The mean (n, 2) over each ``step_s`` from ``time_s[0]`` of the force ``force_N`` linear
+    between the instants ``time_s``: the exact integral (a quadratic within each of the
+    force's pieces) differenced on the grid, over the step. Impulses are kept exactly."""
+    force = np.asarray(force_N, dtype=float)
+    span = np.diff(time_s)
+    total = np.vstack([np.zeros((1, force.shape[1])),
+                       np.cumsum(0.5 * (force[1:] + force[:-1]) * span[:, None], axis=0)])
+    edges = time_s[0] + step_s * np.arange(int((time_s[-1] - time_s[0]) / step_s) + 1)
+    piece = np.clip(np.searchsorted(time_s, edges, side="right") - 1, 0, time_s.size - 2)
+    into = (edges - time_s[piece])[:, None]
+    slope = (force[piece + 1] - force[piece]) / span[piece, None]
+    integral = total[piece] + force[piece] * into + 0.5 * slope * into**2
+    return np.diff(integral, axis=0) / step_s
+
+
+def pink_noise(rng: np.random.Generator, count: int, columns: int) -> np.ndarray:
+    """``columns`` series of ``count`` points of 1/f noise (power falling as 1/f from the
+    trace's lowest frequency; no mean), each scaled to unit standard deviation."""
+    frequency = np.arange(count // 2 + 1, dtype=float)
+    shape = np.where(frequency > 0.0, 1.0 / np.sqrt(np.maximum(frequency, 1.0)), 0.0)
+    spectrum = (rng.normal(0.0, 1.0, (frequency.size, columns))
+                + 1j * rng.normal(0.0, 1.0, (frequency.size, columns))) * shape[:, None]
+    series = np.fft.irfft(spectrum, n=count, axis=0)
+    return series / series.std(axis=0)
+
+
+def measure_force(time_s: np.ndarray, force_N: np.ndarray, start_rad: float, omega: float,
+                  cell: LoadCell, trace: int,
+                  rng: np.random.Generator | None) -> tuple[np.ndarray, np.ndarray]:
+    """Trace ``trace`` of the load cell (module doc) of the bushing-frame force ``force_N``
+    (n, 2) (N) linear between the instants ``time_s`` (s; the crank at ``start_rad`` at the
+    first, turning at ``omega`` rad/s): (time from the first sample in s, readings (n, 2) in N).
+    The trace starts one revolution in, at the crank angle ``cell.start_deg[trace]``; ``rng``
+    None (or the cell's noise 0): without noise."""
+    from scipy.signal import butter, cont2discrete, lfilter, lfilter_zi, sosfilt, sosfilt_zi
+
+    step = cell.grid_step_s
+    held = cell_impulses(time_s, force_N, step) @ cell.coupling().T
+    omega_n = 2.0 * math.pi * cell.natural_hz
+    numerator, denominator, _ = cont2discrete(
+        ([omega_n**2], [1.0, 2.0 * cell.damping * omega_n, omega_n**2]), step, method="zoh")
+    numerator = numerator.ravel()
+    ring = lfilter(numerator, denominator, held, axis=0,
+                   zi=lfilter_zi(numerator, denominator)[:, None] * held[0])[0]
+    bridge = ring * np.array(cell.gain)
+    sos = butter(cell.filter_order, cell.cutoff_hz, fs=1.0 / step, output="sos")
+    amplified = sosfilt(sos, bridge, axis=0, zi=sosfilt_zi(sos)[:, :, None] * bridge[0])[0]
+    lead = TWO_PI + (math.radians(cell.start_deg[trace]) - start_rad) % TWO_PI
+    count = int(round(cell.revolutions * TWO_PI / omega * cell.sample_rate_hz))
+    time = np.arange(count) / cell.sample_rate_hz
+    at = lead / omega + time  # from the run's start; amplified[k] is the output at k steps
+    if at[-1] > step * (amplified.shape[0] - 1):
+        raise ValueError("the force history ends before the load cell's trace")
+    grid = step * np.arange(amplified.shape[0])
+    reading = np.column_stack([np.interp(at, grid, amplified[:, axis]) for axis in range(2)])
+    reading = reading + np.array(cell.zero_N)
+    if rng is not None and cell.white_N > 0.0:
+        reading = reading + rng.normal(0.0, cell.white_N, reading.shape)
+    if rng is not None and cell.pink_N > 0.0:
+        reading = reading + cell.pink_N * pink_noise(rng, count, 2)
+    if cell.quantum_N > 0.0:
+        reading = np.round(reading / cell.quantum_N) * cell.quantum_N
+    return time, np.clip(reading, -cell.full_scale_N, cell.full_scale_N)
+
+
+def write_force_csv(path: Path, traces, cell: LoadCell) -> None:
+    lines = [f"# load cell under the bushing (strain-gauge ring, bridge amplifier 8th-order "
+             f"Butterworth at {cell.cutoff_hz:.0f} Hz), logger {cell.sample_rate_hz:.0f} S/s: "
+             "force of the pin on the bushing, bushing frame; time from each trace's first "
+             "sample", "time_s,fx_N,fy_N,cycles"]
+    for cycles, (time_s, reading) in zip(cell.trace_cycles, traces):
+        lines += [f"{float(t)!r},{float(fx)!r},{float(fy)!r},{cycles}"
+                  for t, (fx, fy) in zip(time_s, reading)]
+    path.write_text("\n".join(lines) + "\n")
+
+
 def believed_config(path: Path) -> dict:
     from fewear.io.config import load_config
     from fewear.loop.settings import run_sections
@@ -798,9 +971,9 @@ def rms_difference_m(bore: TrueBore, config: dict, cycles: int) -> float:
 
 def write_data_set(cause: str, seed: int, directory: Path, noise: bool = True) -> DataSet:
     """Draw the lab and the hidden truth of ``cause`` from ``seed``, run the truth, measure it and
-    write ``believed.toml``, ``profiles.csv``, ``max_wear.csv`` and ``acceleration.csv`` into
-    ``directory``. ``noise=False``: the same data set without noise, jitter or centre
-    offsets."""
+    write ``believed.toml``, ``profiles.csv``, ``max_wear.csv``, ``acceleration.csv`` and
+    ``force.csv`` into ``directory``. ``noise=False``: the same data set without noise, jitter or
+    centre offsets."""
     if cause not in CAUSES:
         raise ValueError(f"unknown cause {cause!r}; expected one of {CAUSES}")
     rng = np.random.default_rng(seed)
@@ -852,10 +1025,22 @@ def _write(label: str, causes: tuple[str, ...], seed: int, directory: Path, nois
     meter_rng = np.random.default_rng(np.random.SeedSequence(
         seed, spawn_key=(ACCELEROMETER_SPAWN_KEY,)))
     meter = draw_accelerometer(meter_rng, lab, noise)
+    cell_rng = np.random.default_rng(np.random.SeedSequence(
+        seed, spawn_key=(LOAD_CELL_SPAWN_KEY,)))
+    cell = draw_load_cell(cell_rng, meter, noise)
     mechanism = truth_run_config(causes, params, config)
+    dynamics = [trace_dynamics(mechanism, bore.angle_rad, bore.depth_m(cycles),
+                               max(revolutions, cell.revolutions))
+                for cycles, revolutions in zip(meter.trace_cycles, meter.revolutions)]
     acceleration_csv = directory / "acceleration.csv"
     write_acceleration_csv(acceleration_csv, [
-        measure_acceleration(bore, mechanism, meter, trace, meter_rng)
+        measure_acceleration(bore, mechanism, meter, trace, meter_rng, dynamics[trace])
         for trace in range(len(meter.trace_cycles))], meter)
+    omega = mechanism["mechanism"]["crank_speed_rpm"] * TWO_PI / 60.0
+    force_csv = directory / "force.csv"
+    write_force_csv(force_csv, [
+        measure_force(history.time_s, -history.reaction_force_N,
+                      float(history.crank_angle_rad[0]), omega, cell, trace, cell_rng)
+        for trace, history in enumerate(dynamics)], cell)
     return DataSet(label, seed, toml, profiles_csv, max_wear_csv, truth, lab, acceleration_csv,
-                   meter)
+                   meter, force_csv, cell)
