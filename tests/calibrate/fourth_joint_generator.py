@@ -186,6 +186,41 @@ child 3 after the truth, lab and noise streams of :func:`_streams`), so the othe
 change with it. ``noise=False`` drops the hum and the white noise (the gain, the zero and the
 start angles stay).
 
+Joint force (:class:`LoadCellPlan`, :func:`measure_force`, ``force.csv``: ``time_s, fx_N, fy_N,
+cycles``, time from each trace's first sample): an IEPE piezoelectric force ring (two shear
+components, built-in charge converter) preloaded under the bushing's housing, read by a DAQ of its
+own, at the accelerometer's two counts (the second and the last replica), 4 revolutions per trace.
+The signal is the force the pin exerts on the bushing (minus the dynamics' ``reaction_force_N``),
+bushing frame, of the same simulated run as the acceleration trace at that count (one simulation
+per count gives both), the force linear between the integrator's steps. The readings (both
+channels):
+
+    f(t_k) = Q[ (B_8 H_ac S)(M F)(t_0 + t_k) + n_k ],
+
+- M = diag(1 + g) (I + X) R(alpha)^T: the ring's axes turned by alpha, uniform in [-2.5, 2.5]
+  deg from the bushing frame (per data set); cross-talk X, each channel reading x of the other
+  component, |x| uniform in [0.5, 3] % of either sign each way; the calibration's sensitivity
+  error g per channel, normal with 1.5 % standard deviation (clipped to +-3 %);
+- S: the mounted ring's resonance, a mass-spring-damper of unit static gain, natural frequency
+  uniform in [6, 9] kHz, damping ratio uniform in [0.05, 0.15] (the housing's elastomer seat);
+- H_ac: the IEPE coupling, a first-order high-pass at f_c uniform in [0.2, 0.8] Hz: the mean
+  force is not measured (the coupling had minutes to settle: periodic steady state);
+- B_8: the DAQ's analogue anti-alias filter, an 8th-order Butterworth low-pass at 0.3 of the rate
+  (2.4 kHz), causal; the whole chain S, H_ac, B_8 (11 states) is integrated exactly for the
+  piecewise-linear force (the matrix exponential over each integrator step and up to each sample
+  instant: an impact's microsecond spike counts by its impulse);
+- t_k = k / 8,000 s (400 samples per crank revolution); the DAQ is triggered by the crank
+  encoder's index pulse, at a crank angle uniform in [0, 360) deg (per data set), with a
+  pre-trigger of 36 deg (a tenth of a revolution), and its free-running sample clock puts the
+  first sample up to one sample (0.9 deg) after that: t_0;
+- n_k: white noise, standard deviation uniform in [1, 3] N per data set; Q: the DAQ's 20-bit
+  converter over +-25 kN (0.048 N), clipped there; readings written to 0.1 mN.
+The crank harmonics up to 1/8 of the rate (1 kHz) pass with the resonance's rise (at most
+2.9 %), the Butterworth's delay and, at the first harmonic, the coupling's lead (at most
+2.3 deg). Its draws come from the seed's stream :data:`LOAD_CELL_STREAM`; ``noise=False`` drops
+the white noise, the sample-clock offset and the quantisation (M, S, H_ac, B_8 and the index
+angle stay).
+
 Neglected
 ---------
 The replica's compliance and the confocal spot's footprint (40 um, 0.23 deg, far below the
@@ -289,6 +324,23 @@ HUM_M_S2 = (1.0, 5.0)
 TRACE_NOISE_FRACTION = 0.015
 ACCELERATION_STREAM = 3
 """The accelerometer's stream: the seed's SeedSequence child 3 (:func:`_streams` uses 0-2)."""
+LOAD_CELL_STREAM = 4
+"""The load cell's stream: the seed's SeedSequence child 4."""
+LOAD_CELL_RATE_HZ = 8000.0
+LOAD_CELL_REVOLUTIONS = 4
+LOAD_CELL_RESONANCE_HZ = (6.0e3, 9.0e3)
+LOAD_CELL_DAMPING = (0.05, 0.15)
+LOAD_CELL_MISALIGNMENT_DEG = 2.5
+LOAD_CELL_CROSSTALK = (0.005, 0.03)
+LOAD_CELL_SENSITIVITY_ERROR = (0.015, 0.03)
+"""Standard deviation and clip of the channels' sensitivity errors."""
+LOAD_CELL_COUPLING_HZ = (0.2, 0.8)
+LOAD_CELL_ANTI_ALIAS = (8, 0.3)
+"""Butterworth order and cutoff as a fraction of the rate."""
+LOAD_CELL_PRETRIGGER_DEG = 36.0
+LOAD_CELL_NOISE_N = (1.0, 3.0)
+LOAD_CELL_FULL_SCALE_N = 25000.0
+LOAD_CELL_QUANTUM_N = 2.0 * LOAD_CELL_FULL_SCALE_N / 2**20
 TWO_CAUSE_PAIRS = tuple(combinations([cause for cause in CAUSES if cause != "none"], 2))
 """The pairs of distinct hidden causes a two-cause data set hides, each in :data:`CAUSES` order
 (all ten: every pair combines in one truth, module doc)."""
@@ -338,6 +390,38 @@ class AccelerometerPlan:
 
 
 @dataclass(frozen=True)
+class LoadCellPlan:
+    """The force ring's plan and fixed unknowns (module doc): the counts of its traces and each
+    trace's start (crank angle of the first sample, deg: the index pulse less the pre-trigger,
+    plus the sample clock's offset); the index pulse's crank angle (deg); the ring's resonance
+    (Hz) and damping ratio; the misalignment alpha (deg), the cross-talk (x from fy, y from fx),
+    the sensitivity errors g; the coupling's corner (Hz); the white noise (N, 0 without noise)
+    and the converter's step (N, 0 without quantisation)."""
+
+    trace_cycles: tuple[int, ...]
+    start_deg: tuple[float, ...]
+    index_deg: float
+    natural_hz: float
+    damping: float
+    misalignment_deg: float
+    crosstalk: tuple[float, float]
+    sensitivity_error: tuple[float, float]
+    coupling_hz: float
+    noise_N: float
+    quantum_N: float = LOAD_CELL_QUANTUM_N
+    revolutions: int = LOAD_CELL_REVOLUTIONS
+    rate_hz: float = LOAD_CELL_RATE_HZ
+
+    def static_matrix(self) -> np.ndarray:
+        """M = diag(1 + g) (I + X) R(alpha)^T: bushing-frame force to the channels."""
+        alpha = math.radians(self.misalignment_deg)
+        turned = np.array([[math.cos(alpha), math.sin(alpha)],
+                           [-math.sin(alpha), math.cos(alpha)]])
+        crossed = np.array([[1.0, self.crosstalk[0]], [self.crosstalk[1], 1.0]])
+        return np.diag(1.0 + np.array(self.sensitivity_error)) @ crossed @ turned
+
+
+@dataclass(frozen=True)
 class DataSet:
     """One written data set: its hidden ``cause`` and ``params`` (the truth), the files, and the
     ``lab`` plan (:class:`LabPlan`). A two-cause set's ``cause`` is its pair joined by "+" in
@@ -352,6 +436,8 @@ class DataSet:
     lab: LabPlan
     acceleration_csv: Path | None = None
     accelerometer: AccelerometerPlan | None = None
+    force_csv: Path | None = None
+    load_cell: LoadCellPlan | None = None
 
     @property
     def causes(self) -> tuple[str, ...]:
@@ -848,7 +934,8 @@ def write_measurements(directory: Path, lab: LabPlan, truth, inner_radius_m: flo
 
 def write_data_set(cause: str, seed: int, directory: str | Path, noise: bool = True) -> DataSet:
     """Write one data set of ``cause`` (deterministic per ``seed``) into ``directory``:
-    believed.toml, profiles.csv, max_wear.csv, acceleration.csv (module doc). ``noise=False``:
+    believed.toml, profiles.csv, max_wear.csv, acceleration.csv, force.csv (module doc).
+    ``noise=False``:
     the same data set without the instrument's noise."""
     if cause not in CAUSES:
         raise ValueError(f"unknown cause {cause!r}; expected one of {', '.join(CAUSES)}")
@@ -888,10 +975,18 @@ def _write(label: str, causes: tuple[str, ...], params: dict, seed: int,
     meter_rng = np.random.default_rng(np.random.SeedSequence(seed,
                                                              spawn_key=(ACCELERATION_STREAM,)))
     meter = draw_accelerometer(meter_rng, lab, noise)
+    cell_rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(LOAD_CELL_STREAM,)))
+    cell = draw_load_cell(cell_rng, meter, noise)
+    mechanisms = [trace_mechanism(causes, params, with_truth_numerics(believed), cycles)
+                  for cycles in meter.trace_cycles]
+    dynamics = [trace_dynamics(mechanism, *truth(cycles), meter.revolutions)
+                for mechanism, cycles in zip(mechanisms, meter.trace_cycles)]
     acceleration_csv = write_acceleration(directory, meter, causes, params,
-                                          with_truth_numerics(believed), truth, meter_rng)
+                                          with_truth_numerics(believed), truth, meter_rng,
+                                          dynamics)
+    force_csv = write_force(directory, cell, mechanisms, dynamics, cell_rng)
     return DataSet(label, int(seed), believed_toml, profiles_csv, max_wear_csv, params, lab,
-                   acceleration_csv, meter)
+                   acceleration_csv, meter, force_csv, cell)
 
 
 # --- the slider accelerometer -------------------------------------------------------------------
@@ -922,11 +1017,12 @@ def trace_mechanism(causes, params: dict, believed: dict, cycles: float) -> dict
     return config
 
 
-def slider_acceleration(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray,
-                        revolutions: int, step_s: float) -> tuple[np.ndarray, float]:
-    """The slider's acceleration (m/s^2) every ``step_s`` over ``revolutions`` + 2 recorded
-    revolutions of the config's mechanism (its rod model) on the bore worn by ``depth_m`` at
-    ``angle_rad``, and the crank angle (rad) at its start (module doc)."""
+def trace_dynamics(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray,
+                   revolutions: int):
+    """The joint history (:class:`fewear.mbd.history.JointHistory`) of ``revolutions`` + 2
+    recorded revolutions of the config's mechanism (its rod model) on the bore worn by
+    ``depth_m`` at ``angle_rad``, from the ideal mechanism through the config's settling cycles:
+    the one run the accelerometer and the force ring record at a count."""
     from dataclasses import replace
 
     from fewear.loop.settings import run_inputs_from_config
@@ -941,6 +1037,18 @@ def slider_acceleration(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray
     crank = replace(inputs.dynamics.crank, rod=config["wear_loop"]["rod_models"][0],
                     joint="clearance", recorded_cycles=revolutions + 2)
     history, _, _ = simulate(replace(inputs.dynamics, crank=crank, joint=joint))
+    return history
+
+
+def slider_acceleration(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray,
+                        revolutions: int, step_s: float,
+                        history=None) -> tuple[np.ndarray, float]:
+    """The slider's acceleration (m/s^2) every ``step_s`` over ``revolutions`` + 2 recorded
+    revolutions of the config's mechanism (its rod model) on the bore worn by ``depth_m`` at
+    ``angle_rad``, and the crank angle (rad) at its start (module doc). ``history``: that run's
+    :func:`trace_dynamics`, if made already."""
+    if history is None:
+        history = trace_dynamics(config, angle_rad, depth_m, revolutions)
     points = int((history.time_s[-1] - history.time_s[0]) / step_s)
     grid = history.time_s[0] + step_s * np.arange(points + 1)
     velocity = np.interp(grid, history.time_s, history.slider_velocity_m_s)
@@ -949,13 +1057,15 @@ def slider_acceleration(config: dict, angle_rad: np.ndarray, depth_m: np.ndarray
 
 def measure_acceleration(config: dict, truth_at: tuple[np.ndarray, np.ndarray],
                          plan: AccelerometerPlan, trace: int,
-                         rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+                         rng: np.random.Generator,
+                         history=None) -> tuple[np.ndarray, np.ndarray]:
     """Trace ``trace`` of the analyser (module doc) of the mechanism ``config`` on the bore
-    ``truth_at`` (node angles, depth): (time from the first sample in s, reading in m/s^2)."""
+    ``truth_at`` (node angles, depth): (time from the first sample in s, reading in m/s^2).
+    ``history``: the run's :func:`trace_dynamics`, if made already."""
     from scipy.signal import cheby1, sosfiltfilt
 
     step = 1.0 / (plan.rate_hz * ANALYSER_GRID)
-    signal, start_rad = slider_acceleration(config, *truth_at, plan.revolutions, step)
+    signal, start_rad = slider_acceleration(config, *truth_at, plan.revolutions, step, history)
     order, ripple, cutoff = ANTI_ALIAS
     sos = cheby1(order, ripple, cutoff * plan.rate_hz, fs=1.0 / step, output="sos")
     filtered = sosfiltfilt(sos, signal)
@@ -980,16 +1090,172 @@ ACCELERATION_COMMENT = (
 
 
 def write_acceleration(directory: Path, plan: AccelerometerPlan, causes, params: dict,
-                       believed: dict, truth, rng: np.random.Generator) -> Path:
+                       believed: dict, truth, rng: np.random.Generator, dynamics=None) -> Path:
     """The analyser's traces at ``plan.trace_cycles`` into acceleration.csv (7 significant
-    digits)."""
+    digits). ``dynamics``: each trace's :func:`trace_dynamics` (in the order of the traces), if
+    made already."""
     lines = [f"# {line}" for line in ACCELERATION_COMMENT.splitlines()]
     lines.append("time_s,slider_acceleration_m_s2,cycles")
     for trace, cycles in enumerate(plan.trace_cycles):
         time_s, reading = measure_acceleration(
-            trace_mechanism(causes, params, believed, cycles), truth(cycles), plan, trace, rng)
+            trace_mechanism(causes, params, believed, cycles), truth(cycles), plan, trace, rng,
+            None if dynamics is None else dynamics[trace])
         lines += [f"{t:.9f},{a:.7g},{cycles}" for t, a in zip(time_s, reading)]
     path = directory / "acceleration.csv"
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+# --- the force ring under the bushing ----------------------------------------------------------
+
+def draw_load_cell(rng: np.random.Generator, plan: AccelerometerPlan,
+                   noise: bool = True) -> LoadCellPlan:
+    """The force ring's plan (module doc), from its own stream: at the accelerometer's counts."""
+    count = len(plan.trace_cycles)
+    index = float(rng.uniform(0.0, 360.0))
+    clock = rng.uniform(0.0, 1.0, count) * 360.0 * 20.0 / LOAD_CELL_RATE_HZ  # up to one sample
+    natural = float(rng.uniform(*LOAD_CELL_RESONANCE_HZ))
+    damping = float(rng.uniform(*LOAD_CELL_DAMPING))
+    misalignment = float(rng.uniform(-LOAD_CELL_MISALIGNMENT_DEG, LOAD_CELL_MISALIGNMENT_DEG))
+    crosstalk = tuple(float(sign * size) for sign, size in
+                      zip(rng.choice([-1.0, 1.0], 2), rng.uniform(*LOAD_CELL_CROSSTALK, 2)))
+    deviation, clip = LOAD_CELL_SENSITIVITY_ERROR
+    sensitivity = tuple(float(g) for g in np.clip(rng.normal(0.0, deviation, 2), -clip, clip))
+    coupling = float(rng.uniform(*LOAD_CELL_COUPLING_HZ))
+    noise_n = float(rng.uniform(*LOAD_CELL_NOISE_N))
+    if not noise:
+        clock, noise_n = np.zeros(count), 0.0
+    start = tuple(float(index - LOAD_CELL_PRETRIGGER_DEG + c) % 360.0 for c in clock)
+    return LoadCellPlan(plan.trace_cycles, start, index, natural, damping, misalignment,
+                        crosstalk, sensitivity, coupling, noise_n,
+                        LOAD_CELL_QUANTUM_N if noise else 0.0)
+
+
+def _second_order(omega: float, damping: float) -> tuple[np.ndarray, ...]:
+    """A unit-gain second-order low-pass w^2 / (s^2 + 2 zeta w s + w^2) in scaled states
+    (y, y' / w): (A, B, C, D)."""
+    return (np.array([[0.0, omega], [-omega, -2.0 * damping * omega]]), np.array([0.0, omega]),
+            np.array([1.0, 0.0]), 0.0)
+
+
+def load_cell_chain(cell: LoadCellPlan) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The force ring's analogue chain (module doc), resonance S, coupling H_ac and anti-alias
+    filter B_8 in series, as one state space (A, B, C) (single input and output, no direct
+    term); states: the resonance's two, the coupling's one (its output is the input less
+    w_c x), the filter's four sections' two each."""
+    from scipy.signal import butter
+
+    stages = [_second_order(2.0 * math.pi * cell.natural_hz, cell.damping)]
+    corner = 2.0 * math.pi * cell.coupling_hz
+    stages.append((np.array([[-corner]]), np.array([1.0]), np.array([-corner]), 1.0))
+    order, fraction = LOAD_CELL_ANTI_ALIAS
+    _, poles, _ = butter(order, 2.0 * math.pi * fraction * cell.rate_hz, analog=True,
+                         output="zpk")
+    for pole in poles[poles.imag > 0.0]:
+        stages.append(_second_order(abs(pole), -pole.real / abs(pole)))
+    size = sum(stage[0].shape[0] for stage in stages)
+    a, b, c = np.zeros((size, size)), np.zeros(size), np.zeros(size)
+    row, d = 0, 1.0  # c, d: the output of the stages so far (c on the states, d on the input)
+    for matrix, into, out, through in stages:
+        n = matrix.shape[0]
+        block = slice(row, row + n)
+        a[block, block] = matrix
+        a[block, :] += np.outer(into, c)
+        b[block] = into * d
+        c = c * through
+        c[block] += out
+        d *= through
+        row += n
+    return a, b, c
+
+
+def _foh_maps(a: np.ndarray, b: np.ndarray, spans: np.ndarray) -> np.ndarray:
+    """For each span h: exp of [[A h, B h, 0], [0, 0, 1], [0, 0, 0]], whose first rows give
+    x(h) = Phi x(0) + G_0 u(0) + G_1 (u(h) - u(0)) for an input linear over the span."""
+    from scipy.linalg import expm
+
+    n = a.shape[0]
+    blocks = np.zeros((spans.size, n + 2, n + 2))
+    blocks[:, :n, :n] = a[None] * spans[:, None, None]
+    blocks[:, :n, n] = b[None] * spans[:, None]
+    blocks[:, n, n + 1] = 1.0
+    return expm(blocks)
+
+
+def measure_force(time_s: np.ndarray, force_N: np.ndarray, start_rad: float, omega: float,
+                  cell: LoadCellPlan, trace: int,
+                  rng: np.random.Generator | None) -> tuple[np.ndarray, np.ndarray]:
+    """Trace ``trace`` of the force ring (module doc) of the bushing-frame force ``force_N``
+    (n, 2) (N) linear between the instants ``time_s`` (s; the crank at ``start_rad`` at the
+    first, turning at ``omega`` rad/s): (time from the first sample in s, readings (n, 2) in N).
+    The trace starts one revolution in, at the crank angle ``cell.start_deg[trace]``. The chain
+    starts at the resonance's static deflection, the coupling in its periodic steady state (the
+    first revolution taken as the one before), the filter at rest on its input. ``rng`` None
+    (or the plan's noise 0): without noise."""
+    a, b, c = load_cell_chain(cell)
+    n = a.shape[0]
+    force = np.asarray(force_N, dtype=float) @ cell.static_matrix().T
+    period = 2.0 * math.pi / omega
+    state = np.zeros((n, 2))
+    state[0] = force[0]
+    first = time_s <= time_s[0] + period
+    corner = 2.0 * math.pi * cell.coupling_hz
+    weight = np.exp(-corner * (time_s[0] + period - time_s[first]))
+    held = np.trapz(weight[:, None] * force[first], time_s[first], axis=0) / (
+        -math.expm1(-corner * period))
+    state[2] = held
+    state[3::2] = force[0] - corner * held
+    spans = np.diff(time_s)
+    keys, which = np.unique(np.round(spans, 15), return_inverse=True)
+    maps = _foh_maps(a, b, keys)
+    states = np.empty((time_s.size, n, 2))
+    states[0] = state
+    for k, key in enumerate(which):
+        m = maps[key]
+        state = m[:n, :n] @ state + np.outer(m[:n, n], force[k]) + np.outer(
+            m[:n, n + 1], force[k + 1] - force[k])
+        states[k + 1] = state
+    lead = 2.0 * math.pi + (math.radians(cell.start_deg[trace]) - start_rad) % (2.0 * math.pi)
+    count = int(round(cell.revolutions * 2.0 * math.pi / omega * cell.rate_hz))
+    time = np.arange(count) / cell.rate_hz
+    at = time_s[0] + lead / omega + time
+    if at[-1] > time_s[-1]:
+        raise ValueError("the force history ends before the force ring's trace")
+    step = np.clip(np.searchsorted(time_s, at, side="right") - 1, 0, time_s.size - 2)
+    into = at - time_s[step]
+    now = np.column_stack([np.interp(at, time_s, force[:, axis]) for axis in range(2)])
+    maps = _foh_maps(a, b, into)
+    sampled = (np.einsum("kij,kjc->kic", maps[:, :n, :n], states[step])
+               + maps[:, :n, n, None] * force[step][:, None, :]
+               + maps[:, :n, n + 1, None] * (now - force[step])[:, None, :])
+    reading = np.einsum("i,kic->kc", c, sampled)
+    if rng is not None and cell.noise_N > 0.0:
+        reading = reading + rng.normal(0.0, cell.noise_N, reading.shape)
+    if cell.quantum_N > 0.0:
+        reading = np.round(reading / cell.quantum_N) * cell.quantum_N
+    return time, np.clip(reading, -LOAD_CELL_FULL_SCALE_N, LOAD_CELL_FULL_SCALE_N)
+
+
+FORCE_COMMENT = (
+    "Force of the pin on the bushing, bushing frame: IEPE piezoelectric force ring under the\n"
+    "bushing (AC-coupled: no mean), DAQ 8,000 S/s, 8th-order Butterworth anti-alias at 2.4 kHz;\n"
+    "time from the first sample of each trace.")
+
+
+def write_force(directory: Path, cell: LoadCellPlan, mechanisms, dynamics,
+                rng: np.random.Generator) -> Path:
+    """The force ring's traces at ``cell.trace_cycles`` into force.csv: the force of the pin on
+    the bushing of each trace's run (``dynamics``, of the mechanisms ``mechanisms``)."""
+    lines = [f"# {line}" for line in FORCE_COMMENT.splitlines()]
+    lines.append("time_s,fx_N,fy_N,cycles")
+    for trace, (cycles, mechanism, history) in enumerate(zip(cell.trace_cycles, mechanisms,
+                                                             dynamics)):
+        omega = mechanism["mechanism"]["crank_speed_rpm"] * math.pi / 30.0
+        time_s, reading = measure_force(history.time_s, -history.reaction_force_N,
+                                        float(history.crank_angle_rad[0]), omega, cell, trace,
+                                        rng)
+        lines += [f"{t:.9f},{fx:.4f},{fy:.4f},{cycles}" for t, (fx, fy) in zip(time_s, reading)]
+    path = directory / "force.csv"
     path.write_text("\n".join(lines) + "\n")
     return path
 

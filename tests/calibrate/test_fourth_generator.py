@@ -7,6 +7,7 @@ one written data set per pair."""
 import math
 import re
 import time
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -848,3 +849,100 @@ def test_data_sets_of_the_two_rods_part_at_orders_9_to_20(tmp_path):
         rods, noise = order_difference(first, second, rigid.accelerometer)
         print(f"orders 9-20 (of A1): rods {rods:.4f}, noise {noise:.5f}")
         assert rods > 10.0 * noise
+
+
+# --- the force ring (force.csv; real dynamics on synthetic bores, no FE) ------------------------
+
+def crank_orders_of(force: np.ndarray, revolutions: int) -> np.ndarray:
+    """Complex amplitudes of crank orders 0-5 of each column of ``force`` (whole
+    ``revolutions``)."""
+    spectrum = 2.0 * np.fft.rfft(force, axis=0) / force.shape[0]
+    spectrum[0] /= 2.0
+    return spectrum[: 6 * revolutions: revolutions]
+
+
+def ideal_ring(cell: "gen.LoadCellPlan", **changes) -> "gen.LoadCellPlan":
+    """``cell`` with its axes aligned, no cross-talk and no sensitivity error."""
+    return replace(cell, misalignment_deg=0.0, crosstalk=(0.0, 0.0),
+                   sensitivity_error=(0.0, 0.0), **changes)
+
+
+def test_force_traces_parse_at_the_accelerometer_counts_and_change_no_other_file(
+        synthetic, tmp_path, monkeypatch):
+    seed = gen.data_set_seed("running_in", 1)
+    data = gen.write_data_set("running_in", seed, tmp_path / "a")
+    cell = data.load_cell
+    lines = [line for line in data.force_csv.read_text().splitlines()
+             if not line.startswith("#")]
+    assert lines[0] == "time_s,fx_N,fy_N,cycles"
+    measured = read_joint_measurements([data.profiles_csv, data.max_wear_csv, data.force_csv])
+    assert tuple(trace.cycles for trace in measured.force) == cell.trace_cycles == \
+        data.accelerometer.trace_cycles
+    for trace in measured.force:
+        assert trace.time_s[0] == 0.0 and np.all(np.diff(trace.time_s) > 0.0)
+        np.testing.assert_allclose(np.diff(trace.time_s), 1.0 / 8000.0, atol=2e-9)
+        assert trace.fx_N.size == trace.fy_N.size == 4 * 400
+        assert 100.0 < np.std(trace.fx_N) < 5000.0
+        assert abs(trace.fx_N.mean()) < 20.0  # AC-coupled: the mean is not measured
+    assert 6e3 <= cell.natural_hz <= 9e3 and abs(cell.misalignment_deg) <= 2.5
+    monkeypatch.setattr(gen, "write_force", lambda *args: None)
+    without = gen.write_data_set("running_in", seed, tmp_path / "b")
+    assert not (tmp_path / "b" / "force.csv").exists()
+    for name in ("profiles_csv", "max_wear_csv", "believed_toml", "acceleration_csv"):
+        assert getattr(without, name).read_bytes() == getattr(data, name).read_bytes()
+
+
+def test_force_ring_keeps_an_impulse_and_passes_slow_sinusoids():
+    """A 20 us rectangular pulse 10 ms before the trace's end: the readings' integral is its
+    impulse through M, less what the coupling's high-pass has let decay since,
+    exp(-10 ms w_c); a crank-frequency sinusoid passes at the coupling's gain (the mean-free
+    ring), one at 1/8 of the rate (1 kHz) with at most the resonance's rise."""
+    omega = 40.0 * math.pi
+    at = 0.24  # the trace runs from 0.05 s (one revolution in) to 0.25 s
+    pulse_t = np.array([0.0, at, at + 1e-9, at + 20e-6, at + 20e-6 + 1e-9, 0.26])
+    pulse = np.zeros((6, 2))
+    pulse[2:4] = [3500.0, -5000.0]
+    impulse = pulse[2] * (20e-6 + 1e-9)
+    plan = gen.AccelerometerPlan((8000,), (40.0,), (0.3,), 0.0, 0.0, 3.0)
+    for seed in range(3):
+        cell = replace(gen.draw_load_cell(np.random.default_rng(seed), plan, noise=False),
+                       start_deg=(0.0,))
+        _, reading = gen.measure_force(pulse_t, pulse, 0.0, omega, cell, 0, None)
+        decay = math.exp(-2.0 * math.pi * cell.coupling_hz * (0.25 - at))
+        np.testing.assert_allclose(reading.sum(axis=0) / cell.rate_hz,
+                                   cell.static_matrix() @ impulse * decay, rtol=0.01)
+    ideal = ideal_ring(cell, natural_hz=6e3, damping=0.05)  # the largest rise
+    for frequency, low, high, step in ((20.0, 0.999, 1.001, 50e-6), (1000.0, 1.0, 1.029, 10e-6)):
+        time_s = np.linspace(0.0, 0.26, int(round(0.26 / step)) + 1)  # a sine linear between
+        wave = np.column_stack([900.0 * np.sin(2.0 * math.pi * frequency * time_s),
+                                np.zeros_like(time_s)])
+        _, reading = gen.measure_force(time_s, wave, 0.0, omega, ideal, 0, None)
+        amplitude = np.abs(np.fft.rfft(reading[:, 0])).max() * 2.0 / reading.shape[0]
+        assert low * 900.0 <= amplitude <= high * 900.0
+        assert np.abs(reading[:, 1]).max() < 1e-6
+
+
+def test_noise_free_force_trace_has_the_simulated_crank_orders(believed):
+    """The real dynamics on a synthetic worn bore through the force ring without noise: crank
+    orders 1-5 of the readings are the simulated force's (the pin on the bushing) through M, to
+    1 % of the largest in amplitude (the filter delays them and the coupling leads the first);
+    with an ideal ring, the force's own; the mean is not measured."""
+    numerics = with_truth_numerics(believed)
+    history = gen.trace_dynamics(numerics, *synthetic_truth(8000), 4)
+    force = -history.reaction_force_N
+    omega = 40.0 * math.pi
+    plan = gen.AccelerometerPlan((8000,), (40.0,), (0.3,), 0.0, 0.0, 3.0)
+    drawn = gen.draw_load_cell(np.random.default_rng(4), plan, noise=False)
+    for cell in (drawn, ideal_ring(drawn)):
+        _, reading = gen.measure_force(history.time_s, force, float(history.crank_angle_rad[0]),
+                                       omega, cell, 0, None)
+        lead = 2.0 * math.pi + (math.radians(cell.start_deg[0]) - history.crank_angle_rad[0]) \
+            % (2.0 * math.pi)
+        fine = history.time_s[0] + lead / omega + np.arange(4 * 50000) * 1e-6
+        simulated = np.column_stack([np.interp(fine, history.time_s, force[:, axis])
+                                     for axis in range(2)])
+        expected = np.abs(crank_orders_of(simulated, 4) @ cell.static_matrix().T)
+        recorded = np.abs(crank_orders_of(reading, 4))
+        scale = expected[1:].max(axis=0)
+        assert np.all(np.abs(recorded[1:] - expected[1:]) <= 0.01 * scale)
+        assert np.all(recorded[0] < 0.005 * scale) and scale[0] > 300.0
