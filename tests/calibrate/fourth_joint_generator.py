@@ -207,8 +207,9 @@ channels):
   force is not measured (the coupling had minutes to settle: periodic steady state);
 - B_8: the DAQ's analogue anti-alias filter, an 8th-order Butterworth low-pass at 0.3 of the rate
   (2.4 kHz), causal; the whole chain S, H_ac, B_8 (11 states) is integrated exactly for the
-  piecewise-linear force (the matrix exponential over each integrator step and up to each sample
-  instant: an impact's microsecond spike counts by its impulse);
+  piecewise-linear force (in the chain's modes, the convolution over each integrator step and
+  up to each sample instant in closed form: an impact's microsecond spike counts by its
+  impulse);
 - t_k = k / 8,000 s (400 samples per crank revolution); the DAQ is triggered by the crank
   encoder's index pulse, at a crank angle uniform in [0, 360) deg (per data set), with a
   pre-trigger of 36 deg (a tenth of a revolution), and its free-running sample clock puts the
@@ -1169,17 +1170,18 @@ def load_cell_chain(cell: LoadCellPlan) -> tuple[np.ndarray, np.ndarray, np.ndar
     return a, b, c
 
 
-def _foh_maps(a: np.ndarray, b: np.ndarray, spans: np.ndarray) -> np.ndarray:
-    """For each span h: exp of [[A h, B h, 0], [0, 0, 1], [0, 0, 0]], whose first rows give
-    x(h) = Phi x(0) + G_0 u(0) + G_1 (u(h) - u(0)) for an input linear over the span."""
-    from scipy.linalg import expm
-
-    n = a.shape[0]
-    blocks = np.zeros((spans.size, n + 2, n + 2))
-    blocks[:, :n, :n] = a[None] * spans[:, None, None]
-    blocks[:, :n, n] = b[None] * spans[:, None]
-    blocks[:, n, n + 1] = 1.0
-    return expm(blocks)
+def _phi(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(e^x - 1) / x and (e^x - 1 - x) / x^2 for complex x (their series near 0): a mode
+    z' = lambda z + u over a span h, u linear from u_0 to u_1, ends at e^(lambda h) z(0) +
+    h (u_0 phi_1 + (u_1 - u_0) phi_2), x = lambda h."""
+    small = np.abs(x) < 1e-2
+    safe = np.where(small, 1.0, x)
+    em1 = np.expm1(safe)
+    first = np.where(small, 1.0 + x / 2.0 + x**2 / 6.0 + x**3 / 24.0 + x**4 / 120.0,
+                     em1 / safe)
+    second = np.where(small, 0.5 + x / 6.0 + x**2 / 24.0 + x**3 / 120.0 + x**4 / 720.0,
+                      (em1 - safe) / safe**2)
+    return first, second
 
 
 def measure_force(time_s: np.ndarray, force_N: np.ndarray, start_rad: float, omega: float,
@@ -1194,6 +1196,9 @@ def measure_force(time_s: np.ndarray, force_N: np.ndarray, start_rad: float, ome
     (or the plan's noise 0): without noise."""
     a, b, c = load_cell_chain(cell)
     n = a.shape[0]
+    poles, vectors = np.linalg.eig(a)  # distinct poles: the chain in its modes, x = V z
+    to_modes = np.linalg.inv(vectors)
+    into, out = to_modes @ b, c @ vectors
     force = np.asarray(force_N, dtype=float) @ cell.static_matrix().T
     period = 2.0 * math.pi / omega
     state = np.zeros((n, 2))
@@ -1205,16 +1210,17 @@ def measure_force(time_s: np.ndarray, force_N: np.ndarray, start_rad: float, ome
         -math.expm1(-corner * period))
     state[2] = held
     state[3::2] = force[0] - corner * held
-    spans = np.diff(time_s)
-    keys, which = np.unique(np.round(spans, 15), return_inverse=True)
-    maps = _foh_maps(a, b, keys)
-    states = np.empty((time_s.size, n, 2))
-    states[0] = state
-    for k, key in enumerate(which):
-        m = maps[key]
-        state = m[:n, :n] @ state + np.outer(m[:n, n], force[k]) + np.outer(
-            m[:n, n + 1], force[k + 1] - force[k])
-        states[k + 1] = state
+    spans = np.diff(time_s)[:, None]
+    decay = np.exp(poles * spans)
+    first_phi, second_phi = _phi(poles * spans)
+    driven = into[:, None] * spans[:, :, None] * (
+        first_phi[:, :, None] * force[:-1, None, :]
+        + second_phi[:, :, None] * np.diff(force, axis=0)[:, None, :])
+    modes = np.empty((time_s.size, n, 2), dtype=complex)
+    modes[0] = mode = to_modes @ state
+    for k in range(spans.shape[0]):
+        mode = decay[k][:, None] * mode + driven[k]
+        modes[k + 1] = mode
     lead = 2.0 * math.pi + (math.radians(cell.start_deg[trace]) - start_rad) % (2.0 * math.pi)
     count = int(round(cell.revolutions * 2.0 * math.pi / omega * cell.rate_hz))
     time = np.arange(count) / cell.rate_hz
@@ -1222,13 +1228,14 @@ def measure_force(time_s: np.ndarray, force_N: np.ndarray, start_rad: float, ome
     if at[-1] > time_s[-1]:
         raise ValueError("the force history ends before the force ring's trace")
     step = np.clip(np.searchsorted(time_s, at, side="right") - 1, 0, time_s.size - 2)
-    into = at - time_s[step]
+    partial = (at - time_s[step])[:, None]
     now = np.column_stack([np.interp(at, time_s, force[:, axis]) for axis in range(2)])
-    maps = _foh_maps(a, b, into)
-    sampled = (np.einsum("kij,kjc->kic", maps[:, :n, :n], states[step])
-               + maps[:, :n, n, None] * force[step][:, None, :]
-               + maps[:, :n, n + 1, None] * (now - force[step])[:, None, :])
-    reading = np.einsum("i,kic->kc", c, sampled)
+    first_phi, second_phi = _phi(poles * partial)
+    sampled = (np.exp(poles * partial)[:, :, None] * modes[step]
+               + into[:, None] * partial[:, :, None] * (
+                   first_phi[:, :, None] * force[step][:, None, :]
+                   + second_phi[:, :, None] * (now - force[step])[:, None, :]))
+    reading = np.einsum("i,kic->kc", out, sampled).real
     if rng is not None and cell.noise_N > 0.0:
         reading = reading + rng.normal(0.0, cell.noise_N, reading.shape)
     if cell.quantum_N > 0.0:
