@@ -795,7 +795,10 @@ def test_acceleration_leaves_the_other_files_and_follows_the_truths_friction(syn
     quiet = gen.write_data_set("friction", seed, tmp_path / "q", noise=False)
     assert quiet.accelerometer.hum_m_s2 == quiet.accelerometer.noise_fraction == 0.0
     assert quiet.accelerometer.zero_m_s2 == data.accelerometer.zero_m_s2
-    monkeypatch.setattr(gen, "write_acceleration", lambda *args: None)
+    assert quiet.load_cell.noise_N == quiet.load_cell.quantum_N == 0.0
+    assert quiet.load_cell.static_matrix().tolist() == data.load_cell.static_matrix().tolist()
+    for name in ("write_acceleration", "write_force", "trace_dynamics"):  # nor their dynamics
+        monkeypatch.setattr(gen, name, lambda *args: None)
     without = gen.write_data_set("friction", seed, tmp_path / "b")
     for name in ("profiles_csv", "max_wear_csv", "believed_toml"):
         assert getattr(without, name).read_bytes() == getattr(data, name).read_bytes()

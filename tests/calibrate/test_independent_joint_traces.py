@@ -95,11 +95,16 @@ def test_mean_is_the_offset_and_the_first_harmonic_is_r_omega_squared(synthetic_
 
 def test_the_existing_files_do_not_depend_on_the_traces(synthetic_wear, tmp_path,
                                                        monkeypatch):
+    """The acceleration is reproduced without the force trace; the other files without
+    either trace (nor their dynamics)."""
     seed = gen.data_set_seed("friction", 2)
     with_traces = gen.write_data_set("friction", seed, tmp_path / "a")
+    monkeypatch.setattr(gen, "write_force", lambda *args: None)
     again = gen.write_data_set("friction", seed, tmp_path / "b")
+    assert not (tmp_path / "b" / "force.csv").exists()
     assert again.acceleration_csv.read_bytes() == with_traces.acceleration_csv.read_bytes()
     monkeypatch.setattr(gen, "write_acceleration", lambda *args: None)
+    monkeypatch.setattr(gen, "trace_dynamics", lambda *args: None)
     without = gen.write_data_set("friction", seed, tmp_path / "c")
     assert not (tmp_path / "c" / "acceleration.csv").exists()
     for name in ("profiles_csv", "max_wear_csv", "believed_toml"):
@@ -107,6 +112,7 @@ def test_the_existing_files_do_not_depend_on_the_traces(synthetic_wear, tmp_path
     assert without.params == with_traces.params
     other = gen.write_data_set("friction", seed + 1, tmp_path / "d")
     assert other.accelerometer != with_traces.accelerometer
+    assert other.load_cell != with_traces.load_cell
 
 
 def _rod_difference(rigid, flexible, meter_rigid, meter_flexible):
@@ -177,14 +183,12 @@ def _quiet(cell, **changes):
     return replace(cell, offset_N=(0.0, 0.0), drift_N_s=(0.0, 0.0), **changes)
 
 
-def test_the_force_file_parses_at_the_accelerometer_counts(synthetic_wear, tmp_path,
-                                                           monkeypatch):
-    """force.csv reads as the joint force with the accelerometer's counts and revolutions, and
-    none of the other files changes with it."""
+def test_the_force_file_parses_at_the_accelerometer_counts(synthetic_wear, tmp_path):
+    """force.csv reads as the joint force with the accelerometer's counts and revolutions (that
+    no other file changes with it: test_the_existing_files_do_not_depend_on_the_traces)."""
     from fewear.diagnose.joint.measured import read_joint_measurements
 
-    seed = gen.data_set_seed("none", 1)
-    data = gen.write_data_set("none", seed, tmp_path / "a")
+    data = gen.write_data_set("none", gen.data_set_seed("none", 1), tmp_path)
     cell, meter = data.load_cell, data.accelerometer
     header = [line for line in data.force_csv.read_text().splitlines()
               if not line.startswith("#")][0]
@@ -198,11 +202,8 @@ def test_the_force_file_parses_at_the_accelerometer_counts(synthetic_wear, tmp_p
         assert trace.fx_N.size == trace.fy_N.size == meter.revolutions * 640
         assert np.all(np.isfinite(trace.fx_N)) and np.all(np.isfinite(trace.fy_N))
         assert 100.0 < np.std(trace.fx_N) < 5000.0
-    monkeypatch.setattr(gen, "write_force", lambda *args: None)
-    without = gen.write_data_set("none", seed, tmp_path / "b")
-    assert not (tmp_path / "b" / "force.csv").exists()
-    for name in ("profiles_csv", "max_wear_csv", "believed_toml", "acceleration_csv"):
-        assert getattr(without, name).read_bytes() == getattr(data, name).read_bytes()
+    assert 10e3 <= min(cell.natural_hz) and max(cell.natural_hz) <= 15e3
+    assert abs(cell.misalignment_deg) <= 4.0 and max(map(abs, cell.crosstalk)) <= 0.02
 
 
 def test_the_load_cell_keeps_an_impulse_and_passes_slow_sinusoids():

@@ -659,8 +659,11 @@ def test_acceleration_leaves_the_other_files_unchanged(synthetic, tmp_path, monk
     quiet = gen.write_data_set("running_in", seed, tmp_path / "b", noise=False)
     assert quiet.accelerometer.gain == data.accelerometer.gain
     assert quiet.accelerometer.noise_m_s2 == 0.0
-    monkeypatch.setattr(gen, "write_acceleration_csv", lambda *args: None)
-    monkeypatch.setattr(gen, "measure_acceleration", lambda *args: None)
+    assert quiet.load_cell.gain == data.load_cell.gain
+    assert quiet.load_cell.white_N == quiet.load_cell.pink_N == quiet.load_cell.quantum_N == 0.0
+    for name in ("write_acceleration_csv", "measure_acceleration", "write_force_csv",
+                 "record_force", "trace_dynamics"):  # neither trace, nor their dynamics
+        monkeypatch.setattr(gen, name, lambda *args: None)
     without = gen.write_data_set("running_in", seed, tmp_path / "c")
     for name in ("profiles_csv", "max_wear_csv", "believed_toml"):
         assert getattr(without, name).read_bytes() == getattr(data, name).read_bytes()
@@ -753,7 +756,7 @@ def test_force_file_parses_at_the_accelerometer_counts_and_changes_no_other_file
         assert 100.0 < np.std(trace.fx_N) < 5000.0
     assert 4e3 <= cell.natural_hz <= 6e3 and 0.005 <= abs(cell.crosstalk) <= 0.03
     monkeypatch.setattr(gen, "write_force_csv", lambda *args: None)
-    monkeypatch.setattr(gen, "measure_force", lambda *args: None)
+    monkeypatch.setattr(gen, "record_force", lambda *args: None)
     without = gen.write_data_set("none", seed, tmp_path / "b")
     assert not (tmp_path / "b" / "force.csv").exists()
     for name in ("profiles_csv", "max_wear_csv", "believed_toml", "acceleration_csv"):
@@ -792,14 +795,19 @@ def test_load_cell_keeps_an_impulse_and_passes_slow_sinusoids():
 def test_noise_free_force_trace_has_the_simulated_crank_harmonics(tmp_path):
     """The real dynamics on a worn bore through the load cell without noise: the amplitudes of
     crank harmonics 1-5 are the simulated force's (the pin on the bushing), coupled and scaled by
-    the cell, to 1 % of the largest (the amplifier's filter delays them: the phases move)."""
+    the cell, to 1 % of the largest (the amplifier's filter delays them: the phases move). The
+    run of 6 revolutions the load cell needs gives a 3-revolution acceleration trace exactly as
+    its own run of 5 did."""
     config = with_truth_numerics(_believed(tmp_path))
-    angle = gen.fine_grid()
-    depth = 50e-6 * np.maximum(np.cos(angle - 0.5), 0.0) ** 3
-    history = gen.trace_dynamics(config, angle, depth, 4)
+    bore = gen.TrueBore(_SyntheticRun(config, config["wear"]["rbf"]["tail"][0]), R)
+    history = gen.trace_dynamics(config, bore.angle_rad, bore.depth_m(8000), 4)
+    meter = gen.Accelerometer((8000,), (3,), (30.0,), 5000.0, 1.0, 0.0, 12.0)
+    shared, own = (gen.measure_acceleration(bore, config, meter, 0, np.random.default_rng(9),
+                                            run) for run in (history, None))
+    np.testing.assert_array_equal(shared[0], own[0])
+    np.testing.assert_array_equal(shared[1], own[1])
     force = -history.reaction_force_N
     omega = 40.0 * math.pi
-    meter = gen.Accelerometer((8000,), (4,), (30.0,), 5000.0, 1.0, 0.0, 12.0)
     drawn = gen.draw_load_cell(np.random.default_rng(5), meter, noise=False)
     for cell in (drawn, _ideal(drawn)):
         _, reading = gen.measure_force(history.time_s, force, float(history.crank_angle_rad[0]),

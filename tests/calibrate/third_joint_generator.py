@@ -945,6 +945,14 @@ def measure_force(time_s: np.ndarray, force_N: np.ndarray, start_rad: float, ome
     return time, np.clip(reading, -cell.full_scale_N, cell.full_scale_N)
 
 
+def record_force(history, omega: float, cell: LoadCell, trace: int,
+                 rng: np.random.Generator | None) -> tuple[np.ndarray, np.ndarray]:
+    """Trace ``trace`` of the load cell on the run ``history`` (:func:`trace_dynamics`): the
+    force of the pin on the bushing, minus the dynamics' reaction (:func:`measure_force`)."""
+    return measure_force(history.time_s, -history.reaction_force_N,
+                         float(history.crank_angle_rad[0]), omega, cell, trace, rng)
+
+
 def write_force_csv(path: Path, traces, cell: LoadCell) -> None:
     lines = [f"# load cell under the bushing (strain-gauge ring, bridge amplifier 8th-order "
              f"Butterworth at {cell.cutoff_hz:.0f} Hz), logger {cell.sample_rate_hz:.0f} S/s: "
@@ -1038,9 +1046,7 @@ def _write(label: str, causes: tuple[str, ...], seed: int, directory: Path, nois
         for trace in range(len(meter.trace_cycles))], meter)
     omega = mechanism["mechanism"]["crank_speed_rpm"] * TWO_PI / 60.0
     force_csv = directory / "force.csv"
-    write_force_csv(force_csv, [
-        measure_force(history.time_s, -history.reaction_force_N,
-                      float(history.crank_angle_rad[0]), omega, cell, trace, cell_rng)
-        for trace, history in enumerate(dynamics)], cell)
+    write_force_csv(force_csv, [record_force(history, omega, cell, trace, cell_rng)
+                                for trace, history in enumerate(dynamics)], cell)
     return DataSet(label, seed, toml, profiles_csv, max_wear_csv, truth, lab, acceleration_csv,
                    meter, force_csv, cell)
