@@ -146,7 +146,8 @@ was), the force taken linear between the integrator's steps:
   causal (its delay of about 0.65 ms stays in the trace);
 - the logger: 5,000 samples per second (250 per crank revolution), triggered by its own
   once-per-revolution tachometer mark at an unknown crank angle, U[0, 360) deg per data set,
-  plus N(0, 1 deg) of trigger jitter per trace, one revolution after the run's start;
+  plus N(0, 1 deg) of trigger jitter per trace, the first mark at least one revolution after
+  the run's start (the filters' run-in);
 - the bridge's zero (unbalance left after taring), U[-20, 20] N per channel; white noise of
   standard deviation U[1, 3] N and a 1/f (pink) noise of U[1, 4] N over the trace, both per data
   set and channel; the logger's 16-bit converter over +-10 kN (0.305 N steps), clipped there.
