@@ -44,7 +44,7 @@ def test_a_simulated_velocity_gives_the_harmonics_of_its_derivative():
 
 
 def test_a_simulated_force_gives_its_harmonics_and_an_impact_counts_by_its_impulse():
-    """|F| = F0 + sum C_h cos(h w t + phi_h) on an irregular grid gives C_h back; a triangular
+    """F = F0 + sum C_h cos(h w t + phi_h) on an irregular grid gives C_h back; a triangular
     spike of impulse J = 0.5 N s, 4 us wide and resolved by the integrator's steps only, adds
     (2/T) J to each low harmonic's amplitude when it sits at the revolution's phase 0 of every
     harmonic's cosine (its spectrum is flat far below 1/width)."""
@@ -69,19 +69,21 @@ def test_a_simulated_force_gives_its_harmonics_and_an_impact_counts_by_its_impul
                                   rel=1e-4)
 
 
-def test_a_force_trace_is_read_by_its_magnitude_in_any_frame():
-    """The load cell's axes turned by 30 deg and its gain 3 % high: the same signature."""
+def test_a_force_trace_is_read_alike_in_any_frame_and_from_any_zero():
+    """The load cell's axes turned by 30 deg, its gain 3 % high, its zeros 40 and -25 N off:
+    the same signature, sqrt(|Fx_h|^2 + |Fy_h|^2) over the first harmonic's (here h = 3:
+    sqrt(60^2 + 0^2) / sqrt(400^2 + 200^2))."""
     time_s = np.arange(0.0, 2.0 * PERIOD_S, 1e-4)
     fx = 500.0 + 400.0 * np.cos(OMEGA * time_s) + 60.0 * np.cos(3 * OMEGA * time_s + 0.4)
-    fy = -300.0 + 200.0 * np.sin(2 * OMEGA * time_s)
+    fy = -300.0 + 200.0 * np.sin(OMEGA * time_s)
     turn = math.radians(30.0)
-    turned = ForceTrace(5, time_s, 1.03 * (math.cos(turn) * fx - math.sin(turn) * fy),
-                        1.03 * (math.sin(turn) * fx + math.cos(turn) * fy))
+    turned = ForceTrace(5, time_s, 1.03 * (math.cos(turn) * fx - math.sin(turn) * fy) + 40.0,
+                        1.03 * (math.sin(turn) * fx + math.cos(turn) * fy) - 25.0)
     plain = traces.measured_signature(ForceTrace(5, time_s, fx, fy), PERIOD_S, 10)
     seen = traces.measured_signature(turned, PERIOD_S, 10)
     assert traces.trace_kind(turned) == "force" and seen.cycles == 5
-    assert seen.relative_amplitudes == pytest.approx(plain.relative_amplitudes, rel=1e-9)
-    assert plain.relative_amplitudes[0, 2] > 0.01  # the magnitude's harmonics are read
+    assert seen.relative_amplitudes == pytest.approx(plain.relative_amplitudes, abs=1e-9)
+    assert plain.relative_amplitudes[:, 1] == pytest.approx(60.0 / math.hypot(400.0, 200.0))
 
 
 def test_each_kind_of_trace_counts_in_the_units_of_its_own_spread():

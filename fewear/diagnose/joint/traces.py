@@ -12,14 +12,17 @@ mechanism, revolution to revolution +-1), a friction change by far less.
 A trace is read as its **harmonic signature**: the amplitude of each crank harmonic h = 2..H,
 per whole revolution, divided by the first harmonic's (the kinematic r omega^2 term: an
 instrument's sensitivity error cancels, and so does its offset, the trigger's crank phase
-and the trace's time origin). Of a joint force trace the signal is the force's magnitude
-|F| = hypot(fx, fy), which does not depend on the frame the load cell's axes are in. A measured
-revolution's amplitudes come from a least-squares fit of a Fourier series in the crank's period
-(:func:`revolution_amplitudes`); a simulated one's from exact integrals over the integrator's
-steps: of the slider velocity, a' integrated by parts (:func:`simulated_amplitudes`), and of
-|F| directly (:func:`integrated_amplitudes`), so the impacts' spikes, which no grid resolves,
-count by their impulse. H keeps the harmonics well inside an anti-aliasing filter's pass band:
-at most :data:`MAX_HARMONIC` and an eighth of the sampling rate.
+and the trace's time origin). Of a joint force trace, whose two components rotate with the
+frame the load cell's axes are in, the amplitude of harmonic h is the length of the vector of
+the components' complex amplitudes, sqrt(|Fx_h|^2 + |Fy_h|^2): a rotation of the axes leaves it,
+and being linear in the force it takes no part of the load cell's zero, drift or AC coupling
+(which a nonlinear measure as |F| would). A measured revolution's amplitudes come from a
+least-squares fit of a Fourier series in the crank's period (:func:`revolution_amplitudes`); a
+simulated one's from exact integrals over the integrator's steps: of the slider velocity, a'
+integrated by parts (:func:`simulated_amplitudes`), and of the force's components directly
+(:func:`integrated_amplitudes`), so the impacts' spikes, which no grid resolves, count by their
+impulse. H keeps the harmonics well inside an anti-aliasing
+filter's pass band: at most :data:`MAX_HARMONIC` and an eighth of the sampling rate.
 
 The misfit of a model to the traces of one kind (:func:`trace_misfit`) is the sum over traces
 and harmonics of (measured - simulated mean)^2 over the variance of that difference, from the
@@ -79,7 +82,7 @@ def harmonics_readable(time_s: np.ndarray, period_s: float) -> int:
 
 
 TRACE_KINDS = ("acceleration", "force")
-"""The kinds of trace read: the slider's acceleration and the joint force's magnitude."""
+"""The kinds of trace read: the slider's acceleration and the joint force."""
 
 
 def whole_revolutions(time_s: np.ndarray, period_s: float) -> int:
@@ -158,9 +161,9 @@ def simulated_signatures(config: dict, angle_rad: np.ndarray, depth_m: np.ndarra
     found = {
         "acceleration": lambda: simulated_amplitudes(
             history.time_s, history.slider_velocity_m_s, period, harmonics),
-        "force": lambda: integrated_amplitudes(
-            history.time_s, np.linalg.norm(history.reaction_force_N, axis=1), period,
-            harmonics)}
+        "force": lambda: np.hypot(*(integrated_amplitudes(
+            history.time_s, component, period, harmonics)
+            for component in history.reaction_force_N.T))}
     return tuple(signature(cycles, found[kind]()) for kind in kinds)
 
 
@@ -181,12 +184,13 @@ def trace_kind(trace: AccelerationTrace | ForceTrace) -> str:
 
 def measured_signature(trace: AccelerationTrace | ForceTrace, period_s: float,
                        harmonics: int) -> Signature:
-    """The signature of a measured trace: the slider's acceleration, or the magnitude of the
-    joint force."""
-    signal = (np.hypot(trace.fx_N, trace.fy_N) if isinstance(trace, ForceTrace)
-              else trace.slider_acceleration_m_s2)
-    return signature(trace.cycles, revolution_amplitudes(trace.time_s, signal, period_s,
-                                                         harmonics))
+    """The signature of a measured trace: the slider's acceleration, or the joint force (its
+    components' amplitudes combined, module doc)."""
+    def amplitudes(signal):
+        return revolution_amplitudes(trace.time_s, signal, period_s, harmonics)
+    if isinstance(trace, ForceTrace):
+        return signature(trace.cycles, np.hypot(amplitudes(trace.fx_N), amplitudes(trace.fy_N)))
+    return signature(trace.cycles, amplitudes(trace.slider_acceleration_m_s2))
 
 
 @dataclass(frozen=True)
