@@ -159,3 +159,55 @@ def test_a_believed_model_no_worse_than_every_option_is_never_rejected():
     options.append(_option(120.0 * 3, 0.004, 2))
     assert traces.trace_verdict(_misfit(600.0, 0.01), options, 40, 0.05, 0.1).named is options[2]
     assert traces.overdispersion(_misfit(600.0, 0.01), _misfit(117.0, 0.01)) == 3.0
+
+
+def test_the_diagnosis_reads_each_kind_of_trace_at_its_count_and_names_the_mechanism(
+        monkeypatch):
+    """`_trace_evidence` on an acceleration trace at 1,000 cycles and force traces at 1,000 and
+    5,000 (made from harmonics of a world with friction 0.3): one simulated run per mechanism
+    and count, asked for the kinds measured there; the believed 0.1 and 0.05 rejected, 0.3
+    named, each kind's overdispersion reported."""
+    from types import SimpleNamespace
+
+    from fewear.diagnose.joint import diagnose
+    from fewear.diagnose.joint.candidates import Candidate
+    from fewear.diagnose.joint.measured import AccelerationTrace
+    from fewear.diagnose.joint.settings import JointDiagnoseSettings
+
+    orders = np.arange(2, 41)
+    relative = {"acceleration": lambda mu: 0.05 + 0.2 * mu * np.abs(np.sin(orders)),
+                "force": lambda mu: 0.1 + 0.3 * mu * np.abs(np.cos(orders))}
+    rng = np.random.default_rng(7)
+    asked = []
+
+    def simulated(config, angle_rad, depth_m, cycles, harmonics, kinds):
+        mu = config["joint"]["friction_coefficient"]
+        asked.append((mu, cycles, kinds))
+        assert harmonics == 40 and depth_m == pytest.approx(2e-9 * cycles)
+        return tuple(traces.Signature(cycles, relative[kind](mu)
+                                      + 0.001 * rng.standard_normal((6, 39))) for kind in kinds)
+
+    time_s = np.arange(0.0, 3.0 * PERIOD_S, 1e-4)
+    phase = OMEGA * np.outer(time_s, np.arange(1, 41)) + rng.uniform(0.0, 6.0, 40)
+
+    def periodic(kind):
+        return np.cos(phase) @ (1000.0 * np.concatenate([[1.0], relative[kind](0.3)]))
+
+    data = SimpleNamespace(
+        acceleration=[AccelerationTrace(1000, time_s, periodic("acceleration"))],
+        force=[ForceTrace(count, time_s, periodic("force"), 0.0 * time_s)
+               for count in (1000, 5000)])
+    base = SimpleNamespace(angle_rad=np.zeros(3), nodal_depth_m=lambda c: np.full(3, 2e-9 * c))
+    friction = Candidate("friction", runs=(), grid=(0.05, 0.1, 0.3),
+                         parameter="friction_coefficient")
+    config = {"mechanism": {"crank_speed_rpm": 1200.0}, "joint": {"friction_coefficient": 0.1}}
+    monkeypatch.setattr(diagnose, "simulated_signatures", simulated)
+    monkeypatch.setattr(diagnose, "side_by_side", lambda f, args: [f(*a) for a in args])
+    found = diagnose._trace_evidence(data, config, {"friction": (friction,)}, {}, base,
+                                     JointDiagnoseSettings.default())
+    assert sorted(asked) == sorted((mu, count, kinds) for mu in (0.1, 0.05, 0.3)
+                                   for count, kinds in ((1000, ("acceleration", "force")),
+                                                        (5000, ("force",))))
+    assert found.named.label == "friction, friction_coefficient = 0.3"
+    assert [o.misfit.dof for o in found.options] == [3 * 39, 3 * 39]
+    assert set(found.summary()["overdispersion_by_kind"]) == {"acceleration", "force"}
