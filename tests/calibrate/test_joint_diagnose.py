@@ -168,6 +168,10 @@ def test_fewear_diagnose_reads_joint_files_and_writes_its_outputs(null_by_the_co
     summary, out, _ = null_by_the_command
     assert summary["data_kind"] == "joint" and summary["cause"] == "none"
     assert {c["cause"] for c in summary["candidates"]} == set(QUICK["candidates"])
+    # the load cell's trace spans one crank cycle: shown, not read as evidence, and said so
+    assert summary["trace_evidence"] is None
+    assert any("joint force trace" in note and "not read as evidence" in note
+               for note in summary["notes"])
     for name in ("report.md", "joint_fits.png", "extended.toml"):
         assert (out / name).stat().st_size > 0
     # the report's table of the wear-step levels measured marks the one chosen, which
@@ -253,6 +257,7 @@ def test_each_round_starts_from_the_model_the_causes_before_it_extend(
     monkeypatch.setattr(method, "_believed_config", lambda *args: None)
     monkeypatch.setattr(method, "cycle_structure", lambda *args: {})
     monkeypatch.setattr(method, "_unexplained", lambda *args: [])
+    monkeypatch.setattr(method, "_trace_notes", lambda *args: ())
     settings = replace(JointDiagnoseSettings.default(), max_causes=max_causes)
     diagnosis = method.diagnose_joint(None, {"round": 0}, settings)
     assert [config for config, _ in calls] == list(range(rounds_run))

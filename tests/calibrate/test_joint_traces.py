@@ -211,3 +211,26 @@ def test_the_diagnosis_reads_each_kind_of_trace_at_its_count_and_names_the_mecha
     assert found.named.label == "friction, friction_coefficient = 0.3"
     assert [o.misfit.dof for o in found.options] == [3 * 39, 3 * 39]
     assert set(found.summary()["overdispersion_by_kind"]) == {"acceleration", "force"}
+
+
+def test_a_trace_too_short_or_too_coarse_is_left_out_with_a_sentence():
+    """Two whole revolutions at 10 kS/s are read; 1.5 revolutions, or 2 at 300 S/s (an eighth
+    of the rate holds 1.9 crank harmonics of 20 Hz), are left out, each with the reason."""
+    from types import SimpleNamespace
+
+    from fewear.diagnose.joint.measured import AccelerationTrace
+
+    def trace(kind, revolutions, rate_hz, cycles):
+        time_s = np.arange(0.0, revolutions * PERIOD_S + 0.5 / rate_hz, 1.0 / rate_hz)
+        if kind == "force":
+            return ForceTrace(cycles, time_s, np.cos(OMEGA * time_s), 0.0 * time_s)
+        return AccelerationTrace(cycles, time_s, np.cos(OMEGA * time_s))
+
+    good = trace("force", 2.0, 1e4, 10)
+    data = SimpleNamespace(acceleration=[trace("acceleration", 1.5, 1e4, 20)],
+                           force=[good, trace("force", 2.0, 300.0, 30)])
+    kept, notes = traces.readable_traces(data, PERIOD_S)
+    assert kept == [good]
+    assert len(notes) == 2
+    assert "slider acceleration trace at 20 cycles spans 1.50 crank revolutions" in notes[0]
+    assert "joint force trace at 30 cycles is sampled at 300 S/s" in notes[1]

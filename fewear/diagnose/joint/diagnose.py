@@ -157,7 +157,6 @@ from fewear.diagnose.joint.resolution import (
 )
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
 from fewear.diagnose.joint.traces import (
-    MIN_REVOLUTIONS,
     TRACE_KINDS,
     MechanismOption,
     TraceEvidence,
@@ -165,6 +164,7 @@ from fewear.diagnose.joint.traces import (
     crank_period_s,
     harmonics_readable,
     measured_signature,
+    readable_traces,
     simulated_signatures,
     trace_kind,
     trace_misfit,
@@ -272,6 +272,8 @@ class JointDiagnosis:
     residual_structure: dict[str, Any]
     resolution: dict[str, Any]
     unexplained: tuple[str, ...]
+    trace_notes: tuple[str, ...] = ()
+    """A sentence on each measured trace the evidence on the mechanism leaves out."""
 
     @property
     def baseline(self) -> Fit:
@@ -352,7 +354,15 @@ def diagnose_joint(data: JointMeasurements, config: dict,
         residual_structure=cycle_structure(data, config, obs, first.baseline, first.base_run),
         resolution=resolution,
         unexplained=tuple(_unexplained(first.baseline, final.extended_fit, _named(rounds),
-                                       resolution, [e for r in rounds for e in r.not_confirmed])))
+                                       resolution, [e for r in rounds for e in r.not_confirmed])),
+        trace_notes=_trace_notes(data, config))
+
+
+def _trace_notes(data: JointMeasurements, config: dict) -> tuple[str, ...]:
+    """A sentence on each measured trace the evidence on the mechanism leaves out."""
+    if not (data.acceleration or data.force):
+        return ()
+    return tuple(readable_traces(data, crank_period_s(config))[1])
 
 
 def _final(rounds) -> Round:
@@ -439,15 +449,12 @@ def _trace_evidence(data: JointMeasurements, config: dict, candidates: dict, fit
     trace's count at the k level fitted on the bore data (one run per model and count, side by
     side). None without traces of at least
     :data:`~fewear.diagnose.joint.traces.MIN_REVOLUTIONS` revolutions and three harmonics to
-    read."""
+    read (:func:`~fewear.diagnose.joint.traces.readable_traces`)."""
     period = crank_period_s(config)
-    usable = [trace for trace in (*(data.acceleration or ()), *(data.force or ()))
-              if trace.time_s[-1] - trace.time_s[0] >= MIN_REVOLUTIONS * period]
+    usable, _ = readable_traces(data, period)
     if not usable:
         return None
     harmonics = min(harmonics_readable(trace.time_s, period) for trace in usable)
-    if harmonics < 3:
-        return None
     level = fits["wear_coefficient"].params["k_scale"] if "wear_coefficient" in fits else 1.0
     counts = sorted({trace.cycles for trace in usable})
     kinds_at = {count: tuple(trace_kind(t) for t in usable if t.cycles == count)

@@ -40,7 +40,7 @@ def summarise(diagnosis: JointDiagnosis) -> dict[str, Any]:
     return {
         "source": ", ".join(d.data.sources),
         "data_kind": "joint",
-        "notes": list(d.data.notes),
+        "notes": list(d.data.notes) + list(d.trace_notes),
         "cycle_counts": sorted(int(c) for c in np.unique(obs.cycles)),
         "holdout": {"strategy": "later cycle counts",
                     "held_out_cycles": sorted(int(c) for c in np.unique(obs.cycles[~obs.train])),

@@ -40,7 +40,7 @@ import numpy as np
 from scipy import stats
 
 from fewear.diagnose.joint.forward import cycle_on_worn_bore
-from fewear.diagnose.joint.measured import AccelerationTrace, ForceTrace
+from fewear.diagnose.joint.measured import AccelerationTrace, ForceTrace, JointMeasurements
 
 MAX_HARMONIC = 40
 """The highest crank harmonic read (800 Hz at the tests' 1,200 rpm)."""
@@ -88,6 +88,30 @@ TRACE_KINDS = ("acceleration", "force")
 def whole_revolutions(time_s: np.ndarray, period_s: float) -> int:
     """The number of whole crank revolutions ``time_s`` spans."""
     return int(math.floor((time_s[-1] - time_s[0]) / period_s + 1e-9))
+
+
+def readable_traces(data: JointMeasurements, period_s: float):
+    """The measured traces (acceleration, then force) the evidence reads, those of at least
+    :data:`MIN_REVOLUTIONS` whole crank revolutions sampled fast enough for three harmonics
+    (:func:`harmonics_readable`), and a sentence on each one it leaves out."""
+    kept, notes = [], []
+    for trace in (*(data.acceleration or ()), *(data.force or ())):
+        what = (f"the {'joint force' if isinstance(trace, ForceTrace) else 'slider acceleration'}"
+                f" trace at {trace.cycles} cycles")
+        revolutions = (trace.time_s[-1] - trace.time_s[0]) / period_s
+        rate_hz = (trace.time_s.size - 1) / (trace.time_s[-1] - trace.time_s[0])
+        if revolutions < MIN_REVOLUTIONS:
+            notes.append(f"{what} spans {revolutions:.2f} crank revolutions of "
+                         f"{period_s * 1e3:.4g} ms, fewer than {MIN_REVOLUTIONS}: not read as "
+                         "evidence on the mechanism (the spread between whole revolutions is "
+                         "its yardstick)")
+        elif harmonics_readable(trace.time_s, period_s) < 3:
+            notes.append(f"{what} is sampled at {rate_hz:.4g} S/s: fewer than three crank "
+                         f"harmonics below an eighth of the rate ({RATE_FRACTION}); not read as "
+                         "evidence on the mechanism")
+        else:
+            kept.append(trace)
+    return kept, notes
 
 
 def revolution_amplitudes(time_s: np.ndarray, signal: np.ndarray, period_s: float,
