@@ -70,6 +70,13 @@ def test_predicted_profile_is_the_ring_arc_of_archards_area(coarse_run):
     assert summary["closed_form"]["chord_m"] == pytest.approx(
         2 * math.sqrt(2 * radius * depth - depth**2), rel=1e-9)
     assert summary["wear_steps"] == 15
+    # the RMS of predicted less measured depth per test, on the measured grid of profiles.csv
+    rms = {name: np.sqrt(np.mean((table["predicted_depth_m"] - table[f"{name}_depth_m"]) ** 2))
+           for name in ("test1", "test2", "test3")}
+    for name, value in rms.items():
+        assert summary["measured"]["tests"][name]["rms_difference_m"] == pytest.approx(value,
+                                                                                      rel=1e-6)
+    assert summary["rms_difference_m"] == pytest.approx(np.mean(list(rms.values())), rel=1e-6)
 
 
 def test_measured_figures_are_the_research_notes(coarse_run):

@@ -25,8 +25,9 @@ writes, all or nothing (:func:`fewear.io.output.staged_output`):
 - ``predicted_nodes.csv``: x_m and depth_m at the FE top nodes;
 - ``summary.json``: the largest depth, the width (where the depth exceeds 5 % of it, crossings
   interpolated: :func:`fewear.wear.scar.scar_depth_and_width_m`) and the worn area, predicted,
-  of the ring-arc closed form and of each test with the tests' mean, least and largest; the run's
-  steps, mesh quality and wall time; the config used;
+  of the ring-arc closed form and of each test with the tests' mean, least and largest; the RMS
+  of predicted less measured depth on each test's grid and their mean (``rms_difference_m``); the
+  run's steps, mesh quality and wall time; the config used;
 - ``scar.png``: the profiles.
 
 The measured worn area is the integral of the raw depth over the scar's width (no baseline
@@ -216,7 +217,9 @@ def scar_summary(run, problem: FlatContactProblem, settings: SlidingWearSettings
     depth = closed_form_depth_m(problem, settings)
     predicted = scar_figures(run.state.x_m, run.state.depth_m)
     predicted["worn_area_m2"] = run.state.worn_area_m2()  # the whole profile: nothing beside
-    tests = {name: scar_figures(*profile) for name, profile in measured.items()}
+    tests = {name: {**scar_figures(x, depth_m), "rms_difference_m": float(
+                 np.sqrt(np.mean((run.state.depth_at(x) - depth_m) ** 2)))}
+             for name, (x, depth_m) in measured.items()}
     spread = {f"{statistic}_{key}": float(reduce([figures[key] for figures in tests.values()]))
               for key in predicted for statistic, reduce in
               (("mean", np.mean), ("least", np.min), ("largest", np.max))}
@@ -227,6 +230,7 @@ def scar_summary(run, problem: FlatContactProblem, settings: SlidingWearSettings
                         "chord_m": ring_arc_width_m(radius, depth),
                         "worn_area_m2": archard_area_m2(problem, settings)},
         "measured": {"tests": tests, **spread},
+        "rms_difference_m": float(np.mean([test["rms_difference_m"] for test in tests.values()])),
         "edge_share": EDGE_SHARE,
         "wear_steps": len(run.steps),
         "mesh_quality": {"as_made": _cell_shape(run.unworn_quality),
