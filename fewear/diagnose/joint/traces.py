@@ -46,9 +46,8 @@ MAX_HARMONIC = 40
 """The highest crank harmonic read (800 Hz at the tests' 1,200 rpm)."""
 RATE_FRACTION = 8
 """Harmonics up to the sampling rate / this (a low-pass at 0.4 of the rate passes them to 1e-4)."""
-MIN_REVOLUTIONS = 1
-"""A trace needs this many whole crank revolutions (with two or more, its spread is measured
-between them; with one it is taken as the simulated revolutions', :func:`trace_misfit`)."""
+MIN_REVOLUTIONS = 2
+"""A trace needs this many whole crank revolutions (the spread is measured between them)."""
 SIMULATED_REVOLUTIONS = 6
 """Crank revolutions simulated per trace (after the config's settling cycles)."""
 
@@ -103,9 +102,9 @@ def readable_traces(data: JointMeasurements, period_s: float):
         rate_hz = (trace.time_s.size - 1) / (trace.time_s[-1] - trace.time_s[0])
         if revolutions < MIN_REVOLUTIONS:
             notes.append(f"{what} spans {revolutions:.2f} crank revolutions of "
-                         f"{period_s * 1e3:.4g} ms, fewer than {MIN_REVOLUTIONS} whole: not "
-                         "read as evidence on the mechanism (its harmonics are those of whole "
-                         "revolutions)")
+                         f"{period_s * 1e3:.4g} ms, fewer than {MIN_REVOLUTIONS}: not read as "
+                         "evidence on the mechanism (the spread between whole revolutions is "
+                         "its yardstick)")
         elif harmonics_readable(trace.time_s, period_s) < 3:
             notes.append(f"{what} is sampled at {rate_hz:.4g} S/s: fewer than three crank "
                          f"harmonics below an eighth of the rate ({RATE_FRACTION}); not read as "
@@ -236,23 +235,15 @@ def trace_misfit(measured: list[Signature], simulated: list[Signature]) -> Trace
     """(module docstring) of ``simulated`` signatures (one per measured trace, at its count)
     against the ``measured`` ones. Each harmonic's difference of means is a Welch t statistic
     (a few revolutions estimate each side's spread: Welch-Satterthwaite degrees of freedom),
-    turned into the normal deviate of the same two-sided p, whose squares sum to chi-square.
-    A trace of one whole revolution has no spread of its own: it is taken as the simulated
-    revolutions' (Student's t with their count less one degrees of freedom, exact when both
-    sides vary alike; a noisier instrument shows as overdispersion)."""
+    turned into the normal deviate of the same two-sided p, whose squares sum to chi-square."""
     chi2, dof, squares = 0.0, 0, []
     for seen, model in zip(measured, simulated):
         difference = seen.mean - model.mean
-        model_rows = model.relative_amplitudes.shape[0]
-        model_var = model.variance_of_mean
-        if seen.relative_amplitudes.shape[0] >= 2:
-            seen_var = seen.variance_of_mean
-            freedom = (seen_var + model_var) ** 2 / (
-                seen_var**2 / (seen.relative_amplitudes.shape[0] - 1)
-                + model_var**2 / (model_rows - 1) + np.finfo(float).tiny)
-        else:
-            seen_var, freedom = model_var * model_rows, model_rows - 1
+        seen_var, model_var = seen.variance_of_mean, model.variance_of_mean
         variance = np.maximum(seen_var + model_var, np.finfo(float).tiny)
+        freedom = variance**2 / (seen_var**2 / (seen.relative_amplitudes.shape[0] - 1)
+                                 + model_var**2 / (model.relative_amplitudes.shape[0] - 1)
+                                 + np.finfo(float).tiny)
         p_two_sided = 2.0 * stats.t.sf(np.abs(difference) / np.sqrt(variance), freedom)
         chi2 += float(np.sum(stats.norm.isf(np.maximum(p_two_sided, 1e-300) / 2.0) ** 2))
         dof += difference.size
