@@ -21,8 +21,8 @@ least-squares fit of a Fourier series in the crank's period (:func:`revolution_a
 simulated one's from exact integrals over the integrator's steps: of the slider velocity, a'
 integrated by parts (:func:`simulated_amplitudes`), and of the force's components directly
 (:func:`integrated_amplitudes`), so the impacts' spikes, which no grid resolves, count by their
-impulse. H keeps the harmonics well inside an anti-aliasing
-filter's pass band: at most :data:`MAX_HARMONIC` and an eighth of the sampling rate.
+impulse. H keeps the harmonics well inside an anti-aliasing filter's pass band: at most
+:data:`MAX_HARMONIC` and an eighth of the sampling rate.
 
 The misfit of a model to the traces of one kind (:func:`trace_misfit`) is the sum over traces
 and harmonics of (measured - simulated mean)^2 over the variance of that difference, from the
@@ -75,14 +75,21 @@ class Signature:
         return self.relative_amplitudes.var(axis=0, ddof=1) / rows
 
 
+def sampling_rate_hz(time_s: np.ndarray) -> float:
+    """The mean sampling rate (S/s) of a trace sampled at ``time_s``."""
+    return (time_s.size - 1) / (time_s[-1] - time_s[0])
+
+
 def harmonics_readable(time_s: np.ndarray, period_s: float) -> int:
     """H for a trace sampled at ``time_s`` (:data:`MAX_HARMONIC`, :data:`RATE_FRACTION`)."""
-    rate_hz = (time_s.size - 1) / (time_s[-1] - time_s[0])
-    return int(min(MAX_HARMONIC, math.floor(rate_hz * period_s / RATE_FRACTION)))
+    return int(min(MAX_HARMONIC, math.floor(sampling_rate_hz(time_s) * period_s
+                                            / RATE_FRACTION)))
 
 
 TRACE_KINDS = ("acceleration", "force")
 """The kinds of trace read: the slider's acceleration and the joint force."""
+TRACE_NAMES = {"acceleration": "slider acceleration", "force": "joint force"}
+"""How the notes name each kind."""
 
 
 def whole_revolutions(time_s: np.ndarray, period_s: float) -> int:
@@ -96,19 +103,17 @@ def readable_traces(data: JointMeasurements, period_s: float):
     (:func:`harmonics_readable`), and a sentence on each one it leaves out."""
     kept, notes = [], []
     for trace in (*(data.acceleration or ()), *(data.force or ())):
-        what = (f"the {'joint force' if isinstance(trace, ForceTrace) else 'slider acceleration'}"
-                f" trace at {trace.cycles} cycles")
-        revolutions = (trace.time_s[-1] - trace.time_s[0]) / period_s
-        rate_hz = (trace.time_s.size - 1) / (trace.time_s[-1] - trace.time_s[0])
-        if revolutions < MIN_REVOLUTIONS:
+        what = f"the {TRACE_NAMES[trace_kind(trace)]} trace at {trace.cycles} cycles"
+        if whole_revolutions(trace.time_s, period_s) < MIN_REVOLUTIONS:
+            revolutions = (trace.time_s[-1] - trace.time_s[0]) / period_s
             notes.append(f"{what} spans {revolutions:.2f} crank revolutions of "
                          f"{period_s * 1e3:.4g} ms, fewer than {MIN_REVOLUTIONS}: not read as "
                          "evidence on the mechanism (the spread between whole revolutions is "
                          "its yardstick)")
         elif harmonics_readable(trace.time_s, period_s) < 3:
-            notes.append(f"{what} is sampled at {rate_hz:.4g} S/s: fewer than three crank "
-                         f"harmonics below an eighth of the rate ({RATE_FRACTION}); not read as "
-                         "evidence on the mechanism")
+            notes.append(f"{what} is sampled at {sampling_rate_hz(trace.time_s):.4g} S/s: "
+                         "fewer than three crank harmonics below an eighth of the rate "
+                         f"({RATE_FRACTION}); not read as evidence on the mechanism")
         else:
             kept.append(trace)
     return kept, notes
@@ -251,7 +256,8 @@ def trace_misfit(measured: list[Signature], simulated: list[Signature]) -> Trace
     return TraceMisfit(chi2, dof, float(np.sqrt(np.mean(np.concatenate(squares)))))
 
 
-def combined_misfits(by_kind: list[list[TraceMisfit]]) -> tuple[list[TraceMisfit], dict]:
+def combined_misfits(by_kind: list[list[TraceMisfit]]
+                     ) -> tuple[list[TraceMisfit], list[float]]:
     """One misfit per model from its misfits to each kind of trace (``by_kind[k][m]``: kind
     k, model m): each kind's chi-square divided by that kind's :func:`overdispersion` over the
     models (the kinds vary alike only by chance: a load cell sees every impact, an
