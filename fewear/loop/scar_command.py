@@ -155,13 +155,18 @@ def _require_zone_holds_the_scar(problem: FlatContactProblem,
             "width_m above four times it")
 
 
+def _measured_table(path) -> np.ndarray:
+    """A measured-scar CSV of ``fewear/data`` (``#`` comment lines, a header) as a structured
+    array."""
+    rows = [line for line in path.read_text().splitlines() if not line.startswith("#")]
+    return np.genfromtxt(rows, delimiter=",", names=True)
+
+
 def measured_scars() -> dict[str, tuple[np.ndarray, np.ndarray]]:
     """The three measured profiles as name -> (x_m, depth_m), depth positive where worn."""
     from fewear.data import BLOCK_ON_RING_CRUZADO2010_CSV
 
-    rows = [line for line in BLOCK_ON_RING_CRUZADO2010_CSV.read_text().splitlines()
-            if not line.startswith("#")]
-    table = np.genfromtxt(rows, delimiter=",", names=True)
+    table = _measured_table(BLOCK_ON_RING_CRUZADO2010_CSV)
     return {name.removesuffix("_um"): (1e-3 * table["x_mm"], -1e-6 * table[name])
             for name in table.dtype.names[1:]}
 
@@ -170,10 +175,14 @@ def measured_fretting_scar() -> tuple[np.ndarray, np.ndarray]:
     """The measured fretting profile as (x_m, depth_m), depth positive where worn."""
     from fewear.data import FRETTING_MCCOLL2004_CSV
 
-    rows = [line for line in FRETTING_MCCOLL2004_CSV.read_text().splitlines()
-            if not line.startswith("#")]
-    table = np.genfromtxt(rows, delimiter=",", names=True)
+    table = _measured_table(FRETTING_MCCOLL2004_CSV)
     return 1e-3 * table["x_mm"], -1e-6 * table["y_um"]
+
+
+def profile_rms_difference_m(state, x_m: np.ndarray, measured_depth_m: np.ndarray) -> float:
+    """The RMS of the predicted (``state``'s, linear between its nodes) less the measured depth
+    on the measured grid ``x_m`` (m)."""
+    return float(np.sqrt(np.mean((state.depth_at(x_m) - measured_depth_m) ** 2)))
 
 
 def fretting_summary(run, problem: FlatContactProblem, settings: FrettingWearSettings,
@@ -183,11 +192,10 @@ def fretting_summary(run, problem: FlatContactProblem, settings: FrettingWearSet
     predicted = {**scar_figures(run.state.x_m, run.state.depth_m),
                  "shape": scar_shape(run.state.x_m, run.state.depth_m)}
     predicted["whole_worn_area_m2"] = run.state.worn_area_m2()
-    difference = run.state.depth_at(x) - measured
     return {
         "predicted": predicted,
         "measured": {**scar_figures(x, measured), "shape": scar_shape(x, measured)},
-        "rms_difference_m": float(np.sqrt(np.mean(difference**2))),
+        "rms_difference_m": profile_rms_difference_m(run.state, x, measured),
         "archard_gross_slip_area_m2": fretting_archard_area_m2(problem, settings),
         "edge_share": EDGE_SHARE,
         "cylinder": {"wear_coefficient_m2_N": settings.cylinder_wear_coefficient_m2_N,
@@ -217,8 +225,8 @@ def scar_summary(run, problem: FlatContactProblem, settings: SlidingWearSettings
     depth = closed_form_depth_m(problem, settings)
     predicted = scar_figures(run.state.x_m, run.state.depth_m)
     predicted["worn_area_m2"] = run.state.worn_area_m2()  # the whole profile: nothing beside
-    tests = {name: {**scar_figures(x, depth_m), "rms_difference_m": float(
-                 np.sqrt(np.mean((run.state.depth_at(x) - depth_m) ** 2)))}
+    tests = {name: {**scar_figures(x, depth_m),
+                    "rms_difference_m": profile_rms_difference_m(run.state, x, depth_m)}
              for name, (x, depth_m) in measured.items()}
     spread = {f"{statistic}_{key}": float(reduce([figures[key] for figures in tests.values()]))
               for key in predicted for statistic, reduce in
@@ -293,8 +301,7 @@ def _write_outputs(stage, run, problem, settings, config) -> None:
     header = ",".join(["x_m", "predicted_depth_m"] + [f"{name}_depth_m" for name in measured])
     np.savetxt(stage / "profiles.csv", np.column_stack(columns), delimiter=",", header=header,
                comments="", fmt="%.9g")
-    np.savetxt(stage / "predicted_nodes.csv", np.column_stack([run.state.x_m, run.state.depth_m]),
-               delimiter=",", header="x_m,depth_m", comments="", fmt="%.12g")
+    _write_predicted_nodes(stage, run.state)
     write_json(stage / "summary.json", scar_summary(run, problem, settings, measured, config))
     plot_scar(stage / "scar.png", (run.state.x_m, run.state.depth_m), measured,
               f"block on ring after {settings.sliding_distance_m:g} m")
@@ -322,11 +329,15 @@ def _fretting_main(args, config, comm) -> int:
             np.savetxt(stage / "profiles.csv",
                        np.column_stack([x, run.state.depth_at(x), measured]), delimiter=",",
                        header="x_m,predicted_depth_m,measured_depth_m", comments="", fmt="%.9g")
-            np.savetxt(stage / "predicted_nodes.csv",
-                       np.column_stack([run.state.x_m, run.state.depth_m]), delimiter=",",
-                       header="x_m,depth_m", comments="", fmt="%.12g")
+            _write_predicted_nodes(stage, run.state)
             write_json(stage / "summary.json", fretting_summary(run, problem, settings, config))
             plot_scar(stage / "scar.png", (run.state.x_m, run.state.depth_m),
                       {"McColl et al. 2004": (x, measured)},
                       f"fretting cylinder on flat after {settings.cycles} cycles")
     return 0
+
+
+def _write_predicted_nodes(stage, state) -> None:
+    """predicted_nodes.csv: x_m and depth_m at the FE top nodes of the worn flat."""
+    np.savetxt(stage / "predicted_nodes.csv", np.column_stack([state.x_m, state.depth_m]),
+               delimiter=",", header="x_m,depth_m", comments="", fmt="%.12g")
