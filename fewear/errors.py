@@ -25,6 +25,15 @@ def require_finite_positive(name: str, value: float) -> None:
     )
 
 
+def require_whole_number(name: str, value: int, smallest: int, largest: int) -> None:
+    """``value`` must be an int (not a bool) in [``smallest``, ``largest``], else
+    :class:`FewearInputError` naming ``name``."""
+    require(
+        isinstance(value, int) and not isinstance(value, bool) and smallest <= value <= largest,
+        f"{name} = {value!r}: must be a whole number in [{smallest}, {largest}]",
+    )
+
+
 def require_poisson_ratio(name: str, value: float) -> None:
     """A Poisson ratio of an isotropic elastic material lies in (-1, 0.5)."""
     require(

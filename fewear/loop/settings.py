@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from fewear.errors import FewearInputError, require_finite_positive
+from fewear.errors import FewearInputError, require_finite_positive, require_whole_number
 from fewear.wear.extrapolation import ExtrapolationSettings
 from fewear.wear.impact import NO_IMPACT_WEAR, ImpactWearLaw
 
@@ -118,9 +118,7 @@ class SlidingWearSettings:
     def __post_init__(self):
         for name in ("normal_force_N", "sliding_distance_m", "wear_coefficient_m2_N"):
             require_finite_positive(name, getattr(self, name))
-        steps = self.wear_steps
-        if not (isinstance(steps, int) and not isinstance(steps, bool) and 1 <= steps <= 10000):
-            raise FewearInputError(f"wear_steps = {steps!r}: must be a whole number in [1, 10000]")
+        require_whole_number("wear_steps", self.wear_steps, 1, 10000)
 
     @property
     def slide_m(self) -> float:
@@ -158,11 +156,7 @@ class FrettingWearSettings:
                                    "finite number >= 0")
         for name, largest in (("increments_per_cycle", 10000), ("cycles", 10**9),
                               ("cycles_per_block", 10**9)):
-            value = getattr(self, name)
-            if not (isinstance(value, int) and not isinstance(value, bool)
-                    and 1 <= value <= largest):
-                raise FewearInputError(f"{name} = {value!r}: must be a whole number in "
-                                       f"[1, {largest}]")
+            require_whole_number(name, getattr(self, name), 1, largest)
         if self.increments_per_cycle % 4:
             raise FewearInputError(
                 f"increments_per_cycle = {self.increments_per_cycle!r}: must be a whole "
