@@ -5,7 +5,9 @@
 The only difference between the runs is the partition (assembly order, distributed LU). The
 nodal pressures k <-g>_+ are computed from gaps |X + u - c| - R known to about eps R, i.e. to
 k eps R ~ 20 Pa (1e-7 of p0 here): the runs may differ by a few times that, and are allowed
-1e-6 of the peak (measured: equal to the bit, the cylinder's centres 5e-20 m apart). The shear
+1e-6 of the peak (measured: equal to the bit, the cylinder's centres 5e-20 m apart); their
+resultant, the integral of those pressures, is allowed as much, 1e-6 (measured: mostly equal,
+once 1.2e-7 apart, -64.99999 against -65 N, a run that passed alone). The shear
 of the frictional steps (a tangential penalty as stiff, and stick-slip switches) is allowed
 1e-6 of its largest value (measured: 2e-8 to 4e-8).
 """
@@ -46,7 +48,7 @@ def test_two_ranks_press_the_flat_as_serial(tmp_path):
           f"({difference / peak:.1e} of the peak; k eps R = {rounding:.1f} Pa), the cylinder's "
           f"centre by {pin:.1e} m")
     assert difference < 1e-6 * peak
-    assert np.allclose(parallel["resultant_force_N"], serial["resultant_force_N"], rtol=1e-7,
+    assert np.allclose(parallel["resultant_force_N"], serial["resultant_force_N"], rtol=1e-6,
                        atol=1e-9)
 
 
