@@ -56,9 +56,8 @@ from pathlib import Path
 
 import numpy as np
 
-from fewear.diagnose.tribometer.measured import _numeric_column, _read_rows, csv_cells
 from fewear.errors import FewearInputError
-from fewear.io.text import read_text_file
+from fewear.io.csv_rows import numeric_column, read_header, read_rows
 
 KIND_COLUMNS = {
     "profiles": ("cycles", "angle_deg", "wear_depth_m"),
@@ -214,7 +213,7 @@ def joint_data_kind(path: str | Path) -> str | None:
     """The kind of joint data file (``"profiles"``, ``"max_wear"``, ``"force"`` or
     ``"acceleration"``) that the header of ``path`` marks, or ``None`` if it is no joint data
     file (e.g. a tribometer file). Reads the header only; a header of two kinds is an error."""
-    line, header = _read_header(Path(path))
+    line, header = read_header(Path(path))
     return _kind_of_header(str(path), line, header)
 
 
@@ -268,15 +267,6 @@ def _comment_lines(comment: str) -> list[str]:
 
 # --- header ---------------------------------------------------------------------------------
 
-def _read_header(path: Path) -> tuple[int, list[str]]:
-    """The line number and column names of the first line that is not blank or a comment."""
-    for number, line in enumerate(read_text_file(path, "measured data").splitlines(), start=1):
-        stripped = line.strip()
-        if stripped and not stripped.startswith("#"):
-            return number, [cell.strip() for cell in csv_cells(path, number, stripped)]
-    raise FewearInputError(f"{path}: no header line (column names) found")
-
-
 def _has_stem(name: str, stem: str) -> bool:
     return name == stem or name.startswith(stem + "_")
 
@@ -326,7 +316,7 @@ def _unknown_column(name: str, kind: str) -> str:
 def _read_joint_file(path: Path) -> tuple[str, list | tuple, list[str]]:
     """The kind of the file, its data (profiles, (cycles, depth) or traces) and notes."""
     source = str(path)
-    header_line, header, rows = _read_rows(path)
+    header_line, header, rows = read_rows(path)
     kind = _kind_of_header(source, header_line, header)
     if kind is None:
         raise FewearInputError(
@@ -340,7 +330,7 @@ def _read_joint_file(path: Path) -> tuple[str, list | tuple, list[str]]:
 
     columns = {}
     for position, name in enumerate(header):
-        columns[name] = _numeric_column(name, [row[position] for _, row in rows], where)
+        columns[name] = numeric_column(name, [row[position] for _, row in rows], where)
         _check_finite(name, columns[name], where)
     readers = {"profiles": _profiles_from, "max_wear": _max_wear_from,
                "force": _traces_from, "acceleration": _traces_from}

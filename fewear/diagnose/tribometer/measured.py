@@ -38,7 +38,6 @@ in the notes.
 
 from __future__ import annotations
 
-import csv
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -47,7 +46,7 @@ from pathlib import Path
 import numpy as np
 
 from fewear.errors import FewearInputError
-from fewear.io.text import read_text_file
+from fewear.io.csv_rows import numeric_column, read_rows
 
 DATA_KINDS = ("cumulative_volume", "mass_loss", "specific_wear_rate", "wear_rate")
 VARIABLES = ("pressure_Pa", "velocity_m_s", "sliding_distance_m", "wear_volume_m3", "time_s",
@@ -200,7 +199,7 @@ def read_measured_wear(path: str | Path, *, density_kg_m3: float | None = None) 
     """Read a measured-wear CSV (module doc); convert mass loss or specific wear rate to volume."""
     path = Path(path)
     source = str(path)
-    header_line, header, rows = _read_rows(path)
+    header_line, header, rows = read_rows(path)
     header, alias_notes = _resolve_aliases(header)
     _check_header(source, header_line, header)
     wear_columns = [name for name in header if name in WEAR_COLUMNS]
@@ -227,7 +226,7 @@ def read_measured_wear(path: str | Path, *, density_kg_m3: float | None = None) 
         if is_factor(name):
             factors[name] = _text_column(name, cells, where)
         elif name != "test_id":
-            columns[name] = _numeric_column(name, cells, where)
+            columns[name] = numeric_column(name, cells, where)
             _check_values(name, columns[name], where)
     notes = list(alias_notes)
     if "sliding_distance_m" not in columns:
@@ -338,45 +337,6 @@ def _constant_in_test(data, name, values, index, test_name) -> float:
     return float(spread[0])
 
 
-def _read_rows(path: Path) -> tuple[int, list[str], list[tuple[int, list[str]]]]:
-    """The header's line number, its column names, and the (line number, cells) of data rows."""
-    text = read_text_file(path, "measured data")
-    header_line, header, rows = 0, None, []
-    for line_number, line in enumerate(text.splitlines(), start=1):
-        stripped = line.strip()
-        if not stripped or stripped.startswith("#"):
-            continue
-        cells = csv_cells(path, line_number, line)
-        if header is None:
-            header_line, header = line_number, [cell.strip() for cell in cells]
-            continue
-        if len(cells) != len(header):
-            raise FewearInputError(
-                f"{path} line {line_number}: {len(cells)} values for the {len(header)} columns "
-                f"{', '.join(header)}"
-            )
-        rows.append((line_number, cells))
-    if header is None:
-        raise FewearInputError(f"{path}: no header line (column names) found")
-    if not rows:
-        raise FewearInputError(f"{path}: no data rows after the header (line {header_line})")
-    return header_line, header, rows
-
-
-def csv_cells(path, line_number: int, line: str) -> list[str]:
-    """The cells of one CSV line; a line the csv module refuses (a cell longer than its field
-    limit, a stray quote) is an input error naming the file and line."""
-    try:
-        return next(csv.reader([line]))
-    except csv.Error as exc:
-        limit = csv.field_size_limit()
-        reason = (f"a cell longer than {limit:,} characters" if "field limit" in str(exc)
-                  else str(exc))
-        raise FewearInputError(
-            f"{path} line {line_number}: {reason}; expected comma-separated cells (numbers, "
-            f"test ids, names) of at most {limit:,} characters each") from None
-
-
 def _resolve_aliases(header: list[str]) -> tuple[list[str], list[str]]:
     renamed = [ALIASES.get(name, name) for name in header]
     notes = [f"column {old} read as {new}" for old, new in zip(header, renamed) if old != new]
@@ -406,21 +366,6 @@ def _unknown_column(name: str) -> str:
         if name.startswith(prefix):
             return f"unknown column or unit; fewear reads SI units only: use {hint}"
     return "unknown column; allowed columns: " + ", ".join(COLUMNS)
-
-
-def _numeric_column(name: str, cells: list[str], where: Callable[[int], str]) -> np.ndarray:
-    values = np.empty(len(cells))
-    for index, cell in enumerate(cells):
-        text = cell.strip()
-        if not text:
-            raise FewearInputError(f"{where(index)}, column {name}: empty value")
-        try:
-            values[index] = float(text)
-        except ValueError:
-            raise FewearInputError(
-                f"{where(index)}, column {name}: {text!r} is not a number"
-            ) from None
-    return values
 
 
 def _check_values(name: str, values: np.ndarray, where: Callable[[int], str]) -> None:
