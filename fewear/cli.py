@@ -79,8 +79,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     diagnose = sub.add_parser("diagnose", help="what a wear model gets wrong on measured data")
     diagnose.add_argument("measured", metavar="MEASURED.csv", nargs="+",
-                          help="pin-on-disc readings, or wear measured on the joint (bore "
-                               "profiles and/or maximum-depth growth, with the model as --config)")
+                          help="pin-on-disc readings, a measured wear scar (x_mm and heights "
+                               "in um), or wear measured on the joint (bore profiles and/or "
+                               "maximum-depth growth, with the model as --config)")
     _add_config_and_out(diagnose, "out/diagnose")
 
     run = sub.add_parser("run", help="the paper's slider-crank wear prediction (main job)")

@@ -84,7 +84,7 @@ def block_on_ring_from_config(config: dict) -> tuple[FlatContactProblem, Sliding
             contact["newton_max_iterations"]))
     except FewearInputError as exc:
         raise FewearInputError(f"[block_on_ring_mesh]: {exc}") from None
-    _require_zone_holds_the_scar(problem, settings)
+    require_zone_holds_the_scar(problem, settings)
     return problem, settings
 
 
@@ -137,7 +137,7 @@ def closed_form_depth_m(problem: FlatContactProblem, settings: SlidingWearSettin
     return ring_arc_depth_m(problem.geometry.cylinder_radius_m, archard_area_m2(problem, settings))
 
 
-def _require_zone_holds_the_scar(problem: FlatContactProblem,
+def require_zone_holds_the_scar(problem: FlatContactProblem,
                                  settings: SlidingWearSettings) -> None:
     radius = problem.geometry.cylinder_radius_m
     depth = closed_form_depth_m(problem, settings)

@@ -1,0 +1,209 @@
+"""Is the believed scar model wrong on a measured scar, and by which cause?
+
+The believed model is ``fewear scar``'s case with the source's wear coefficient(s); its
+prediction has no parameter fitted to the scar. Each cause of
+:mod:`fewear.diagnose.scar.catalogue` extends it by one parameter, theta = ln(factor) on a
+coefficient, fitted by least squares on the profile points (depth in m) with a few forward runs
+(:mod:`fewear.diagnose.scar.fitting`).
+
+Held out: with several profiles (repeated tests) each profile is held out in turn and predicted
+by the factor fitted on the others; with one, its points are cut into ``profile_blocks`` blocks
+along x, the factor fitted on the even blocks predicts the odd ones and the other way round.
+The held-out RMS error of the cause is compared with the believed model's on the same points
+(the gain 1 - e_cause / e_believed).
+
+Neighbouring points of a digitised profile are not independent: the residuals of profile p,
+taken as a first-order autoregression with lag-one correlation r_p (clipped to [0, 1)), count
+as n_p (1 - r_p) / (1 + r_p) effective observations (Bretherton, Widmann, Dymnikov, Wallace &
+Blade, J. Climate 12 (1999) 1990-2009, eq. 31), r_p of the fitted model's residuals (the fuller
+model whose scatter the F-test estimates). The evidence on those N_eff observations: the nested
+F-test of the fit against the believed model (q = 1, N_eff - 1 residual degrees of freedom; the
+sums of squares' ratio is that of all points) and AICc with the mean squares times N_eff
+(:mod:`fewear.diagnose.core.statistics`). A cause is named when it passes the core's rule
+(:class:`fewear.diagnose.core.evidence.AcceptanceRule`: p below ``significance`` over the causes
+tried, held-out gain at least ``min_held_out_gain``, AICc at least ``min_aicc_improvement``
+lower); of several, the one with the largest held-out gain first.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from fewear.diagnose.core.evidence import Evidence
+from fewear.diagnose.core.statistics import aicc, nested_f_test_p
+from fewear.diagnose.scar.catalogue import CAUSES
+from fewear.diagnose.scar.fitting import FactorFit, ForwardRuns, fit_log_factor
+from fewear.diagnose.scar.measured import MeasuredScar
+from fewear.diagnose.scar.settings import ScarDiagnoseSettings
+
+
+@dataclass(frozen=True, eq=False)
+class CauseTrial:
+    """One cause fitted and judged: the fit on all points and per fold (``fold_fits``), the
+    prediction at the fit (``fitted_m``, per point) and each point's held-out prediction
+    (``held_out_m``), the held-out RMS errors (m) of the believed model and the cause, the
+    effective observations, the evidence, whether the rule ``accepted`` it, the factors run
+    and their wall time (s)."""
+
+    cause: str
+    fit: FactorFit
+    fold_fits: tuple[FactorFit, ...]
+    fitted_m: np.ndarray
+    held_out_m: np.ndarray
+    held_out_rms_before_m: float
+    held_out_rms_after_m: float
+    effective_observations: int
+    evidence: Evidence
+    accepted: bool
+    factors_run: tuple[float, ...]
+    run_wall_time_s: float
+
+    @property
+    def converged(self) -> bool:
+        return self.fit.converged and all(fit.converged for fit in self.fold_fits)
+
+
+@dataclass(frozen=True, eq=False)
+class ScarDiagnosis:
+    """What :func:`diagnose_scar` found: the believed prediction per point (``believed_m``),
+    the trials, the causes named (largest held-out gain first), the causes not testable in the
+    case (name -> why), how points were held out, notes (a fit that did not converge or stopped
+    at the search's bound) and the wall time (s)."""
+
+    measured: MeasuredScar
+    settings: ScarDiagnoseSettings
+    believed_m: np.ndarray
+    holdout: str
+    trials: tuple[CauseTrial, ...]
+    causes: tuple[str, ...]
+    untestable: dict
+    notes: tuple[str, ...]
+    wall_time_s: float
+
+    @property
+    def best_trial(self) -> CauseTrial | None:
+        """The named cause's trial, else the trial of the largest held-out gain."""
+        named = [trial for trial in self.trials if trial.cause in self.causes[:1]]
+        return (named or sorted(self.trials, key=lambda trial: -trial.evidence.gain) or [None])[0]
+
+
+def held_out_folds(measured: MeasuredScar, blocks: int) -> tuple[tuple[np.ndarray, str], ...]:
+    """The folds as boolean masks of the FITTED points (the rest held out), each point held out
+    once, and what the folds are (module docstring)."""
+    profile = measured.profile_of_point
+    if len(measured.names) > 1:
+        return tuple((profile != index, f"{name} held out, fitted on the other profiles")
+                     for index, name in enumerate(measured.names))
+    block_of = np.concatenate([np.full(part.size, block) for block, part in
+                               enumerate(np.array_split(np.arange(measured.x_m.size), blocks))])
+    even = block_of % 2 == 0
+    return ((even, f"odd blocks of {blocks} held out, fitted on the even"),
+            (~even, f"even blocks of {blocks} held out, fitted on the odd"))
+
+
+def effective_observations(residual_m: np.ndarray, profile: np.ndarray) -> int:
+    """N_eff = sum over profiles of n_p (1 - r_p) / (1 + r_p), rounded down (module
+    docstring)."""
+    total = 0.0
+    for index in np.unique(profile):
+        r = residual_m[profile == index] - residual_m[profile == index].mean()
+        lag_one = float(np.sum(r[1:] * r[:-1]) / np.sum(r**2)) if np.any(r) else 0.0
+        lag_one = min(max(lag_one, 0.0), 1.0 - 1e-12)
+        total += r.size * (1.0 - lag_one) / (1.0 + lag_one)
+    return int(math.floor(total))
+
+
+def nested_evidence(measured_m: np.ndarray, believed_m: np.ndarray, fitted_m: np.ndarray,
+                    n_effective: int, gain: float) -> Evidence:
+    """The F-test's p and the AICc improvement of the one-parameter fit against the believed
+    model on ``n_effective`` observations (module docstring), with the held-out ``gain``."""
+    n = measured_m.size
+    rss_believed = float(np.sum((believed_m - measured_m) ** 2))
+    rss_fitted = float(np.sum((fitted_m - measured_m) ** 2))
+    p_value = nested_f_test_p(rss_believed, rss_fitted, 1, n_effective - 1)
+    improvement = (aicc(rss_believed * n_effective / n, n_effective, 0)
+                   - aicc(rss_fitted * n_effective / n, n_effective, 1))
+    return Evidence(p_value, gain, improvement)
+
+
+def _rms(values: np.ndarray) -> float:
+    return float(np.sqrt(np.mean(values**2)))
+
+
+def try_cause(cause: str, measured: MeasuredScar, believed_m: np.ndarray, predict,
+              folds, settings: ScarDiagnoseSettings, report=None) -> CauseTrial:
+    """Fit ``cause`` on all points and on each fold (``predict(factor)``: the depths at the
+    points, one forward run) and judge it against the believed model (module docstring)."""
+    measured_m, scales_area = measured.points_m, CAUSES[cause].scales_worn_area
+    runs = ForwardRuns(believed_m, predict, report)
+    every = np.ones(measured_m.size, dtype=bool)
+    fit = fit_log_factor(runs, measured_m, every, settings, scales_area, settings.max_forward_runs)
+    fold_fits, held_out_m = [], np.empty_like(measured_m)
+    for fitted, _ in folds:
+        fold_fits.append(fit_log_factor(runs, measured_m, fitted, settings, scales_area,
+                                        settings.max_forward_runs))
+        held_out_m[~fitted] = runs.depth_m(fold_fits[-1].log_factor)[~fitted]
+    fitted_m = runs.depth_m(fit.log_factor)
+    before, after = _rms(believed_m - measured_m), _rms(held_out_m - measured_m)
+    n_effective = effective_observations(fitted_m - measured_m, measured.profile_of_point)
+    evidence = nested_evidence(measured_m, believed_m, fitted_m, n_effective, 1.0 - after / before)
+    return CauseTrial(cause, fit, tuple(fold_fits), fitted_m, held_out_m, before, after,
+                      n_effective, evidence, False, runs.factors, runs.wall_time_s)
+
+
+def diagnose_scar(measured: MeasuredScar, model, settings: ScarDiagnoseSettings,
+                  progress=sys.stderr) -> ScarDiagnosis:
+    """The diagnosis of ``measured`` against ``model`` (a
+    :class:`fewear.diagnose.scar.forward.ScarModel`, or anything with its ``depth_on`` and
+    ``untestable_reason``), progress lines to ``progress`` (None: silent)."""
+    start = time.perf_counter()
+    untestable = {cause: reason for cause in settings.candidates
+                  if (reason := model.untestable_reason(cause)) is not None}
+    tried = [cause for cause in settings.candidates if cause not in untestable]
+    x_grid, profiles = measured.x_m, len(measured.names)
+
+    def predict_for(cause):
+        return lambda factor: np.tile(model.depth_on(x_grid, cause, factor), profiles)
+
+    def report_for(cause):
+        def report(factor, seconds):
+            if progress is not None:
+                print(f"fewear diagnose: {cause} x{factor:.4g}: forward run in {seconds:.1f} s",
+                      file=progress, flush=True)
+        return report
+
+    believed_m = predict_for(tried[0])(1.0) if tried else np.zeros(measured.points_m.size)
+    folds = held_out_folds(measured, settings.profile_blocks)
+    rule = settings.acceptance(max(len(tried), 1))
+    trials = []
+    for cause in tried:
+        trial = try_cause(cause, measured, believed_m, predict_for(cause), folds, settings,
+                          report_for(cause))
+        trials.append(replace(trial, accepted=rule.accepts(trial.evidence)))
+    causes = tuple(trial.cause for trial in sorted(trials, key=lambda trial: -trial.evidence.gain)
+                   if trial.accepted)
+    return ScarDiagnosis(measured, settings, believed_m, "; ".join(text for _, text in folds),
+                         tuple(trials), causes, untestable, tuple(_fit_notes(trials, settings)),
+                         time.perf_counter() - start)
+
+
+def _fit_notes(trials, settings: ScarDiagnoseSettings) -> list[str]:
+    """A sentence per fit that did not converge or stopped at the search's bound."""
+    notes = []
+    for trial in trials:
+        for label, fit in [("all points", trial.fit)] + [
+                (f"fold {index + 1}", fit) for index, fit in enumerate(trial.fold_fits)]:
+            if not fit.converged:
+                notes.append(f"{trial.cause} ({label}): NOT converged after "
+                             f"{len(trial.factors_run)} forward runs (max_forward_runs = "
+                             f"{settings.max_forward_runs}): factor {fit.factor:.4g} is the "
+                             "surrogate's between runs, not a run's")
+            if fit.at_bound:
+                notes.append(f"{trial.cause} ({label}): factor {fit.factor:.4g} at the "
+                             f"search's bound (max_k_factor = {settings.max_k_factor:g})")
+    return notes

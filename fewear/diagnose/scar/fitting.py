@@ -1,0 +1,120 @@
+"""Fitting one log-scale factor on a wear coefficient by a few forward runs of the scar model.
+
+The model's depth at the measured points is known only where it was run; between runs it is
+taken linear in theta = ln(factor) (a surrogate through the runs, extrapolated linearly beyond
+them). A fit (all points, or a fold's training points) minimises the residual sum of squares of
+the surrogate over |theta| <= ln ``max_k_factor`` (Brent's bounded search,
+:func:`scipy.optimize.minimize_scalar`), runs the model at the minimiser and repeats, until the
+minimiser lies within ln(1 + ``factor_tolerance``) of a run (the surrogate exact there:
+converged) or the cause's ``max_forward_runs`` are spent (not converged: said in the result).
+With two runs the surrogate's minimiser is the secant (Gauss-Newton) step of the least-squares
+problem; the runs of one cause serve all its fits (all points and each fold).
+
+The first run beside the believed one (theta = 0) is Archard's guess where the cause scales the
+flat's worn area (A = k P' S): theta_1 = ln(measured / predicted area on the training points),
+at least :data:`FIRST_STEP_TOLERANCES` tolerances from 0 so that the secant's slope is resolved.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from fewear.diagnose.scar.settings import ScarDiagnoseSettings
+
+FIRST_STEP_TOLERANCES = 10.0
+"""The first run's ln(factor) lies at least this many tolerances from the believed model's."""
+
+
+class ForwardRuns:
+    """The runs of the model for one cause, by ln(factor): the believed one (theta = 0) given,
+    the others made by ``predict(factor)`` (the depths at the measured points, m) and counted."""
+
+    def __init__(self, believed_m: np.ndarray, predict: Callable[[float], np.ndarray],
+                 report: Callable[[float, float], None] | None = None):
+        self._log_factors, self._depths = [0.0], [np.asarray(believed_m, dtype=float)]
+        self._predict, self._report = predict, report
+        self.wall_time_s = 0.0
+
+    @property
+    def factors(self) -> tuple[float, ...]:
+        """The factors run, the believed model's (1) not counted, in the order run."""
+        return tuple(math.exp(theta) for theta in self._log_factors[1:])
+
+    def run(self, log_factor: float) -> None:
+        start = time.perf_counter()
+        self._depths.append(np.asarray(self._predict(math.exp(log_factor)), dtype=float))
+        self._log_factors.append(float(log_factor))
+        seconds = time.perf_counter() - start
+        self.wall_time_s += seconds
+        if self._report is not None:
+            self._report(math.exp(log_factor), seconds)
+
+    def distance_to_run(self, log_factor: float) -> float:
+        """|theta - the nearest run's theta|."""
+        return float(np.min(np.abs(np.array(self._log_factors) - log_factor)))
+
+    def depth_m(self, log_factor: float) -> np.ndarray:
+        """The surrogate's depths at theta (module docstring); the believed ones with one run."""
+        order = np.argsort(self._log_factors)
+        thetas, depths = np.array(self._log_factors)[order], [self._depths[i] for i in order]
+        if thetas.size == 1:
+            return depths[0]
+        upper = int(np.clip(np.searchsorted(thetas, log_factor), 1, thetas.size - 1))
+        share = (log_factor - thetas[upper - 1]) / (thetas[upper] - thetas[upper - 1])
+        return depths[upper - 1] + share * (depths[upper] - depths[upper - 1])
+
+
+@dataclass(frozen=True)
+class FactorFit:
+    """A fit of ln(factor) on some points: ``log_factor``, whether it ``converged`` (module
+    docstring) and whether it stopped at the search's bound (``at_bound``)."""
+
+    log_factor: float
+    converged: bool
+    at_bound: bool
+
+    @property
+    def factor(self) -> float:
+        return math.exp(self.log_factor)
+
+
+def fit_log_factor(runs: ForwardRuns, measured_m: np.ndarray, fitted: np.ndarray,
+                   settings: ScarDiagnoseSettings, scales_worn_area: bool,
+                   runs_allowed: int) -> FactorFit:
+    """The least-squares ln(factor) on the points ``fitted`` (a boolean mask) of ``measured_m``,
+    running the model while it has not converged and fewer than ``runs_allowed`` runs were made
+    (module docstring)."""
+    bound, tolerance = settings.log_factor_bound, settings.log_factor_tolerance
+    if len(runs.factors) == 0 and runs_allowed > 0:
+        runs.run(_first_step(runs.depth_m(0.0), measured_m, fitted, settings, scales_worn_area))
+    while True:
+        theta = _surrogate_minimiser(runs, measured_m, fitted, bound)
+        converged = runs.distance_to_run(theta) <= tolerance
+        if converged or len(runs.factors) >= runs_allowed:
+            return FactorFit(theta, converged, abs(theta) >= bound - tolerance)
+        runs.run(theta)
+
+
+def _first_step(believed_m, measured_m, fitted, settings, scales_worn_area: bool) -> float:
+    """theta_1: Archard's area ratio where it applies, at least FIRST_STEP_TOLERANCES
+    tolerances from 0, within the bound."""
+    least = FIRST_STEP_TOLERANCES * settings.log_factor_tolerance
+    measured, predicted = float(np.sum(measured_m[fitted])), float(np.sum(believed_m[fitted]))
+    guess = math.log(measured / predicted) if (scales_worn_area and measured > 0.0
+                                               and predicted > 0.0) else least
+    step = math.copysign(max(abs(guess), least), guess)
+    return float(np.clip(step, -settings.log_factor_bound, settings.log_factor_bound))
+
+
+def _surrogate_minimiser(runs: ForwardRuns, measured_m, fitted, bound: float) -> float:
+    def rss(theta: float) -> float:
+        return float(np.sum((runs.depth_m(theta)[fitted] - measured_m[fitted]) ** 2))
+
+    return float(minimize_scalar(rss, bounds=(-bound, bound), method="bounded",
+                                 options={"xatol": 1e-7}).x)
