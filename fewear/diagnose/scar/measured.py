@@ -91,6 +91,10 @@ def read_measured_scar(path: str | Path) -> MeasuredScar:
 
 def _height_scales(source: str, line: int, header: list[str]) -> list[float]:
     """Each height column's scale to m, every column name checked."""
+    if header[0] not in POSITION_UNITS:
+        raise FewearInputError(
+            f"{source} line {line}, column {header[0]!r}: no measured scar; a scar file starts "
+            "with the position x_mm (heights <profile>_um) or x_m (heights <profile>_m)")
     if len(header) < 2:
         raise FewearInputError(f"{source} line {line}: no height column after {header[0]}; a "
                                "scar file has x_mm, <profile>_um [, ...] or x_m, <profile>_m")
