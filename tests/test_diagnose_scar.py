@@ -176,3 +176,22 @@ def test_dispatcher_routes_scar_files_to_the_scar_room(monkeypatch):
     for data in (BLOCK_ON_RING_CRUZADO2010_CSV, STANDIN_PIN_ON_DISC_CSV):
         dispatch(argparse.Namespace(measured=[str(data)], config=None, out="unused"))
     assert rooms == ["scar", "tribometer"]
+
+
+@pytest.mark.parametrize("config, message", [
+    ('[scar_diagnose]\ncandidates = ["cylinder_wear_coefficient"]\n',
+     "none can be fitted in this case (cylinder_wear_coefficient: the case has no "
+     "cylinder_wear_coefficient_m2_N)"),
+    ("[scar_diagnose]\nmax_k_factor = 0.5\n",
+     "[scar_diagnose] max_k_factor = 0.5: expected a number in (1, 100]"),
+    ('[scar_diagnose]\ncandidates = ["friction"]\n', "candidates = ['friction']: expected"),
+])
+def test_bad_scar_diagnose_settings_are_refused_in_one_line(config, message, tmp_path, capsys):
+    path = tmp_path / "bad.toml"
+    path.write_text(config)
+    out = tmp_path / "out"
+    assert main(["diagnose", str(BLOCK_ON_RING_CRUZADO2010_CSV), "--config", str(path),
+                 "--out", str(out)]) == 2
+    error = capsys.readouterr().err.strip().splitlines()[-1]
+    assert message in error and "Traceback" not in error
+    assert not out.exists()

@@ -40,6 +40,7 @@ from fewear.diagnose.scar.catalogue import CAUSES
 from fewear.diagnose.scar.fitting import FactorFit, ForwardRuns, fit_log_factor
 from fewear.diagnose.scar.measured import MeasuredScar
 from fewear.diagnose.scar.settings import ScarDiagnoseSettings
+from fewear.errors import FewearInputError
 
 
 @dataclass(frozen=True, eq=False)
@@ -165,6 +166,11 @@ def diagnose_scar(measured: MeasuredScar, model, settings: ScarDiagnoseSettings,
     untestable = {cause: reason for cause in settings.candidates
                   if (reason := model.untestable_reason(cause)) is not None}
     tried = [cause for cause in settings.candidates if cause not in untestable]
+    if not tried:
+        raise FewearInputError(
+            f"[scar_diagnose] candidates = {list(settings.candidates)!r}: none can be fitted in "
+            "this case (" + "; ".join(f"{cause}: {why}" for cause, why in untestable.items())
+            + ")")
     x_grid, profiles = measured.x_m, len(measured.names)
 
     def predict_for(cause):
@@ -177,9 +183,9 @@ def diagnose_scar(measured: MeasuredScar, model, settings: ScarDiagnoseSettings,
                       file=progress, flush=True)
         return report
 
-    believed_m = predict_for(tried[0])(1.0) if tried else np.zeros(measured.points_m.size)
+    believed_m = predict_for(tried[0])(1.0)
     folds = held_out_folds(measured, settings.profile_blocks)
-    rule = settings.acceptance(max(len(tried), 1))
+    rule = settings.acceptance(len(tried))
     trials = []
     for cause in tried:
         trial = try_cause(cause, measured, believed_m, predict_for(cause), folds, settings,

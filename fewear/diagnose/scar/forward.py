@@ -59,7 +59,10 @@ class ScarModel:
         if self.case == "block_on_ring":
             from fewear.loop.flat_wear import run_flat_wear
 
-            require_zone_holds_the_scar(self.problem, settings)
+            try:
+                require_zone_holds_the_scar(self.problem, settings)
+            except FewearInputError as exc:
+                raise FewearInputError(f"{cause} x{factor:.4g}: {exc}") from None
             run = run_flat_wear(self.problem, settings, MPI.COMM_SELF)
         else:
             from fewear.loop.fretting import run_fretting_wear

@@ -20,7 +20,7 @@ def summarise(diagnosis: ScarDiagnosis, case: str,
     coefficients beside the source's (``source_coefficients_m2_N``: cause -> m^2/N)."""
     causes, trials = diagnosis.causes, diagnosis.trials
     named = next((trial for trial in trials if trial.cause in causes[:1]), None)
-    before = trials[0].held_out_rms_before_m if trials else float("nan")
+    before = trials[0].held_out_rms_before_m
     after = named.held_out_rms_after_m if named else before
     settings = diagnosis.settings
     return {
@@ -30,7 +30,7 @@ def summarise(diagnosis: ScarDiagnosis, case: str,
         "points": int(diagnosis.measured.points_m.size),
         "holdout": diagnosis.holdout,
         "criterion": (f"F-test against the believed model on effective observations, p < "
-                      f"{settings.significance:g} / {max(len(trials), 1)} causes tried; held-out "
+                      f"{settings.significance:g} / {len(trials)} causes tried; held-out "
                       f"RMS at least {settings.min_held_out_gain:.0%} lower; AICc at least "
                       f"{settings.min_aicc_improvement:g} lower"),
         "candidates": [_trial_entry(trial, source_coefficients_m2_N[trial.cause])
