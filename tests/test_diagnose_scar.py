@@ -195,3 +195,46 @@ def test_bad_scar_diagnose_settings_are_refused_in_one_line(config, message, tmp
     error = capsys.readouterr().err.strip().splitlines()[-1]
     assert message in error and "Traceback" not in error
     assert not out.exists()
+
+
+COARSE_FRETTING = """
+[scar]
+case = "fretting"
+
+[fretting]
+increments_per_cycle = 4
+cycles_per_block = 9000
+
+[fretting_mesh]
+contact_element_size_m = 4e-5
+"""
+
+
+@pytest.mark.slow
+def test_fretting_hidden_k_factor_is_told_from_the_cylinders(tmp_path):
+    """One fretting profile (the McColl grid) made by the coarse model (2 blocks of 9,000
+    cycles, 4 increments, 40 um elements: about 5 s a run) at the flat's k x1.3 with 0.05 um
+    correlated noise: the flat's k is named and recovered, not the cylinder's (its factor leaves
+    the flat's worn area as it is). About a minute."""
+    from fewear.data import FRETTING_MCCOLL2004_CSV
+    from fewear.diagnose.scar.forward import ScarModel
+    from fewear.io.config import load_config
+    from fewear.loop.scar_command import SCAR_SECTIONS
+
+    config = tmp_path / "coarse.toml"
+    config.write_text(COARSE_FRETTING)
+    model = ScarModel.from_config(load_config(config, SCAR_SECTIONS))
+    x_m = read_measured_scar(FRETTING_MCCOLL2004_CSV).x_m
+    noise_m = 0.05 * _noisy_profiles(np.zeros_like(x_m), 3)[0]  # RMS 0.05 um
+    depth_m = model.depth_on(x_m, "wear_coefficient", 1.3) + noise_m
+    data = tmp_path / "fretting.csv"
+    _write_scar(data, x_m, depth_m[None, :])
+    summary = _diagnose(config, data, tmp_path / "out")
+    entries = {entry["name"]: entry for entry in summary["candidates"]}
+    print(f"\n{summary['cause']}: " + "; ".join(
+        f"{name} x{entry['fitted_factor']:.4f} (folds {entry['fold_factors']}), held-out "
+        f"{entry['held_out_rms_m']}, p {entry['p_value']:.3g} on "
+        f"{entry['effective_observations']}, {entry['forward_runs']} runs, accepted "
+        f"{entry['accepted']}" for name, entry in entries.items()))
+    assert summary["cause"] == "wear_coefficient"
+    assert entries["wear_coefficient"]["fitted_factor"] == pytest.approx(1.3, rel=0.03)
