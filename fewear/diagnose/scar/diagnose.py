@@ -14,11 +14,12 @@ The held-out RMS error of the cause is compared with the believed model's on the
 
 Neighbouring points of a digitised profile are not independent: the residuals of profile p,
 taken as a first-order autoregression with lag-one correlation r_p (clipped to [0, 1)), count
-as n_p (1 - r_p) / (1 + r_p) effective observations (Bretherton, Widmann, Dymnikov, Wallace &
-Blade, J. Climate 12 (1999) 1990-2009, eq. 31), r_p of the fitted model's residuals (the fuller
-model whose scatter the F-test estimates). The evidence on those N_eff observations: the nested
-F-test of the fit against the believed model (q = 1, N_eff - 1 residual degrees of freedom; the
-sums of squares' ratio is that of all points) and AICc with the mean squares times N_eff
+as n_p (1 - r_p) / (1 + r_p) effective observations (the AR(1) case of Bretherton, Widmann,
+Dymnikov, Wallace & Blade, J. Climate 12 (1999) 1990-2009), r_p of the fitted model's residuals
+(the fuller model whose scatter the F-test estimates). The evidence on those N_eff
+observations: the nested F-test of the fit against the believed model (q = 1, N_eff - 1 residual
+degrees of freedom; the sums of squares' ratio is that of all points) and AICc with the mean
+squares times N_eff
 (:mod:`fewear.diagnose.core.statistics`). A cause is named when it passes the core's rule
 (:class:`fewear.diagnose.core.evidence.AcceptanceRule`: p below ``significance`` over the causes
 tried, held-out gain at least ``min_held_out_gain``, AICc at least ``min_aicc_improvement``
@@ -140,7 +141,7 @@ def try_cause(cause: str, measured: MeasuredScar, believed_m: np.ndarray, predic
               folds, settings: ScarDiagnoseSettings, report=None) -> CauseTrial:
     """Fit ``cause`` on all points and on each fold (``predict(factor)``: the depths at the
     points, one forward run) and judge it against the believed model (module docstring)."""
-    measured_m, scales_area = measured.points_m, CAUSES[cause].scales_worn_area
+    measured_m, scales_area = measured.depth_points_m, CAUSES[cause].scales_worn_area
     runs = ForwardRuns(believed_m, predict, report)
     every = np.ones(measured_m.size, dtype=bool)
     fit = fit_log_factor(runs, measured_m, every, settings, scales_area, settings.max_forward_runs)

@@ -49,7 +49,7 @@ class MeasuredScar:
         return np.repeat(np.arange(len(self.names)), self.x_m.size)
 
     @property
-    def points_m(self) -> np.ndarray:
+    def depth_points_m(self) -> np.ndarray:
         """The depths of all profiles, flattened (row-major: profile by profile)."""
         return self.depth_m.ravel()
 

@@ -27,7 +27,7 @@ def summarise(diagnosis: ScarDiagnosis, case: str,
         "source": diagnosis.measured.source,
         "case": case,
         "profiles": list(diagnosis.measured.names),
-        "points": int(diagnosis.measured.points_m.size),
+        "points": int(diagnosis.measured.depth_points_m.size),
         "holdout": diagnosis.holdout,
         "criterion": (f"F-test against the believed model on effective observations, p < "
                       f"{settings.significance:g} / {len(trials)} causes tried; held-out "
