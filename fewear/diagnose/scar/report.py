@@ -92,7 +92,7 @@ def plot_profiles(path: Path, diagnosis: ScarDiagnosis) -> None:
     if trial is not None:
         named = "named" if trial.accepted else "not named"
         axes.plot(x_mm, -1e6 * trial.fitted_m[:points], color="tab:red", linewidth=1.5,
-                  label=f"fitted {trial.cause} x{trial.fit.factor:.3g} ({named})")
+                  label=f"fitted {trial.cause} x{trial.fit.factor:.4g} ({named})")
     axes.set_xlabel("x (mm)")
     axes.set_ylabel("surface height (um)")
     cause = diagnosis.causes[0] if diagnosis.causes else "none"
