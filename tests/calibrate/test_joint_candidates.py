@@ -204,8 +204,10 @@ def test_an_impact_form_without_impacts_to_count_is_not_run(monkeypatch):
                        impact_forms=("energy", "impulse", "speed"))
     forms = CAUSES["impact_wear"].forms(believed, settings)
     assert [c.form for c in forms] == ["energy"]
-    assert forms[0].grid == (0.0, 0.05e-12, 0.15e-12, 0.5e-12)
-    assert len(made) == 3
+    # k_imp = ratio x (1e-12 m^3 a cycle) / (2 J a cycle) for each ratio of the grid
+    assert forms[0].grid == pytest.approx(
+        (0.0,) + tuple(ratio * 0.5e-12 for ratio in sorted(settings.impact_volume_ratios)))
+    assert len(made) == len(settings.impact_volume_ratios)
 
 
 # --- running-in: the time map of each form, and the form told from the data ---------------------
