@@ -77,3 +77,12 @@ def numeric_column(name: str, cells: list[str], where: Callable[[int], str]) -> 
                 f"{where(index)}, column {name}: {text!r} is not a number"
             ) from None
     return values
+
+
+def require_finite_column(name: str, values: np.ndarray, where: Callable[[int], str]) -> None:
+    """Refuse NaN or infinity in column ``name``, naming the place (``where(row index)``), the
+    column and the value."""
+    bad = np.flatnonzero(~np.isfinite(values))
+    if bad.size:
+        raise FewearInputError(
+            f"{where(bad[0])}, column {name}: {values[bad[0]]!r}; expected a finite number")

@@ -138,7 +138,7 @@ def closed_form_depth_m(problem: FlatContactProblem, settings: SlidingWearSettin
 
 
 def require_zone_holds_the_scar(problem: FlatContactProblem,
-                                 settings: SlidingWearSettings) -> None:
+                                settings: SlidingWearSettings) -> None:
     radius = problem.geometry.cylinder_radius_m
     depth = closed_form_depth_m(problem, settings)
     if depth >= radius:

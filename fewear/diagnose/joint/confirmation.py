@@ -107,9 +107,8 @@ def confirm_no_worse(cause: str, extended: Realizations, reference: Realizations
     on the held-out bore (the third generator's steel rod: 1.11, 1.30 and 1.82 um against the k
     level's 1.09, 1.05 and 1.39), so a fixed margin on the means refuted what the traces had
     named."""
-    errors, reference_errors = extended.held_out_rms_m, reference.held_out_rms_m
     found = confirm(cause, extended, reference, against, settings)
-    p_worse = welch_lower_p(reference_errors, errors)
+    p_worse = welch_lower_p(reference.held_out_rms_m, extended.held_out_rms_m)
     worse = found.gain < -settings.min_held_out_gain and p_worse < settings.significance
     return replace(found, p_value=p_worse, confirmed=not worse)
 

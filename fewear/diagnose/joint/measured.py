@@ -57,7 +57,12 @@ from pathlib import Path
 import numpy as np
 
 from fewear.errors import FewearInputError
-from fewear.io.csv_rows import numeric_column, read_header, read_rows
+from fewear.io.csv_rows import (
+    numeric_column,
+    read_header,
+    read_rows,
+    require_finite_column,
+)
 
 KIND_COLUMNS = {
     "profiles": ("cycles", "angle_deg", "wear_depth_m"),
@@ -331,18 +336,11 @@ def _read_joint_file(path: Path) -> tuple[str, list | tuple, list[str]]:
     columns = {}
     for position, name in enumerate(header):
         columns[name] = numeric_column(name, [row[position] for _, row in rows], where)
-        _check_finite(name, columns[name], where)
+        require_finite_column(name, columns[name], where)
     readers = {"profiles": _profiles_from, "max_wear": _max_wear_from,
                "force": _traces_from, "acceleration": _traces_from}
     items, notes = readers[kind](source, kind, columns, where)
     return kind, items, notes
-
-
-def _check_finite(name: str, values: np.ndarray, where: Callable[[int], str]) -> None:
-    bad = np.flatnonzero(~np.isfinite(values))
-    if bad.size:
-        raise FewearInputError(
-            f"{where(bad[0])}, column {name}: {values[bad[0]]!r}; expected a finite number")
 
 
 def _cycles_column(values: np.ndarray, where: Callable[[int], str]) -> np.ndarray:

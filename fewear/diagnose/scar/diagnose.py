@@ -144,11 +144,10 @@ def try_cause(cause: str, measured: MeasuredScar, believed_m: np.ndarray, predic
     measured_m, scales_area = measured.depth_points_m, CAUSES[cause].scales_worn_area
     runs = ForwardRuns(believed_m, predict, report)
     every = np.ones(measured_m.size, dtype=bool)
-    fit = fit_log_factor(runs, measured_m, every, settings, scales_area, settings.max_forward_runs)
+    fit = fit_log_factor(runs, measured_m, every, settings, scales_area)
     fold_fits, held_out_m = [], np.empty_like(measured_m)
     for fitted, _ in folds:
-        fold_fits.append(fit_log_factor(runs, measured_m, fitted, settings, scales_area,
-                                        settings.max_forward_runs))
+        fold_fits.append(fit_log_factor(runs, measured_m, fitted, settings, scales_area))
         held_out_m[~fitted] = runs.depth_m(fold_fits[-1].log_factor)[~fitted]
     fitted_m = runs.depth_m(fit.log_factor)
     before, after = _rms(believed_m - measured_m), _rms(held_out_m - measured_m)

@@ -85,13 +85,13 @@ class FactorFit:
 
 
 def fit_log_factor(runs: ForwardRuns, measured_m: np.ndarray, fitted: np.ndarray,
-                   settings: ScarDiagnoseSettings, scales_worn_area: bool,
-                   runs_allowed: int) -> FactorFit:
+                   settings: ScarDiagnoseSettings, scales_worn_area: bool) -> FactorFit:
     """The least-squares ln(factor) on the points ``fitted`` (a boolean mask) of ``measured_m``,
-    running the model while it has not converged and fewer than ``runs_allowed`` runs were made
-    (module docstring)."""
+    running the model while it has not converged and fewer than ``max_forward_runs`` runs were
+    made (module docstring)."""
     bound, tolerance = settings.log_factor_bound, settings.log_factor_tolerance
-    if len(runs.factors) == 0 and runs_allowed > 0:
+    runs_allowed = settings.max_forward_runs
+    if len(runs.factors) == 0:
         runs.run(_first_step(runs.depth_m(0.0), measured_m, fitted, settings, scales_worn_area))
     while True:
         theta = _surrogate_minimiser(runs, measured_m, fitted, bound)

@@ -23,7 +23,12 @@ from pathlib import Path
 import numpy as np
 
 from fewear.errors import FewearInputError
-from fewear.io.csv_rows import numeric_column, read_header, read_rows
+from fewear.io.csv_rows import (
+    numeric_column,
+    read_header,
+    read_rows,
+    require_finite_column,
+)
 
 POSITION_UNITS = {"x_mm": 1e-3, "x_m": 1.0}
 """The position column's names and their scale to m."""
@@ -74,7 +79,7 @@ def read_measured_scar(path: str | Path) -> MeasuredScar:
     columns = [numeric_column(name, [row[position] for _, row in rows], where)
                for position, name in enumerate(header)]
     for name, values in zip(header, columns):
-        _require_finite(name, values, where)
+        require_finite_column(name, values, where)
     x_m = POSITION_UNITS[header[0]] * columns[0]
     _require_increasing(header[0], x_m, where)
     if x_m.size < MIN_POINTS:
@@ -115,13 +120,6 @@ def _height_scales(source: str, line: int, header: list[str]) -> list[float]:
 
 def _profile_name(column: str) -> str:
     return next(column.removesuffix(suffix) for suffix in HEIGHT_UNITS if column.endswith(suffix))
-
-
-def _require_finite(name: str, values: np.ndarray, where) -> None:
-    bad = np.flatnonzero(~np.isfinite(values))
-    if bad.size:
-        raise FewearInputError(
-            f"{where(bad[0])}, column {name}: {values[bad[0]]!r}; expected a finite number")
 
 
 def _require_increasing(name: str, x_m: np.ndarray, where) -> None:
