@@ -8,8 +8,10 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
+from fewear.diagnose.joint.forward import wear_step_ends
 from fewear.io.config import load_config
 from fewear.loop.block import block_dynamics, new_bushing, new_case, run_block
+from fewear.loop.checkpoint import Checkpoint
 from fewear.loop.settings import run_inputs_from_config, run_sections
 from tests.test_wear_loop import write_config
 
@@ -28,11 +30,13 @@ def small_inputs(tmp_path_factory):
     return run_inputs_from_config(config)
 
 
-def test_wear_steps_of_one_block_are_the_blocks_they_replace_on_its_history(small_inputs):
+def test_wear_steps_of_one_block_are_the_blocks_they_replace_on_its_history(small_inputs,
+                                                                             tmp_path):
     """Three wear steps on one recorded history leave the bore (depth to the last bit), the
     cycles and the mesh where three blocks given that same history leave them; the steps count
-    as one block with one record. The last step is cut at total_cycles (2000 + 2000 + 2000,
-    then 1000 in a block of its own)."""
+    as one block with one record, which keeps the bore after each inner step (as the blocks'
+    records have it, and through a checkpoint). The last step is cut at total_cycles (2000 +
+    2000 + 2000, then 1000 in a block of its own)."""
     stepped = replace(small_inputs, loop=replace(small_inputs.loop, wear_steps_per_block=3))
     cases = {}
     for name, inputs in (("steps", stepped), ("blocks", small_inputs)):
@@ -51,6 +55,21 @@ def test_wear_steps_of_one_block_are_the_blocks_they_replace_on_its_history(smal
     assert (steps.state.blocks, len(steps.records), steps.records[0].block_cycles) == (1, 1, 6000)
     assert (blocks.state.blocks, len(blocks.records)) == (3, 3)
     assert steps.counts.ale_moves == blocks.counts.ale_moves == 3
+    # the block's record keeps the bore after its inner steps: the first two blocks' records
+    inner = steps.records[0]
+    np.testing.assert_array_equal(inner.inner_cycles, [r.cycles for r in blocks.records[:2]])
+    np.testing.assert_array_equal(inner.inner_depth_m, [r.depth_m for r in blocks.records[:2]])
+    # the diagnosis's forward history reads the bore after every wear step either way
+    nodes = steps.state.depth_m.size
+    for stepped_, blocked in zip(wear_step_ends(steps.records, nodes),
+                                 wear_step_ends(blocks.records, nodes)):
+        np.testing.assert_array_equal(stepped_, blocked)
+    # and so does a checkpoint
+    checkpoint = Checkpoint(tmp_path, {"case": "stepped"})
+    checkpoint.save("rigid", steps)
+    loaded, = checkpoint.load(["rigid"])["rigid"].records
+    np.testing.assert_array_equal(loaded.inner_cycles, inner.inner_cycles)
+    np.testing.assert_array_equal(loaded.inner_depth_m, inner.inner_depth_m)
     run_block("rigid", stepped, stepped_bushing, steps)
     assert (steps.state.cycles, steps.records[-1].block_cycles, steps.state.blocks) == (7000, 1000,
                                                                                         2)

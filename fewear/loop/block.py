@@ -8,6 +8,8 @@ import time
 from concurrent.futures import Executor, Future, ThreadPoolExecutor
 from dataclasses import replace
 
+import numpy as np
+
 from fewear.contact.admissible import ContactLoadError
 from fewear.errors import FewearInputError
 from fewear.loop.progress import BlockRecord, CaseProgress, timed
@@ -101,7 +103,7 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
     with timed(times, "contact"):
         steps = load_steps(history, loop.load_steps_per_cycle * loop.recorded_cycles_per_block,
                            inputs.dynamics.joint.law, inputs.impact_law)
-    following, peak_pressure, peak_rate = None, 0.0, 0.0
+    following, peak_pressure, peak_rate, inner = None, 0.0, 0.0, []
     for step in range(loop.wear_steps_per_block):
         worn, wear, rate = wear_step(rod, inputs, bushing, case.state, history, steps, times,
                                      added_depth_per_cycle)
@@ -118,6 +120,7 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
         peak_rate = max(peak_rate, rate)
         if last:
             break
+        inner.append(worn)
     with timed(times, "mesh"):
         snapshot = bushing.snapshot()
     case.node_ids, case.cells, case.meshed_xy_m = (snapshot.node_ids, snapshot.cells,
@@ -125,7 +128,9 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
     case.snapshots.append(snapshot.xy_m)
     case.records.append(BlockRecord(
         worn.cycles, worn.cycles - start.cycles, worn.depth_m.copy(),
-        history.peak_contact_force_N, history.impacts, peak_pressure, peak_rate))
+        history.peak_contact_force_N, history.impacts, peak_pressure, peak_rate,
+        np.array([w.cycles for w in inner], dtype=int),
+        np.array([w.depth_m for w in inner]).reshape(len(inner), worn.depth_m.size)))
     return following
 
 

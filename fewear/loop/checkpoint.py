@@ -34,7 +34,7 @@ from fewear.wear.extensions import SlidingState
 from fewear.wear.state import WearState
 
 FOLDER = "fewear-checkpoint"
-FORMAT = "fewear-run-checkpoint-2"
+FORMAT = "fewear-run-checkpoint-3"
 LOOP_COUNT_NAMES = [count.name for count in fields(LoopCounts)]
 UNREADABLE = (OSError, ValueError, KeyError, zipfile.BadZipFile, json.JSONDecodeError)
 
@@ -150,6 +150,13 @@ def _case_arrays(case: CaseProgress) -> dict:
         "record_impacts": np.array([r.impacts for r in records]),
         "record_values": np.array([[r.peak_contact_force_N, r.max_contact_pressure_Pa,
                                     r.max_depth_per_cycle_m] for r in records]),
+        # each block's inner wear steps, concatenated (their counts split them again)
+        "record_inner_counts": np.array([r.inner_cycles.size for r in records], dtype=int),
+        "record_inner_cycles": np.concatenate(
+            [np.zeros(0, dtype=int)] + [r.inner_cycles for r in records]),
+        "record_inner_depth_m": np.vstack(
+            [np.zeros((0, state.depth_m.size))]
+            + [r.inner_depth_m.reshape(-1, state.depth_m.size) for r in records]),
     }
 
 
@@ -163,10 +170,15 @@ def _case_from(meta: dict, data: dict, snapshots: list[np.ndarray]) -> CaseProgr
                       SlidingState(array("sliding_distance_m"), array("sliding_time_s"),
                                    array("lagged_power_W_m2"), float(meta["cycles"])),
                       meta["cycles"], meta["blocks"])
-    records = [BlockRecord(int(c), int(a), d, float(v[0]), int(i), float(v[1]), float(v[2]))
-               for c, a, d, i, v in zip(array("record_cycles"), array("record_block_cycles"),
-                                        array("record_depth_m"), array("record_impacts"),
-                                        array("record_values"))]
+    ends = np.cumsum(array("record_inner_counts"))
+    inner_cycles = np.split(array("record_inner_cycles"), ends[:-1])
+    inner_depth_m = np.split(array("record_inner_depth_m"), ends[:-1])
+    records = [BlockRecord(int(c), int(a), d, float(v[0]), int(i), float(v[1]), float(v[2]),
+                           ic, idm)
+               for c, a, d, i, v, ic, idm in zip(
+                   array("record_cycles"), array("record_block_cycles"),
+                   array("record_depth_m"), array("record_impacts"), array("record_values"),
+                   inner_cycles, inner_depth_m)]
     return CaseProgress(
         state=state, mechanism=MechanismState(meta["time_s"], array("q"), array("qd")),
         records=records, snapshots=snapshots, node_ids=array("node_ids"),

@@ -19,7 +19,9 @@ class BlockRecord:
     """One wear block: cycles at its end, the cycles it covered (the sum of its wear steps'
     A_j), the depth profile after it (at the state's node angles), and the most its simulated
     cycles saw over its wear steps (contact pressure; depth per cycle: Archard's plus the
-    impacts')."""
+    impacts'). ``inner_cycles`` (k,) and ``inner_depth_m`` (k, n): the cycles and depth profile
+    after each of its wear steps but the last (none with one step per block): the bore's
+    history at the loop's own resolution, not only at the ends of the dynamics' blocks."""
 
     cycles: int
     block_cycles: int
@@ -28,6 +30,8 @@ class BlockRecord:
     impacts: int
     max_contact_pressure_Pa: float
     max_depth_per_cycle_m: float
+    inner_cycles: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
+    inner_depth_m: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
 
 
 @dataclass

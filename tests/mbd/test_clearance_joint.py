@@ -151,20 +151,31 @@ def _undamped_rod_on_the_pocket_it_wore(**integrator):
     return (lambda: simulate(inputs, start=start)), profile, inputs
 
 
+def pocket_bottoms_rad(profile) -> np.ndarray:
+    """The angles of the local maxima of c(theta) worn at least half as deep as the deepest."""
+    c = profile.clearance_m
+    peak = (c >= np.roll(c, 1)) & (c >= np.roll(c, -1))
+    return profile.angle_rad[peak & (c - c.min() >= 0.5 * (c.max() - c.min()))]
+
+
 def test_a_collapsed_step_size_reports_where_the_pin_was():
-    """With min_step_s = 1e-9 s the undamped rod's steps collapse at t = 0.3924 s, where its pin
-    comes to rest in its slip under 8 kN in the worn pocket (the Newton iterates cycle across
-    the friction law's kink on the rod's end node). The error carries the joint's state: the
-    pin at the pocket's bottom (the maximum of c(theta), found here from the profile itself),
-    pressed in elastically (a penetration > 0 and far below the clearance: no jam)."""
+    """With min_step_s = 1e-9 s the undamped rod's steps collapse where its pin comes to rest in
+    its slip under several kN in one of the two worn pockets (the Newton iterates cycle across
+    the friction law's kink on the rod's end node): at t = 0.3924 s in the 184 deg pocket, or at
+    t = 0.4155 s in the 354 deg one where OpenBLAS's FMA kernels round the LAPACK calls of this
+    chaotic trajectory otherwise (measured on an AMD EPYC). The error carries the joint's
+    state: the pin at a pocket's bottom (found here from the profile itself), pressed in
+    elastically (a penetration > 0 and far below the clearance: no jam)."""
     from fewear.mbd.integrator import StepSizeCollapse
 
     run, profile, _ = _undamped_rod_on_the_pocket_it_wore(min_step_s=1e-9)
     with pytest.raises(StepSizeCollapse, match="clearance joint 0: penetration") as caught:
         run()
     (penetration_m, force_N, direction_rad), = caught.value.joints
-    bottom = profile.angle_rad[np.argmax(profile.clearance_m)]
-    assert abs(math.remainder(direction_rad - bottom, 2.0 * math.pi)) < math.radians(0.5)
+    bottoms = pocket_bottoms_rad(profile)
+    assert bottoms.size == 2  # the two pockets on the slide axis
+    apart = np.abs(np.remainder(direction_rad - bottoms + math.pi, 2.0 * math.pi) - math.pi)
+    assert apart.min() < math.radians(0.5)
     assert 0.0 < penetration_m < 0.1 * CLEARANCE_M and force_N > 1e3
 
 

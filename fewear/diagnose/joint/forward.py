@@ -2,10 +2,11 @@
 
 A run is :func:`fewear.loop.block.predict_case` for one rod model of a complete config (a model the
 user believes, or one with a cause switched on), without checkpoint or outputs. Its result, a
-:class:`WearHistory`, holds the depth at the bore nodes after every block; between blocks the depth
-is interpolated linearly in cycles (the blocks bound the depth increment, so this is the loop's own
-resolution). Runs are memoised by their config: a diagnosis asks for the same candidate runs many
-times, and diagnoses of several data sets against one model share them.
+:class:`WearHistory`, holds the depth at the bore nodes after every wear step (a block's dynamics
+serve ``wear_steps_per_block`` of them); between steps the depth is interpolated linearly in cycles
+(the steps bound the depth increment, so this is the loop's own resolution). Runs are memoised by
+their config: a diagnosis asks for the same candidate runs many times, and diagnoses of several
+data sets against one model share them.
 """
 
 from __future__ import annotations
@@ -32,7 +33,7 @@ DEPTH_REACH = 3.0
 
 @dataclass(frozen=True, eq=False)
 class WearHistory:
-    """The simulated worn bore after every block: ``cycles`` (m + 1,) from 0, ``depth_m``
+    """The simulated worn bore after every wear step: ``cycles`` (m + 1,) from 0, ``depth_m``
     (m + 1, n) at the node angles ``angle_rad`` (n,); ``sliding_m_per_cycle`` (n,): each node's
     mean sliding distance per crank cycle; ``stopped``: why the run ended early ('' if not)."""
 
@@ -44,8 +45,8 @@ class WearHistory:
     wall_time_s: float = 0.0
 
     def nodal_depth_m(self, cycles: float) -> np.ndarray:
-        """Depth at the nodes after ``cycles`` (linear between blocks; beyond the last block
-        extrapolated with the last block's rate)."""
+        """Depth at the nodes after ``cycles`` (linear between wear steps; beyond the last one
+        extrapolated with its rate)."""
         return self.nodal_depths_m(np.array([float(cycles)]))[0]
 
     def nodal_depths_m(self, cycles: np.ndarray) -> np.ndarray:
@@ -145,9 +146,9 @@ def simulate_wear(config: dict, label: str = "", comm=None) -> WearHistory:
     if not case.records:
         raise FewearInputError(f"forward run {label or rod}: no wear block completed ({stopped})")
     state = case.state
+    cycles, depth_m = wear_step_ends(case.records, state.depth_m.size)
     history = WearHistory(
-        state.angle_rad.copy(), np.array([0] + [r.cycles for r in case.records], dtype=float),
-        np.vstack([np.zeros_like(state.depth_m)] + [r.depth_m for r in case.records]),
+        state.angle_rad.copy(), cycles, depth_m,
         np.asarray(state.sliding.distance_m) / max(state.cycles, 1), stopped,
         time.perf_counter() - start)
     if comm.rank == 0:
@@ -156,6 +157,17 @@ def simulate_wear(config: dict, label: str = "", comm=None) -> WearHistory:
               + (" (stopped early)" if stopped else ""), file=sys.stderr, flush=True)
     _RUNS[key] = history
     return history
+
+
+def wear_step_ends(records, nodes: int) -> tuple[np.ndarray, np.ndarray]:
+    """The cycles (m + 1,) from 0 and the depth (m + 1, ``nodes``) after every wear step of the
+    block ``records`` (a block of several wear steps wears its bore in as many increments;
+    its end alone would leave a straight line across a bending curve)."""
+    cycles, depth_m = [np.zeros(1)], [np.zeros((1, nodes))]
+    for record in records:
+        cycles += [record.inner_cycles.astype(float), np.array([float(record.cycles)])]
+        depth_m += [record.inner_depth_m.reshape(-1, nodes), record.depth_m[None, :]]
+    return np.concatenate(cycles), np.vstack(depth_m)
 
 
 class _BlockProgress:
