@@ -11,7 +11,6 @@ import argparse
 import errno
 import importlib
 import logging
-import os
 import signal
 import sys
 
@@ -23,6 +22,7 @@ from fewear.errors import (
     one_line,
     set_interrupt_note,
 )
+from fewear.parallel import launcher_rank_and_size
 
 # subcommand -> "module:function" that takes the parsed arguments and returns an exit status
 HANDLERS = {
@@ -132,14 +132,6 @@ def print_default_config(args: argparse.Namespace) -> int:
     return 0
 
 
-def _is_root_rank() -> bool:
-    """True unless this process is a non-zero MPI rank (read from the launcher, no MPI import)."""
-    for variable in ("OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"):
-        if variable in os.environ:
-            return os.environ[variable] == "0"
-    return True
-
-
 def quiet_compiler_logs() -> None:
     """Keep the form compiler's gcc command lines off the user's terminal: FFCx installs a root
     log handler (``logging.basicConfig``) and cffi sets the root logger to INFO while it compiles
@@ -204,7 +196,7 @@ def naming_the_config(message: str, path: str | None) -> str:
 
 
 def _report(kind: str, message: str, status: int) -> int:
-    if _is_root_rank():
+    if launcher_rank_and_size()[0] == 0:
         print(f"fewear: {kind}: {one_line(message)}", file=sys.stderr, flush=True)
     return status
 

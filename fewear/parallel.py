@@ -20,6 +20,20 @@ from contextlib import ExitStack, contextmanager
 SINGLE_THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS")
 
 
+LAUNCHER_RANK_VARIABLES = (("OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"),
+                           ("PMI_RANK", "PMI_SIZE"), ("PMIX_RANK", "PMIX_SIZE"))
+"""The (rank, size) environment variables of Open MPI's, MPICH's and PMIx's launchers."""
+
+
+def launcher_rank_and_size() -> tuple[int, int]:
+    """This process's MPI rank and the number of ranks, read from the launcher's environment
+    without importing MPI: (0, 1) outside ``mpirun``."""
+    for rank, size in LAUNCHER_RANK_VARIABLES:
+        if rank in os.environ:
+            return int(os.environ[rank]), int(os.environ.get(size, "1"))
+    return 0, 1
+
+
 def usable_cores() -> int:
     """The CPU cores this process may run on."""
     return len(os.sched_getaffinity(0))

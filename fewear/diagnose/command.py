@@ -5,21 +5,33 @@ first, then joint wear data (bore profiles, maximum-depth growth, traces:
 :mod:`fewear.diagnose.joint.command`), both from their header; anything else is read as a
 pin-on-disc table
 (:mod:`fewear.diagnose.tribometer.command`).
+
+Under ``mpirun`` the joint diagnosis runs on every rank (its forward runs share the FE contact
+among them) and rank 0 writes; the scar and tribometer diagnoses are serial: rank 0 runs them
+alone and the other ranks end at once (before, every rank ran the whole diagnosis and wrote
+the same folder).
 """
 
 from __future__ import annotations
 
 import argparse
+import sys
+from importlib import import_module
 
 from fewear.diagnose.joint.measured import joint_data_kind
 from fewear.diagnose.scar.measured import is_scar_file
+from fewear.parallel import launcher_rank_and_size
 
 
 def main(args: argparse.Namespace) -> int:
-    if is_scar_file(args.measured[0]):
-        from fewear.diagnose.scar.command import run
-    elif joint_data_kind(args.measured[0]) is not None:
-        from fewear.diagnose.joint.command import run
-    else:
-        from fewear.diagnose.tribometer.command import run
-    return run(args)
+    first = args.measured[0]
+    kind = ("scar" if is_scar_file(first) else
+            "joint" if joint_data_kind(first) is not None else "tribometer")
+    rank, size = launcher_rank_and_size()
+    if kind != "joint" and rank > 0:
+        return 0
+    if kind != "joint" and size > 1:
+        print(f"fewear diagnose: the {kind} diagnosis is serial: rank 0 runs it, the other "
+              f"{size - 1} rank(s) have nothing to do", file=sys.stderr, flush=True)
+    room = import_module(f"fewear.diagnose.{kind}.command")
+    return room.run(args)

@@ -2,7 +2,11 @@
 and bad config refused with a message naming the place (exit 2) and nothing written."""
 
 import json
+import os
 import re
+import shutil
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -137,3 +141,29 @@ def test_missing_variables_are_reported_not_invented(tmp_path):
     report = (out / "report.md").read_text()
     assert "could not be tested: needs time_s" in report
     assert np.isfinite(summary["baseline"]["held_out_error"])
+
+
+def mpirun_fewear(*args: str) -> subprocess.CompletedProcess:
+    """``mpirun -n 2 python -m fewear.cli ARGS`` (skipped without mpirun)."""
+    mpirun = shutil.which("mpirun")
+    if mpirun is None:
+        pytest.skip("mpirun not found on PATH")
+    env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+           "OMPI_MCA_rmaps_base_oversubscribe": "1", "MPLBACKEND": "Agg"}
+    return subprocess.run([mpirun, "-n", "2", sys.executable, "-m", "fewear.cli", *args],
+                          capture_output=True, text=True, timeout=600, env=env)
+
+
+@pytest.mark.mpi
+def test_two_ranks_diagnose_tribometer_data_once(running_in_csv, outputs, tmp_path):
+    """`mpirun -n 2 fewear diagnose` on a pin-on-disc table: the serial diagnosis runs on rank 0
+    alone (one verdict; before, each rank ran it and both wrote the folder) and writes what the
+    serial command writes: the same files, diagnosis.json the same to the byte."""
+    out = tmp_path / "mpi"
+    process = mpirun_fewear("diagnose", str(running_in_csv), "--out", str(out))
+    assert process.returncode == 0, process.stderr
+    assert process.stdout.count("fewear diagnose: causes running_in") == 1
+    assert "rank 0 runs it, the other 1 rank(s)" in process.stderr
+    assert sorted(p.name for p in out.iterdir()) == sorted(p.name for p in outputs.iterdir())
+    assert (out / "diagnosis.json").read_text() == (outputs / "diagnosis.json").read_text()
+    assert [p.name for p in tmp_path.iterdir()] == ["mpi"]  # no staging folder left

@@ -185,6 +185,32 @@ def test_fewear_diagnose_reads_joint_files_and_writes_its_outputs(null_by_the_co
     assert f"max_extrapolation_factor = {chosen['max_extrapolation_factor']!r}" in extended
 
 
+@pytest.mark.slow
+@pytest.mark.mpi
+def test_two_ranks_diagnose_the_joint_once_with_the_serial_result(null_by_the_command, tmp_path):
+    """`mpirun -n 2 fewear diagnose` on the null data's files: every rank runs the diagnosis
+    (sharing each forward run's FE contact), rank 0 alone prints and writes (before, each rank
+    wrote the same folder); the figures are the serial command's to the FE solve's rounding on
+    two ranks (measured: 1e-10 of themselves; 53 s beside another job)."""
+    from tests.calibrate.test_cli import mpirun_fewear
+
+    serial, out, _ = null_by_the_command
+    data = out.parent
+    files = [data / name for name in ("profiles.csv", "max_wear.csv",
+                                      f"force_{SHORT[-1]}.csv")]
+    process = mpirun_fewear("diagnose", *map(str, files), "--config", str(data / "config.toml"),
+                            "--out", str(tmp_path / "mpi"))
+    assert process.returncode == 0, process.stderr
+    assert process.stdout.count("fewear diagnose: causes none") == 1
+    assert process.stderr.count("fewear diagnose: believed model") == 1
+    assert sorted(p.name for p in (tmp_path / "mpi").iterdir()) == sorted(
+        p.name for p in out.iterdir())
+    parallel = json.loads((tmp_path / "mpi" / "diagnosis.json").read_text())
+    assert parallel["cause"] == serial["cause"]
+    for key in ("held_out_error", "training_error", "angle_offset_deg"):
+        assert parallel["baseline"][key] == pytest.approx(serial["baseline"][key], rel=1e-6)
+
+
 def test_one_cycle_count_is_a_clear_error(believed, tmp_path, capsys):
     data, _, _ = hidden_joint_case(believed[1], "none", 21, with_growth=False,
                                    profile_cycles=SHORT)

@@ -21,18 +21,25 @@ from fewear.io.output import staged_output
 def run(args) -> int:
     """The diagnosis of the joint data ``args.measured`` against the believed model of
     ``args.config`` (the embedded default without one), its outputs written to ``args.out``."""
+    from mpi4py import MPI
+
     from fewear.loop.settings import run_sections
 
+    comm = MPI.COMM_WORLD  # every rank diagnoses (sharing each forward run), rank 0 writes
     config = load_config(args.config, [*run_sections(), "joint_diagnose"])
     settings = JointDiagnoseSettings.from_config(config.pop("joint_diagnose"))
     data = read_joint_measurements(args.measured)
-    print(f"fewear diagnose: {believed_model(args.config, config)}", file=sys.stderr, flush=True)
+    if comm.rank == 0:
+        print(f"fewear diagnose: {believed_model(args.config, config)}", file=sys.stderr,
+              flush=True)
     diagnosis = diagnose_joint(data, config, settings)
     summary = summarise(diagnosis)
-    with staged_output(args.out) as stage:
-        write_joint_outputs(diagnosis, summary, stage)
-    print_verdict(summary, args.out, unit=" m", confounded=[
-        f"also accepted (confounded): {group['cause']}" for group in summary["confounded"]])
+    with staged_output(args.out, comm) as stage:
+        if comm.rank == 0:
+            write_joint_outputs(diagnosis, summary, stage)
+    if comm.rank == 0:
+        print_verdict(summary, args.out, unit=" m", confounded=[
+            f"also accepted (confounded): {group['cause']}" for group in summary["confounded"]])
     return 0
 
 
