@@ -160,6 +160,26 @@ def test_resume_with_another_config_or_a_corrupt_checkpoint_is_an_input_error(
     assert "no checkpoint" in capsys.readouterr().err
 
 
+def test_a_checkpoint_of_another_format_is_refused_by_name(tmp_path, capsys, explicit_run):
+    """A checkpoint written by another version (here the format before the blocks kept their
+    inner wear steps) is refused with the format it has, the one read, and what to do."""
+    import shutil
+
+    old = tmp_path / "old"
+    shutil.copytree(explicit_run / "fewear-checkpoint", old / "fewear-checkpoint")
+    case = old / "fewear-checkpoint" / "rigid.npz"
+    with np.load(case, allow_pickle=False) as archive:
+        arrays = {key: archive[key] for key in archive.files}
+    meta = json.loads(str(arrays["meta"]))
+    arrays["meta"] = np.array(json.dumps({**meta, "format": "fewear-run-checkpoint-2"}))
+    with open(case, "wb") as handle:
+        np.savez(handle, **arrays)
+    assert run(write_config(tmp_path, implicit=False, smoothing=0.0), old, "--resume") == 2
+    error = capsys.readouterr().err
+    assert "'fewear-run-checkpoint-2', this fewear reads 'fewear-run-checkpoint-3'" in error
+    assert "run without --resume into another --out" in error
+
+
 def test_wear_through_the_wall_is_an_input_error(tmp_path, capsys):
     config = write_config(tmp_path)
     config.write_text(config.read_text().replace(

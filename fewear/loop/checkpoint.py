@@ -112,7 +112,9 @@ class Checkpoint:
                 "start again") from None
         if meta.get("format") != FORMAT:
             raise FewearInputError(
-                f"--resume: {path} has format {meta.get('format')!r}, expected {FORMAT!r}")
+                f"--resume: checkpoint {path} has format {meta.get('format')!r}, this fewear "
+                f"reads {FORMAT!r} (it was written by another version); run without --resume "
+                f"into another --out, or delete {self.path} to start again")
         difference = _first_difference(meta.get("config"), self.config)
         if difference:
             raise FewearInputError(
