@@ -293,7 +293,8 @@ def impact_measures_per_cycle(config: dict) -> dict[str, float]:
 
 
 def worn_volume_per_cycle_m3(history: WearHistory, config: dict) -> float:
-    """The sliding wear volume of one cycle early in the run (first block), for scaling."""
+    """The sliding wear volume of one cycle early in the run (its first wear step, on the
+    unworn bore), for scaling."""
     inner = config["bushing"]["inner_radius_m"]
     depth = history.depth_m[1]
     area = float(np.sum(inner * depth) * 2.0 * math.pi / depth.size)
