@@ -183,11 +183,6 @@ def test_fewear_diagnose_reads_joint_files_and_writes_its_outputs(null_by_the_co
                     f"{chosen['max_extrapolation_factor']:g} | " + rows[0].split(" | ", 2)[2]]
     extended = (out / "extended.toml").read_text()  # the lines that differ from the defaults
     assert f"max_extrapolation_factor = {chosen['max_extrapolation_factor']!r}" in extended
-    # the runs settled no cycle after a warm start; the config's own settling (the default's
-    # one cycle) stays, and what it moves is measured
-    assert "warm_settling_cycles" not in extended
-    assert summary["resolution"]["config_warm_settling_cycles"] == 1
-    assert 0.0 < summary["resolution"]["config_settling_rms_m"]
 
 
 @pytest.mark.slow

@@ -7,7 +7,6 @@ sample RMS about their mean) is exactly a f and halving f moves their mean by 2 
 
 import json
 import math
-import re
 from types import SimpleNamespace
 
 import numpy as np
@@ -31,7 +30,6 @@ def _made_up_run(config: dict) -> WearHistory:
     offset = {0.0: 0.0, 1.0: 1.0, 2.0: -1.0}[later] * SPREAD_PER_F_M * f
     if config["wear_loop"]["recorded_cycles_per_block"] > 1:
         offset += 0.1e-6  # recording twice the cycles moves the bore by 0.1 um
-    offset += 0.7e-6 * config["wear_loop"]["warm_settling_cycles"]  # 0.7 um a settling cycle
     depth = np.full(NODES, D_M * (1.0 + 4.0 * f) + offset)
     return WearHistory(np.linspace(0.0, 2 * math.pi, NODES, endpoint=False),
                        np.array([0.0, config["wear_loop"]["total_cycles"]]),
@@ -60,7 +58,7 @@ def made_up(monkeypatch):
 CONFIG = {"wear_loop": {"rod_models": ["rigid"], "extrapolation": "adaptive",
                         "max_extrapolation_factor": 50000.0, "max_depth_increment_fraction": 0.25,
                         "recorded_cycles_per_block": 1, "wear_steps_per_block": 1,
-                        "warm_settling_cycles": 0, "total_cycles": 100},
+                        "total_cycles": 100},
           "mechanism": {"initial_crank_angle_deg": 0.0}}
 OBS = SimpleNamespace(cycles=np.array([LAST / 2, LAST]), angle_rad=None)
 
@@ -87,27 +85,12 @@ def test_the_coarsest_blocks_whose_noise_is_within_the_scatter_are_chosen(made_u
     assert found["halved_blocks_rms_m"] == pytest.approx(2 * 0.0625 * D_M * rms_of_counts)
     assert found["start_angle_spread_rms_m"] == spreads[2]
     assert found["doubled_recorded_cycles_rms_m"] == pytest.approx(0.1e-6 * rms_of_counts)
-    assert found["config_settling_rms_m"] == 0.0  # the runs settle as the config does
     assert resolution.model_noise_m(found) == pytest.approx(max(spreads[2],
                                                                 found["halved_blocks_rms_m"]))
     # three runs per level, and beside each level the doubled recorded cycles of the level
     # before (needed if that one is chosen): the chosen one's is not run again
     assert made_up == ([0.25] * 3 + [0.125] * 3 + [0.25] + [0.0625] * 3 + [0.125]
                        + [0.03125] * 3 + [0.0625])
-
-
-def test_the_config_s_own_warm_settling_is_measured_at_the_chosen_blocks(made_up):
-    """The runs settle 0 cycles, the config 1 (0.7 um more wear here): one more run, at the
-    chosen blocks, measures the move, and it counts in the model's noise."""
-    settled = {**CONFIG, "wear_loop": {**CONFIG["wear_loop"], "warm_settling_cycles": 1}}
-    config, found = resolution.resolve_wear_step(settled, OBS, max_halvings=6, max_offset_deg=30,
-                                                 warm_settling_cycles=0)
-    assert config["wear_loop"]["warm_settling_cycles"] == 0  # the runs' own
-    assert found["config_warm_settling_cycles"] == 1
-    rms_of_counts = SCALE * math.sqrt((0.25 + 1.0) / 2)
-    assert found["config_settling_rms_m"] == pytest.approx(0.7e-6 * rms_of_counts)
-    assert resolution.model_noise_m(found) == pytest.approx(0.7e-6 * rms_of_counts)
-    assert made_up[-1] == 0.0625  # the chosen level's, after the ladder
 
 
 def test_the_finest_allowed_blocks_when_the_noise_stays_above_the_scatter(made_up):
@@ -124,15 +107,3 @@ def test_the_config_s_blocks_with_no_halving_allowed_or_no_profiles(made_up, mon
     config, found = resolution.resolve_wear_step(CONFIG, OBS, max_halvings=6, max_offset_deg=30)
     assert len(found["wear_step_levels"]) == 1 and math.isnan(found["halved_blocks_rms_m"])
     assert config["wear_loop"]["max_depth_increment_fraction"] == 0.25
-
-
-@pytest.mark.parametrize("value", [-1, 1.5, True])
-def test_a_bad_warm_settling_is_refused_naming_it(value):
-    from fewear.diagnose.joint.settings import JointDiagnoseSettings
-    from fewear.errors import FewearInputError
-    from fewear.io.config import load_config
-
-    section = load_config(None, ["joint_diagnose"])["joint_diagnose"]
-    with pytest.raises(FewearInputError, match=re.escape(
-            f"[joint_diagnose] warm_settling_cycles = {value!r}: expected a whole number >= 0")):
-        JointDiagnoseSettings.from_config({**section, "warm_settling_cycles": value})

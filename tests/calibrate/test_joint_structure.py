@@ -110,5 +110,5 @@ def test_a_large_misfit_without_a_cause_is_reported_unexplained():
         fit = Fit("baseline", np.zeros(1), 1, float(r @ r), r.size, rms, rms, residual)
         resolution = {"instrument_scatter_m": scatter_estimate_m(angle, residual, cycles),
                       "halved_blocks_rms_m": 0.0, "doubled_recorded_cycles_rms_m": 0.0,
-                      "config_settling_rms_m": 0.0, "start_angle_spread_rms_m": 0.0}
+                      "start_angle_spread_rms_m": 0.0}
         assert len(_unexplained(fit, fit, [], resolution, [])) == expected

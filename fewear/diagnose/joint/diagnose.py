@@ -315,13 +315,7 @@ class JointDiagnosis:
 
     @property
     def extended_config(self) -> dict:
-        """The extended model's config, with the believed config's own warm settling (the
-        forward runs settle ``[joint_diagnose] warm_settling_cycles``; the resolution reports
-        what that moves)."""
-        extended = copy.deepcopy(_final(self.rounds).extended_config)
-        extended["wear_loop"]["warm_settling_cycles"] = self.resolution[
-            "config_warm_settling_cycles"]
-        return extended
+        return _final(self.rounds).extended_config
 
     @property
     def extended_fit(self) -> Fit:
@@ -347,8 +341,7 @@ def diagnose_joint(data: JointMeasurements, config: dict,
     _check_run_length(data, obs, _believed_config(config, obs, settings))
     with workers_kept():
         config, resolution = resolve_wear_step(config, obs, settings.max_wear_step_halvings,
-                                               settings.max_offset_deg,
-                                               settings.warm_settling_cycles)
+                                               settings.max_offset_deg)
         floor_m = _noise_floor_m(resolution)
         rounds = [_round(data, obs, config, settings, (), floor_m)]
         while (rounds[-1].named and len(_named(rounds)) < settings.max_causes
@@ -761,7 +754,6 @@ def _unexplained(baseline: Fit, final_fit: Fit, causes, resolution: dict,
     misfit_m, sentence = misfit
     noise = {"blocks": resolution["halved_blocks_rms_m"],
              "recorded": resolution["doubled_recorded_cycles_rms_m"],
-             "settling": resolution["config_settling_rms_m"],
              "spread": resolution["start_angle_spread_rms_m"]}
     limit = max(noise, key=noise.get)
     if misfit_m <= UNEXPLAINED_SCATTERS * noise[limit]:
@@ -777,10 +769,6 @@ LIMITS = {
     "recorded": ("the model's own sampling of the crank cycles moves its bore by {:.2g} m (twice "
                  "the recorded cycles), so more recorded cycles ([wear_loop] "
                  "recorded_cycles_per_block) are needed to tell the causes apart"),
-    "settling": ("the forward runs' warm settling moves the model's bore by {:.2g} m (run "
-                 "with the config's own [wear_loop] warm_settling_cycles), so the runs need the "
-                 "config's settling ([joint_diagnose] warm_settling_cycles) to tell the causes "
-                 "apart"),
     "spread": ("the model's own bore differs by {:.2g} m between runs whose crank starts "
                + ", ".join(f"{offset:g}" for offset in (0.0, *MEMBER_START_OFFSETS_DEG))
                + " deg later (its impacting orbit is chaotic), so smaller wear steps, the "

@@ -120,13 +120,6 @@ def with_doubled_recorded_cycles(config: dict) -> dict:
     return changed
 
 
-def with_warm_settling(config: dict, cycles: int) -> dict:
-    """``config`` whose blocks settle ``cycles`` crank cycles after a warm start."""
-    changed = copy.deepcopy(config)
-    changed["wear_loop"]["warm_settling_cycles"] = int(cycles)
-    return changed
-
-
 def simulate_wear(config: dict, label: str = "", comm=None) -> WearHistory:
     """The wear loop of the config's (single) rod model up to its ``total_cycles``. A run that
     wears through the wall or whose contact fails ends there (``stopped`` says why)."""

@@ -133,10 +133,7 @@ def _resolution_lines(resolution: dict) -> list[str]:
                 "; not met within [joint_diagnose] max_wear_step_halvings, the finest allowed "
                 "is taken")
              + "; twice the crank cycles recorded per block move the chosen model's bore by "
-             f"{resolution['doubled_recorded_cycles_rms_m']:.2g} m, the config's own "
-             f"{resolution['config_warm_settling_cycles']} warm settling cycle(s) per block "
-             f"(the runs settle [joint_diagnose] warm_settling_cycles) by "
-             f"{resolution['config_settling_rms_m']:.2g} m. Causes that move the bore "
+             f"{resolution['doubled_recorded_cycles_rms_m']:.2g} m. Causes that move the bore "
              "less than these cannot be told from the model's own noise."), "",
             f"| {' | '.join(keys)} | runs apart (m) | moved from the coarser (m) | |",
             "|" + "---|" * (len(keys) + 3), *rows]

@@ -41,7 +41,6 @@ from fewear.diagnose.joint.forward import (
     started_later,
     with_doubled_recorded_cycles,
     with_halved_wear_steps,
-    with_warm_settling,
 )
 
 MEMBER_START_OFFSETS_DEG = (1.0, 2.0)
@@ -67,21 +66,15 @@ def baseline_fit(name: str, run: WearHistory, obs: Observations, max_offset_deg:
 
 
 def resolve_wear_step(config: dict, obs: Observations, max_halvings: int,
-                      max_offset_deg: float,
-                      warm_settling_cycles: int | None = None) -> tuple[dict, dict[str, Any]]:
+                      max_offset_deg: float) -> tuple[dict, dict[str, Any]]:
     """(the believed ``config`` at the coarsest wear blocks its noise allows, the resolution)
     by the module docstring's rule. The resolution (JSON-ready): ``instrument_scatter_m`` (from
     neighbouring profile points of the residuals of the user's model,
     :func:`fewear.diagnose.joint.structure.scatter_estimate_m`; None without profiles, and then
     the user's blocks are kept), ``wear_step_levels`` (every level measured), the chosen level's
-    ``start_angle_spread_rms_m`` and ``halved_blocks_rms_m`` (the next level's move),
+    ``start_angle_spread_rms_m`` and ``halved_blocks_rms_m`` (the next level's move), and
     ``doubled_recorded_cycles_rms_m`` (its bore with twice the crank cycles recorded per block:
-    the sampling of the orbit), and ``config_settling_rms_m`` (its bore with ``config``'s own
-    warm settling cycles, ``config_warm_settling_cycles``, where the runs settle
-    ``warm_settling_cycles`` instead; 0 where they settle as the config does, None)."""
-    config_settling = config["wear_loop"]["warm_settling_cycles"]
-    if warm_settling_cycles is not None:
-        config = with_warm_settling(config, warm_settling_cycles)
+    the sampling of the orbit)."""
     rod = config["wear_loop"]["rod_models"][0]
     counts = np.unique(obs.cycles)
     level_config = model_config(config, rod, int(obs.cycles.max()) + 1)
@@ -101,11 +94,7 @@ def resolve_wear_step(config: dict, obs: Observations, max_halvings: int,
         configs.append(with_halved_wear_steps(configs[-1]))
         members.append(_members(configs[-1], _doubled(configs[-2])))
     chosen = _chosen_level(levels, scatter, max_halvings)
-    settling = config["wear_loop"]["warm_settling_cycles"]
-    checks = [_doubled(configs[chosen])] + ([] if config_settling == settling else [(
-        with_warm_settling(configs[chosen], config_settling),
-        f"believed model, the config's {config_settling} warm settling cycle(s)")])
-    doubled, *settled = simulate_wears(checks)
+    doubled, = simulate_wears([_doubled(configs[chosen])])
     resolved = _with_blocks(config, levels[chosen].blocks)
     next_move = levels[chosen + 1].change_from_coarser_rms_m if chosen + 1 < len(levels) else None
     return resolved, {
@@ -117,18 +106,13 @@ def resolve_wear_step(config: dict, obs: Observations, max_halvings: int,
         "start_angle_spread_rms_m": levels[chosen].spread_rms_m,
         "halved_blocks_rms_m": next_move if next_move is not None else math.nan,
         "doubled_recorded_cycles_rms_m": _rms(doubled.nodal_depths_m(counts)
-                                              - members[chosen][0].nodal_depths_m(counts)),
-        "config_warm_settling_cycles": int(config_settling),
-        "config_settling_rms_m": _rms(settled[0].nodal_depths_m(counts)
-                                      - members[chosen][0].nodal_depths_m(counts))
-        if settled else 0.0}
+                                              - members[chosen][0].nodal_depths_m(counts))}
 
 
 def model_noise_m(resolution: dict[str, Any]) -> float:
-    """The believed model's own noise at its chosen level: the largest of the runs' spread, the
-    move of halved blocks and that of the config's own warm settling (0 where not measured)."""
-    noise = [resolution.get("start_angle_spread_rms_m"), resolution.get("halved_blocks_rms_m"),
-             resolution.get("config_settling_rms_m")]
+    """The believed model's own noise at its chosen level: the larger of the runs' spread and
+    the move of halved blocks (0 where not measured)."""
+    noise = [resolution.get("start_angle_spread_rms_m"), resolution.get("halved_blocks_rms_m")]
     return max([value for value in noise if value is not None and math.isfinite(value)],
                default=0.0)
 

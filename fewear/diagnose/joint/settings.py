@@ -49,7 +49,6 @@ class JointDiagnoseSettings:
     max_offset_deg: float
     max_causes: int
     max_wear_step_halvings: int
-    warm_settling_cycles: int
 
     def __post_init__(self):
         unknown = [c for c in self.candidates if c not in CAUSES]
@@ -83,12 +82,6 @@ class JointDiagnoseSettings:
                 f"[joint_diagnose] max_wear_step_halvings = {self.max_wear_step_halvings!r}: "
                 f"expected a whole number from 0 (the config's wear blocks as they are) to "
                 f"{MAX_HALVINGS}")
-        if isinstance(self.warm_settling_cycles, bool) or not (
-                isinstance(self.warm_settling_cycles, int) and self.warm_settling_cycles >= 0):
-            raise FewearInputError(
-                f"[joint_diagnose] warm_settling_cycles = {self.warm_settling_cycles!r}: "
-                "expected a whole number >= 0 (crank cycles each forward run's block settles "
-                "after a warm start)")
         if not self.max_k_scale > 1.0:
             raise FewearInputError(
                 f"[joint_diagnose] max_k_scale = {self.max_k_scale!r}: expected > 1")
