@@ -27,11 +27,12 @@ def main(args: argparse.Namespace) -> int:
     first = args.measured[0]
     kind = ("scar" if is_scar_file(first) else
             "joint" if joint_data_kind(first) is not None else "tribometer")
-    rank, size = launcher_rank_and_size()
-    if kind != "joint" and rank > 0:
-        return 0
-    if kind != "joint" and size > 1:
-        print(f"fewear diagnose: the {kind} diagnosis is serial: rank 0 runs it, the other "
-              f"{size - 1} rank(s) have nothing to do", file=sys.stderr, flush=True)
+    if kind != "joint":  # serial: rank 0 alone
+        rank, size = launcher_rank_and_size()
+        if rank > 0:
+            return 0
+        if size > 1:
+            print(f"fewear diagnose: the {kind} diagnosis is serial: rank 0 runs it, the other "
+                  f"{size - 1} rank(s) have nothing to do", file=sys.stderr, flush=True)
     room = import_module(f"fewear.diagnose.{kind}.command")
     return room.run(args)

@@ -158,7 +158,7 @@ def _case_arrays(case: CaseProgress) -> dict:
             [np.zeros(0, dtype=int)] + [r.inner_cycles for r in records]),
         "record_inner_depth_m": np.vstack(
             [np.zeros((0, state.depth_m.size))]
-            + [r.inner_depth_m.reshape(-1, state.depth_m.size) for r in records]),
+            + [r.inner_depth_m for r in records]),
     }
 
 

@@ -30,8 +30,8 @@ class BlockRecord:
     impacts: int
     max_contact_pressure_Pa: float
     max_depth_per_cycle_m: float
-    inner_cycles: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
-    inner_depth_m: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+    inner_cycles: np.ndarray
+    inner_depth_m: np.ndarray
 
 
 @dataclass

@@ -166,7 +166,7 @@ def wear_step_ends(records, nodes: int) -> tuple[np.ndarray, np.ndarray]:
     cycles, depth_m = [np.zeros(1)], [np.zeros((1, nodes))]
     for record in records:
         cycles += [record.inner_cycles.astype(float), np.array([float(record.cycles)])]
-        depth_m += [record.inner_depth_m.reshape(-1, nodes), record.depth_m[None, :]]
+        depth_m += [record.inner_depth_m, record.depth_m[None, :]]
     return np.concatenate(cycles), np.vstack(depth_m)
 
 
