@@ -32,7 +32,15 @@ from fewear.diagnose.joint.fitting import (
     predict,
     running_in_time_map,
 )
-from fewear.diagnose.joint.forward import BLOCK_WEAR_STEPS, WearHistory, with_halved_wear_steps
+from fewear.diagnose.joint.forward import (
+    BLOCK_WEAR_STEPS,
+    WearHistory,
+    model_config,
+    simulate_wear,
+    unworn_volume_per_cycle_m3,
+    with_halved_wear_steps,
+    worn_volume_per_cycle_m3,
+)
 from fewear.diagnose.joint.refinement import REFINEMENTS, fit_causes
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
 from fewear.errors import FewearInputError
@@ -188,10 +196,9 @@ def test_an_impact_form_without_impacts_to_count_is_not_run(monkeypatch):
     out, not run at coefficients of 1e300."""
     import fewear.diagnose.joint.catalogue as catalogue
 
-    monkeypatch.setattr(catalogue, "model_config", lambda config, rod, cycles: config)
     monkeypatch.setattr(catalogue, "impact_measures_per_cycle",
                         lambda config: {"energy": 2.0, "impulse": 0.0, "speed": 0.0})
-    monkeypatch.setattr(catalogue, "worn_volume_per_cycle_m3", lambda run, config: 1e-12)
+    monkeypatch.setattr(catalogue, "unworn_volume_per_cycle_m3", lambda config: 1e-12)
     config = {"wear_loop": {"rod_models": ["rigid"]}, "wear": {}}
     made = []
 
@@ -208,6 +215,23 @@ def test_an_impact_form_without_impacts_to_count_is_not_run(monkeypatch):
     assert forms[0].grid == pytest.approx(
         (0.0,) + tuple(ratio * 0.5e-12 for ratio in sorted(settings.impact_volume_ratios)))
     assert len(made) == len(settings.impact_volume_ratios)
+
+
+def test_the_impact_grid_s_scale_from_one_cycle_is_the_believed_run_s_first_wear_step(tmp_path):
+    """The impact grid is scaled before the believed run is made (its runs go beside it): by a
+    run of one crank cycle. Its wear step is made on the unworn bore as the believed run's first
+    is, so the sliding volume per cycle is the same (to rounding), whatever the steps' length."""
+    from fewear.io.config import load_config
+    from fewear.loop.settings import run_sections
+    from tests.calibrate.joint_cases import believed_text
+
+    (tmp_path / "believed.toml").write_text(believed_text())
+    config = load_config(tmp_path / "believed.toml", run_sections())
+    believed = model_config(config, "rigid", 6000)
+    run = simulate_wear(believed)
+    assert run.cycles[1] > 100  # the believed run's first step is long
+    assert unworn_volume_per_cycle_m3(config) == pytest.approx(
+        worn_volume_per_cycle_m3(run, believed), rel=1e-9)
 
 
 # --- running-in: the time map of each form, and the form told from the data ---------------------

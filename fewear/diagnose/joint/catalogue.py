@@ -28,8 +28,7 @@ from fewear.diagnose.joint.forward import (
     RunMaker,
     WearHistory,
     impact_measures_per_cycle,
-    model_config,
-    worn_volume_per_cycle_m3,
+    unworn_volume_per_cycle_m3,
 )
 from fewear.wear.extensions import extension_to_config
 
@@ -284,23 +283,38 @@ class ImpactWear(GridCause):
         return changed
 
     def forms(self, believed: Believed, settings: RunGrids) -> tuple[Candidate, ...]:
-        config, base = believed.config, believed.run
-        rod = config["wear_loop"]["rod_models"][0]
-        volume = worn_volume_per_cycle_m3(base, config)
-        measures = impact_measures_per_cycle(model_config(config, rod, believed.cycles))
+        grids = self._grids(believed.config, settings)
+        runs = iter(believed.make_runs(self._requests(believed.config, grids)))
         forms = []
-        for form in settings.impact_forms:
-            if not measures[form] > 0.0:  # no impact the form counts (none above a threshold)
-                continue
-            key = IMPACT_FORMS[form]
-            assumed = config["wear"].get(key, 0.0)
-            per_unit = volume / measures[form]
-            grid = [assumed] + [assumed + ratio * per_unit
-                                for ratio in sorted(settings.impact_volume_ratios)]
-            runs = [base] + believed.make_runs([(self.switched_on(config, c, form),
-                                                 f"{key} = {c:.3g}") for c in grid[1:]])
-            forms += lasting(self.candidate(runs, grid, form), believed.needed_cycles)
+        for form, grid in grids:
+            made = [believed.run] + [next(runs) for _ in grid[1:]]
+            forms += lasting(self.candidate(made, grid, form), believed.needed_cycles)
         return tuple(forms)
+
+    def runs_asked(self, config: dict, settings: RunGrids) -> list[tuple[dict, str]]:
+        return self._requests(config, self._grids(config, settings))
+
+    def _requests(self, config: dict, grids: list[tuple[str, list[float]]]):
+        """The grids' runs but the believed coefficient's (the believed run)."""
+        return [(self.switched_on(config, c, form), f"{IMPACT_FORMS[form]} = {c:.3g}")
+                for form, grid in grids for c in grid[1:]]
+
+    def _grids(self, config: dict, settings: RunGrids) -> list[tuple[str, list[float]]]:
+        """(form, [the believed coefficient, then one per ``impact_volume_ratios``]) of each
+        form whose measure the unworn joint's impacts reach (none above a force threshold: not
+        tried). The scale, sliding volume over impact measure per cycle on the unworn bore, comes
+        from a run of the believed config's first wear step and a cycle of its dynamics."""
+        measures = impact_measures_per_cycle(config)
+        volume = unworn_volume_per_cycle_m3(config)
+        grids = []
+        for form in settings.impact_forms:
+            if not measures[form] > 0.0:
+                continue
+            assumed = config["wear"].get(IMPACT_FORMS[form], 0.0)
+            per_unit = volume / measures[form]
+            grids.append((form, [assumed] + [assumed + ratio * per_unit
+                                             for ratio in sorted(settings.impact_volume_ratios)]))
+        return grids
 
 
 CAUSES: dict[str, Cause] = {cause.name: cause for cause in (

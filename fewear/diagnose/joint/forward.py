@@ -299,3 +299,13 @@ def worn_volume_per_cycle_m3(history: WearHistory, config: dict) -> float:
     depth = history.depth_m[1]
     area = float(np.sum(inner * depth) * 2.0 * math.pi / depth.size)
     return config["bushing"]["width_m"] * area / history.cycles[1]
+
+
+def unworn_volume_per_cycle_m3(config: dict) -> float:
+    """:func:`worn_volume_per_cycle_m3` of the config's rod model from a run of one crank cycle
+    (one wear step on the unworn bore: the rate of a longer run's first step, which is made on
+    the same bore), so that runs scaled by it need not wait for the config's own run."""
+    rod = config["wear_loop"]["rod_models"][0]
+    first_step = model_config(config, rod, 1)
+    run, = simulate_wears([(first_step, f"{rod} rod, first wear step")])
+    return worn_volume_per_cycle_m3(run, first_step)
