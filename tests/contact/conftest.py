@@ -12,8 +12,8 @@ HERTZ_DEMO = Path(__file__).resolve().parents[2] / "demos" / "hertz_contact.py"
 def hertz_demo(tmp_path_factory):
     """demos/hertz_contact.py run once, in this process, on its full meshes: its output folder and
     its namespace (the refinement study's constants, table rows and FE results). Shared by the
-    demo's test (tests/contact/test_demo.py) and the FE-against-Hertz tests
-    (tests/contact/test_hertz.py), which solve the same three meshes."""
+    demo's test and the FE-against-Hertz tests (both in tests/contact/test_hertz.py, one file:
+    the test run gives each file to one worker), which solve the same three meshes."""
     out = tmp_path_factory.mktemp("hertz_demo")
     with pytest.MonkeyPatch.context() as patch:
         patch.setenv("FEWEAR_DEMO_OUT", str(out))
