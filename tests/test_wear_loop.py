@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from fewear.cli import main
+from tests.mpi import mpirun_fewear
 
 R_B = 0.010
 SMALL = """
@@ -199,20 +200,8 @@ def test_two_ranks_give_the_serial_wear(tmp_path, explicit_run):
     step-size control onto another path; the condensed contact is solved redundantly from the
     same compliance; only rank 0 writes). Measured: bit-identical (2e-4 without the rounding;
     0.7 % apart after the first block with a 1 pm rounding of the 2,880 sampled directions)."""
-    import os
-    import shutil
-    import subprocess
-    import sys
-
-    mpirun = shutil.which("mpirun")
-    if mpirun is None:
-        pytest.skip("mpirun not found on PATH")
     config = write_config(tmp_path, implicit=False, smoothing=0.0)
-    env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
-           "OMPI_MCA_rmaps_base_oversubscribe": "1", "MPLBACKEND": "Agg"}
-    process = subprocess.run(
-        [mpirun, "-n", "2", sys.executable, "-m", "fewear.cli", "run", "--config", str(config),
-         "--out", str(tmp_path / "mpi")], capture_output=True, text=True, timeout=600, env=env)
+    process = mpirun_fewear("run", "--config", str(config), "--out", str(tmp_path / "mpi"))
     assert process.returncode == 0, process.stderr
     serial, parallel = (np.genfromtxt(folder / "wear_profile.csv", delimiter=",", names=True,
                                       dtype=None, encoding=None)
@@ -253,20 +242,8 @@ def test_ranks_split_among_the_rods_give_the_serial_result(tmp_path,
                                                           two_rods_one_after_the_other):
     """`mpirun -n 2 fewear run` with two rod models: one rank per rod model, the same files as
     the serial run, byte for byte."""
-    import os
-    import shutil
-    import subprocess
-    import sys
-
-    mpirun = shutil.which("mpirun")
-    if mpirun is None:
-        pytest.skip("mpirun not found on PATH")
-    env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
-           "OMPI_MCA_rmaps_base_oversubscribe": "1", "MPLBACKEND": "Agg"}
-    process = subprocess.run(
-        [mpirun, "-n", "2", sys.executable, "-m", "fewear.cli", "run", "--config",
-         str(two_rods_config(tmp_path)), "--out", str(tmp_path / "mpi")],
-        capture_output=True, text=True, timeout=600, env=env)
+    process = mpirun_fewear("run", "--config", str(two_rods_config(tmp_path)), "--out",
+                            str(tmp_path / "mpi"))
     assert process.returncode == 0, process.stderr
     assert (tmp_path / "mpi" / "wear_profile.csv").read_text() == two_rods_one_after_the_other
 

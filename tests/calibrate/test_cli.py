@@ -2,11 +2,7 @@
 and bad config refused with a message naming the place (exit 2) and nothing written."""
 
 import json
-import os
 import re
-import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -17,6 +13,7 @@ from fewear.diagnose.tribometer.forward import hidden_case, write_measured_csv
 from fewear.io.config import DEFAULTS_DIR, load_config
 from fewear.wear.coefficient import wear_coefficient_from_config
 from fewear.wear.extensions import RunningIn, wear_extension_from_config
+from tests.mpi import mpirun_fewear
 
 
 @pytest.fixture(scope="module")
@@ -141,17 +138,6 @@ def test_missing_variables_are_reported_not_invented(tmp_path):
     report = (out / "report.md").read_text()
     assert "could not be tested: needs time_s" in report
     assert np.isfinite(summary["baseline"]["held_out_error"])
-
-
-def mpirun_fewear(*args: str) -> subprocess.CompletedProcess:
-    """``mpirun -n 2 python -m fewear.cli ARGS`` (skipped without mpirun)."""
-    mpirun = shutil.which("mpirun")
-    if mpirun is None:
-        pytest.skip("mpirun not found on PATH")
-    env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
-           "OMPI_MCA_rmaps_base_oversubscribe": "1", "MPLBACKEND": "Agg"}
-    return subprocess.run([mpirun, "-n", "2", sys.executable, "-m", "fewear.cli", *args],
-                          capture_output=True, text=True, timeout=600, env=env)
 
 
 @pytest.mark.mpi

@@ -192,7 +192,7 @@ def test_two_ranks_diagnose_the_joint_once_with_the_serial_result(null_by_the_co
     (sharing each forward run's FE contact), rank 0 alone prints and writes (before, each rank
     wrote the same folder); the figures are the serial command's to the FE solve's rounding on
     two ranks (measured: 1e-10 of themselves; 53 s beside another job)."""
-    from tests.calibrate.test_cli import mpirun_fewear
+    from tests.mpi import mpirun_fewear
 
     serial, out, _ = null_by_the_command
     data = out.parent

@@ -232,15 +232,13 @@ def test_two_ranks_give_the_serial_result(tmp_path):
     """Both paths under mpirun -n 2 (every rank holding the same gathered result) equal the
     serial run to 1e-8 of the peak pressure and of the pin centre."""
     import os
-    import shutil
     import subprocess
 
-    mpirun = shutil.which("mpirun")
-    if mpirun is None:
-        pytest.skip("mpirun not found")
+    from tests.mpi import MPI_ENV, mpirun_or_skip
+
+    mpirun = mpirun_or_skip()
     loads = [((-450.0, 700.0), 0.0, False), ((0.0, -3000.0), 0.01, True)]
-    env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
-           "OMPI_MCA_rmaps_base_oversubscribe": "1"}
+    env = {**os.environ, **MPI_ENV}
     results = {}
     for ranks in (1, 2):
         out = tmp_path / f"ranks{ranks}.npz"

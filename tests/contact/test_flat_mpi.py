@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from tests.contact.test_mpi import MPI_ENV, mpirun_or_skip
+from tests.mpi import MPI_ENV, mpirun_or_skip
 
 REPOSITORY = Path(__file__).resolve().parents[2]
 

@@ -12,7 +12,6 @@ up to 1020 bore elements, a minute or two under MPI).
 import csv
 import json
 import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -20,21 +19,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from tests.mpi import MPI_ENV, mpirun_or_skip
+
 FORCE_N = ("-450.0", "700.0")
 DEMO = Path(__file__).resolve().parents[2] / "demos" / "hertz_contact.py"
-MPI_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
-           "OMPI_MCA_rmaps_base_oversubscribe": "1", "MPLBACKEND": "Agg"}
 
 
 def contact_command(out):
     return [sys.executable, "-m", "fewear.cli", "contact", "--force", *FORCE_N, "--out", str(out)]
-
-
-def mpirun_or_skip():
-    mpirun = shutil.which("mpirun")
-    if mpirun is None:
-        pytest.skip("mpirun not found on PATH (Open MPI is installed with python3-dolfinx)")
-    return mpirun
 
 
 def run(command, **env):
