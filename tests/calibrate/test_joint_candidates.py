@@ -217,6 +217,22 @@ def test_an_impact_form_without_impacts_to_count_is_not_run(monkeypatch):
     assert len(made) == len(settings.impact_volume_ratios)
 
 
+def test_a_batch_hands_out_the_dearest_runs_first_and_more_impact_wear_before_less():
+    """Runs are handed out longest first (a flexible rod's cycle as four rigid ones); among runs
+    of equal length, the one with more impact wear first (it takes more, shorter blocks)."""
+    from fewear.diagnose.joint.forward import _handed_out_before
+
+    def run(rod, cycles, k_imp=0.0):
+        return {"wear_loop": {"rod_models": [rod], "total_cycles": cycles},
+                "wear": {"impact_wear_coefficient_m3_J": k_imp}}
+
+    runs = {"mu": run("rigid", 39000), "impact low": run("rigid", 39000, 1e-13),
+            "impact high": run("rigid", 39000, 1e-11), "believed": run("rigid", 117000),
+            "rod": run("flexible", 39000)}
+    order = sorted(runs, key=lambda name: _handed_out_before(runs[name]))
+    assert order == ["rod", "believed", "impact high", "impact low", "mu"]
+
+
 def test_the_impact_grid_s_scale_from_one_cycle_is_the_believed_run_s_first_wear_step(tmp_path):
     """The impact grid is scaled before the believed run is made (its runs go beside it): by a
     run of one crank cycle. Its wear step is made on the unworn bore as the believed run's first

@@ -23,6 +23,7 @@ import numpy as np
 
 from fewear.errors import FewearInputError
 from fewear.mesh.profile import periodic_linear
+from fewear.wear import impact
 
 _RUNS: dict[str, WearHistory] = {}
 PROGRESS_INTERVAL_S = 10.0
@@ -198,7 +199,7 @@ def simulate_wears(requests: list[tuple[dict, str]]) -> list[WearHistory]:
 
     missing = sorted({_key(config): (config, label) for config, label in requests
                       if _key(config) not in _RUNS}.values(),
-                     key=lambda request: -expected_cost(request[0]))
+                     key=lambda request: _handed_out_before(request[0]))
     # compiled once here, not in every worker at once on an empty cache
     histories = side_by_side(simulate_wear, missing, prepare=compile_kernels)
     _RUNS.update({_key(config): history for (config, _), history in zip(missing, histories)})
@@ -215,6 +216,21 @@ def expected_cost(config: dict) -> float:
     loop = config["wear_loop"]
     return loop["total_cycles"] * (FLEXIBLE_ROD_COST if loop["rod_models"][0] == "flexible"
                                    else 1.0)
+
+
+def _handed_out_before(config: dict) -> tuple:
+    """The sort key of a batch's runs: the dearest (:func:`expected_cost`) first and, among runs
+    of equal cost, those with more impact wear (an impact-worn pocket draws more impacts, so
+    more, shorter wear blocks: on an independent-generator data set the impact grid's runs of
+    39,000 cycles took 31, 58 and 140 blocks, 9, 16 and 43 s, against 27-29 blocks for the
+    friction grid's; handed out last, the 43 s run ended the batch on one core)."""
+    wear = config.get("wear", {})
+    return (-expected_cost(config),
+            tuple(-float(wear.get(key, 0.0)) for key in IMPACT_COEFFICIENT_KEYS))
+
+
+IMPACT_COEFFICIENT_KEYS = (impact.CONFIG_KEY, impact.IMPULSE_CONFIG_KEY, impact.SPEED_CONFIG_KEY)
+"""The ``[wear]`` coefficients of the impact-wear forms (:mod:`fewear.wear.impact`)."""
 
 
 RunMaker = Callable[[list[tuple[dict, str]]], list[WearHistory]]
