@@ -613,6 +613,34 @@ def test_the_first_accepted_cause_whose_realizations_hold_up_is_named(
         assert confirmations[0].against == "believed model" and confirmations[0].gain > 0.99
 
 
+@pytest.mark.parametrize("friction_rate_factor, accepted, batches", [
+    # friction confirmed: the impact wear accepted after it is never run
+    (1.5, ["friction", "impact_wear"], [["friction", "believed model"]]),
+    # friction refused against the k level, which is then confirmed against the believed model
+    (0.9, ["friction", "wear_coefficient"],
+     [["friction", "wear_coefficient"], ["believed model"]])])
+def test_a_cause_s_realizations_are_run_only_when_the_causes_before_it_were_refused(
+        monkeypatch, friction_rate_factor, accepted, batches):
+    from fewear.diagnose.joint import confirmation
+
+    config, base, obs = _k_level_world(monkeypatch, 1.5, friction_rate_factor)
+    simulate_k_level = confirmation.simulate_wears
+    asked = []
+
+    def recorded(requests):
+        asked.append(list(dict.fromkeys(label.split(",")[0] for _, label in requests)))
+        return simulate_k_level(requests)
+
+    monkeypatch.setattr(confirmation, "simulate_wears", recorded)
+    fits = {"friction": _fitted("friction", 1.0, friction_coefficient=0.3),
+            "impact_wear": replace(_fitted("impact_wear", 1.0,
+                                           impact_wear_coefficient_m3_J=1e-13), form="energy"),
+            "wear_coefficient": _fitted("wear_coefficient", 1.5)}
+    _confirm(config, accepted, fits, _baseline(base, obs), obs,
+             JointDiagnoseSettings.default(), "believed model")
+    assert asked == batches
+
+
 def test_no_cause_is_named_when_no_realizations_hold_up(monkeypatch):
     config, base, obs = _k_level_world(monkeypatch, 1.5, 0.9)
     baseline = _baseline(base, obs)
