@@ -64,6 +64,9 @@ IMPULSE_CONFIG_KEY = "impact_impulse_wear_coefficient_m3_Ns"
 THRESHOLD_CONFIG_KEY = "impact_impulse_force_threshold_N"
 SPEED_CONFIG_KEY = "impact_speed_wear_coefficient"
 EXPONENT_CONFIG_KEY = "impact_speed_exponent"
+FORM_CONFIG_KEYS = {"energy": CONFIG_KEY, "impulse": IMPULSE_CONFIG_KEY,
+                    "speed": SPEED_CONFIG_KEY}
+"""The forms of impact wear, each by the ``[wear]`` key of its coefficient."""
 MAX_SPEED_EXPONENT = 6.0
 """The largest ``impact_speed_exponent`` accepted (the forms of the literature lie in 1-3)."""
 

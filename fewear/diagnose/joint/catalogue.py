@@ -30,11 +30,10 @@ from fewear.diagnose.joint.forward import (
     impact_measures_per_cycle,
     unworn_volume_per_cycle_m3,
 )
+from fewear.wear import impact
 from fewear.wear.extensions import extension_to_config
 
-IMPACT_FORMS = {"energy": "impact_wear_coefficient_m3_J",
-                "impulse": "impact_impulse_wear_coefficient_m3_Ns",
-                "speed": "impact_speed_wear_coefficient"}
+IMPACT_FORMS = impact.FORM_CONFIG_KEYS
 """The forms of ``impact_wear``: the [wear] key of each (:mod:`fewear.wear.impact`)."""
 NONE_MEANING = "the believed model predicts the held-out measurements within their scatter"
 """What naming no cause means."""

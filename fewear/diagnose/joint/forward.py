@@ -226,11 +226,7 @@ def _handed_out_before(config: dict) -> tuple:
     friction grid's; handed out last, the 43 s run ended the batch on one core)."""
     wear = config.get("wear", {})
     return (-expected_cost(config),
-            tuple(-float(wear.get(key, 0.0)) for key in IMPACT_COEFFICIENT_KEYS))
-
-
-IMPACT_COEFFICIENT_KEYS = (impact.CONFIG_KEY, impact.IMPULSE_CONFIG_KEY, impact.SPEED_CONFIG_KEY)
-"""The ``[wear]`` coefficients of the impact-wear forms (:mod:`fewear.wear.impact`)."""
+            tuple(-float(wear.get(key, 0.0)) for key in impact.FORM_CONFIG_KEYS.values()))
 
 
 RunMaker = Callable[[list[tuple[dict, str]]], list[WearHistory]]
