@@ -26,6 +26,7 @@ from fewear.mesh.profile import periodic_linear
 from fewear.wear import impact
 
 _RUNS: dict[str, WearHistory] = {}
+_IMPACT_MEASURES: dict[str, dict[str, float]] = {}
 PROGRESS_INTERVAL_S = 10.0
 """A long forward run reports its progress on stderr at most this often."""
 DEPTH_REACH = 3.0
@@ -291,17 +292,21 @@ def impact_measures_per_cycle(config: dict) -> dict[str, float]:
     (:mod:`fewear.wear.impact`), from the steps that carry a force: ``energy``, the contact
     law's hysteresis work (J), ``impulse``, the impacts' normal impulse (N s, those above the
     config's force threshold), and ``speed``, the sum of the impacts' v^n ((m/s)^n, the
-    config's exponent)."""
+    config's exponent). Memoised by the config, as the runs are (a round asks for them when it
+    makes the impact grid's runs and again when it fits them)."""
     from fewear.loop.settings import run_inputs_from_config
     from fewear.loop.stages import load_steps
 
-    inputs = run_inputs_from_config(config)
-    steps = load_steps(cycle_on_worn_bore(config), inputs.loop.load_steps_per_cycle,
-                       inputs.dynamics.joint.law, inputs.impact_law)
-    loaded = np.linalg.norm(steps.force_N, axis=1) > 0.0
-    return {"energy": float(steps.hysteresis_work_J[loaded].sum()),
-            "impulse": float(steps.impact_impulse_N_s[loaded].sum()),
-            "speed": float(steps.impact_speed_power[loaded].sum())}
+    key = _key(config)
+    if key not in _IMPACT_MEASURES:
+        inputs = run_inputs_from_config(config)
+        steps = load_steps(cycle_on_worn_bore(config), inputs.loop.load_steps_per_cycle,
+                           inputs.dynamics.joint.law, inputs.impact_law)
+        loaded = np.linalg.norm(steps.force_N, axis=1) > 0.0
+        _IMPACT_MEASURES[key] = {"energy": float(steps.hysteresis_work_J[loaded].sum()),
+                                 "impulse": float(steps.impact_impulse_N_s[loaded].sum()),
+                                 "speed": float(steps.impact_speed_power[loaded].sum())}
+    return dict(_IMPACT_MEASURES[key])
 
 
 def worn_volume_per_cycle_m3(history: WearHistory, config: dict) -> float:
