@@ -179,7 +179,7 @@ def test_the_flexible_links_damping_form_runs_a_damped_rod_at_the_believed_modul
         made.extend(label for _, label in jobs)
         return [_run(1e5) for _ in jobs]
 
-    believed = Believed(config, _run(1e5), 100000, 5e4, make_runs)
+    believed = Believed(config, _run(1e5), 5e4, make_runs)
     settings = JointDiagnoseSettings.default()
     assert [c.form for c in link.forms(believed, settings)] == [""]
     with_damping = replace(settings, rod_damping_factors=(3.0, 0.3))
@@ -206,7 +206,7 @@ def test_an_impact_form_without_impacts_to_count_is_not_run(monkeypatch):
         made.extend(label for _, label in jobs)
         return [_run(1e5) for _ in jobs]
 
-    believed = catalogue.Believed(config, _run(1e5), 100000, 5e4, make_runs)
+    believed = catalogue.Believed(config, _run(1e5), 5e4, make_runs)
     settings = replace(JointDiagnoseSettings.default(),
                        impact_forms=("energy", "impulse", "speed"))
     forms = CAUSES["impact_wear"].forms(believed, settings)

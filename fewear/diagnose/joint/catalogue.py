@@ -51,13 +51,12 @@ class RunGrids(Protocol):
 
 @dataclass(frozen=True, eq=False)
 class Believed:
-    """The believed model as the causes see it: its ``config`` and its ``run``; ``cycles``, how
-    long a candidate's runs go; ``needed_cycles``, the shortest run a fit can use (a run that
-    stops before is left out); ``make_runs``, how runs are made from ``[(config, label), ...]``."""
+    """The believed model as the causes see it: its ``config`` and its ``run``;
+    ``needed_cycles``, the shortest run a fit can use (a run that stops before is left out);
+    ``make_runs``, how a cause's runs are made from ``[(config, label), ...]``."""
 
     config: dict
     run: WearHistory
-    cycles: int
     needed_cycles: float
     make_runs: RunMaker
 

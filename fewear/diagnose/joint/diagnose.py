@@ -402,24 +402,23 @@ def _round(data: JointMeasurements, obs: Observations, config: dict,
     """One round of selection on the model ``config`` (the believed one, or the one the causes
     ``named`` so far extend) over the causes :func:`_to_try`; ``floor_m``: the noise below
     which no cause is named (:func:`_noise_floor_m`)."""
-    horizon, deepest_m = _reach(obs, settings.max_k_scale), float(obs.depth_m.max())
+    reach, deepest_m = _reach(obs, CAUSE_RUN_REACH), float(obs.depth_m.max())
     label = " + ".join(("believed model",) + named)
     names, untestable = _to_try(config, settings, named)
-    ahead = [(candidate_config(changed, horizon, deepest_m), run_label)
+    ahead = [(candidate_config(changed, reach, deepest_m), run_label)
              for name in names for changed, run_label in CAUSES[name].runs_asked(config, settings)]
     # the candidates' runs that do not need the believed run are made beside it
     base = simulate_wears([(_believed_config(config, obs, settings), label)] + ahead)[0]
     baseline = baseline_fit("baseline" if not named else label, base, obs,
                             settings.max_offset_deg)
-    make_runs = candidate_runner(horizon, deepest_m)
-    believed_model = Believed(config, base, horizon, needed_cycles(obs, settings), make_runs)
+    make_runs = candidate_runner(reach, deepest_m)
+    believed_model = Believed(config, base, needed_cycles(obs, settings), make_runs)
     candidates = {name: CAUSES[name].forms(believed_model, settings) for name in names}
     untestable += [{"cause": name, "why": "every run with it switched on stops (far deeper than "
                     "the data, worn through or contact lost) before the cycles the fit needs"}
                    for name, forms in candidates.items() if not forms]
     candidates = {name: forms for name, forms in candidates.items() if forms}
-    refined_runs = candidate_runner(_reach(obs, REFINED_REACH), deepest_m)
-    fits = fit_causes(candidates, obs, baseline, settings, _refinement_runs(config, refined_runs))
+    fits = fit_causes(candidates, obs, baseline, settings, _refinement_runs(config, make_runs))
     accepted, verdicts = _select(baseline, fits, settings, floor_m)
     if not accepted and not named and settings.max_causes >= 2:
         accepted, pair_verdicts, pair_fits = _select_pairs(candidates, fits, obs, baseline,
@@ -515,22 +514,27 @@ def _fit_on_trace_choice(forms: tuple[Candidate, ...], option: MechanismOption,
                                    candidate.parameter: candidate.grid[option.index]})
 
 
-REFINED_REACH = 1.25
-"""A refinement's run, made at its fit's level of k, goes this many times the last measured count
-(the level refitted on it may rise by as much before the run's last block is extrapolated); the
-candidates' runs, made at the believed k, go ``max_k_scale`` times it."""
+CAUSE_RUN_REACH = 1.25
+"""A cause's runs go this many times the last measured count: its grid's runs, made at the
+believed k, and a refinement's, made at its fit's level. A fit's level s maps the data's N to
+s N cycles of a run; beyond the run's last wear step the depth goes on at that step's rate
+(:meth:`fewear.diagnose.joint.forward.WearHistory.nodal_depths_m`), and a fit that could be
+accepted is refined on a run at its own level. Not ``max_k_scale`` times (the level's bound):
+on nine data sets of three generators every grid cause's fitted level was 0.90-1.26 but on a
+running-in set (at the bound, and refuted), and the flexible grid's runs are the dearest of a
+diagnosis."""
 
 
 def _reach(obs: Observations, times: float) -> int:
     """``times`` the last measured count, in whole cycles: how far a round's runs go (the
-    candidates' ``max_k_scale`` times, a refinement's :data:`REFINED_REACH` times)."""
+    believed run's ``max_k_scale`` times, a cause's :data:`CAUSE_RUN_REACH` times)."""
     return int(math.ceil(times * obs.cycles.max()))
 
 
 def _believed_config(config: dict, obs: Observations, settings: JointDiagnoseSettings) -> dict:
-    """``config``'s rod run as far as the fits may need: as far as the candidates
-    (``max_k_scale`` times the last count), and further still, as running-in maps N to up to
-    r N cycles of it."""
+    """``config``'s rod run as far as the fits may need: ``max_k_scale`` times the last count
+    (the level of k's bound), and further still, as running-in maps N to up to r N cycles of
+    it."""
     return model_config(config, config["wear_loop"]["rod_models"][0],
                         RUNNING_IN_REACH * _reach(obs, settings.max_k_scale))
 
