@@ -410,9 +410,7 @@ def test_running_in_refined_on_runs_at_its_fitted_parameters_fits_better_when_ru
         return np.array([np.sqrt(np.mean(r[obs.train] ** 2)), np.sqrt(np.mean(r[~obs.train] ** 2))])
 
     refined = fit_cause(forms, obs, baseline, settings, run_of)
-    # only the form best on the time map is refined; the choice counts every form tried
-    assert 0 < len(runs) <= REFINEMENTS and {form for form, _ in runs} == {refined.form}
-    assert refined.forms_tried == len(RUNNING_IN_FORMS)
+    assert 0 < len(runs) <= len(RUNNING_IN_FORMS) * REFINEMENTS
     mapped = next(p for form, p in runs if form == refined.form)
     assert mapped["k_initial_over_steady"] < 1.2 < refined.params["k_initial_over_steady"]
     assert np.all(real_rms(run_with(refined.form, refined.params))

@@ -56,11 +56,10 @@ Refinement (:mod:`fewear.diagnose.joint.refinement`): a fit that scales the cycl
 with the believed k, interpolates between grid runs or maps the cycles of the believed run is not
 the wear loop's run at its parameters (the loop's blocks are not scaled with k). A cause whose fit
 could be accepted (held-out error at least ``min_held_out_gain`` below the believed model's) is
-refitted, in its best form, on runs at its fitted parameters, its level included, at most
-:data:`REFINEMENTS` of them: the run joins the cause's runs (:func:`refine_on_runs`), or
-running-in is refitted on the time map from it (:func:`refine_running_in`). The refinements of
-all causes advance together, so the runs they ask for at each step are made side by side
-(:func:`fit_causes`).
+refitted on runs at its fitted parameters, its level included, at most :data:`REFINEMENTS` of them:
+the run joins the cause's runs (:func:`refine_on_runs`), or running-in is refitted on the time map
+from it (:func:`refine_running_in`). The refinements of all causes and forms advance together,
+so the runs they ask for at each step are made side by side (:func:`fit_causes`).
 
 Selection: each cause is fitted by least squares on the training data (Nelder-Mead from several
 starts, :mod:`fewear.diagnose.joint.fitting`). ``wear_coefficient`` is compared with the believed

@@ -264,11 +264,6 @@ def fit_candidate(forms: tuple[Candidate, ...], obs: Observations, offset_deg: f
     return best_form([fit_form(form, obs, offset_deg, settings) for form in forms])
 
 
-def form_of(forms: tuple[Candidate, ...], fitted: Fit) -> Candidate:
-    """The form of a cause's ``forms`` that ``fitted`` was fitted in."""
-    return next(form for form in forms if (form.form or None) == fitted.form)
-
-
 def best_form(fits: list[Fit]) -> Fit:
     """The form's fit best on the training data, counting the forms tried."""
     return replace(min(fits, key=lambda f: f.sse_train), forms_tried=len(fits))

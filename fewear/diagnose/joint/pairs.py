@@ -23,13 +23,7 @@ import numpy as np
 
 from fewear.diagnose.joint.candidates import Candidate
 from fewear.diagnose.joint.catalogue import CAUSES
-from fewear.diagnose.joint.fitting import (
-    Fit,
-    Observations,
-    bounds_and_starts,
-    fit_form,
-    form_of,
-)
+from fewear.diagnose.joint.fitting import Fit, Observations, bounds_and_starts, fit_form
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
 from fewear.parallel import side_by_side
 
@@ -63,9 +57,9 @@ def pair_candidates(candidates: dict[str, tuple[Candidate, ...]], fits: dict[str
     for name, forms in candidates.items():
         if name in (PARTNER, "wear_coefficient") or not beats_believed(fits[name]):
             continue
-        pairs[pair_name(name)] = replace(form_of(forms, fits[name]), name=pair_name(name),
-                                         time_map=True, running_in_form=partner.form,
-                                         run_extension=None)
+        form = next(f for f in forms if (f.form or None) == fits[name].form)
+        pairs[pair_name(name)] = replace(form, name=pair_name(name), time_map=True,
+                                         running_in_form=partner.form, run_extension=None)
     return pairs
 
 

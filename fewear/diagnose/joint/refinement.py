@@ -20,7 +20,6 @@ from fewear.diagnose.joint.fitting import (
     bounds_and_starts,
     fit,
     fit_form,
-    form_of,
     needed_cycles,
     with_params,
 )
@@ -46,27 +45,26 @@ parameters to run it), is sent that run, and returns the refined fit."""
 def fit_causes(candidates: dict[str, tuple[Candidate, ...]], obs: Observations, baseline: Fit,
                settings: JointDiagnoseSettings, runs_at: RunsAt) -> dict[str, Fit]:
     """Each cause fitted in each of its forms (:func:`fit_form`; the forms of all causes side by
-    side in worker processes, :func:`fewear.parallel.side_by_side`), its best form on the
-    training data kept; a cause whose best form could be accepted (held-out error at least
-    ``min_held_out_gain`` below the believed model's, a condition of acceptance) has that form
-    refined on runs at its own fitted parameters (:func:`refine_running_in`,
-    :func:`refine_on_runs`). Only the best form: running-in's four forms are fitted on one run's
-    time map, and refining each (up to :data:`REFINEMENTS` runs apiece) made 12 of the 17
-    refinement runs of a diagnosis whose data hid a flexible rod. The refinements of all causes
-    advance together, so that the runs they ask for at each step are made side by side
-    (``runs_at``); each refinement depends on its own runs only, so the result is that of
-    refining one after the other."""
+    side in worker processes, :func:`fewear.parallel.side_by_side`); for a cause whose best form
+    could be accepted (held-out error at least ``min_held_out_gain`` below the believed
+    model's, a condition of acceptance), each form is refined on runs at its own fitted
+    parameters (:func:`refine_running_in`, :func:`refine_on_runs`). The refinements of all
+    causes and forms advance together, so that the runs they ask for at each step are made
+    side by side (``runs_at``); each refinement depends on its own runs only, so the result is
+    that of refining one after the other. Per cause, the best form on the training data is
+    kept."""
     offset = float(baseline.x[0])
     first_fits = iter(side_by_side(fit_form, [(form, obs, offset, settings)
                                               for forms in candidates.values() for form in forms]))
-    fits = {name: best_form([next(first_fits) for _ in forms])
-            for name, forms in candidates.items()}
-    refinements = {name: _refinement(form_of(candidates[name], fitted), fitted, obs, settings)
-                   for name, fitted in fits.items()
-                   if fitted.held_out_gain(baseline) >= settings.min_held_out_gain}
-    refined = _advance_together(refinements, runs_at)
-    return {name: replace(refined[name], forms_tried=fitted.forms_tried) if name in refined
-            else fitted for name, fitted in fits.items()}
+    fits = {name: [next(first_fits) for _ in forms] for name, forms in candidates.items()}
+    promising = [name for name in candidates
+                 if best_form(fits[name]).held_out_gain(baseline) >= settings.min_held_out_gain]
+    refinements = {(name, index): _refinement(form, fitted, obs, settings)
+                   for name in promising
+                   for index, (form, fitted) in enumerate(zip(candidates[name], fits[name]))}
+    for (name, index), refined in _advance_together(refinements, runs_at).items():
+        fits[name][index] = refined
+    return {name: best_form(cause_fits) for name, cause_fits in fits.items()}
 
 
 def _advance_together(refinements: dict, runs_at: RunsAt) -> dict:
