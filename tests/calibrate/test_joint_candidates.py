@@ -23,7 +23,7 @@ from fewear.diagnose.joint.confirmation import (
     confirm,
     confirm_no_worse,
 )
-from fewear.diagnose.joint.diagnose import _confirm, _select, _unexplained
+from fewear.diagnose.joint.diagnose import CAUSE_RUN_REACH, _confirm, _select, _unexplained
 from fewear.diagnose.joint.fitting import (
     Fit,
     Observations,
@@ -478,6 +478,40 @@ def test_a_grid_fit_refined_with_the_run_at_its_value_lands_on_the_truth():
     assert refined.params["friction_coefficient"] == pytest.approx(0.14, rel=0.005)
     assert refined.params["k_scale"] == pytest.approx(1.0, rel=0.002)
     assert refined.held_out_rms_m < 0.05 * interpolated.held_out_rms_m
+
+
+def test_a_level_beyond_the_grid_runs_reach_predicts_the_held_out_data_once_refined():
+    """A cause's grid runs go :data:`CAUSE_RUN_REACH` times the last count. Here the training
+    counts times the level s = 1.8 lie within the runs, so the fit is that of longer runs; the
+    held-out counts map past the runs' end, where the depth goes on at the last step's rate:
+    too deep where wear slows (here depth ~ (k N)^0.7). The refinement's run, made at the fit's
+    level, reaches the held-out s N: the refined fit predicts them."""
+    angle = np.linspace(0.0, 2.0 * math.pi, 36, endpoint=False)
+
+    def run_at(mu: float, k_scale: float = 1.0) -> WearHistory:
+        cycles = np.linspace(0.0, 60000.0, 25)
+        cycles = cycles[cycles <= CAUSE_RUN_REACH * COUNTS.max()]
+        width = 0.1 + 10.0 * mu
+        shape = 1e-8 * (0.3 + np.exp(-((angle - math.pi) ** 2) / (2.0 * width**2)))
+        return WearHistory(angle, cycles, (k_scale * cycles[:, None]) ** 0.7 * shape[None, :],
+                           np.full(angle.size, 0.01))
+
+    obs = _observed(run_at(0.14, 1.8))
+    settings = JointDiagnoseSettings.default()
+    grid = (0.02, 0.05, 0.14, 0.2, 0.3, 0.4)  # the truth's mu a grid run: no interpolation
+    friction = CAUSES["friction"].candidate(map(run_at, grid), grid)
+
+    def run_of(candidate: Candidate, fitted: Fit) -> WearHistory:
+        return run_at(fitted.params["friction_coefficient"], fitted.params["k_scale"])
+
+    first = fit_candidate((friction,), obs, 0.0, settings)
+    refined = fit_cause((friction,), obs, _baseline(run_at(0.1), obs), settings, run_of)
+    assert first.params["k_scale"] == pytest.approx(1.8, rel=5e-3)  # the runs: linear between steps
+    held_out_depth_rms = np.sqrt(np.mean(obs.depth_m[~obs.train] ** 2))
+    assert first.held_out_rms_m > 0.005 * held_out_depth_rms
+    assert refined.params["friction_coefficient"] == pytest.approx(0.14, rel=1e-3)
+    assert refined.params["k_scale"] == pytest.approx(1.8, rel=1e-3)
+    assert refined.held_out_rms_m < 0.01 * first.held_out_rms_m
 
 
 def test_a_grid_fit_the_runs_leave_between_them_is_taken_on_the_best_run_made():
