@@ -488,9 +488,9 @@ def test_a_level_beyond_the_grid_runs_reach_predicts_the_held_out_data_once_refi
     level, reaches the held-out s N: the refined fit predicts them."""
     angle = np.linspace(0.0, 2.0 * math.pi, 36, endpoint=False)
 
-    def run_at(mu: float, k_scale: float = 1.0) -> WearHistory:
+    def run_at(mu: float, k_scale: float = 1.0, reach: float = CAUSE_RUN_REACH) -> WearHistory:
         cycles = np.linspace(0.0, 60000.0, 25)
-        cycles = cycles[cycles <= CAUSE_RUN_REACH * COUNTS.max()]
+        cycles = cycles[cycles <= reach * COUNTS.max()]
         width = 0.1 + 10.0 * mu
         shape = 1e-8 * (0.3 + np.exp(-((angle - math.pi) ** 2) / (2.0 * width**2)))
         return WearHistory(angle, cycles, (k_scale * cycles[:, None]) ** 0.7 * shape[None, :],
@@ -507,6 +507,8 @@ def test_a_level_beyond_the_grid_runs_reach_predicts_the_held_out_data_once_refi
     first = fit_candidate((friction,), obs, 0.0, settings)
     refined = fit_cause((friction,), obs, _baseline(run_at(0.1), obs), settings, run_of)
     assert first.params["k_scale"] == pytest.approx(1.8, rel=5e-3)  # the runs: linear between steps
+    longer = CAUSES["friction"].candidate([run_at(mu, reach=3.0) for mu in grid], grid)
+    np.testing.assert_array_equal(first.x, fit_candidate((longer,), obs, 0.0, settings).x)
     held_out_depth_rms = np.sqrt(np.mean(obs.depth_m[~obs.train] ** 2))
     assert first.held_out_rms_m > 0.005 * held_out_depth_rms
     assert refined.params["friction_coefficient"] == pytest.approx(0.14, rel=1e-3)
