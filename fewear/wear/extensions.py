@@ -154,38 +154,23 @@ class RunningIn:
 
 
 @dataclass(frozen=True)
-class RunningInPowerLaw:
+class RunningInPowerLaw(RunningIn):
     """m(s) = 1 + (r - 1) / (1 + s / s0) (Blau 2005, hyperbolic break-in);
     S_eff = s + (r - 1) s0 ln(1 + s / s0).
 
     ``k_initial_over_steady`` r >= 1; ``distance_scale_m`` s0 > 0.
     """
 
-    k_initial_over_steady: float
-    distance_scale_m: float
     name = "running_in_power_law"
-    required_variables = ("sliding_distance_m",)
-
-    def __post_init__(self):
-        _check_ratio(self.k_initial_over_steady)
-        _check_positive("distance_scale_m", self.distance_scale_m, "a positive distance in m")
 
     def multiplier(self, state: SlidingState) -> np.ndarray:
         s = np.asarray(state.distance_m, dtype=float)
         return 1.0 + (self.k_initial_over_steady - 1.0) / (1.0 + s / self.distance_scale_m)
 
-    def advance(self, state: SlidingState, ds_m, dt_s, power_W_m2,
-                cycles: float = 0.0) -> SlidingState:
-        return _advance_common(state, ds_m, dt_s, cycles)
-
     def effective_distance_m(self, distance_m, time_s=None, power_W_m2=None) -> np.ndarray:
         s = np.asarray(distance_m, dtype=float)
         s0 = self.distance_scale_m
         return s + (self.k_initial_over_steady - 1.0) * s0 * np.log1p(s / s0)
-
-    def params(self) -> dict[str, float]:
-        return {"k_initial_over_steady": float(self.k_initial_over_steady),
-                "distance_scale_m": float(self.distance_scale_m)}
 
 
 @dataclass(frozen=True)
@@ -383,8 +368,7 @@ def extension_to_config(extension: WearExtension) -> dict[str, Any]:
     return {"extension": extension.name, "extension_params": extension.params()}
 
 
-def distance_at_effective_m(extension: NoExtension | RunningIn | RunningInPowerLaw,
-                            effective_m) -> np.ndarray:
+def distance_at_effective_m(extension: NoExtension | RunningIn, effective_m) -> np.ndarray:
     """The sliding distance s at which a distance-driven extension's S_eff(s) reaches
     ``effective_m`` (the inverse of :meth:`effective_distance_m`). S_eff is increasing and
     concave for these (m >= 1, non-increasing), so Newton's iteration s <- s - (S_eff(s) - y) /

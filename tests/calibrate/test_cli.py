@@ -55,7 +55,7 @@ def test_outputs_exist_and_parse(outputs):
 def test_extended_config_is_what_the_simulation_loads(outputs):
     section = load_config(outputs / "extended_wear.toml", sections=["wear"])["wear"]
     extension = wear_extension_from_config(section)
-    assert isinstance(extension, RunningIn)
+    assert type(extension) is RunningIn
     summary = json.loads((outputs / "diagnosis.json").read_text())
     assert extension.params() == pytest.approx(summary["extended_config"]["extension_params"])
     k = wear_coefficient_from_config(section)

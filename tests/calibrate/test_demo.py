@@ -42,7 +42,7 @@ def test_demo_finds_the_hidden_running_in(outputs):
         assert (outputs / "synthetic" / name).stat().st_size > 0
     extension = wear_extension_from_config(
         load_config(outputs / "synthetic" / "extended_wear.toml", sections=["wear"])["wear"])
-    assert isinstance(extension, RunningIn)
+    assert type(extension) is RunningIn
     # the parameters the data were made with (the data set's header): the extra wear of
     # running-in, (r - 1) s0, to 30 %; r and s0 each to a factor 2
     truth = RunningIn(made.K_INITIAL_OVER_STEADY, made.DISTANCE_SCALE_m)
