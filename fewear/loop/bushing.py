@@ -10,6 +10,7 @@ in the case's :class:`fewear.loop.progress.LoopCounts`.
 
 from __future__ import annotations
 
+import gc
 from dataclasses import replace
 
 import numpy as np
@@ -27,6 +28,7 @@ from fewear.mesh.bushing import bushing_mesh, radial_progression
 from fewear.mesh.profile import periodic_linear
 from fewear.mesh.quality import RemeshLimits
 from fewear.mesh.snapshot import MeshSnapshot, gather_nodes, scatter_nodes, take_snapshot
+from fewear.parallel import release_petsc_garbage
 from fewear.wear.state import WearState
 
 
@@ -83,6 +85,7 @@ class WornBushing:
         """Mesh the bushing on ``bore_profile`` (None: the circle), or put the nodes at
         ``meshed_xy_m`` (a checkpoint's), and build the contact operator and mesh motion on it."""
         geometry, settings = self.problem.geometry, self.problem.mesh
+        retired = self._retire() if hasattr(self, "contact") else None
         mesh_data = bushing_mesh(geometry, settings, self.comm, bore_profile=bore_profile)
         node_ids, meshed_xy = gather_nodes(mesh_data[0], self.comm)
         if meshed_xy_m is not None:
@@ -92,6 +95,22 @@ class WornBushing:
             BushingContactSolver(self.problem, self.comm, mesh_data=mesh_data))
         self.motion = BoreMotion(mesh_data[0], mesh_data[2], self.problem.material.poisson_ratio)
         self.meshed_xy_m = meshed_xy
+        if retired is not None:
+            release_petsc_garbage(retired.comm, self.comm)
+
+    def _retire(self):
+        """Drop the current mesh's contact operator and mesh motion; return the mesh, whose
+        communicator must outlive :func:`fewear.parallel.release_petsc_garbage` of their PETSc
+        objects."""
+        mesh = self.mesh
+        del self.contact, self.motion
+        gc.collect()  # the objects in reference cycles join the garbage list now
+        return mesh
+
+    def close(self) -> None:
+        """Destroy the PETSc objects of this bushing (collective); it cannot be used after."""
+        mesh = self._retire()
+        release_petsc_garbage(mesh.comm, self.comm)
 
     @property
     def mesh(self):
@@ -148,6 +167,7 @@ class WornBushing:
             self._follow_node_order()
         else:
             self._rebuild_contact()
+        release_petsc_garbage(self.mesh.comm)  # the stiffness the move replaced
 
     def _rebuild_contact(self) -> None:
         """The contact operator on the moved mesh (G kept or rebuilt: ``compliance_update``)."""

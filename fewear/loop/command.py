@@ -80,7 +80,10 @@ def run_cases(rods, config: dict, out_dir, resumed: dict, comm) -> dict:
                 store.save(rod, case)
             progress.block(case)
 
-        predict_case(rod, inputs, bushing, case, after_block)
+        try:
+            predict_case(rod, inputs, bushing, case, after_block)
+        finally:
+            bushing.close()
         cases[rod] = case
     return cases
 

@@ -145,6 +145,8 @@ def simulate_wear(config: dict, label: str = "", comm=None) -> WearHistory:
         predict_case(rod, inputs, bushing, case, progress)
     except FewearInputError as exc:
         stopped = str(exc)
+    finally:
+        bushing.close()
     if not case.records:
         raise FewearInputError(f"forward run {label or rod}: no wear block completed ({stopped})")
     state = case.state
