@@ -107,3 +107,17 @@ def test_the_config_s_blocks_with_no_halving_allowed_or_no_profiles(made_up, mon
     config, found = resolution.resolve_wear_step(CONFIG, OBS, max_halvings=6, max_offset_deg=30)
     assert len(found["wear_step_levels"]) == 1 and math.isnan(found["halved_blocks_rms_m"])
     assert config["wear_loop"]["max_depth_increment_fraction"] == 0.25
+
+
+def test_each_level_reports_its_noise_against_the_scatter_when_measured(made_up, capsys):
+    """A line per level on stderr, as it is measured: a user whose model is dear sees each
+    level's noise against the scatter and what its runs cost before the next runs."""
+    _, found = resolution.resolve_wear_step(CONFIG, OBS, max_halvings=6, max_offset_deg=30)
+    lines = [line for line in capsys.readouterr().err.splitlines() if "resolution, level" in line]
+    assert len(lines) == len(found["wear_step_levels"]) == 4
+    for number, (line, level) in enumerate(zip(lines, found["wear_step_levels"]), start=1):
+        assert f"level {number} of at most 8" in line
+        assert f"part by {level['spread_rms_m'] * 1e6:.3g} um" in line
+        assert "the instrument's scatter 0.5 um" in line
+    assert "moved" not in lines[0]
+    assert f"moved {found['halved_blocks_rms_m'] * 1e6:.3g} um" in lines[3]

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import copy
 import math
+import sys
 from dataclasses import dataclass
 from typing import Any
 
@@ -87,6 +88,7 @@ def resolve_wear_step(config: dict, obs: Observations, max_halvings: int,
         means.append(bores.mean(axis=0))
         change = None if halving == 0 else _rms(means[-1] - means[-2])
         levels.append(WearStepLevel(_blocks(configs[-1]), _spread(bores), change))
+        _report(halving, levels[-1], scatter, members[-1], max_halvings)
         if halving == 0 and scatter is None:
             break
         if halving > 0 and (_resolved(levels[-2], change, scatter) or halving > max_halvings):
@@ -143,6 +145,27 @@ def _members(config: dict, beside: tuple[dict, str] | None = None) -> list[WearH
         requests.append((started_later(config, offset),
                          f"believed model, {blocks}, started {offset:g} deg later"))
     return simulate_wears(requests + ([beside] if beside else []))[:len(requests)]
+
+
+def _report(halving: int, level: WearStepLevel, scatter_m: float | None,
+            runs: list[WearHistory], max_halvings: int) -> None:
+    """A line on stderr (rank 0) per level: its noise against the scatter and what its runs cost,
+    so that a user whose model is dear sees it before the next level (each twice as dear) runs."""
+    from fewear.parallel import launcher_rank_and_size
+
+    if launcher_rank_and_size()[0] != 0:
+        return
+    blocks = ", ".join(f"{key} = {value:g}" for key, value in level.blocks.items())
+    moved = ("" if level.change_from_coarser_rms_m is None else
+             f", their mean moved {level.change_from_coarser_rms_m * 1e6:.3g} um from the level "
+             "before")
+    against = ("no scatter to compare with (no profiles): the config's wear steps are kept"
+               if scatter_m is None else f"the instrument's scatter {scatter_m * 1e6:.3g} um")
+    seconds = sum(run.wall_time_s for run in runs) / len(runs)
+    print(f"fewear diagnose: resolution, level {halving + 1} of at most {max_halvings + 2} "
+          f"({blocks}): runs started 0-{MEMBER_START_OFFSETS_DEG[-1]:g} deg later part by "
+          f"{level.spread_rms_m * 1e6:.3g} um{moved}; {against}; {seconds:.0f} s a run "
+          "(a level finer: about twice that)", file=sys.stderr, flush=True)
 
 
 def _doubled(config: dict) -> tuple[dict, str]:
