@@ -53,6 +53,7 @@ from fewear.contact.result import ContactResult
 from fewear.loop.settings import SlidingWearSettings
 from fewear.mesh.flat import worn_node_y_m
 from fewear.mesh.quality import MeshQuality, QualityMeter
+from fewear.parallel import release_petsc_garbage
 from fewear.wear.archard import cycle_wear_depth_m
 from fewear.wear.state import FlatWearState
 
@@ -111,6 +112,7 @@ def run_flat_wear(problem: FlatContactProblem, settings: SlidingWearSettings,
         state = state.worn_by(cycle_wear_depth_m(k, result.pressure_Pa[None, :], slide), slide)
         solver.mesh.geometry.x[:, 1] = worn_node_y_m(made_xy, problem.geometry, state.depth_at)
         solver.update_geometry()
+        release_petsc_garbage(solver.mesh.comm)  # the stiffness the move replaced
         steps.append(FlatWearStep(state.sliding_distance_m, result.max_pressure_Pa,
                                   loaded_half_width_m(result), float(state.depth_m.max())))
         if report is not None:

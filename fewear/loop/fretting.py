@@ -83,6 +83,7 @@ from fewear.contact.params import FlatContactProblem
 from fewear.errors import FewearInputError, require_finite_positive
 from fewear.loop.settings import FrettingWearSettings
 from fewear.mesh.flat import worn_node_y_m
+from fewear.parallel import release_petsc_garbage
 from fewear.wear.state import FlatWearState
 
 
@@ -246,6 +247,7 @@ def run_fretting_wear(problem: FlatContactProblem, settings: FrettingWearSetting
         solver.mesh.geometry.x[:, 1] = worn_node_y_m(made_xy, problem.geometry,
                                                      worn[0].depth_at)
         solver.update_geometry()
+        release_petsc_garbage(solver.mesh.comm)  # the stiffness the move replaced
         if settings.cylinder_wear_coefficient_m2_N > 0.0:
             cylinder = worn[1]
             worn[1] = cylinder.worn_by(np.interp(cylinder.x_m, state.x_m - centre_x_m,
