@@ -71,9 +71,9 @@ def test_the_coarsest_blocks_whose_noise_is_within_the_scatter_are_chosen(made_u
     fractions = [level["blocks"]["max_depth_increment_fraction"]
                  for level in found["wear_step_levels"]]
     assert fractions == [0.25, 0.125, 0.0625, 0.03125]  # the last only to judge the one before
-    assert found["resolved"] and found["wear_step"] == {"max_depth_increment_fraction": 0.0625,
-                                                        "max_extrapolation_factor": 12500.0,
-                                                        "wear_steps_per_block": 4}
+    assert found["resolved"] and not found["out_of_reach"]
+    assert found["wear_step"] == {"max_depth_increment_fraction": 0.0625,
+                                  "max_extrapolation_factor": 12500.0, "wear_steps_per_block": 4}
     assert config["wear_loop"]["max_depth_increment_fraction"] == 0.0625
     assert config["wear_loop"]["wear_steps_per_block"] == 4
     assert config["wear_loop"]["total_cycles"] == 100  # the config's own, not the runs'
@@ -93,10 +93,23 @@ def test_the_coarsest_blocks_whose_noise_is_within_the_scatter_are_chosen(made_u
                        + [0.03125] * 3 + [0.0625])
 
 
-def test_the_finest_allowed_blocks_when_the_noise_stays_above_the_scatter(made_up):
+def test_the_ladder_stops_where_the_halvings_left_cannot_reach_the_scatter(made_up, monkeypatch,
+                                                                         capsys):
+    """One halving allowed: f = 0.25's runs part by 1.19 um, more than twice the 0.5 um scatter,
+    so not even a halved spread would come within it: the config's level is taken at once (not
+    resolved, its move not measured: three runs and its doubled recorded cycles). So it is too
+    when the data are far more precise than the model (a model's own output: 1 nm) with all six
+    halvings allowed, where the ladder would have run six levels, each twice as dear."""
     config, found = resolution.resolve_wear_step(CONFIG, OBS, max_halvings=1, max_offset_deg=30)
-    assert len(found["wear_step_levels"]) == 3 and not found["resolved"]
-    assert found["wear_step"]["max_depth_increment_fraction"] == 0.125
+    assert len(found["wear_step_levels"]) == 1 and found["out_of_reach"]
+    assert not found["resolved"] and math.isnan(found["halved_blocks_rms_m"])
+    assert config["wear_loop"]["max_depth_increment_fraction"] == 0.25
+    assert made_up == [0.25] * 4
+    monkeypatch.setattr(resolution.structure, "scatter_estimate_m", lambda *args: 1e-9)
+    _, found = resolution.resolve_wear_step(CONFIG, OBS, max_halvings=6, max_offset_deg=30)
+    assert len(found["wear_step_levels"]) == 1 and found["out_of_reach"]
+    assert "resolution stops at level 1: its runs part by more than the 6 halvings left" in (
+        capsys.readouterr().err)
 
 
 def test_the_config_s_blocks_with_no_halving_allowed_or_no_profiles(made_up, monkeypatch):

@@ -130,6 +130,9 @@ def _resolution_lines(resolution: dict) -> list[str]:
              f"to {max(MEMBER_START_OFFSETS_DEG):g} deg later part, and the next halving moves "
              "their mean, by at most the scatter (RMS at the measured cycle counts)"
              + ("" if resolution["resolved"] else
+                "; the runs part by more than the halvings left could bring within the scatter "
+                "even if each halved it, so the ladder stopped there"
+                if resolution["out_of_reach"] else
                 "; not met within [joint_diagnose] max_wear_step_halvings, the finest allowed "
                 "is taken")
              + "; twice the crank cycles recorded per block move the chosen model's bore by "

@@ -19,7 +19,8 @@ their mean moves from one level to the next. The coarsest level whose spread is 
 instrument's scatter and whose mean the next level moves by at most the scatter is the model the
 diagnosis fits (its candidates are run at those blocks, and ``extended.toml`` carries them); at
 most ``max_wear_step_halvings`` halvings (then the finest is taken, its noise reported as the
-limit).
+limit), and none more once the halvings left could not bring the runs' spread within the
+scatter even if each halved it (:func:`_out_of_reach`: that level is taken, its noise the limit).
 """
 
 from __future__ import annotations
@@ -75,23 +76,30 @@ def resolve_wear_step(config: dict, obs: Observations, max_halvings: int,
     the user's blocks are kept), ``wear_step_levels`` (every level measured), the chosen level's
     ``start_angle_spread_rms_m`` and ``halved_blocks_rms_m`` (the next level's move), and
     ``doubled_recorded_cycles_rms_m`` (its bore with twice the crank cycles recorded per block:
-    the sampling of the orbit)."""
+    the sampling of the orbit); ``out_of_reach``: the ladder stopped by :func:`_out_of_reach`."""
     rod = config["wear_loop"]["rod_models"][0]
     counts = np.unique(obs.cycles)
     level_config = model_config(config, rod, int(obs.cycles.max()) + 1)
     members = [_members(level_config)]
     first = baseline_fit("baseline", members[0][0], obs, max_offset_deg)
     scatter = structure.scatter_estimate_m(obs.angle_rad, first.residuals_m, obs.cycles)
-    levels, configs, means = [], [level_config], []
+    levels, configs, means, out_of_reach = [], [level_config], [], False
     for halving in range(max_halvings + 2):
         bores = np.array([run.nodal_depths_m(counts) for run in members[-1]])
         means.append(bores.mean(axis=0))
         change = None if halving == 0 else _rms(means[-1] - means[-2])
         levels.append(WearStepLevel(_blocks(configs[-1]), _spread(bores), change))
-        _report(halving, levels[-1], scatter, members[-1], max_halvings)
+        _say(_level_line(halving, levels[-1], scatter, members[-1], max_halvings))
         if halving == 0 and scatter is None:
             break
         if halving > 0 and (_resolved(levels[-2], change, scatter) or halving > max_halvings):
+            break
+        out_of_reach = _out_of_reach(levels[-1], scatter, max_halvings - halving)
+        if out_of_reach:
+            _say(f"fewear diagnose: resolution stops at level {halving + 1}: its runs part by "
+                 f"more than the {max_halvings - halving} halvings left could bring within the "
+                 "scatter even if each halved it; the diagnosis runs at this level, its noise "
+                 "the limit")
             break
         configs.append(with_halved_wear_steps(configs[-1]))
         members.append(_members(configs[-1], _doubled(configs[-2])))
@@ -103,6 +111,7 @@ def resolve_wear_step(config: dict, obs: Observations, max_halvings: int,
         "instrument_scatter_m": scatter,
         "wear_step_levels": [vars(level) for level in levels],
         "wear_step": levels[chosen].blocks,
+        "out_of_reach": out_of_reach,
         "resolved": bool(scatter is not None and next_move is not None
                          and _resolved(levels[chosen], next_move, scatter)),
         "start_angle_spread_rms_m": levels[chosen].spread_rms_m,
@@ -123,6 +132,17 @@ def _resolved(level: WearStepLevel, next_change_m: float, scatter_m: float | Non
     """A level is resolved when its runs' spread and the next level's move of their mean are
     both at most the instrument's scatter."""
     return scatter_m is not None and max(level.spread_rms_m, next_change_m) <= scatter_m
+
+
+def _out_of_reach(level: WearStepLevel, scatter_m: float | None, halvings_left: int) -> bool:
+    """Whether the halvings left cannot bring the runs' spread within the scatter even if each
+    halved it (a first-order wear step's error does; the spread of a chaotic orbit's runs need
+    not fall at all): data more precise than any affordable model (a model's own output as the
+    data, scatter 0.003 um against runs 0.5 um apart) would otherwise have the ladder halve the
+    wear steps to the last level, each twice as dear, for a model no more resolved. With no
+    halving left, the next level is still run, to measure its move."""
+    return (scatter_m is not None and halvings_left >= 1
+            and level.spread_rms_m > 2.0**halvings_left * scatter_m)
 
 
 def _chosen_level(levels: list[WearStepLevel], scatter_m: float | None,
@@ -147,14 +167,18 @@ def _members(config: dict, beside: tuple[dict, str] | None = None) -> list[WearH
     return simulate_wears(requests + ([beside] if beside else []))[:len(requests)]
 
 
-def _report(halving: int, level: WearStepLevel, scatter_m: float | None,
-            runs: list[WearHistory], max_halvings: int) -> None:
-    """A line on stderr (rank 0) per level: its noise against the scatter and what its runs cost,
-    so that a user whose model is dear sees it before the next level (each twice as dear) runs."""
+def _say(line: str) -> None:
+    """``line`` on stderr, once (rank 0): what the resolution is doing, while it runs."""
     from fewear.parallel import launcher_rank_and_size
 
-    if launcher_rank_and_size()[0] != 0:
-        return
+    if launcher_rank_and_size()[0] == 0:
+        print(line, file=sys.stderr, flush=True)
+
+
+def _level_line(halving: int, level: WearStepLevel, scatter_m: float | None,
+                runs: list[WearHistory], max_halvings: int) -> str:
+    """A level's noise against the scatter and what its runs cost: a user whose model is dear
+    sees it before the next level (each twice as dear) runs."""
     blocks = ", ".join(f"{key} = {value:g}" for key, value in level.blocks.items())
     moved = ("" if level.change_from_coarser_rms_m is None else
              f", their mean moved {level.change_from_coarser_rms_m * 1e6:.3g} um from the level "
@@ -162,10 +186,10 @@ def _report(halving: int, level: WearStepLevel, scatter_m: float | None,
     against = ("no scatter to compare with (no profiles): the config's wear steps are kept"
                if scatter_m is None else f"the instrument's scatter {scatter_m * 1e6:.3g} um")
     seconds = sum(run.wall_time_s for run in runs) / len(runs)
-    print(f"fewear diagnose: resolution, level {halving + 1} of at most {max_halvings + 2} "
-          f"({blocks}): runs started 0-{MEMBER_START_OFFSETS_DEG[-1]:g} deg later part by "
-          f"{level.spread_rms_m * 1e6:.3g} um{moved}; {against}; {seconds:.0f} s a run "
-          "(a level finer: about twice that)", file=sys.stderr, flush=True)
+    return (f"fewear diagnose: resolution, level {halving + 1} of at most {max_halvings + 2} "
+            f"({blocks}): runs started 0-{MEMBER_START_OFFSETS_DEG[-1]:g} deg later part by "
+            f"{level.spread_rms_m * 1e6:.3g} um{moved}; {against}; {seconds:.0f} s a run "
+            "(a level finer: about twice that)")
 
 
 def _doubled(config: dict) -> tuple[dict, str]:
