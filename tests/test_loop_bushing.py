@@ -2,8 +2,10 @@
 contact operator's compliance kept per mesh against one rebuilt after every move."""
 
 import dataclasses
+import gc
 import math
 import re
+import weakref
 
 import numpy as np
 import pytest
@@ -92,6 +94,12 @@ def test_moves_remeshes_and_close_leave_no_petsc_objects_behind(coarse_problem, 
         assert petsc_garbage_entries(bushing.mesh.comm, capfd) == 0
         assert petsc_garbage_entries(comm, capfd) == 0
     assert bushing.counts.ale_moves == 2 and bushing.counts.remeshes == 1
-    bushing.close()
+    solver = weakref.ref(bushing.contact.solver)
+    gc.disable()  # freed by reference counting, while the mesh's communicator lives
+    try:
+        bushing.close()
+        assert solver() is None
+    finally:
+        gc.enable()
     assert petsc_garbage_entries(comm, capfd) == 0
     comm.Free()

@@ -126,6 +126,13 @@ class CondensedBushingContact:
         self.update_geometry(update_solver=False)
 
     # -- set-up ------------------------------------------------------------------------------
+    def release(self) -> None:
+        """Drop the Newton iterations' references back to this operator and its solver (cycles),
+        so that their PETSc objects go to the garbage list as soon as the operator is dropped
+        (:func:`fewear.parallel.release_petsc_garbage`), not at a later garbage collection."""
+        self.newton = None
+        self.solver.release()
+
     def update_geometry(self, update_solver: bool = True, keep_compliance: bool = False) -> None:
         """(Re)build the nodal compliance G, the weights and node data from the current mesh.
 

@@ -255,6 +255,11 @@ class BushingContactSolver:
         pc.setFactorSolverType("mumps")
         return ksp
 
+    def release(self) -> None:
+        """Drop the Newton iteration's reference back to this solver (a cycle): see
+        :meth:`fewear.contact.condensed.CondensedBushingContact.release`."""
+        self.newton = None
+
     def update_geometry(self) -> None:
         """Re-assemble the elastic stiffness and bore data after the mesh geometry changed."""
         self._K_elastic.zeroEntries()

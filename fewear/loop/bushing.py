@@ -10,7 +10,6 @@ in the case's :class:`fewear.loop.progress.LoopCounts`.
 
 from __future__ import annotations
 
-import gc
 from dataclasses import replace
 
 import numpy as np
@@ -103,8 +102,8 @@ class WornBushing:
         communicator must outlive :func:`fewear.parallel.release_petsc_garbage` of their PETSc
         objects."""
         mesh = self.mesh
+        self.contact.release()
         del self.contact, self.motion
-        gc.collect()  # the objects in reference cycles join the garbage list now
         return mesh
 
     def close(self) -> None:
