@@ -87,16 +87,19 @@ def test_moves_remeshes_and_close_leave_no_petsc_objects_behind(coarse_problem, 
     comm = MPI.COMM_WORLD.Dup()  # its own garbage list: other tests' objects are not on it
     bushing = WornBushing(coarse_problem, comm)
     theta = bushing.angles
-    for fraction in (0.2, 0.8):  # an ALE move, then one past the re-mesh limit (0.5)
-        depth = fraction * bushing.element_height_m * np.exp(-0.5 * ((theta - math.pi) / 0.3) ** 2)
-        bushing.move_to(dataclasses.replace(WearState.unworn(theta), depth_m=depth))
-        bushing.solve(np.array([-3000.0, 0.0]), 0.01, friction=True)
-        assert petsc_garbage_entries(bushing.mesh.comm, capfd) == 0
-        assert petsc_garbage_entries(comm, capfd) == 0
-    assert bushing.counts.ale_moves == 2 and bushing.counts.remeshes == 1
-    solver = weakref.ref(bushing.contact.solver)
-    gc.disable()  # freed by reference counting, while the mesh's communicator lives
+    gc.disable()  # what is retired is freed by reference counting, while its mesh lives
     try:
+        for fraction in (0.2, 0.8):  # an ALE move, then one past the re-mesh limit (0.5)
+            solver = weakref.ref(bushing.contact.solver)
+            depth = fraction * bushing.element_height_m * np.exp(
+                -0.5 * ((theta - math.pi) / 0.3) ** 2)
+            bushing.move_to(dataclasses.replace(WearState.unworn(theta), depth_m=depth))
+            bushing.solve(np.array([-3000.0, 0.0]), 0.01, friction=True)
+            assert (solver() is None) == (fraction > 0.5)  # the re-meshed mesh's solver only
+            assert petsc_garbage_entries(bushing.mesh.comm, capfd) == 0
+            assert petsc_garbage_entries(comm, capfd) == 0
+        assert bushing.counts.ale_moves == 2 and bushing.counts.remeshes == 1
+        solver = weakref.ref(bushing.contact.solver)
         bushing.close()
         assert solver() is None
     finally:

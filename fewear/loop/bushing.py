@@ -84,7 +84,6 @@ class WornBushing:
         """Mesh the bushing on ``bore_profile`` (None: the circle), or put the nodes at
         ``meshed_xy_m`` (a checkpoint's), and build the contact operator and mesh motion on it."""
         geometry, settings = self.problem.geometry, self.problem.mesh
-        retired = self._retire() if hasattr(self, "contact") else None
         mesh_data = bushing_mesh(geometry, settings, self.comm, bore_profile=bore_profile)
         node_ids, meshed_xy = gather_nodes(mesh_data[0], self.comm)
         if meshed_xy_m is not None:
@@ -94,21 +93,14 @@ class WornBushing:
             BushingContactSolver(self.problem, self.comm, mesh_data=mesh_data))
         self.motion = BoreMotion(mesh_data[0], mesh_data[2], self.problem.material.poisson_ratio)
         self.meshed_xy_m = meshed_xy
-        if retired is not None:
-            release_petsc_garbage(retired.comm, self.comm)
 
-    def _retire(self):
-        """Drop the current mesh's contact operator and mesh motion; return the mesh, whose
-        communicator must outlive :func:`fewear.parallel.release_petsc_garbage` of their PETSc
-        objects."""
+    def close(self) -> None:
+        """Destroy the PETSc objects of the current mesh's contact operator and mesh motion
+        (collective), while the mesh, and with it its communicator, still lives; the bushing is
+        not used again until :meth:`_mesh` gives it a new mesh (a re-mesh, a restore)."""
         mesh = self.mesh
         self.contact.release()
         del self.contact, self.motion
-        return mesh
-
-    def close(self) -> None:
-        """Destroy the PETSc objects of this bushing (collective); it cannot be used after."""
-        mesh = self._retire()
         release_petsc_garbage(mesh.comm, self.comm)
 
     @property
@@ -161,6 +153,7 @@ class WornBushing:
         self.counts.ale_moves += 1
         self.last_quality = move.quality
         if self.limits.needs_remesh(move.quality):
+            self.close()
             self._mesh(bore_profile=(state.angle_rad, radius(state.angle_rad)))
             self.counts.remeshes += 1
             self._follow_node_order()
@@ -185,6 +178,7 @@ class WornBushing:
     def restore(self, meshed_xy_m: np.ndarray, snapshot: MeshSnapshot) -> None:
         """Put the bushing back as a checkpoint saw it: the mesh as made (``meshed_xy_m``, the
         reference of its motion and quality), then moved to ``snapshot``."""
+        self.close()
         self._mesh(bore_profile=None, meshed_xy_m=meshed_xy_m)
         scatter_nodes(self.mesh, snapshot.node_ids, snapshot.xy_m)
         self._rebuild_contact()
