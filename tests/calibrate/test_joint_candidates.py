@@ -629,9 +629,10 @@ def test_the_first_accepted_cause_whose_realizations_hold_up_is_named(
     baseline = _baseline(base, obs)
     fits = {"friction": _fitted("friction", 1.0, friction_coefficient=0.3),
             "wear_coefficient": _fitted("wear_coefficient", 1.5)}
-    cause, extended, final, depth, confirmations = _confirm(
+    cause, extended, final, depth, confirmations, realized = _confirm(
         config, accepted, fits, baseline, obs, settings, "believed model")
     assert cause == named
+    assert realized.fits[0] is final
     assert final.held_out_rms_m < 1e-6 * obs.depth_m.max()
     np.testing.assert_allclose(depth, obs.depth_m, rtol=1e-9, atol=1e-15)
     assert [c.confirmed for c in confirmations] == [c == named for c in accepted]
@@ -681,10 +682,10 @@ def test_no_cause_is_named_when_no_realizations_hold_up(monkeypatch):
     config, base, obs = _k_level_world(monkeypatch, 1.5, 0.9)
     baseline = _baseline(base, obs)
     fits = {"friction": _fitted("friction", 1.0, friction_coefficient=0.3)}
-    cause, extended, final, depth, confirmations = _confirm(
+    cause, extended, final, depth, confirmations, realized = _confirm(
         config, ["friction"], fits, baseline, obs, JointDiagnoseSettings.default(),
         "believed model")
-    assert cause is None and final is baseline and extended == config
+    assert cause is None and final is baseline and extended == config and realized is None
     assert [(e.cause, e.confirmed) for e in confirmations] == [("friction", False)]
 
 

@@ -291,3 +291,121 @@ def test_each_round_starts_from_the_model_the_causes_before_it_extend(
     assert diagnosis.causes == named
     assert diagnosis.gains == pytest.approx([0.5] * len(named))
     assert diagnosis.extended_fit.name == str(max(len(named) - 1, 0))
+
+
+def _stand_in_rounds(monkeypatch, named_per_round, level_confirmed=True):
+    """The method's rounds replaced by stand-ins naming ``named_per_round`` in turn (each round's
+    config and the causes left out recorded in the list returned); a named cause is fitted at
+    friction 0.3 and a level of k x 1.7 (training SSE 1, held-out RMS 0.5), and at friction
+    0.25 with the level pinned at the believed one (training SSE 4, held-out RMS 1); the
+    realizations of that model are recorded in the second list returned, their confirmation
+    ``level_confirmed``."""
+    from fewear.diagnose.joint import diagnose as method
+    from fewear.diagnose.joint.confirmation import Confirmation, Realizations
+
+    calls, realized = [], []
+    named_fit = replace(FIT, x=np.zeros(3), n_params=3, sse_train=1.0, n_train=200,
+                        held_out_rms_m=0.5, params={"friction_coefficient": 0.3,
+                                                    "k_scale": 1.7})
+
+    def stand_in_round(data, obs, config, settings, named, floor_m):
+        index = len(calls)
+        calls.append((config, named))
+        fit_ = replace(FIT, held_out_rms_m=0.5**index)
+        chosen = named_per_round[index]
+        extended = {"round": index + 1, "joint": {"friction_coefficient": 0.3},
+                    "wear": {"coefficient_model": "constant", "constant_k_m2_N": 1.7}}
+        return method.Round(
+            baseline=fit_, base_run=None, verdicts=(), accepted=(), named=chosen, confounded=(),
+            confirmations=(), untestable=(), extended_config=extended,
+            extended_fit=replace(fit_, name=str(index), held_out_rms_m=0.5**(index + 1)),
+            extended_depth_m=np.zeros(1), named_fit=named_fit if chosen else None,
+            named_forms=("the forms",) if chosen else (),
+            named_realizations=Realizations((named_fit,)) if chosen else None)
+
+    def stand_in_fit_at_believed_level(forms, obs, offset_deg, settings):
+        assert forms == ("the forms",)
+        return replace(named_fit, n_params=2, sse_train=4.0, held_out_rms_m=1.0,
+                       params={"friction_coefficient": 0.25, "k_scale": 1.0})
+
+    def stand_in_realizations(configs, labels, obs, offset_deg, max_offset_deg):
+        realized.append((configs, labels))
+        return [Realizations((replace(FIT, name=label, held_out_rms_m=1.0),))
+                for label in labels]
+
+    def stand_in_confirm(cause, extended, reference, against, settings):
+        return Confirmation(cause, against, (0.5,), (1.0,), 0.5, 0.01, level_confirmed)
+
+    monkeypatch.setattr(method, "_round", stand_in_round)
+    monkeypatch.setattr(method, "_to_try", lambda config, settings, named: (["a cause"], []))
+    monkeypatch.setattr(method, "fit_at_believed_level", stand_in_fit_at_believed_level)
+    monkeypatch.setattr(method, "realizations", stand_in_realizations)
+    monkeypatch.setattr(method, "confirm", stand_in_confirm)
+    monkeypatch.setattr(method, "observations", lambda data, fraction: None)
+    monkeypatch.setattr(method, "resolve_wear_step",
+                        lambda config, *args: (config, {"instrument_scatter_m": None}))
+    monkeypatch.setattr(method, "_check_run_length", lambda *args: None)
+    monkeypatch.setattr(method, "_believed_config", lambda *args: None)
+    monkeypatch.setattr(method, "cycle_structure", lambda *args: {})
+    monkeypatch.setattr(method, "_unexplained", lambda *args: [])
+    monkeypatch.setattr(method, "_trace_notes", lambda *args: ())
+    return method, calls, realized
+
+
+BELIEVED_STAND_IN = {"round": 0, "joint": {"friction_coefficient": 0.1},
+                     "wear": {"coefficient_model": "constant", "constant_k_m2_N": 1.0}}
+"""The believed config of the stand-in rounds: friction 0.1, k 1 (arbitrary units)."""
+
+
+@pytest.mark.parametrize("level_confirmed, rounds_run, named", [
+    (True, 1, ("friction", "wear_coefficient")),
+    (False, 2, ("friction", "running_in")),
+])
+def test_the_level_of_k_is_judged_beside_the_first_cause_against_it_at_the_believed_level(
+        monkeypatch, level_confirmed, rounds_run, named):
+    """With ``max_causes`` 2, after a first round naming friction (fitted at mu 0.3, k x 1.7;
+    at mu 0.25 with k pinned at the believed, four times the training SSE and twice the
+    held-out error) the level is judged against the pinned fit (nested: F-test, gain 50 %) and,
+    accepted, the pinned model (mu 0.25, the believed k) is realized for its confirmation; the
+    level named, the extended model stays the first round's; not confirmed, the next round
+    starts from the first round's model, friction left out."""
+    method, calls, realized = _stand_in_rounds(
+        monkeypatch, [("friction",), ("running_in",)], level_confirmed)
+    settings = replace(JointDiagnoseSettings.default(), max_causes=2)
+    diagnosis = method.diagnose_joint(None, BELIEVED_STAND_IN, settings)
+    level = diagnosis.rounds[1]
+    assert level.level_of == "friction" and level.accepted == ("wear_coefficient",)
+    assert level.verdicts[0].evidence.gain == pytest.approx(0.5)
+    assert level.verdicts[0].evidence.p_value < 1e-6
+    [(configs, labels)] = realized
+    assert configs[0]["joint"]["friction_coefficient"] == 0.25
+    assert configs[0]["wear"]["constant_k_m2_N"] == pytest.approx(1.0)
+    assert labels == ["friction at the believed level of k"]
+    assert len(calls) == rounds_run
+    assert diagnosis.causes == named
+    if rounds_run == 2:
+        config, left_out = calls[1]
+        assert config["round"] == 1 and left_out == ("friction",)
+    assert diagnosis.extended_fit.name == str(rounds_run - 1)
+    gains = summarise_gains(diagnosis)
+    assert gains[1]["against"] == (
+        "the believed config + friction at the believed level of k" if level_confirmed
+        else "the believed config + friction")
+
+
+def summarise_gains(diagnosis):
+    from fewear.diagnose.joint.report import _cause_gains
+
+    return _cause_gains(diagnosis)
+
+
+@pytest.mark.parametrize("first, max_causes", [(("wear_coefficient",), 2), (("friction",), 1),
+                                               ((), 2)])
+def test_the_level_is_not_judged_after_the_level_or_with_one_cause_allowed(
+        monkeypatch, first, max_causes):
+    """No judgement of the level after a first round that named the level itself or nothing,
+    nor when ``max_causes`` is 1."""
+    method, _, realized = _stand_in_rounds(monkeypatch, [first, (), ()])
+    settings = replace(JointDiagnoseSettings.default(), max_causes=max_causes)
+    diagnosis = method.diagnose_joint(None, BELIEVED_STAND_IN, settings)
+    assert not realized and not any(r.level_of for r in diagnosis.rounds)

@@ -270,17 +270,25 @@ def best_form(fits: list[Fit]) -> Fit:
 
 
 def fit_form(candidate: Candidate, obs: Observations, offset_deg: float,
-             settings: JointDiagnoseSettings, starts: list[np.ndarray] | None = None) -> Fit:
+             settings: JointDiagnoseSettings, starts: list[np.ndarray] | None = None,
+             level_free: bool = True) -> Fit:
     """:func:`fit_candidate` for one form, from ``starts`` (x without a discrete choice's run
-    index) or from each level of (1, e^-0.5, e^0.5) times the form's own starts."""
+    index) or from each level of (1, e^-0.5, e^0.5) times the form's own starts; without
+    ``level_free``, at the believed level (s = 1: one parameter fewer, the fit nested in the
+    one with s free)."""
     bounds, extra_starts = bounds_and_starts(candidate, obs, settings)
+    levels = (0.0, -0.5, 0.5)
+    if not level_free:
+        bounds[1], levels = (0.0, 0.0), (0.0,)
     if starts is None:
-        starts = [np.array([offset_deg, ln_s, *extra]) for ln_s in (0.0, -0.5, 0.5)
+        starts = [np.array([offset_deg, ln_s, *extra]) for ln_s in levels
                   for extra in extra_starts]
     if candidate.discrete:
         result = best_run(candidate, obs, starts, bounds)
     else:
         result = fit(candidate.name, candidate, obs, starts, bounds)
+    if not level_free:
+        result = replace(result, n_params=result.n_params - 1)
     return with_params(result, candidate)
 
 

@@ -76,10 +76,13 @@ def _cause_gains(d: JointDiagnosis) -> list[dict[str, Any]]:
     """Per round that named a cause (or a pair, both at once): the held-out gain it adds to the
     model of the causes before it."""
     entries, before = [], []
-    for named, gain in zip((r.named for r in d.rounds if r.named), d.gains):
-        entries.append({"cause": " + ".join(named), "held_out_gain": gain,
-                        "against": "the believed config" + "".join(f" + {c}" for c in before)})
-        before += named
+    for named_round in (r for r in d.rounds if r.named):
+        against = "the believed config" + "".join(f" + {c}" for c in before)
+        if named_round.level_of:
+            against += " at the believed level of k"
+        entries.append({"cause": " + ".join(named_round.named),
+                        "held_out_gain": named_round.gain, "against": against})
+        before += named_round.named
     return entries
 
 
