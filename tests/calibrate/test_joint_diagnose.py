@@ -13,6 +13,7 @@ two share their forward runs (memoised by config), under a minute in all. The sl
 """
 
 import json
+import math
 from dataclasses import replace
 
 import numpy as np
@@ -243,6 +244,33 @@ def test_two_hidden_causes_are_named_each_with_the_gain_it_adds(believed):
     # each gain is over its round's reference, the model before run again to the round's horizon
     assert summary["gain"] == pytest.approx(
         1.0 - (1.0 - first["held_out_gain"]) * (1.0 - second["held_out_gain"]), abs=0.02)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("hidden, seed", [("friction+wear_coefficient", 31),
+                                          ("friction+wear_coefficient", 32),
+                                          ("friction", 31), ("friction", 32)])
+def test_a_level_of_k_hidden_beside_friction_is_named_apart_and_not_without_one(
+        believed, hidden, seed):
+    """Friction (mu 0.25-0.4) with a level of k (x0.5-0.67 or x1.5-2) hidden together, the
+    short campaign, the catalogue of the level and friction, two causes allowed: friction is
+    named, then the level beside it (its realizations predict the held-out counts better than
+    those of friction refitted at the believed level); friction alone: the level is not named
+    (there its fitted level x0.96 gains 22 % on the fits of seed 31, and its realizations refuse
+    it). Measured on seeds 31-35: the level named with each of the five pairs (gains 65-91 %
+    over friction at the believed level), on none of the five friction-only sets; 11-24 s
+    each."""
+    data, truth, _ = hidden_joint_case(believed[1], hidden, seed, profile_cycles=SHORT)
+    settings = JointDiagnoseSettings.from_config({**DEFAULT_SECTION, **QUICK, "max_causes": 2})
+    summary = summarise(diagnose_joint(data, believed[1], settings))
+    expected = hidden.split("+")
+    assert summary["causes"] == expected, (truth, summary["candidates"])
+    if len(expected) == 2:
+        level = summary["cause_gains"][1]
+        assert level["against"] == "the believed config + friction at the believed level of k"
+        assert level["held_out_gain"] > 0.25
+        fitted = summary["candidates"][-1]["params"]["k_scale"]
+        assert abs(math.log(fitted / truth["k_scale"])) < math.log(1.25), (fitted, truth)
 
 
 @pytest.mark.parametrize("named_per_round, max_causes, left, rounds_run, named", [

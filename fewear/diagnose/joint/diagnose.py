@@ -92,6 +92,15 @@ single-cause data the second round named impact wear beside the right first caus
 sets whose first round named a cause (the extended model's misfit of another model's forms), so
 ``max_causes`` is 1 by default.
 
+The level of k beside a cause (``max_causes`` >= 2, :func:`_level_round`): every cause's fit has
+the level free, so a k level hidden with another cause is carried inside that cause's fit and was
+never named apart. After a first round that names one cause other than the level, the cause is
+fitted again with the level at the believed one (its own parameters free: nested in its fit),
+the level is judged against that fit by the rule above (one cause tried) and, accepted, named
+when the cause's realizations predict the held-out data better than those of its model at the
+believed level (the confirmation's rule). The level then adds that gain; the extended model
+stays the first round's, and the next round (if any) starts from it.
+
 Two causes at once (``max_causes`` >= 2; :mod:`fewear.diagnose.joint.pairs`): two causes acting
 together need not leave one that predicts the held-out data better on its own, and then the
 first round names none. So when it accepts none, running-in is fitted together with each cause
