@@ -29,6 +29,7 @@ from fewear.diagnose.joint.fitting import (
     Observations,
     fit,
     fit_candidate,
+    fit_form,
     predict,
     running_in_time_map,
 )
@@ -830,3 +831,21 @@ def test_the_model_at_all_counts_at_once_is_the_model_count_by_count():
         expected = _count_by_count(obs, np.array(x), candidate)
         np.testing.assert_allclose(predict(obs, np.array(x), candidate), expected, rtol=1e-13,
                                    atol=0.0)
+
+
+def test_a_form_with_the_level_fixed_is_fitted_at_the_believed_k_with_a_parameter_fewer(
+        monkeypatch):
+    """Data of a k level x1.5 on linear wear: the level free fits it exactly; fixed at the
+    believed one (the reference the level is judged against beside a named cause), s = 1 with
+    one parameter fewer (nested), and the held-out depths missed by a third (1 - 1 / 1.5)."""
+    _, base, obs = _k_level_world(monkeypatch, 1.5, 1.0)
+    settings = JointDiagnoseSettings.default()
+    free = fit_form(Candidate("wear_coefficient", (base,)), obs, 0.0, settings)
+    fixed = fit_form(Candidate("wear_coefficient", (base,), level_free=False), obs, 0.0,
+                     settings)
+    assert free.params["k_scale"] == pytest.approx(1.5, rel=1e-4)
+    assert fixed.params["k_scale"] == 1.0
+    assert fixed.n_params == free.n_params - 1
+    held_out = obs.depth_m[~obs.train]
+    assert fixed.held_out_rms_m == pytest.approx(np.sqrt(np.mean((held_out / 3.0) ** 2)),
+                                                 rel=1e-6)

@@ -351,8 +351,8 @@ def _stand_in_rounds(monkeypatch, named_per_round, level_confirmed=True):
             named_forms=("the forms",) if chosen else (),
             named_realizations=Realizations((named_fit,)) if chosen else None)
 
-    def stand_in_fit_at_believed_level(forms, obs, offset_deg, settings):
-        assert forms == ("the forms",)
+    def stand_in_fit_at_believed_level(cause, forms, obs, baseline, config, settings):
+        assert (cause, forms, config) == ("friction", ("the forms",), BELIEVED_STAND_IN)
         return replace(named_fit, n_params=2, sse_train=4.0, held_out_rms_m=1.0,
                        params={"friction_coefficient": 0.25, "k_scale": 1.0})
 

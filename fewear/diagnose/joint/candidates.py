@@ -34,7 +34,8 @@ class Candidate:
     :mod:`fewear.diagnose.joint.pairs`); ``form``: '' for a cause with one form.
     ``k_scales``: the wear coefficient's level each run was made with (empty: the believed k for
     all; a refinement's run has its fit's); ``run_extension``: the running-in its one run was made
-    with (None: none)."""
+    with (None: none). ``level_free``: False fixes the level at the believed one (s = 1: its fit
+    has one parameter fewer and is nested in the cause's)."""
 
     name: str
     runs: tuple[WearHistory, ...]
@@ -47,6 +48,7 @@ class Candidate:
     parameter_scales_with_level: bool = False
     time_map: bool = False
     running_in_form: str = ""
+    level_free: bool = True
 
     @property
     def map_form(self) -> str:

@@ -230,7 +230,8 @@ def fit(name: str, candidate: Candidate, obs: Observations, starts: list[np.ndar
     x = np.clip(best.x, bounds[:, 0], bounds[:, 1])
     residuals = obs.depth_m - predict(obs, x, candidate)
     train, held = residuals[obs.train], residuals[~obs.train]
-    return Fit(name, x, x.size, float(train @ train), int(train.size),
+    n_params = x.size - (0 if candidate.level_free or x.size < 2 else 1)
+    return Fit(name, x, n_params, float(train @ train), int(train.size),
                float(np.sqrt(np.mean(held**2))), float(np.sqrt(np.mean(train**2))), residuals)
 
 
@@ -270,25 +271,19 @@ def best_form(fits: list[Fit]) -> Fit:
 
 
 def fit_form(candidate: Candidate, obs: Observations, offset_deg: float,
-             settings: JointDiagnoseSettings, starts: list[np.ndarray] | None = None,
-             level_free: bool = True) -> Fit:
+             settings: JointDiagnoseSettings, starts: list[np.ndarray] | None = None) -> Fit:
     """:func:`fit_candidate` for one form, from ``starts`` (x without a discrete choice's run
-    index) or from each level of (1, e^-0.5, e^0.5) times the form's own starts; without
-    ``level_free``, at the believed level (s = 1: one parameter fewer, the fit nested in the
-    one with s free)."""
+    index) or from each level of (1, e^-0.5, e^0.5) times the form's own starts (the level 1
+    alone where it is not free)."""
     bounds, extra_starts = bounds_and_starts(candidate, obs, settings)
-    levels = (0.0, -0.5, 0.5)
-    if not level_free:
-        bounds[1], levels = (0.0, 0.0), (0.0,)
     if starts is None:
-        starts = [np.array([offset_deg, ln_s, *extra]) for ln_s in levels
+        starts = [np.array([offset_deg, ln_s, *extra])
+                  for ln_s in ((0.0, -0.5, 0.5) if candidate.level_free else (0.0,))
                   for extra in extra_starts]
     if candidate.discrete:
         result = best_run(candidate, obs, starts, bounds)
     else:
         result = fit(candidate.name, candidate, obs, starts, bounds)
-    if not level_free:
-        result = replace(result, n_params=result.n_params - 1)
     return with_params(result, candidate)
 
 
@@ -297,7 +292,7 @@ def bounds_and_starts(candidate: Candidate, obs: Observations,
     """The bounds of x = (phi_deg, ln s, extra...) and the starts of the extra parameters (a
     discrete choice's run index is not among them: :func:`best_run`)."""
     last_train = float(obs.cycles[obs.train].max())
-    ln_max = math.log(settings.max_k_scale)
+    ln_max = math.log(settings.max_k_scale) if candidate.level_free else 0.0
     phi = settings.max_offset_deg
     bounds = [(-phi, phi), (-ln_max, ln_max)]
     extra_starts: list[tuple[float, ...]] = [()]
