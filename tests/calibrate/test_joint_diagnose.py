@@ -273,6 +273,19 @@ def test_a_level_of_k_hidden_beside_friction_is_named_apart_and_not_without_one(
         assert abs(math.log(fitted / truth["k_scale"])) < math.log(1.25), (fitted, truth)
 
 
+def _without_runs_around_the_rounds(monkeypatch, method) -> None:
+    """What :func:`diagnose_joint` does around its rounds replaced by stand-ins that run
+    nothing (observations, resolution, run-length check, structure, sentences)."""
+    monkeypatch.setattr(method, "observations", lambda data, fraction: None)
+    monkeypatch.setattr(method, "resolve_wear_step",
+                        lambda config, *args: (config, {"instrument_scatter_m": None}))
+    monkeypatch.setattr(method, "_check_run_length", lambda *args: None)
+    monkeypatch.setattr(method, "_believed_config", lambda *args: None)
+    monkeypatch.setattr(method, "cycle_structure", lambda *args: {})
+    monkeypatch.setattr(method, "_unexplained", lambda *args: [])
+    monkeypatch.setattr(method, "_trace_notes", lambda *args: ())
+
+
 @pytest.mark.parametrize("named_per_round, max_causes, left, rounds_run, named", [
     ([("friction",), ("running_in",), ()], 3, 3, 3, ("friction", "running_in")),
     ([("friction",), ("running_in",), ("impact_wear",)], 2, 3, 2, ("friction", "running_in")),
@@ -304,14 +317,7 @@ def test_each_round_starts_from_the_model_the_causes_before_it_extend(
     monkeypatch.setattr(method, "_round", stand_in_round)
     monkeypatch.setattr(method, "_to_try",
                         lambda config, settings, named: (["a cause"] * (left - len(named)), []))
-    monkeypatch.setattr(method, "observations", lambda data, fraction: None)
-    monkeypatch.setattr(method, "resolve_wear_step",
-                        lambda config, *args: (config, {"instrument_scatter_m": None}))
-    monkeypatch.setattr(method, "_check_run_length", lambda *args: None)
-    monkeypatch.setattr(method, "_believed_config", lambda *args: None)
-    monkeypatch.setattr(method, "cycle_structure", lambda *args: {})
-    monkeypatch.setattr(method, "_unexplained", lambda *args: [])
-    monkeypatch.setattr(method, "_trace_notes", lambda *args: ())
+    _without_runs_around_the_rounds(monkeypatch, method)
     settings = replace(JointDiagnoseSettings.default(), max_causes=max_causes)
     diagnosis = method.diagnose_joint(None, {"round": 0}, settings)
     assert [config for config, _ in calls] == list(range(rounds_run))
@@ -369,14 +375,7 @@ def _stand_in_rounds(monkeypatch, named_per_round, level_confirmed=True):
     monkeypatch.setattr(method, "fit_at_believed_level", stand_in_fit_at_believed_level)
     monkeypatch.setattr(method, "realizations", stand_in_realizations)
     monkeypatch.setattr(method, "confirm", stand_in_confirm)
-    monkeypatch.setattr(method, "observations", lambda data, fraction: None)
-    monkeypatch.setattr(method, "resolve_wear_step",
-                        lambda config, *args: (config, {"instrument_scatter_m": None}))
-    monkeypatch.setattr(method, "_check_run_length", lambda *args: None)
-    monkeypatch.setattr(method, "_believed_config", lambda *args: None)
-    monkeypatch.setattr(method, "cycle_structure", lambda *args: {})
-    monkeypatch.setattr(method, "_unexplained", lambda *args: [])
-    monkeypatch.setattr(method, "_trace_notes", lambda *args: ())
+    _without_runs_around_the_rounds(monkeypatch, method)
     return method, calls, realized
 
 
