@@ -23,7 +23,7 @@ from fewear.cli import main
 from fewear.diagnose.joint.diagnose import diagnose_joint
 from fewear.diagnose.joint.fitting import Fit
 from fewear.diagnose.joint.measured import write_joint_profiles, write_max_wear
-from fewear.diagnose.joint.report import summarise
+from fewear.diagnose.joint.report import _cause_gains, summarise
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
 from fewear.diagnose.joint.structure import MAX_LISTED_IMPACTS
 from fewear.io.config import load_config
@@ -414,16 +414,10 @@ def test_the_level_of_k_is_judged_beside_the_first_cause_against_it_at_the_belie
         config, left_out = calls[1]
         assert config["round"] == 1 and left_out == ("friction",)
     assert diagnosis.extended_fit.name == str(rounds_run - 1)
-    gains = summarise_gains(diagnosis)
+    gains = _cause_gains(diagnosis)
     assert gains[1]["against"] == (
         "the believed config + friction at the believed level of k" if level_confirmed
         else "the believed config + friction")
-
-
-def summarise_gains(diagnosis):
-    from fewear.diagnose.joint.report import _cause_gains
-
-    return _cause_gains(diagnosis)
 
 
 @pytest.mark.parametrize("first, max_causes", [(("wear_coefficient",), 2), (("friction",), 1),
