@@ -108,8 +108,7 @@ def test_a_light_step_without_equilibrium_wears_nothing_and_a_loaded_one_stops(c
             return coarse_contact.solve(force, rotation, friction=friction)
 
     forces = np.array([[0.0, -2000.0], [0.0, -10.0], [0.0, -1000.0]])  # 10 N: 0.3% of the sum
-    steps = LoadSteps(np.arange(3) * 1e-3, forces, np.full(3, 0.01), 1e-3, np.zeros(3),
-                      np.zeros(3), np.zeros(3))
+    steps = LoadSteps(np.arange(3) * 1e-3, forces, np.full(3, 0.01), 1e-3, np.zeros(3))
     k = ConstantWearCoefficient(2e-13)
     wear = cycle_wear(Refusing(forces[1]), steps, k, friction=False)
     assert wear.dropped_steps == 1

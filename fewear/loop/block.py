@@ -145,7 +145,8 @@ def wear_step(rod: str, inputs: RunInputs, bushing, state: WearState, history, s
     with timed(times, "contact"):
         try:
             wear = cycle_wear(bushing, steps, inputs.wear_coefficient, loop.friction_in_contact,
-                              implicit=loop.implicit_wear_step)
+                              implicit=loop.implicit_wear_step,
+                              footprints=inputs.impact_law.wears_by_impacts)
         except ContactLoadError as exc:  # a force the model cannot carry, or no equilibrium
             raise FewearInputError(
                 f"{rod} rod, block {state.blocks + 1} at {state.cycles:,} cycles: the FE contact "

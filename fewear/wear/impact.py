@@ -17,14 +17,19 @@ back). Both parts dissipate: the power (F_n - F_el) delta_dot is >= 0 at every i
 a contact episode (delta from 0 back to 0) W_hyst = integral of F_n d(delta), the kinetic energy
 the impact takes away.
 
-Per load step i of a cycle the step's work W_i is spread over the bore in proportion to the
-step's FE contact pressure p_{i,a}:
+Each impact episode k of a cycle is spread over the bore in proportion to its own footprint
+p_{k,a}, the FE contact pressure under its peak normal force F_k (directed along the pin
+centre's eccentricity there, frictionless: where it strikes), and the hysteresis work the
+continuous contact dissipates over load step i under that step's pressure p_{i,a}:
 
-    dh_imp,a = sum_i k_imp W_i p_{i,a} / |F_i|,
+    dh_imp,a = sum_k V_k p_{k,a} / |F_k| + sum_i k_imp W_i p_{i,a} / |F_i|,
 
-since the integral of p over the bore is about |F_i| (exactly the integral of p n is F_i for a
-frictionless contact; the scalar integral exceeds |F_i| by the mean 1/cos over the contact arc,
-the same factor that Archard's k p s carries), the step removes a volume of about k_imp W_i.
+since the integral of p over the bore is about |F| (exactly the integral of p n is F for a
+frictionless contact; the scalar integral exceeds |F| by the mean 1/cos over the contact arc,
+the same factor that Archard's k p s carries), an impact removes a volume of about V_k and a
+step about k_imp W_i. A load step's force is the slip-weighted mean of the joint force over it
+(:func:`fewear.loop.stages.load_steps`), which points where the pin slides under load, not where
+an impact within the step struck: the impacts' wear is put under their own footprints.
 
 Impulse form: V_imp = c_J J, J = integral of F_n dt over the impact episodes (``mode`` impact of
 :class:`fewear.mbd.history.JointHistory`: contact episodes shorter than the impact duration,
@@ -32,7 +37,7 @@ a collision and rebound; the continuous contact's impulse is left out). c_J (m^3
 ``[wear]`` key ``impact_impulse_wear_coefficient_m3_Ns``. The momentum an impact reverses, rather
 than the energy it takes away, sets the damage when the restitution is high and little is
 dissipated (impact wear grows with the number and the severity of the blows, Engel, Impact Wear
-of Materials, Elsevier 1976). A step's impulse J_i is spread over the bore like its work. With
+of Materials, Elsevier 1976). An impact's impulse is spread under its footprint. With
 ``[wear] impact_impulse_force_threshold_N`` F_th > 0 only the impacts whose peak normal force
 exceeds F_th count: light taps below the material's damage threshold remove nothing.
 
@@ -40,12 +45,12 @@ Speed form: V_imp = c_v sum_k v_k^n over the impacts k, v_k the normal approach 
 impact's onset (the rate of |e| over the step into contact), n = ``impact_speed_exponent``
 (3 by default: the kinetic energy per unit contact area of a Hertzian impact grows with v^(6/5)
 and erosion-type impact wear with v^2-v^3, Engel 1976), c_v =
-``impact_speed_wear_coefficient`` in m^3 / (m/s)^n. Each impact's v_k^n is counted in the load
-step its onset lies in and spread over the bore like the work.
+``impact_speed_wear_coefficient`` in m^3 / (m/s)^n. Each impact's v_k^n is spread under its
+footprint.
 
 The three coefficients and their options form an :class:`ImpactWearLaw`, parsed once from the
-``[wear]`` section (:meth:`ImpactWearLaw.from_config`); its :meth:`ImpactWearLaw.volume_m3` gives a
-step's impact volume from the step's measures.
+``[wear]`` section (:meth:`ImpactWearLaw.from_config`); its
+:meth:`ImpactWearLaw.volume_m3` gives the impacts' volumes from their measures.
 """
 
 from __future__ import annotations
@@ -98,9 +103,14 @@ class ImpactWearLaw:
                                 "speed that impact wear grows with)", default=3.0,
                                 upper=MAX_SPEED_EXPONENT))
 
+    @property
+    def wears_by_impacts(self) -> bool:
+        """Whether any form removes material (then each impact's footprint is needed)."""
+        return self.energy_m3_J > 0.0 or self.impulse_m3_Ns > 0.0 or self.speed_coefficient > 0.0
+
     def volume_m3(self, work_J, impulse_N_s, speed_power) -> np.ndarray:
-        """The impact volume of each load step (m^3): k_imp W_i + c_J J_i + c_v S_i from the
-        steps' hysteresis work, impulse (of the impacts above the threshold) and sum of v^n."""
+        """The volume of each impact (m^3): k_imp W_k + c_J J_k + c_v v_k^n from its hysteresis
+        work, impulse (0 below the threshold) and v^n."""
         return (self.energy_m3_J * np.asarray(work_J) + self.impulse_m3_Ns * np.asarray(impulse_N_s)
                 + self.speed_coefficient * np.asarray(speed_power))
 
@@ -158,12 +168,13 @@ def impact_speed_power(time_s, eccentricity_m, mode, exponent: float) -> np.ndar
 
 
 def impact_wear_depth_m(coefficient: float, measure, force_N, pressure_Pa) -> np.ndarray:
-    """dh_imp,a = sum_i c M_i p_{i,a} / |F_i| (m, (n_nodes,)) over the load steps i.
+    """dh_imp,a = sum_i c M_i p_{i,a} / |F_i| (m, (n_nodes,)) over the rows i (load steps or
+    impacts).
 
-    ``measure`` (n_steps,): what a step's impacts wear by, M_i (the hysteresis work W_i in J for
-    k_imp in m^3/J, or the impact impulse J_i in N s for c_J in m^3/(N s)); ``force_N``
-    (n_steps, 2): the steps' joint forces; ``pressure_Pa`` (n_steps, n_nodes): their FE contact
-    pressures. Steps without force carry no pressure and add nothing.
+    ``measure`` (n,): what a row wears by, M_i (the hysteresis work W_i in J for k_imp in
+    m^3/J, the impact impulse J_i in N s for c_J in m^3/(N s), a volume in m^3 for c = 1);
+    ``force_N`` (n, 2): the rows' forces; ``pressure_Pa`` (n, n_nodes): the FE contact
+    pressures under them. Rows without force carry no pressure and add nothing.
     """
     magnitude = np.linalg.norm(np.asarray(force_N, dtype=float), axis=1)
     share = np.divide(coefficient * np.asarray(measure, dtype=float), magnitude,

@@ -305,9 +305,10 @@ def impact_measures_per_cycle(config: dict) -> dict[str, float]:
         steps = load_steps(cycle_on_worn_bore(config), inputs.loop.load_steps_per_cycle,
                            inputs.dynamics.joint.law, inputs.impact_law)
         loaded = np.linalg.norm(steps.force_N, axis=1) > 0.0
-        _IMPACT_MEASURES[key] = {"energy": float(steps.hysteresis_work_J[loaded].sum()),
-                                 "impulse": float(steps.impact_impulse_N_s[loaded].sum()),
-                                 "speed": float(steps.impact_speed_power[loaded].sum())}
+        hits = steps.impacts
+        _IMPACT_MEASURES[key] = {
+            "energy": float(steps.hysteresis_work_J[loaded].sum() + hits.work_J.sum()),
+            "impulse": float(hits.impulse_N_s.sum()), "speed": float(hits.speed_power.sum())}
     return dict(_IMPACT_MEASURES[key])
 
 
