@@ -327,6 +327,22 @@ def test_each_round_starts_from_the_model_the_causes_before_it_extend(
     assert diagnosis.extended_fit.name == str(max(len(named) - 1, 0))
 
 
+def test_the_level_is_refitted_in_the_form_the_cause_was_named_in():
+    """Running-in named in its power-law form: the level's refit takes that form's candidate,
+    not the other forms' (its fit at the believed level is then nested in the named fit); a
+    pair, whose forms are no single cause's candidates, gives none."""
+    from fewear.diagnose.joint.candidates import Candidate
+    from fewear.diagnose.joint.diagnose import _named_cause
+
+    forms = tuple(Candidate("running_in", (), form=form)
+                  for form in ("exponential", "power_law", "cycles"))
+    fits = {"running_in": replace(FIT, form="power_law"), "running_in+friction": FIT}
+    named = _named_cause("running_in", fits, {"running_in": forms}, None)
+    assert named.form is forms[1] and named.fit is fits["running_in"]
+    assert _named_cause("running_in+friction", fits, {"running_in": forms}, None) is None
+    assert _named_cause(None, fits, {"running_in": forms}, None) is None
+
+
 def _stand_in_rounds(monkeypatch, named_per_round, level_confirmed=True):
     """The method's rounds replaced by stand-ins naming ``named_per_round`` in turn (each round's
     config and the causes left out recorded in the list returned); a named cause is fitted at
@@ -353,12 +369,12 @@ def _stand_in_rounds(monkeypatch, named_per_round, level_confirmed=True):
             baseline=fit_, base_run=None, verdicts=(), accepted=(), named=chosen, confounded=(),
             confirmations=(), untestable=(), extended_config=extended,
             extended_fit=replace(fit_, name=str(index), held_out_rms_m=0.5**(index + 1)),
-            extended_depth_m=np.zeros(1), named_fit=named_fit if chosen else None,
-            named_forms=("the forms",) if chosen else (),
-            named_realizations=Realizations((named_fit,)) if chosen else None)
+            extended_depth_m=np.zeros(1),
+            named_cause=method.NamedCause(named_fit, "the form", Realizations((named_fit,)))
+            if chosen else None)
 
-    def stand_in_fit_at_believed_level(cause, forms, obs, baseline, config, settings):
-        assert (cause, forms, config) == ("friction", ("the forms",), BELIEVED_STAND_IN)
+    def stand_in_fit_at_believed_level(cause, form, obs, baseline, config, settings):
+        assert (cause, form, config) == ("friction", "the form", BELIEVED_STAND_IN)
         return replace(named_fit, n_params=2, sse_train=4.0, held_out_rms_m=1.0,
                        params={"friction_coefficient": 0.25, "k_scale": 1.0})
 

@@ -95,8 +95,8 @@ sets whose first round named a cause (the extended model's misfit of another mod
 The level of k beside a cause (``max_causes`` >= 2, :func:`_level_round`): every cause's fit has
 the level free, so a k level hidden with another cause is carried inside that cause's fit and was
 never named apart. After a first round that names one cause other than the level, the cause is
-fitted again with the level at the believed one (its own parameters free and refined on runs:
-nested in its fit), the level is judged against that fit by the rule above (one cause tried)
+fitted again in the form it was named in with the level at the believed one (its own
+parameters free and refined on runs: nested in its fit), the level is judged against that fit by the rule above (one cause tried)
 and, accepted, named when the cause's realizations predict the held-out data better than those
 of its model at the believed level (the confirmation's rule). The level then adds that gain;
 the extended model stays the first round's, and the next round (if any) starts from it.
@@ -229,6 +229,18 @@ def testable(config: dict, settings: JointDiagnoseSettings) -> tuple[list[str], 
     return names, untestable
 
 
+@dataclass(frozen=True)
+class NamedCause:
+    """The cause a round named, for the judgement of the level of k beside it
+    (:func:`_level_round`): its ``fit`` (whose parameters make the round's extended config), the
+    ``form`` it was named in as a candidate (refitted there at the believed level: nested in the
+    fit), and its ``realizations`` (:mod:`fewear.diagnose.joint.confirmation`)."""
+
+    fit: Fit
+    form: Candidate
+    realizations: Realizations | None
+
+
 @dataclass(frozen=True, eq=False)
 class Round:
     """One round of the selection on a model (the believed config, or the extended model of the
@@ -251,12 +263,9 @@ class Round:
     extended_fit: Fit
     extended_depth_m: np.ndarray
     trace_evidence: TraceEvidence | None = None
-    named_fit: Fit | None = None
-    """The named cause's fit (its parameters make ``extended_config``)."""
-    named_forms: tuple[Candidate, ...] = ()
-    """The named cause's forms as fitted (one cause named; empty otherwise)."""
-    named_realizations: Realizations | None = None
-    """The named cause's realizations (:mod:`fewear.diagnose.joint.confirmation`)."""
+    named_cause: NamedCause | None = None
+    """The one cause the round named, as the level's judgement needs it (None: none, or a
+    pair)."""
     level_of: str | None = None
     """Set on the round that asks whether the level of k is a cause beside the first round's
     cause of this name (:func:`_level_round`): the round's model is that cause at the believed
@@ -390,8 +399,8 @@ def _another_round(rounds: list[Round], settings: JointDiagnoseSettings) -> bool
 def _level_asked(first: Round, settings: JointDiagnoseSettings) -> bool:
     """Whether the level of k is tried as a cause beside the first round's (:func:`_level_round`):
     with ``max_causes`` >= 2, after a first round that named one cause other than the level."""
-    return (settings.max_causes >= 2 and len(first.named) == 1
-            and first.named[0] != "wear_coefficient" and bool(first.named_forms)
+    return (settings.max_causes >= 2 and first.named_cause is not None
+            and first.named[0] != "wear_coefficient"
             and "wear_coefficient" in settings.candidates)
 
 
@@ -400,8 +409,8 @@ def _level_round(obs: Observations, config: dict, first: Round,
     """Whether the level of k is a cause beside the ``first`` round's named cause. Every cause's
     fit has the level free, so a k level hidden beside a cause is carried inside that cause's fit
     and never named apart (on the third generator's pairs: k x 0.55 + running-in named running-in
-    at level 0.70; k + friction named friction). So the named cause is fitted again with the
-    level fixed at the believed one, its own parameters free and refined on runs as the cause's
+    at level 0.70; k + friction named friction). So the named cause is fitted again in its
+    named form with the level fixed at the believed one, its own parameters free and refined on runs as the cause's
     were (:func:`fit_at_believed_level`: nested in its fit), and the level is judged as a cause
     against that fit by the rule of a round (one cause tried) and, if accepted, confirmed on
     realizations: the cause's (those of the first round) against those of its model at the
@@ -410,11 +419,11 @@ def _level_round(obs: Observations, config: dict, first: Round,
     the weaker for it and the level makes up the difference: on a power-law running-in alone
     (the independent generator's), running-in named in the exponential form at k x 1.42 had
     the level named beside it (gain 34 %, confirmed); refined, the level's gain is -12 %."""
-    cause, fitted = first.named[0], first.named_fit
-    pinned = replace(fit_at_believed_level(cause, first.named_forms, obs, first.baseline,
-                                           config, settings),
+    cause, named = first.named[0], first.named_cause
+    pinned = replace(fit_at_believed_level(cause, named.form, obs, first.baseline, config,
+                                           settings),
                      name=f"{cause} at the believed level of k")
-    judged = verdict(replace(fitted, name="wear_coefficient"), pinned, settings, 1)
+    judged = verdict(replace(named.fit, name="wear_coefficient"), pinned, settings, 1)
     confirmations: tuple[Confirmation, ...] = ()
     baseline = pinned
     if judged.accepted:
@@ -423,7 +432,7 @@ def _level_round(obs: Observations, config: dict, first: Round,
         reference = realizations([at_believed_level], [pinned.name], obs, float(pinned.x[0]),
                                  settings.max_offset_deg)[0]
         baseline = reference.fits[0]
-        confirmations = (confirm("wear_coefficient", first.named_realizations, reference,
+        confirmations = (confirm("wear_coefficient", named.realizations, reference,
                                  pinned.name, settings),)
     named = ("wear_coefficient",) if confirmations and confirmations[0].confirmed else ()
     return Round(baseline=baseline, base_run=None, verdicts=(judged,),
@@ -433,13 +442,13 @@ def _level_round(obs: Observations, config: dict, first: Round,
                  extended_depth_m=first.extended_depth_m, level_of=cause)
 
 
-def fit_at_believed_level(cause: str, forms: tuple[Candidate, ...], obs: Observations,
-                          baseline: Fit, config: dict, settings: JointDiagnoseSettings) -> Fit:
-    """``cause`` fitted in each of its ``forms`` with the level of k fixed at the believed one,
-    its own parameters free, and refined on runs of the believed ``config`` extended at its
-    fitted parameters, as the cause was (:func:`fewear.diagnose.joint.refinement.fit_causes`,
-    ``baseline`` the believed model's fit); the best form on the training data."""
-    pinned = tuple(replace(form, level_free=False) for form in forms)
+def fit_at_believed_level(cause: str, form: Candidate, obs: Observations, baseline: Fit,
+                          config: dict, settings: JointDiagnoseSettings) -> Fit:
+    """``cause`` fitted in its ``form`` with the level of k fixed at the believed one, its own
+    parameters free, and refined on runs of the believed ``config`` extended at its fitted
+    parameters, as the cause was (:func:`fewear.diagnose.joint.refinement.fit_causes`,
+    ``baseline`` the believed model's fit)."""
+    pinned = (replace(form, level_free=False),)
     runs_at = _refinement_runs(config, candidate_runner(_reach(obs, CAUSE_RUN_REACH),
                                                         float(obs.depth_m.max())))
     return fit_causes({cause: pinned}, obs, baseline, settings, runs_at)[cause]
@@ -525,9 +534,18 @@ def _round(data: JointMeasurements, obs: Observations, config: dict,
                  confirmations=tuple(confirmations), untestable=tuple(untestable),
                  extended_config=extended, extended_fit=final_fit,
                  extended_depth_m=extended_depth, trace_evidence=evidence,
-                 named_fit=fits[entry] if entry else None,
-                 named_forms=candidates.get(entry, ()) if entry else (),
-                 named_realizations=realized)
+                 named_cause=_named_cause(entry, fits, candidates, realized))
+
+
+def _named_cause(entry: str | None, fits: dict[str, Fit], candidates: dict,
+                 realized: Realizations | None) -> NamedCause | None:
+    """The round's :class:`NamedCause` for the ``entry`` it named (None: none, or a pair, whose
+    forms are not among the ``candidates``)."""
+    if entry not in candidates:
+        return None
+    fit = fits[entry]
+    return NamedCause(fit, next(c for c in candidates[entry] if c.form == (fit.form or "")),
+                      realized)
 
 
 def _trace_evidence(data: JointMeasurements, config: dict, candidates: dict, fits: dict,
