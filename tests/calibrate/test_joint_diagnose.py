@@ -343,6 +343,20 @@ def test_the_level_is_refitted_in_the_form_the_cause_was_named_in():
     assert _named_cause(None, fits, {"running_in": forms}, None) is None
 
 
+@pytest.mark.parametrize("offset_deg, said", [(29.8, True), (-30.0, True), (29.6, False),
+                                              (0.0, False)])
+def test_an_origin_fitted_at_its_bound_is_said(offset_deg, said):
+    """The instrument's origin fitted within 1 % of the +-30 deg it may take: a sentence naming
+    the offset, the bound and the setting; inside, none."""
+    from fewear.diagnose.joint.diagnose import _origin_at_bound
+
+    sentences = _origin_at_bound(replace(FIT, x=np.array([offset_deg, 1.0])), 30.0)
+    assert len(sentences) == said
+    if said:
+        assert f"{offset_deg:+.1f} deg" in sentences[0] and "max_offset_deg" in sentences[0]
+        assert "+-30 deg" in sentences[0]
+
+
 def _stand_in_rounds(monkeypatch, named_per_round, level_confirmed=True):
     """The method's rounds replaced by stand-ins naming ``named_per_round`` in turn (each round's
     config and the causes left out recorded in the list returned); a named cause is fitted at

@@ -92,14 +92,14 @@ single-cause data the second round named impact wear beside the right first caus
 sets whose first round named a cause (the extended model's misfit of another model's forms), so
 ``max_causes`` is 1 by default.
 
-The level of k beside a cause (``max_causes`` >= 2, :func:`_level_round`): every cause's fit has
-the level free, so a k level hidden with another cause is carried inside that cause's fit and was
-never named apart. After a first round that names one cause other than the level, the cause is
-fitted again in the form it was named in with the level at the believed one (its own
-parameters free and refined on runs: nested in its fit), the level is judged against that fit by the rule above (one cause tried)
-and, accepted, named when the cause's realizations predict the held-out data better than those
-of its model at the believed level (the confirmation's rule). The level then adds that gain;
-the extended model stays the first round's, and the next round (if any) starts from it.
+The level of k beside a cause (``max_causes`` >= 2, :func:`_level_round`): every cause's fit has the
+level free, so a k level hidden with another cause is carried inside that cause's fit and was never
+named apart. After a first round that names one cause other than the level, the cause is fitted
+again in the form it was named in with the level at the believed one (its own parameters free and
+refined on runs: nested in its fit), the level is judged against that fit by the rule above (one
+cause tried) and, accepted, named when the cause's realizations predict the held-out data better
+than those of its model at the believed level (the confirmation's rule). The level then adds that
+gain; the extended model stays the first round's, and the next round (if any) starts from it.
 
 Two causes at once (``max_causes`` >= 2; :mod:`fewear.diagnose.joint.pairs`): two causes acting
 together need not leave one that predicts the held-out data better on its own, and then the
@@ -384,7 +384,8 @@ def diagnose_joint(data: JointMeasurements, config: dict,
         residual_structure=cycle_structure(data, config, obs, first.baseline, first.base_run),
         resolution=resolution,
         unexplained=tuple(_unexplained(first.baseline, final.extended_fit, _named(rounds),
-                                       resolution, [e for r in rounds for e in r.not_confirmed])),
+                                       resolution, [e for r in rounds for e in r.not_confirmed])
+                          + _origin_at_bound(final.extended_fit, settings.max_offset_deg)),
         trace_notes=_trace_notes(data, config))
 
 
@@ -406,19 +407,19 @@ def _level_asked(first: Round, settings: JointDiagnoseSettings) -> bool:
 
 def _level_round(obs: Observations, config: dict, first: Round,
                  settings: JointDiagnoseSettings) -> Round:
-    """Whether the level of k is a cause beside the ``first`` round's named cause. Every cause's
-    fit has the level free, so a k level hidden beside a cause is carried inside that cause's fit
-    and never named apart (on the third generator's pairs: k x 0.55 + running-in named running-in
-    at level 0.70; k + friction named friction). So the named cause is fitted again in its
-    named form with the level fixed at the believed one, its own parameters free and refined on runs as the cause's
-    were (:func:`fit_at_believed_level`: nested in its fit), and the level is judged as a cause
-    against that fit by the rule of a round (one cause tried) and, if accepted, confirmed on
-    realizations: the cause's (those of the first round) against those of its model at the
-    believed level (:mod:`fewear.diagnose.joint.confirmation`). Named, the level adds that gain,
-    and the extended model stays the first round's. Unrefined, the fit at the believed level is
-    the weaker for it and the level makes up the difference: on a power-law running-in alone
-    (the independent generator's), running-in named in the exponential form at k x 1.42 had
-    the level named beside it (gain 34 %, confirmed); refined, the level's gain is -12 %."""
+    """Whether the level of k is a cause beside the ``first`` round's named cause. Every cause's fit
+    has the level free, so a k level hidden beside a cause is carried inside that cause's fit and
+    never named apart (on the third generator's pairs: k x 0.55 + running-in named running-in at
+    level 0.70; k + friction named friction). So the named cause is fitted again in its named form
+    with the level fixed at the believed one, its own parameters free and refined on runs as the
+    cause's were (:func:`fit_at_believed_level`: nested in its fit), and the level is judged as a
+    cause against that fit by the rule of a round (one cause tried) and, if accepted, confirmed on
+    realizations: the cause's (those of the first round) against those of its model at the believed
+    level (:mod:`fewear.diagnose.joint.confirmation`). Named, the level adds that gain, and the
+    extended model stays the first round's. Unrefined, the fit at the believed level is the weaker
+    for it and the level makes up the difference: on a power-law running-in alone (the independent
+    generator's), running-in named in the exponential form at k x 1.42 had the level named beside it
+    (gain 34 %, confirmed); refined, the level's gain is -12 %."""
     cause, named = first.named[0], first.named_cause
     pinned = replace(fit_at_believed_level(cause, named.form, obs, first.baseline, config,
                                            settings),
@@ -877,6 +878,19 @@ def _unexplained(baseline: Fit, final_fit: Fit, causes, resolution: dict,
     if misfit_m <= UNEXPLAINED_SCATTERS * noise[limit]:
         sentence += "; " + LIMITS[limit].format(noise[limit])
     return sentences + [sentence]
+
+
+def _origin_at_bound(fit: Fit, max_offset_deg: float) -> list[str]:
+    """A sentence when ``fit``'s angular origin of the instrument lies at the bound it is fitted
+    within (``max_offset_deg``, to 1 %): the origin may lie beyond, and then every model misses
+    the bore's pattern by the difference, whatever the cause."""
+    offset_deg = float(fit.x[0])
+    if abs(offset_deg) < 0.99 * max_offset_deg:
+        return []
+    return [f"the instrument's angular origin is fitted at {offset_deg:+.1f} deg, at the bound "
+            f"of +-{max_offset_deg:g} deg ([joint_diagnose] max_offset_deg): if it lies beyond, "
+            "every model misses the bore's pattern by the difference; a wider max_offset_deg "
+            "lets the fit find it"]
 
 
 LIMITS = {
