@@ -48,8 +48,9 @@ constant_k_m2_N = {CONSTANT_K_m2_N!r}
 extension = "none"
 extension_params = {{}}
 # Impact wear (fewear.wear.impact, energy wear after Fouvry et al., Wear 255 (2003)): worn volume
-# in m^3 per joule dissipated by the contact law's hysteresis (Lankarani-Nikravesh damping), spread
-# over the bore like the contact pressure and added to Archard's sliding wear. A number >= 0;
+# in m^3 per joule dissipated by the contact law's hysteresis (Lankarani-Nikravesh damping),
+# added to Archard's sliding wear: an impact's under its footprint (the contact at its peak force,
+# where it strikes), the continuous contact's like the load steps' pressure. A number >= 0;
 # 0 = no impact wear (the default: sliding wear only).
 impact_wear_coefficient_m3_J = 0.0
 # The RBF network (fewear.wear.coefficient.RbfWearCoefficient): ln k = tail . (1, z_p, z_v)

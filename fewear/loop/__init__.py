@@ -15,9 +15,10 @@ flexible). Every wear block j:
 4. **Wear** (:mod:`fewear.wear`): Archard's law with k(p, v) (seed eq. 9-10) and the wear law's
    history multiplier, per node, averaged over the recorded cycles; the wear step extrapolates it
    over A_j real cycles (fixed, or adaptive: bounded depth increment per step). Optionally impacts
-   wear too, by the contact law's hysteresis work, the impacts' impulse or a power of their speed
-   in each step, spread in proportion to the step's pressure (:mod:`fewear.wear.impact`,
-   ``[wear] impact_*`` keys; default none).
+   wear too, by the contact law's hysteresis work, the impacts' impulse or a power of their speed,
+   each impact under its own footprint (the contact at its peak force) and the continuous
+   contact's work under the steps' pressure (:mod:`fewear.wear.impact`, ``[wear] impact_*`` keys;
+   default none).
 5. **Geometry update**: the bore nodes move by the step's depth increment, the mesh follows (ALE)
    or is re-meshed from the worn bore, and the contact operator is rebuilt.
 

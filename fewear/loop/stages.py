@@ -251,6 +251,9 @@ def cycle_sliding(wear: CycleWear, steps: LoadSteps, cycles: int, friction_coeff
                                        steps.force_N, wear.pressure_Pa)
     struck_m3 = impact.volume_m3(hits.work_J, hits.impulse_N_s, hits.speed_power)
     if np.any(struck_m3 > 0.0):
+        if wear.impact_pressure_Pa is None:
+            raise ValueError("the impacts wear, but their footprints were not solved: "
+                             "cycle_wear(..., footprints=True)")
         impact_depth = impact_depth + impact_wear_depth_m(1.0, struck_m3, hits.force_N,
                                                           wear.impact_pressure_Pa)
     impact = impact_depth / cycles

@@ -276,6 +276,9 @@ def test_an_impact_wears_where_it_strikes_not_where_its_step_slides(coarse_conta
     width = coarse_contact.problem.geometry.width_m
     volume = width * float(coarse_contact.weights_m @ depth)
     assert 1.0 - 1e-6 < volume / (c * impulse) < 1.0 / math.cos(widest) + 1e-6
+    unsolved = cycle_wear(coarse_contact, steps, ConstantWearCoefficient(2e-13), friction=False)
+    with pytest.raises(ValueError, match="footprints were not solved"):
+        cycle_sliding(unsolved, steps, 1, 0.1, ImpactWearLaw(impulse_m3_Ns=c))
 
 
 def test_without_impact_wear_the_block_is_unchanged():
@@ -385,12 +388,13 @@ and of the impacts, the impacts' impulse, the sum of their v^n."""
 def test_fewear_run_adds_the_coefficient_times_the_cycles_impact_measure(tmp_path, key,
                                                                          without_impact_wear):
     """One block of 2000 cycles with and without impact wear: the same dynamics and sliding
-    wear, so the extra worn volume is A_j c sum_i M_i over the steps with force (M: the
-    hysteresis work W_i for k_imp, the impact impulse J_i for c_J). Measured
+    wear, so the extra worn volume is A_j c M, M the cycle's measure (:data:`MEASURES`: the
+    hysteresis work for k_imp, the impacts' impulse for c_J, their sum of v^n for c_v). Measured
     by the summary's worn volume (the trapezoid over the bore nodes, not the contact's nodal
     weights: on the 3-5 nodes of a pressed arc they differ by up to ~15%, and the scalar
     pressure integral exceeds |F| by the 1/cos of the arc), hence the band [0.85, 1.25]
-    (measured: 1.02 for the work, 1.03 for the impulse). The block without impact wear is
+    (measured with the volume under the load steps' pressure: 1.02 for the work, 1.03 for the
+    impulse). The block without impact wear is
     shared by both."""
     plain_volume, steps = without_impact_wear
     volume = _worn_volume_m3(tmp_path, f"{key} = 1e-12")

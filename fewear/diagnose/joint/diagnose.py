@@ -435,9 +435,9 @@ def _level_round(obs: Observations, config: dict, first: Round,
         baseline = reference.fits[0]
         confirmations = (confirm("wear_coefficient", named.realizations, reference,
                                  pinned.name, settings),)
-    named = ("wear_coefficient",) if confirmations and confirmations[0].confirmed else ()
+    level_named = ("wear_coefficient",) if confirmations and confirmations[0].confirmed else ()
     return Round(baseline=baseline, base_run=None, verdicts=(judged,),
-                 accepted=("wear_coefficient",) if judged.accepted else (), named=named,
+                 accepted=("wear_coefficient",) if judged.accepted else (), named=level_named,
                  confounded=(), confirmations=confirmations, untestable=(),
                  extended_config=first.extended_config, extended_fit=first.extended_fit,
                  extended_depth_m=first.extended_depth_m, level_of=cause)
@@ -885,7 +885,7 @@ def _origin_at_bound(fit: Fit, max_offset_deg: float) -> list[str]:
     within (``max_offset_deg``, to 1 %): the origin may lie beyond, and then every model misses
     the bore's pattern by the difference, whatever the cause."""
     offset_deg = float(fit.x[0])
-    if abs(offset_deg) < 0.99 * max_offset_deg:
+    if max_offset_deg <= 0.0 or abs(offset_deg) < 0.99 * max_offset_deg:  # 0: origin known
         return []
     return [f"the instrument's angular origin is fitted at {offset_deg:+.1f} deg, at the bound "
             f"of +-{max_offset_deg:g} deg ([joint_diagnose] max_offset_deg): if it lies beyond, "

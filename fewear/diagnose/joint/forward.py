@@ -290,12 +290,12 @@ def cycle_on_worn_bore(config: dict, angle_rad: np.ndarray | None = None,
 
 
 def impact_measures_per_cycle(config: dict) -> dict[str, float]:
-    """What the impacts of one crank cycle on the unworn joint wear by
-    (:mod:`fewear.wear.impact`), from the steps that carry a force: ``energy``, the contact
-    law's hysteresis work (J), ``impulse``, the impacts' normal impulse (N s, those above the
-    config's force threshold), and ``speed``, the sum of the impacts' v^n ((m/s)^n, the
-    config's exponent). Memoised by the config, as the runs are (a round asks for them when it
-    makes the impact grid's runs and again when it fits them)."""
+    """What the impacts of one crank cycle on the unworn joint wear by (:mod:`fewear.wear.impact`):
+    ``energy``, the contact law's hysteresis work (J; of the continuous contact over the steps that
+    carry a force, and of the impacts), ``impulse``, the impacts' normal impulse (N s, those above
+    the config's force threshold), and ``speed``, the sum of the impacts' v^n ((m/s)^n, the config's
+    exponent). Memoised by the config, as the runs are (a round asks for them when it makes the
+    impact grid's runs and again when it fits them)."""
     from fewear.loop.settings import run_inputs_from_config
     from fewear.loop.stages import load_steps
 
