@@ -53,6 +53,19 @@ extension_params = {{}}
 # where it strikes), the continuous contact's like the load steps' pressure. A number >= 0;
 # 0 = no impact wear (the default: sliding wear only).
 impact_wear_coefficient_m3_J = 0.0
+# Impact wear by impulse (fewear.wear.impact): worn volume in m^3 per N s of the normal impulse of
+# the impacts (contact episodes shorter than the impact duration), under their footprints. A
+# number >= 0; 0 = none (the default). All three forms may act together.
+impact_impulse_wear_coefficient_m3_Ns = 0.0
+# Only the impacts whose peak normal force exceeds this (N) count for the impulse form; 0 = every
+# impact (the default).
+impact_impulse_force_threshold_N = 0.0
+# Impact wear by impact speed (fewear.wear.impact): worn volume in m^3 per impact per (m/s)^n of
+# its normal approach speed, n = impact_speed_exponent (0-6, default 3; 0: the same volume per
+# impact, whatever its speed), under their footprints.
+# A number >= 0; 0 = none (the default).
+impact_speed_wear_coefficient = 0.0
+impact_speed_exponent = 3.0
 # The RBF network (fewear.wear.coefficient.RbfWearCoefficient): ln k = tail . (1, z_p, z_v)
 # + sum_i weights_i exp(-|z - centres_i|^2 / (2 widths_i^2)), z = (ln(p/Pa), ln(v/(m/s)))
 # standardised by log_input_mean and log_input_scale; p and v are clamped to pressure_range_Pa and

@@ -202,12 +202,16 @@ def test_default_config_reproduces_the_standin_law_within_its_noise():
 
 
 def test_default_network_is_the_fit_to_the_shipped_data():
-    from fewear.data.fit_default_wear_coefficient import fit_default
+    from fewear.data.fit_default_wear_coefficient import OUTPUT, fit_default, wear_toml_text
 
     shipped = wear_coefficient_from_config(load_config(None, ["wear"])["wear"])
     refitted, _ = fit_default()
     p, v = inside_points(200, seed=9)
     np.testing.assert_allclose(shipped(p, v), refitted(p, v), rtol=1e-9)
+    # the script writes the shipped file, all before the network (whose numbers are the refit's
+    # to its rounding) as it is: rerun, it keeps every setting of [wear]
+    written, on_disc = wear_toml_text(), OUTPUT.read_text()
+    assert written[:written.index("\nrbf = ")] == on_disc[:on_disc.index("\nrbf = ")]
 
 
 def test_standin_data_regenerate_bit_for_bit_and_say_synthetic():
