@@ -6,8 +6,9 @@ speed, running-in of the pin's roughness as a bore-wide warp of the cycles, or n
 from silicone replicas with a confocal scanner (Gaussian-filtered profiles every 1.5 deg with an
 unknown origin, seating errors, a shared reference pattern, drift, bubbles, a parting-line gap and
 torn sectors, quantised) at 4-6 counts between 1,500 and 25,000 cycles plus four maximum-depth
-readings. Run with ``pytest tests/benchmarks/test_bench_joint_fourth.py -m benchmark -s`` (SEEDS
-per cause from ``FEWEAR_BENCH_JOINT_FOURTH_SEEDS``, default 2)."""
+readings, with its slider-acceleration and joint-force traces. Run with
+``pytest tests/benchmarks/test_bench_joint_fourth.py -m benchmark -s`` (SEEDS per cause from
+``FEWEAR_BENCH_JOINT_FOURTH_SEEDS``, default 2)."""
 
 import os
 import time
@@ -17,6 +18,7 @@ import pytest
 from fewear.diagnose.joint.measured import read_joint_measurements
 from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
+from tests.benchmarks.joint_files import measured_files
 from tests.calibrate.fourth_joint_generator import (
     CAUSES,
     data_set_seed,
@@ -41,7 +43,7 @@ def test_diagnose_fourth_generator(tmp_path):
             data = write_data_set(cause, seed, tmp_path / f"{cause}-{index}")
             if config is None:
                 config = load_config(data.believed_toml, run_sections())
-            measured = read_joint_measurements([data.profiles_csv, data.max_wear_csv])
+            measured = read_joint_measurements(measured_files(data))
             began = time.perf_counter()
             summary = summarise(diagnose_joint(measured, config))
             wall = time.perf_counter() - began

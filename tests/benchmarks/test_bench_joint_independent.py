@@ -6,9 +6,10 @@ the diagnosis or the project's own generator): per cause of the catalogue ``SEED
 its own lab (sampling, origin, filter, noise, drift, dust, coverage, cycle counts). All are
 diagnosed in one process against the believed model (resolved first: its wear steps halved until
 its own noise is within the instrument's scatter; the forward runs are memoised), through the CSV
-reader. Printed per data set: the hidden truth, the causes named, the held-out gain and the
-wall time (data generation + diagnosis); then per cause how many were named first, the false
-positives on ``none`` and the total accuracy. No floor is asserted: the printed table is the
+readers, its slider-acceleration and joint-force traces with its bore. Printed per data set: the
+hidden truth, the causes named, the held-out gain and the wall time (data generation +
+diagnosis); then per cause how many were named first, the false positives on ``none`` and the
+total accuracy. No floor is asserted: the printed table is the
 result (tests/calibrate/test_joint_independent.py holds the asserts).
 
 Run with ``pytest tests/benchmarks/test_bench_joint_independent.py -m benchmark -s``.
@@ -24,6 +25,7 @@ from collections import Counter
 
 import pytest
 
+from tests.benchmarks.joint_files import measured_files
 from tests.calibrate.independent_joint_generator import CAUSES, data_set_seed, write_data_set
 
 pytestmark = pytest.mark.benchmark
@@ -51,7 +53,7 @@ def test_independent_joint_diagnosis(tmp_path):
             start = time.perf_counter()
             data = write_data_set(cause, seed, tmp_path / f"{cause}_{seed}")
             config = config or load_config(data.believed_toml, run_sections())
-            measured = read_joint_measurements([data.profiles_csv, data.max_wear_csv])
+            measured = read_joint_measurements(measured_files(data))
             summary = summarise(diagnose_joint(measured, config))
             wall_s = time.perf_counter() - start
             named[cause] += summary["cause"] == cause

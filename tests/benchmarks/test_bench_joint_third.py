@@ -3,8 +3,9 @@
 tests/calibrate/third_joint_generator.py draws a hidden cause (its own forms and ranges: a
 smoothstep running-in, impact wear from the squared Hertz-pressure excess, flexible steel or
 aluminium rods, ...) and measures the worn bore with its own lab (a CMM with a ball stylus and an
-unknown angular origin, a bore gauge). For each cause and seed index the data set goes through the
-CSV reader to the diagnosis with the believed coarse rigid model. Printed: one row per data set,
+unknown angular origin, a bore gauge). For each cause and seed index the data set (profiles,
+maximum depths, the slider-acceleration and joint-force traces) goes through the CSV readers to
+the diagnosis with the believed coarse rigid model. Printed: one row per data set,
 then per cause how often the hidden cause was named first, false positives on ``none`` (any cause
 named), the total accuracy and wall time. Run with
 ``pytest tests/benchmarks/test_bench_joint_third.py -m benchmark -s`` (SEEDS per cause from
@@ -20,6 +21,7 @@ import pytest
 from fewear.diagnose.joint.measured import read_joint_measurements
 from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
+from tests.benchmarks.joint_files import measured_files
 from tests.calibrate.third_joint_generator import CAUSES, data_set_seed, write_data_set
 
 pytestmark = pytest.mark.benchmark
@@ -45,7 +47,7 @@ def test_diagnose_third_generator(tmp_path):
             data = write_data_set(cause, seed, tmp_path / f"{cause}-{index}")
             if config is None:
                 config = load_config(data.believed_toml, run_sections())
-            measured = read_joint_measurements([data.profiles_csv, data.max_wear_csv])
+            measured = read_joint_measurements(measured_files(data))
             began = time.perf_counter()
             summary = summarise(diagnose_joint(measured, config))
             wall = time.perf_counter() - began

@@ -3,10 +3,11 @@ in at least 70 % of data sets).
 
 The third and fourth generators (tests/calibrate/third_joint_generator.py,
 fourth_joint_generator.py, written without reading the diagnosis) hide both causes of a pair in
-one truth, each drawn as its single-cause data sets draw it. Each data set goes through the CSV
-reader to the diagnosis with the believed model and ``max_causes = 2``. Printed: one row per
-data set (the causes named, the gain each round added), then per generator and in all how often
-both hidden causes were named, and the wall time. Run with
+one truth, each drawn as its single-cause data sets draw it. Each data set (its bore profiles,
+maximum depths and the slider-acceleration and joint-force traces its generator wrote) goes
+through the CSV readers to the diagnosis with the believed model and ``max_causes = 2``.
+Printed: one row per data set (the causes named, the gain each round added), then per
+generator and in all how often both hidden causes were named, and the wall time. Run with
 ``pytest tests/benchmarks/test_bench_joint_two_causes.py -m benchmark -s``; the pairs from
 ``FEWEAR_BENCH_TWO_CAUSE_PAIRS`` (e.g. ``friction+running_in,flexible_link+friction``; default
 all ten), seed indices from ``FEWEAR_BENCH_TWO_CAUSE_SEEDS`` (default 1). The table is the
@@ -23,6 +24,7 @@ import pytest
 from fewear.diagnose.joint.measured import read_joint_measurements
 from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
+from tests.benchmarks.joint_files import measured_files
 
 pytestmark = pytest.mark.benchmark
 
@@ -53,7 +55,7 @@ def test_diagnose_two_hidden_causes(tmp_path):
                 data = generator.write_two_cause_data_set(pair, seed,
                                                           tmp_path / f"{name}-{seed}")
                 config = load_config(data.believed_toml, run_sections())
-                measured = read_joint_measurements([data.profiles_csv, data.max_wear_csv])
+                measured = read_joint_measurements(measured_files(data))
                 began = time.perf_counter()
                 summary = summarise(diagnose_joint(measured, config, settings))
                 both = set(pair) <= set(summary["causes"])
