@@ -50,7 +50,8 @@ def worker_pool(processes: int):
     main_module = sys.modules["__main__"]
     sys.modules["__main__"] = types.ModuleType("__main__")
     try:
-        with multiprocessing.get_context("spawn").Pool(processes, _quiet_worker) as pool:
+        with multiprocessing.get_context("spawn").Pool(processes, _quiet_worker,
+                                                       (os.getpid(),)) as pool:
             yield pool
     finally:
         sys.modules["__main__"] = main_module
@@ -61,13 +62,25 @@ def worker_pool(processes: int):
                 os.environ[name] = value
 
 
-def _quiet_worker() -> None:
+PR_SET_PDEATHSIG = 1
+"""Linux prctl(2) option: the signal a process gets when its parent dies."""
+
+
+def _quiet_worker(parent_pid: int) -> None:
     """A worker ignores Ctrl-C (the terminal sends it to the whole process group): the parent
     reports the interruption once and terminates the workers when it leaves the pool, instead of
-    every worker printing a ``KeyboardInterrupt`` traceback."""
+    every worker printing a ``KeyboardInterrupt`` traceback. And it ends with its parent
+    (``parent_pid``): a parent killed outright (SIGTERM, SIGKILL, the out-of-memory killer)
+    leaves no pool to terminate them, and a worker would finish its current run first, at the
+    paper's scale minutes of both cores."""
+    import ctypes
     import signal
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if sys.platform.startswith("linux"):
+        ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, int(signal.SIGTERM))
+    if os.getppid() != parent_pid:  # the parent died before the request
+        os._exit(1)
 
 
 def side_by_side(function: Callable, arguments: list[tuple], prepare: Callable | None = None):
