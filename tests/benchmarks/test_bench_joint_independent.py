@@ -9,8 +9,8 @@ its own noise is within the instrument's scatter; the forward runs are memoised)
 readers, its slider-acceleration and joint-force traces with its bore. Printed per data set: the
 hidden truth, the causes named, the held-out gain and the wall time (data generation +
 diagnosis); then per cause how many were named first, the false positives on ``none`` and the
-total accuracy. No floor is asserted: the printed table is the
-result (tests/calibrate/test_joint_independent.py holds the asserts).
+total accuracy. No floor is asserted: the printed table is the result
+(tests/calibrate/test_joint_independent.py holds the asserts).
 
 Run with ``pytest tests/benchmarks/test_bench_joint_independent.py -m benchmark -s``.
 
