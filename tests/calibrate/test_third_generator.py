@@ -120,6 +120,20 @@ def test_hertz_line_contact_and_the_pocket_volume(tmp_path):
 
 # --- the instruments --------------------------------------------------------------------------
 
+def test_impact_wear_is_taken_from_the_running_mechanism(tmp_path):
+    """Started from its ideal state the mechanism impacts for a few cycles before its orbit on the
+    unworn bore settles into continuous contact; the cycles the truth's impact wear is taken from
+    come after that start-up: none of them impacts, while the first cycle after the config's own
+    two settling cycles does (the truth took its impacts from that one cycle before)."""
+    from fewear.diagnose.joint.forward import cycle_on_worn_bore
+
+    config = with_truth_numerics(_believed(tmp_path))
+    start_up = cycle_on_worn_bore(config)
+    running = cycle_on_worn_bore(gen.settled(config), recorded_cycles=gen.IMPACT_RECORDED_CYCLES)
+    assert len(start_up.impact_episodes()) >= 3
+    assert running.impact_episodes() == []
+
+
 def test_ball_on_the_unworn_circle_reports_no_depth():
     grid = gen.fine_grid()
     at = np.radians(np.linspace(0.0, 359.0, 97))
@@ -341,7 +355,7 @@ def synthetic(monkeypatch, tmp_path):
         record["runs"].append((config, total))
         return _SyntheticRun(config, base_tail)
 
-    def cycle(config, angle_rad=None, depth_m=None):
+    def cycle(config, angle_rad=None, depth_m=None, recorded_cycles=1):
         record["cycles"].append((config, depth_m))
         return (config["joint"]["friction_coefficient"],
                 0.0 if depth_m is None else float(np.max(depth_m)))
@@ -373,13 +387,17 @@ def _reference_bore(cause, params, config, last):
     grid = gen.fine_grid()
     counts = np.linspace(0.0, float(last), gen.IMPACT_EVALUATIONS)
     damage, impacts = [], 0
+    running = gen.settled(config)
     for count in counts:
-        cycle = (cycle_on_worn_bore(config) if count == 0.0 else
-                 cycle_on_worn_bore(config, history.angle_rad, history.nodal_depth_m(count)))
+        cycle = (cycle_on_worn_bore(running, recorded_cycles=gen.IMPACT_RECORDED_CYCLES)
+                 if count == 0.0 else
+                 cycle_on_worn_bore(running, history.angle_rad, history.nodal_depth_m(count),
+                                    recorded_cycles=gen.IMPACT_RECORDED_CYCLES))
         hits = gen.impact_hits(cycle, config)
         impacts += len(hits)
         damage.append(gen.impact_damage(grid, R, hits, params["pressure_threshold_Pa"],
-                                        math.radians(params["scatter_deg"])))
+                                        math.radians(params["scatter_deg"]))
+                      / gen.IMPACT_RECORDED_CYCLES)
     damage = np.array(damage)
     unit = gen.TrueBore(history, R, impact_cycles=counts, impact_rate=damage)
     unit_volume = gen.worn_volume_m3(unit.impact_depth_m(last), config)
@@ -523,7 +541,7 @@ def test_a_pair_is_one_run_carrying_both_causes(pair, synthetic, tmp_path):
         counts = np.linspace(0.0, float(last), gen.IMPACT_EVALUATIONS)
         assert len(synthetic["cycles"]) == counts.size
         for count, (cycle_config, depth) in zip(counts[1:], synthetic["cycles"][1:]):
-            assert cycle_config == run_config
+            assert cycle_config == gen.settled(run_config)
             np.testing.assert_array_equal(depth, bore.history.nodal_depth_m(
                 bore.sliding_cycles(count)))
         assert derived["volume_fraction"] == pytest.approx(params["volume_fraction_target"])

@@ -45,11 +45,19 @@ counter-clockwise; h > 0 is removed material), evaluated on a fine grid of 2880 
     L = bushing width), and leaves the depth
         d_i(theta) = c (p0 sqrt(1 - (x/b)^2) - p_th)_+^2,   x = R_bore (theta - theta_i),
     smeared by a Gaussian of standard deviation sigma over the angle (the impact point scatters
-    from cycle to cycle). The rate per cycle, D(N, theta) = sum_i d_i, comes from one crank cycle
-    (:func:`fewear.diagnose.joint.forward.cycle_on_worn_bore`) on the believed bore worn by N
+    from cycle to cycle). The rate per cycle, D(N, theta) = sum_i d_i, is the mean over
+    :data:`IMPACT_RECORDED_CYCLES` crank cycles of the running mechanism
+    (:func:`fewear.diagnose.joint.forward.cycle_on_worn_bore`, after
+    :data:`IMPACT_SETTLING_CYCLES` from the ideal mechanism) on the believed bore worn by N
     cycles, at the 12 counts N_j = j N_last / 11; between them D is linear in N and the impact
-    depth is its integral. h = h_b + integral D. p_th is U[60, 100] MPa (the impacts' peak
-    pressures reach 50-320 MPa), sigma U[2, 4] deg; c is sized so the impacts remove the fraction
+    depth is its integral. The mechanism started from its ideal state impacts for about five
+    cycles before its orbit settles (6, 7, 7, 4, 2 impacts in the cycles after the config's two
+    settling cycles on the unworn bore, none in the 15 after; on worn bores likewise): the wear
+    of a running joint is that of its settled orbit, whose impacts come sporadically (0-2 a
+    cycle, their peak forces varying several-fold), so they are averaged over several cycles.
+    h = h_b + integral D. p_th is U[60, 100] MPa (the start-up's impacts reach 50-320 MPa; the
+    settled orbit's on a worn bore up to about six times that, peak forces up to 120 kN at the
+    last count of data set 0), sigma U[2, 4] deg; c is sized so the impacts remove the fraction
     phi, U[0.15, 0.40], of the sliding wear volume at the last count (the squared excess makes the
     few hardest impacts dominate: the pockets are narrow, 10-20 deg, and deep).
 ``running_in``
@@ -207,7 +215,13 @@ CONFIG_CAUSES = ("wear_coefficient", "flexible_link", "friction")
 FINE_POINTS = 2880
 """Angles of the fine grid the true bore is evaluated on (0.125 deg)."""
 IMPACT_EVALUATIONS = 12
-"""Crank cycles simulated (on the bore worn so far) to find the impacts of impact wear."""
+"""Counts at which crank cycles are simulated (on the bore worn so far) to find the impacts of
+impact wear."""
+IMPACT_SETTLING_CYCLES = 12
+"""Crank cycles from the ideal mechanism before the impacts are recorded: past its start-up
+transient (module doc, ``impact_wear``)."""
+IMPACT_RECORDED_CYCLES = 8
+"""Crank cycles whose impacts are averaged at each count."""
 TWO_PI = 2.0 * math.pi
 ACCELEROMETER_SPAWN_KEY = 100
 """The accelerometer's random stream: the seed's SeedSequence child with this spawn key."""
@@ -647,11 +661,19 @@ def true_bore(causes, params: dict, config: dict, last_cycles: int) -> tuple[Tru
     return bore, derived
 
 
+def settled(config: dict) -> dict:
+    """``config`` with :data:`IMPACT_SETTLING_CYCLES` settling cycles: its crank cycles are
+    those of the running mechanism."""
+    running = copy.deepcopy(config)
+    running["mechanism"]["settling_cycles"] = IMPACT_SETTLING_CYCLES
+    return running
+
+
 def _with_impacts(bore: TrueBore, params: dict, config: dict,
                   last_cycles: int) -> tuple[TrueBore, dict]:
-    """``bore`` (its sliding wear) with the impact wear of ``params`` added: the impacts of one
-    crank cycle of ``config`` on the sliding bore at each of the counts, c sized by the sliding
-    wear volume at ``last_cycles``."""
+    """``bore`` (its sliding wear) with the impact wear of ``params`` added: the impacts of
+    :data:`IMPACT_RECORDED_CYCLES` crank cycles of the running mechanism of ``config`` on the
+    sliding bore at each of the counts, c sized by the sliding wear volume at ``last_cycles``."""
     from fewear.diagnose.joint.forward import cycle_on_worn_bore
 
     history = bore.history
@@ -659,14 +681,16 @@ def _with_impacts(bore: TrueBore, params: dict, config: dict,
     grid = fine_grid()
     counts = np.linspace(0.0, float(last_cycles), IMPACT_EVALUATIONS)
     damage, impacts = [], 0
+    running = settled(config)
     for count in counts:
-        cycle = (cycle_on_worn_bore(config) if count == 0.0 else
-                 cycle_on_worn_bore(config, history.angle_rad,
-                                    history.nodal_depth_m(bore.sliding_cycles(count))))
-        hits = impact_hits(cycle, config)
+        worn = (None, None) if count == 0.0 else (
+            history.angle_rad, history.nodal_depth_m(bore.sliding_cycles(count)))
+        cycles = cycle_on_worn_bore(running, *worn, recorded_cycles=IMPACT_RECORDED_CYCLES)
+        hits = impact_hits(cycles, config)
         impacts += len(hits)
         damage.append(impact_damage(grid, radius, hits, params["pressure_threshold_Pa"],
-                                    math.radians(params["scatter_deg"])))
+                                    math.radians(params["scatter_deg"]))
+                      / IMPACT_RECORDED_CYCLES)
     damage = np.array(damage)
     unit = replace(bore, impact_cycles=counts, impact_rate=damage)
     unit_volume = worn_volume_m3(unit.impact_depth_m(last_cycles), config)
