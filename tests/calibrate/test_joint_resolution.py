@@ -24,10 +24,14 @@ def _key(config: dict) -> str:
     return json.dumps(config, sort_keys=True)
 
 
+OFFSETS = {0.0: 0.0, 1.0: 1.0, 2.0: -1.0}
+"""A run's offset (in a f) by how many degrees later its crank starts."""
+
+
 def _made_up_run(config: dict) -> WearHistory:
     f = config["wear_loop"]["max_depth_increment_fraction"]
     later = config["mechanism"]["initial_crank_angle_deg"]
-    offset = {0.0: 0.0, 1.0: 1.0, 2.0: -1.0}[later] * SPREAD_PER_F_M * f
+    offset = OFFSETS[later] * SPREAD_PER_F_M * f
     if config["wear_loop"]["recorded_cycles_per_block"] > 1:
         offset += 0.1e-6  # recording twice the cycles moves the bore by 0.1 um
     depth = np.full(NODES, D_M * (1.0 + 4.0 * f) + offset)
@@ -81,16 +85,44 @@ def test_the_coarsest_blocks_whose_noise_is_within_the_scatter_are_chosen(made_u
     # at the two counts (half and all of the last one's depth) the RMS of a f and of 2 f D
     rms_of_counts = SCALE * math.sqrt((0.25 + 1.0) / 2)
     spreads = [level["spread_rms_m"] for level in found["wear_step_levels"]]
-    assert spreads == pytest.approx([SPREAD_PER_F_M * f * rms_of_counts for f in fractions])
+    assert spreads[:3] == pytest.approx([SPREAD_PER_F_M * f * rms_of_counts
+                                         for f in fractions[:3]])
+    # the last level's run from the config's angle deviates 0 from its level's mean here, so
+    # its distance from the coarser mean, the upper estimate, is the move itself
+    assert spreads[3] is None
     assert found["halved_blocks_rms_m"] == pytest.approx(2 * 0.0625 * D_M * rms_of_counts)
     assert found["start_angle_spread_rms_m"] == spreads[2]
     assert found["doubled_recorded_cycles_rms_m"] == pytest.approx(0.1e-6 * rms_of_counts)
     assert resolution.model_noise_m(found) == pytest.approx(max(spreads[2],
                                                                 found["halved_blocks_rms_m"]))
     # three runs per level, and beside each level the doubled recorded cycles of the level
-    # before (needed if that one is chosen): the chosen one's is not run again
+    # before (needed if that one is chosen): the chosen one's is not run again; the level
+    # after the first within the scatter only its run from the config's angle
     assert made_up == ([0.25] * 3 + [0.125] * 3 + [0.25] + [0.0625] * 3 + [0.125]
-                       + [0.03125] * 3 + [0.0625])
+                       + [0.03125] + [0.0625])
+
+
+def test_a_level_whose_one_run_strays_beyond_the_scatter_is_measured_in_full(made_up,
+                                                                            monkeypatch):
+    """The run from the config's angle a f below its level's mean (the others a f above and on
+    it: the same spread, the means unmoved) and the scatter 0.41 um: at f = 0.03125 the mean
+    moves 0.395 um (shallower) but that run lies 0.395 + 0.148 = 0.543 um from the coarser mean,
+    beyond the scatter; so the level's other two runs are made, and the true move resolves
+    f = 0.0625."""
+    monkeypatch.setattr(resolution.structure, "scatter_estimate_m", lambda *args: 0.41e-6)
+    monkeypatch.setitem(OFFSETS, 0.0, -1.0)
+    monkeypatch.setitem(OFFSETS, 1.0, 1.0)
+    monkeypatch.setitem(OFFSETS, 2.0, 0.0)
+    _, found = resolution.resolve_wear_step(CONFIG, OBS, max_halvings=6, max_offset_deg=30)
+    rms_of_counts = SCALE * math.sqrt((0.25 + 1.0) / 2)
+    levels = found["wear_step_levels"]
+    assert [level["blocks"]["max_depth_increment_fraction"] for level in levels] == [
+        0.25, 0.125, 0.0625, 0.03125]
+    assert levels[3]["spread_rms_m"] == pytest.approx(SPREAD_PER_F_M * 0.03125 * rms_of_counts)
+    assert found["halved_blocks_rms_m"] == pytest.approx(2 * 0.0625 * D_M * rms_of_counts)
+    assert found["resolved"] and found["wear_step"]["max_depth_increment_fraction"] == 0.0625
+    assert made_up == ([0.25] * 3 + [0.125] * 3 + [0.25] + [0.0625] * 3 + [0.125]
+                       + [0.03125] + [0.0625] + [0.03125] * 2)
 
 
 def test_the_ladder_stops_where_the_halvings_left_cannot_reach_the_scatter(made_up, monkeypatch,
@@ -128,9 +160,11 @@ def test_each_level_reports_its_noise_against_the_scatter_when_measured(made_up,
     _, found = resolution.resolve_wear_step(CONFIG, OBS, max_halvings=6, max_offset_deg=30)
     lines = [line for line in capsys.readouterr().err.splitlines() if "resolution, level" in line]
     assert len(lines) == len(found["wear_step_levels"]) == 4
-    for number, (line, level) in enumerate(zip(lines, found["wear_step_levels"]), start=1):
+    for number, line in enumerate(lines, start=1):
         assert f"level {number} of at most 8" in line
-        assert f"part by {level['spread_rms_m'] * 1e6:.3g} um" in line
         assert "the instrument's scatter 0.5 um" in line
+    for line, level in zip(lines[:3], found["wear_step_levels"]):
+        assert f"part by {level['spread_rms_m'] * 1e6:.3g} um" in line
     assert "moved" not in lines[0]
-    assert f"moved {found['halved_blocks_rms_m'] * 1e6:.3g} um" in lines[3]
+    assert (f"lies {found['halved_blocks_rms_m'] * 1e6:.3g} um from the level before's mean"
+            in lines[3]) and "other runs are not made" in lines[3]

@@ -122,9 +122,11 @@ def _resolution_lines(resolution: dict) -> list[str]:
     chosen = resolution["wear_step"]
     keys = list(chosen)
     rows = ["| " + " | ".join(f"{level['blocks'][key]:g}" for key in keys)
-            + f" | {level['spread_rms_m']:.2g} | "
+            + " | " + ("one run" if level["spread_rms_m"] is None
+                       else f"{level['spread_rms_m']:.2g}") + " | "
             + ("-" if level["change_from_coarser_rms_m"] is None
-               else f"{level['change_from_coarser_rms_m']:.2g}")
+               else f"{level['change_from_coarser_rms_m']:.2g}"
+               + (" at most" if level["spread_rms_m"] is None else ""))
             + f" | {'**chosen**' if level['blocks'] == chosen else ''} |"
             for level in resolution["wear_step_levels"]]
     return [("Resolution: the instrument's scatter "
