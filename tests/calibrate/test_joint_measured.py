@@ -70,6 +70,12 @@ def test_angles_normalised_sorted_and_partial_coverage_noted(tmp_path):
     np.testing.assert_allclose(np.rad2deg(profile.angle_rad), [0, 10, 20, 340, 350])
     np.testing.assert_array_equal(profile.depth_m, [2e-6, 3e-6, 4e-6, 0.5e-6, 1e-6])
     assert "over the arc 340 to 20 deg (40 of 360 deg): partial angular coverage" in data.notes[0]
+    assert f"{path}: 1 angle of 360 deg or more (highest 370 deg) taken modulo 360 deg" in (
+        data.notes)
+    assert not any("360 deg or more" in note
+                   for note in read_joint_measurements(write_lines(
+                       tmp_path / "signed.csv", "cycles,angle_deg,wear_depth_m", "5e4,-10,1e-6",
+                       "5e4,0,2e-6", "5e4,10,1e-6")).notes)
 
 
 def test_traces_read_with_and_without_cycles(tmp_path):

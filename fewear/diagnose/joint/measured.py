@@ -382,6 +382,17 @@ def _negative_note(source: str, name: str, depth: np.ndarray) -> list[str]:
             f"{depth.min() * 1e6:.3g} um): kept as data (instrument noise)"]
 
 
+def _beyond_a_turn_note(source: str, angle_deg: np.ndarray) -> list[str]:
+    """A note on profile angles of 360 deg or more (read modulo 360: an instrument that counts
+    on past a turn; negative angles, as of a -180 to 180 deg convention, need no note)."""
+    beyond = angle_deg >= 360.0
+    if not beyond.any():
+        return []
+    count = int(beyond.sum())
+    return [f"{source}: {count} angle{'s' if count > 1 else ''} of 360 deg or more (highest "
+            f"{angle_deg.max():g} deg) taken modulo 360 deg"]
+
+
 def _profiles_from(source, kind, columns, where) -> tuple[list[MeasuredProfile], list[str]]:
     cycles = _cycles_column(columns["cycles"], where)
     angle_deg, depth = columns["angle_deg"], columns["wear_depth_m"]
@@ -404,6 +415,7 @@ def _profiles_from(source, kind, columns, where) -> tuple[list[MeasuredProfile],
         profiles.append(profile)
         notes += _sampling_notes(source, profile)
     notes += _negative_note(source, "wear_depth_m", depth)
+    notes += _beyond_a_turn_note(source, angle_deg)
     if np.all(np.abs(angle_deg) <= 2.0 * math.pi):
         notes.append(f"{source}: all angles lie within +-6.3 degrees; if they are radians, "
                      "convert them to degrees (angle_deg = angle_rad * 180 / pi)")
