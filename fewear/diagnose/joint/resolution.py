@@ -23,12 +23,12 @@ limit), and none more once the halvings left could not bring the runs' spread wi
 scatter even if each halved it (:func:`_out_of_reach`: that level is taken, its noise the limit).
 
 The level after one whose spread is within the scatter only judges that one, and is the dearest
-of the ladder (on the generators' data sets its runs took 24 of the ladder's 72 s of runs). So
-it runs first from the config's crank angle alone (:func:`_verified_by_one_run`): that run's RMS
-distance from the coarser level's mean is the move of the mean plus the run's own deviation from
-its level's mean, an upper estimate of the move, and when it is within the scatter the coarser
-level is resolved on it and the other two runs are not made (the finer level's spread is then
-not measured). Otherwise they are, and the ladder goes on as above.
+of the ladder (each level's runs cost about twice the level before's). So it runs first from
+the config's crank angle alone (:func:`_verified_by_one_run`): that run's RMS distance from the
+coarser level's mean is the move of the mean plus the run's own deviation from its level's
+mean, an upper estimate of the move, and when it is within the scatter the coarser level is
+resolved on it and the other two runs are not made (the finer level's spread is then not
+measured). Otherwise they are, and the ladder goes on as above.
 """
 
 from __future__ import annotations
@@ -180,8 +180,8 @@ def _verified_by_one_run(config: dict, coarser: dict, coarser_mean_m: np.ndarray
     the coarser level's doubled recorded cycles (needed: that level is then chosen)."""
     if scatter_m is None or coarser_level.spread_rms_m > scatter_m:
         return None
-    blocks = ", ".join(f"{key} = {value:g}" for key, value in _blocks(config).items())
-    run, _ = simulate_wears([(config, f"believed model, {blocks}"), _doubled(coarser)])
+    run, _ = simulate_wears([(config, f"believed model, {_blocks_text(_blocks(config))}"),
+                             _doubled(coarser)])
     move_bound = _rms(run.nodal_depths_m(counts) - coarser_mean_m)
     if move_bound > scatter_m:
         return None
@@ -191,9 +191,8 @@ def _verified_by_one_run(config: dict, coarser: dict, coarser_mean_m: np.ndarray
 def _verified_line(halving: int, level: WearStepLevel, scatter_m: float,
                    max_halvings: int) -> str:
     """What a level verified by one run (:func:`_verified_by_one_run`) found."""
-    blocks = ", ".join(f"{key} = {value:g}" for key, value in level.blocks.items())
     return (f"fewear diagnose: resolution, level {halving + 1} of at most {max_halvings + 2} "
-            f"({blocks}): its run from the config's crank angle lies "
+            f"({_blocks_text(level.blocks)}): its run from the config's crank angle lies "
             f"{level.change_from_coarser_rms_m * 1e6:.3g} um from the level before's mean "
             f"(an upper estimate of the move), within the instrument's scatter "
             f"{scatter_m * 1e6:.3g} um: the level before is resolved, this one's other runs are "
@@ -205,7 +204,7 @@ def _members(config: dict, beside: tuple[dict, str] | None = None) -> list[WearH
     by side, and the run ``beside`` with them: the level before's :func:`_doubled` run, which
     is needed if that level is chosen (decided by these runs) and otherwise fills the core the
     three runs leave idle on a two-core machine."""
-    blocks = ", ".join(f"{key} = {value:g}" for key, value in _blocks(config).items())
+    blocks = _blocks_text(_blocks(config))
     requests = [(config, f"believed model, {blocks}")]
     for offset in MEMBER_START_OFFSETS_DEG:
         requests.append((started_later(config, offset),
@@ -225,7 +224,7 @@ def _level_line(halving: int, level: WearStepLevel, scatter_m: float | None,
                 runs: list[WearHistory], max_halvings: int) -> str:
     """A level's noise against the scatter and what its runs cost: a user whose model is dear
     sees it before the next level (each twice as dear) runs."""
-    blocks = ", ".join(f"{key} = {value:g}" for key, value in level.blocks.items())
+    blocks = _blocks_text(level.blocks)
     moved = ("" if level.change_from_coarser_rms_m is None else
              f", their mean moved {level.change_from_coarser_rms_m * 1e6:.3g} um from the level "
              "before")
@@ -253,6 +252,11 @@ def _blocks(config: dict) -> dict[str, float]:
     loop = config["wear_loop"]
     return {**{key: float(loop[key]) for key in _BLOCK_KEYS[loop["extrapolation"]]},
             "wear_steps_per_block": int(loop["wear_steps_per_block"])}
+
+
+def _blocks_text(blocks: dict[str, float]) -> str:
+    """The wear-step settings ``blocks`` as the progress lines name them."""
+    return ", ".join(f"{key} = {value:g}" for key, value in blocks.items())
 
 
 def _with_blocks(config: dict, blocks: dict[str, float]) -> dict:
