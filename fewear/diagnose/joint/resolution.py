@@ -178,12 +178,12 @@ def _verified_by_one_run(config: dict, coarser: dict, coarser_mean_m: np.ndarray
     (``coarser_mean_m``, counts by nodes), an upper estimate of the move, is too. None
     otherwise (the run is kept: the level's full measurement reuses it). The run is made beside
     the coarser level's doubled recorded cycles (needed: that level is then chosen)."""
-    if scatter_m is None or coarser_level.spread_rms_m > scatter_m:
+    if not _resolved(coarser_level, 0.0, scatter_m):  # its spread alone already rules it out
         return None
     run, _ = simulate_wears([(config, f"believed model, {_blocks_text(_blocks(config))}"),
                              _doubled(coarser)])
     move_bound = _rms(run.nodal_depths_m(counts) - coarser_mean_m)
-    if move_bound > scatter_m:
+    if not _resolved(coarser_level, move_bound, scatter_m):
         return None
     return WearStepLevel(_blocks(config), None, move_bound)
 
@@ -191,10 +191,9 @@ def _verified_by_one_run(config: dict, coarser: dict, coarser_mean_m: np.ndarray
 def _verified_line(halving: int, level: WearStepLevel, scatter_m: float,
                    max_halvings: int) -> str:
     """What a level verified by one run (:func:`_verified_by_one_run`) found."""
-    return (f"fewear diagnose: resolution, level {halving + 1} of at most {max_halvings + 2} "
-            f"({_blocks_text(level.blocks)}): its run from the config's crank angle lies "
-            f"{level.change_from_coarser_rms_m * 1e6:.3g} um from the level before's mean "
-            f"(an upper estimate of the move), within the instrument's scatter "
+    return (f"{_level_heading(halving, level, max_halvings)}: its run from the config's crank "
+            f"angle lies {level.change_from_coarser_rms_m * 1e6:.3g} um from the level before's "
+            f"mean (an upper estimate of the move), within the instrument's scatter "
             f"{scatter_m * 1e6:.3g} um: the level before is resolved, this one's other runs are "
             "not made")
 
@@ -224,17 +223,22 @@ def _level_line(halving: int, level: WearStepLevel, scatter_m: float | None,
                 runs: list[WearHistory], max_halvings: int) -> str:
     """A level's noise against the scatter and what its runs cost: a user whose model is dear
     sees it before the next level (each twice as dear) runs."""
-    blocks = _blocks_text(level.blocks)
     moved = ("" if level.change_from_coarser_rms_m is None else
              f", their mean moved {level.change_from_coarser_rms_m * 1e6:.3g} um from the level "
              "before")
     against = ("no scatter to compare with (no profiles): the config's wear steps are kept"
                if scatter_m is None else f"the instrument's scatter {scatter_m * 1e6:.3g} um")
     seconds = sum(run.wall_time_s for run in runs) / len(runs)
-    return (f"fewear diagnose: resolution, level {halving + 1} of at most {max_halvings + 2} "
-            f"({blocks}): runs started 0-{MEMBER_START_OFFSETS_DEG[-1]:g} deg later part by "
+    return (f"{_level_heading(halving, level, max_halvings)}: runs started "
+            f"0-{MEMBER_START_OFFSETS_DEG[-1]:g} deg later part by "
             f"{level.spread_rms_m * 1e6:.3g} um{moved}; {against}; {seconds:.0f} s a run "
             "(a level finer: about twice that)")
+
+
+def _level_heading(halving: int, level: WearStepLevel, max_halvings: int) -> str:
+    """The start of a level's progress line: its number (``halving`` + 1) and wear steps."""
+    return (f"fewear diagnose: resolution, level {halving + 1} of at most {max_halvings + 2} "
+            f"({_blocks_text(level.blocks)})")
 
 
 def _doubled(config: dict) -> tuple[dict, str]:
