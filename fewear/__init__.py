@@ -22,4 +22,4 @@ import os
 # oversubscribe the cores. Read by OpenBLAS when it loads, i.e. with the first import of numpy.
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-__version__ = "0.1.0"
+__version__ = "0.7.0"

@@ -14,6 +14,7 @@ import logging
 import signal
 import sys
 
+from fewear import __version__
 from fewear.errors import (
     FewearInputError,
     Terminated,
@@ -50,6 +51,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog="fewear",
         description="Finite-element wear workbench for revolute clearance joints.",
     )
+    parser.add_argument("--version", action="version", version=f"fewear {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND",
                                 parser_class=_Parser)
 
