@@ -1,0 +1,111 @@
+"""Checks of the independent four-bar references: loop closure, derivatives against finite
+differences, link equilibrium, the energy balance, and Exudyn against the inverse dynamics."""
+
+import math
+
+import numpy as np
+
+from tests.mbd.reference import freudenstein as fr
+
+PARAMS = fr.FourBar()
+
+
+def _cycle_times(n=721):
+    return np.linspace(0.0, PARAMS.period_s(), n)
+
+
+def test_grashof_cases():
+    assert fr.grashof(PARAMS) == {"case": "crank-rocker", "grashof": True,
+                                  "crank_turns_fully": True}
+    assert fr.grashof(fr.FourBar(ground_m=0.05))["case"] == "double-crank"
+    assert fr.grashof(fr.FourBar(coupler_m=0.05, crank_m=0.2))["case"] == "double-rocker"
+    non_grashof = fr.grashof(fr.FourBar(crank_m=0.2, coupler_m=0.4, rocker_m=0.12))
+    assert non_grashof == {"case": "triple-rocker", "grashof": False, "crank_turns_fully": False}
+
+
+def test_loop_closes_on_the_upper_branch():
+    kin = fr.kinematics(PARAMS, _cycle_times())
+    a, b, c, d = PARAMS.crank_m, PARAMS.coupler_m, PARAMS.rocker_m, PARAMS.ground_m
+    closure_x = (a * np.cos(kin["theta2"]) + b * np.cos(kin["theta3"])
+                 - c * np.cos(kin["theta4"]) - d)
+    closure_y = a * np.sin(kin["theta2"]) + b * np.sin(kin["theta3"]) - c * np.sin(kin["theta4"])
+    assert np.max(np.abs(closure_x)) < 1e-12 and np.max(np.abs(closure_y)) < 1e-12
+    assert np.min(c * np.sin(kin["theta4"])) > 0.0  # y_B > 0 over the whole turn
+
+
+def test_derivatives_match_central_differences():
+    times = _cycle_times(97)[:-1]
+    h = 1e-6 * PARAMS.period_s()
+    kin = fr.kinematics(PARAMS, times)
+    plus, minus = fr.kinematics(PARAMS, times + h), fr.kinematics(PARAMS, times - h)
+    for link in "34":
+        rate = np.unwrap(np.stack([minus["theta" + link], plus["theta" + link]]), axis=0)
+        finite_omega = (rate[1] - rate[0]) / (2 * h)
+        finite_alpha = (plus["omega" + link] - minus["omega" + link]) / (2 * h)
+        scale_omega = np.max(np.abs(kin["omega" + link]))
+        scale_alpha = np.max(np.abs(kin["alpha" + link]))
+        assert np.max(np.abs(finite_omega - kin["omega" + link])) < 1e-7 * scale_omega
+        assert np.max(np.abs(finite_alpha - kin["alpha" + link])) < 1e-7 * scale_alpha
+
+
+def test_each_link_is_in_dynamic_equilibrium():
+    """Newton-Euler residuals of every link, and the whole mechanism's momentum balance (the ground
+    forces alone carry the weight and the centres' accelerations)."""
+    result = fr.inverse_dynamics(PARAMS, _cycle_times())
+    points = fr.centre_kinematics(PARAMS, result)
+    masses, inertias = PARAMS.masses_kg(), PARAMS.inertias_kg_m2()
+    weight = np.array([0.0, -PARAMS.gravity_m_s2])
+    f_o2, f_a, f_b, f_o4 = (result[f"force_{j}"] for j in ("O2", "A", "B", "O4"))
+    origin = np.zeros_like(f_a)
+    links = [
+        ("G2", [(f_o2, origin), (-f_a, points["A"][0])], result["torque_crank"], "2"),
+        ("G3", [(f_a, points["A"][0]), (-f_b, points["B"][0])], 0.0, "3"),
+        ("G4", [(f_b, points["B"][0]), (f_o4, points["O4"][0])], 0.0, "4"),
+    ]
+    scale = np.max(np.linalg.norm(f_a, axis=1))
+    for k, (centre, loads, torque, link) in enumerate(links):
+        position, _, acceleration = points[centre]
+        force = sum(f for f, _ in loads) + masses[k] * weight - masses[k] * acceleration
+        moment = (sum(fr._cross(where - position, f) for f, where in loads) + torque
+                  - inertias[k] * result["alpha" + link])
+        assert np.max(np.abs(force)) < 1e-10 * scale
+        assert np.max(np.abs(moment)) < 1e-10 * scale * PARAMS.coupler_m
+    momentum_rate = sum(masses[k] * points[g][2] for k, g in enumerate(("G2", "G3", "G4")))
+    external = f_o2 + f_o4 + masses.sum() * weight
+    assert np.max(np.abs(external - momentum_rate)) < 1e-10 * scale
+
+
+def test_driving_power_equals_the_energy_rate():
+    """T w2 = d/dt (kinetic + potential): against the kinematic energy rate and against the
+    central difference of the energy, and the cycle's net work is zero."""
+    times = _cycle_times(2001)
+    result = fr.inverse_dynamics(PARAMS, times)
+    power = result["torque_crank"] * PARAMS.crank_speed_rad_s
+    scale = np.max(np.abs(power))
+    assert np.max(np.abs(power - fr.mechanical_energy_rate_W(PARAMS, times))) < 1e-10 * scale
+    h = 1e-6 * PARAMS.period_s()
+    energy_difference = (fr.mechanical_energy_J(PARAMS, times + h)
+                         - fr.mechanical_energy_J(PARAMS, times - h)) / (2 * h)
+    assert np.max(np.abs(power - energy_difference)) < 1e-6 * scale
+    work = np.trapz(power, times)
+    assert abs(work) < 1e-6 * scale * PARAMS.period_s()
+
+
+def test_static_limit_matches_virtual_work():
+    """At vanishing speed the driving torque holds the weight: T = sum m_i g dy_Gi/dtheta2, with
+    dy/dtheta2 by central differences of the closed-form positions."""
+    slow = fr.FourBar(crank_speed_rad_s=1e-6)
+    theta2 = np.linspace(0.0, 2 * math.pi, 73)
+    times = theta2 / slow.crank_speed_rad_s
+    torque = fr.inverse_dynamics(slow, times)["torque_crank"]
+
+    def centre_heights(angle):
+        theta3, theta4 = fr.positions(slow, angle)
+        a, b, c = slow.crank_m, slow.coupler_m, slow.rocker_m
+        return np.stack([a / 2 * np.sin(angle), a * np.sin(angle) + b / 2 * np.sin(theta3),
+                         c / 2 * np.sin(theta4)])
+
+    dtheta = 1e-6
+    slope = (centre_heights(theta2 + dtheta) - centre_heights(theta2 - dtheta)) / (2 * dtheta)
+    expected = slow.gravity_m_s2 * slow.masses_kg() @ slope
+    assert np.max(np.abs(torque - expected)) < 1e-7 * np.max(np.abs(expected))
