@@ -87,8 +87,8 @@ def four_bar_cycle(variant: str = "rigid", cycles_settle: int = 2, step_s: float
     torque_crank (n,; N m). The clearance variant adds eccentricity_m (n, 2) = pin centre -
     bushing centre, penetration_m (n,) = |e| - c and contact_force_N (n,) = F_n.
     ``step_s`` is rounded so that a turn is a whole number of steps. ``newton_tolerance``
-    (default 1e-10, relative and absolute; 1e-8 relative only for the cable, whose axial
-    stiffness keeps Exudyn's absolute residual above 1e-10).
+    (default 1e-10, relative and absolute; 1e-8 relative only for the cable and the clearance,
+    whose stiff axial or contact forces keep Exudyn's absolute residual above 1e-10).
     """
     if variant not in ("rigid", "cable", "clearance"):
         raise ValueError(f"variant {variant!r}: use 'rigid', 'cable' or 'clearance'")
@@ -96,10 +96,10 @@ def four_bar_cycle(variant: str = "rigid", cycles_settle: int = 2, step_s: float
     step_s = params.period_s() / steps_per_cycle
     total_steps = steps_per_cycle * (cycles_settle + cycles_record)
     if newton_tolerance is None:
-        newton_tolerance = 1e-8 if variant == "cable" else 1e-10
+        newton_tolerance = 1e-10 if variant == "rigid" else 1e-8
     model = _build(variant, params, cable_elements, beam, clearance)
     _solve(model["mbs"], model["exu"], step_s, total_steps, rho_inf, newton_tolerance,
-           relative_only=(variant == "cable"))
+           relative_only=(variant != "rigid"))
     records = {name: model["mbs"].GetSensorStoredData(sensor)
                for name, sensor in model["sensors"].items()}
     keep = slice(steps_per_cycle * cycles_settle, None)
@@ -214,10 +214,6 @@ def _build(variant, params, cable_elements, beam, clearance):
     sensors["torque"] = mbs.AddSensor(items.SensorObject(
         objectNumber=drive, storeInternal=True, writeToFile=False,
         outputVariableType=exu.OutputVariableType.Force))
-    if variant == "clearance":
-        sensors["eccentricity"] = mbs.AddSensor(items.SensorObject(
-            objectNumber=joints["B"], storeInternal=True, writeToFile=False,
-            outputVariableType=exu.OutputVariableType.Displacement))
     mbs.Assemble()
     return model
 
@@ -293,4 +289,35 @@ def _outputs(variant, records, model, params, keep):
     for name in ("O2", "A", "B", "O4"):
         out["force_" + name] = -records["force_" + name][keep, 1:3]
     out["torque_crank"] = -records["torque"][keep, 1]
+    if variant == "clearance":
+        clearance = model["clearance"]
+        pin = records["coupler"][keep, 1:3] + params.coupler_m / 2 * np.stack(
+            [np.cos(out["theta3"]), np.sin(out["theta3"])], axis=1)
+        bushing = records["rocker"][keep, 1:3] + params.rocker_m / 2 * np.stack(
+            [np.cos(out["theta4"]), np.sin(out["theta4"])], axis=1)
+        eccentricity = pin - bushing
+        distance = np.linalg.norm(eccentricity, axis=1)
+        out["eccentricity_m"] = eccentricity
+        out["penetration_m"] = distance - clearance.clearance_m()
+        out["contact_force_N"] = np.sum(out["force_B"] * eccentricity, axis=1) / distance
     return out
+
+
+def clearance_cycle_statistics(result: dict, period_s: float) -> dict:
+    """Per crank turn of a clearance run (``four_bar_cycle(variant="clearance")``): contact share
+    (fraction of the turn's samples with penetration > 0), peak contact force (N) and number of
+    impacts (free-flight -> contact transitions, sample to sample). Turns are the half-open
+    intervals [k T, (k + 1) T) from the first sample; the closing sample of the last turn is left
+    out. Returns one array entry per whole turn."""
+    phase = (result["time_s"] - result["time_s"][0]) / period_s
+    turns = int(round(phase[-1]))
+    turn = np.floor(phase + 1e-9).astype(int)
+    in_contact = result["penetration_m"] > 0.0
+    onset = np.zeros_like(in_contact)
+    onset[1:] = ~in_contact[:-1] & in_contact[1:]
+    return {
+        "contact_share": np.array([in_contact[turn == k].mean() for k in range(turns)]),
+        "peak_force_N": np.array([result["contact_force_N"][turn == k].max()
+                                  for k in range(turns)]),
+        "impacts": np.array([np.count_nonzero(onset[turn == k]) for k in range(turns)]),
+    }

@@ -135,3 +135,68 @@ def test_exudyn_rigid_four_bar_matches_the_inverse_dynamics():
         assert error < 1e-4 * peak, joint
     torque_error = np.max(np.abs(result["torque_crank"] - reference["torque_crank"]))
     assert torque_error < 1e-4 * np.max(np.abs(reference["torque_crank"]))
+
+
+def _peak_joint_force(reference):
+    return max(np.max(np.linalg.norm(reference[f"force_{j}"], axis=1))
+               for j in ("O2", "A", "B", "O4"))
+
+
+def test_exudyn_cable_coupler_follows_the_rigid_mechanism_on_average():
+    """The stiff elastic coupler (ANCF cable) keeps the angles within 1e-3 rad of the rigid closed
+    form, and its undamped vibration averages out: each joint force's mean over two turns is the
+    rigid mechanism's to 2e-3 of the peak joint force."""
+    _exudyn()
+    from tests.mbd.reference.exudyn_four_bar import four_bar_cycle
+
+    result = four_bar_cycle("cable", cycles_settle=2, cycles_record=2, step_s=1e-5)
+    reference = fr.inverse_dynamics(PARAMS, result["time_s"])
+    for angle in ("theta2", "theta3", "theta4"):
+        assert np.max(np.abs(result[angle] - reference[angle])) < 1e-3
+    peak = _peak_joint_force(reference)
+    for joint in ("O2", "A", "B", "O4"):
+        mean_error = np.mean(result[f"force_{joint}"][:-1] - reference[f"force_{joint}"][:-1],
+                             axis=0)
+        assert np.linalg.norm(mean_error) < 2e-3 * peak, joint
+
+
+@pytest.mark.slow
+def test_exudyn_clearance_joint_tends_to_the_ideal_joint():
+    """With a 1 um clearance the pin stays in contact nearly all the turn, the contact force pushes
+    the bushing outward (force_B along e, never adhesive), and the joint forces approach the ideal
+    mechanism's: rms difference below 3 % of the peak, turn means to 1e-3 of it."""
+    _exudyn()
+    from tests.mbd.reference.exudyn_four_bar import ClearanceJoint, four_bar_cycle
+
+    joint = ClearanceJoint(pin_radius_m=10e-3 - 1e-6)
+    result = four_bar_cycle("clearance", cycles_settle=1, cycles_record=1, step_s=2e-6,
+                            clearance=joint)
+    reference = fr.inverse_dynamics(PARAMS, result["time_s"])
+    assert np.mean(result["penetration_m"] > 0) > 0.95
+    assert np.min(result["contact_force_N"]) >= 0.0
+    along_e = np.linalg.norm(result["force_B"], axis=1)
+    assert np.allclose(result["contact_force_N"], along_e, rtol=1e-9, atol=1e-9)
+    peak = _peak_joint_force(reference)
+    for name in ("O2", "A", "B", "O4"):
+        difference = result[f"force_{name}"][:-1] - reference[f"force_{name}"][:-1]
+        assert np.sqrt(np.mean(np.sum(difference**2, axis=1))) < 0.03 * peak, name
+        assert np.linalg.norm(np.mean(difference, axis=0)) < 1e-3 * peak, name
+
+
+def test_clearance_cycle_statistics_count_a_known_signal():
+    """Two turns of 10 samples: contact in samples 2-4 and 7 of the first turn (two impacts, share
+    0.4, peak 5 N), in 12-19 of the second (one impact, share 0.8, peak 9 N)."""
+    from tests.mbd.reference.exudyn_four_bar import clearance_cycle_statistics
+
+    time_s = np.arange(21) * 0.1
+    in_contact = np.zeros(21, dtype=bool)
+    in_contact[[2, 3, 4, 7]] = True
+    in_contact[12:20] = True
+    force = np.where(in_contact, 1.0, 0.0)
+    force[3], force[15] = 5.0, 9.0
+    result = {"time_s": time_s, "penetration_m": np.where(in_contact, 1e-6, -1e-6),
+              "contact_force_N": force}
+    stats = clearance_cycle_statistics(result, period_s=1.0)
+    assert np.allclose(stats["contact_share"], [0.4, 0.8])
+    assert np.allclose(stats["peak_force_N"], [5.0, 9.0])
+    assert list(stats["impacts"]) == [2, 1]
