@@ -16,13 +16,15 @@ theta2' = omega (its multiplier is the driving torque). Variants of the coupler 
   shear-deformable. For the coupler (L/h = 50) shear adds about (h/L)^2 to the bending
   compliance, so the two should agree to that order. The coupler angle is the chord angle A -> B.
 - "clearance": rigid links, joint B a clearance joint: pin centre on the coupler at B, bushing
-  centre on the rocker at B, a frictionless ObjectConnectorSpringDamper between the two centres
-  (zero reference length) whose Python force function is the Lankarani-Nikravesh law
+  centre on the rocker at B, an ObjectConnectorSpringDamper between the two centres (zero
+  reference length) whose Python force function is the Lankarani-Nikravesh law
       F_n = K delta^1.5 [1 + 3 (1 - c_e^2) delta' / (4 delta'^(-))],  delta = |e| - c > 0,
   e = pin centre - bushing centre, c = bushing radius - pin radius, F_n >= 0 (no adhesion). The
   impact velocity delta'^(-) is the radial velocity at the start of the last step before contact
   (updated in a pre-step function from the accepted state), not less than
-  ``min_impact_velocity_m_s``. force_B = F_n e / |e| (the pin pushes the bushing outward).
+  ``min_impact_velocity_m_s``. force_B = F_n e / |e| (the pin pushes the bushing outward) plus,
+  if ``friction_coefficient`` > 0, the regularised Coulomb friction on the bushing
+  (``_pin_friction``, applied by ``_friction_element``); default frictionless.
 
 Solver: Exudyn's index-3 generalized-alpha at a fixed step, spectral radius ``rho_inf``; initial
 positions and velocities of the ideal mechanism from the closed form (``freudenstein``).
@@ -53,6 +55,8 @@ class ClearanceJoint:
     bushing_poisson_ratio: float = 0.32
     restitution: float = 0.9
     min_impact_velocity_m_s: float = 1e-3
+    friction_coefficient: float = 0.0  # 0: frictionless
+    friction_ramp_velocity_m_s: float = 1e-3  # slip speed of full Coulomb friction
 
     def clearance_m(self) -> float:
         """Radial clearance c = R_bushing - R_pin."""
@@ -196,6 +200,13 @@ def _build(variant, params, cable_elements, beam, clearance):
     if variant == "clearance":
         joints["B"] = _clearance_connector(mbs, exu, items, coupler_end,
                                            end_marker(rocker, c / 2), clearance, model)
+        if clearance.friction_coefficient > 0.0:
+            _friction_element(mbs, items, coupler_node, rocker_node, params, clearance, model)
+            for name, node in (("coupler_velocity", coupler_node),
+                               ("rocker_velocity", rocker_node)):
+                sensors[name] = mbs.AddSensor(items.SensorNode(
+                    nodeNumber=node, storeInternal=True, writeToFile=False,
+                    outputVariableType=exu.OutputVariableType.Coordinates_t))
     else:
         joints["B"] = mbs.AddObject(items.RevoluteJoint2D(
             markerNumbers=[coupler_end, end_marker(rocker, c / 2)]))
@@ -224,20 +235,14 @@ def _rotation_sensor(mbs, exu, items, node):
 
 
 def _clearance_connector(mbs, exu, items, pin_marker, bushing_marker, clearance, model):
-    """Frictionless Lankarani-Nikravesh contact between the pin and bushing centres (module
-    docstring). Markers [pin, bushing]: Exudyn's spring force is positive in tension (pulls the
-    centres together), which is the contact force pushing the pin back into the bushing."""
+    """Lankarani-Nikravesh contact between the pin and bushing centres (module docstring).
+    Markers [pin, bushing]: Exudyn's spring force is positive in tension (pulls the centres
+    together), which is the contact force pushing the pin back into the bushing."""
     gap = clearance.clearance_m()
-    stiffness = clearance.stiffness_N_m15()
-    hysteresis = 3.0 * (1.0 - clearance.restitution**2) / 4.0
     state = {"impact_velocity": clearance.min_impact_velocity_m_s}
 
     def contact_force(mbs, t, item, distance, distance_rate, *unused):
-        penetration = distance - gap
-        if penetration <= 0.0:
-            return 0.0
-        factor = 1.0 + hysteresis * distance_rate / state["impact_velocity"]
-        return max(stiffness * penetration**1.5 * factor, 0.0)
+        return _normal_force(clearance, distance - gap, distance_rate, state["impact_velocity"])
 
     connector = mbs.AddObject(items.ObjectConnectorSpringDamper(
         markerNumbers=[pin_marker, bushing_marker], referenceLength=0.0,
@@ -254,7 +259,92 @@ def _clearance_connector(mbs, exu, items, pin_marker, bushing_marker, clearance,
 
     mbs.SetPreStepUserFunction(pre_step)
     model["clearance"] = clearance
+    model["contact_state"] = state
     return connector
+
+
+def _normal_force(clearance, penetration, penetration_rate, impact_velocity):
+    """Lankarani-Nikravesh F_n = K delta^1.5 [1 + 3 (1 - c_e^2) delta' / (4 delta'^(-))] for
+    delta > 0, else 0; never negative (N)."""
+    if penetration <= 0.0:
+        return 0.0
+    hysteresis = 3.0 * (1.0 - clearance.restitution**2) / 4.0
+    factor = 1.0 + hysteresis * penetration_rate / impact_velocity
+    return max(clearance.stiffness_N_m15() * penetration**1.5 * factor, 0.0)
+
+
+def _friction_element(mbs, items, coupler_node, rocker_node, params, clearance, model):
+    """Friction at the clearance contact as an ObjectGenericODE2 on the coupler and rocker nodes
+    (zero mass matrix) whose Python force function gives the generalized forces of the friction
+    force on the pin and its reaction on the bushing (``_pin_friction``); Exudyn differentiates it
+    numerically for the Jacobian."""
+    state = model["contact_state"]
+    references = [np.asarray(mbs.GetNodeParameter(node, "referenceCoordinates"), dtype=float)
+                  for node in (coupler_node, rocker_node)]
+
+    def generalized_friction(mbs, t, item, q, q_t):
+        coupler = np.concatenate([references[0] + q[:3], q_t[:3]])
+        rocker = np.concatenate([references[1] + q[3:], q_t[3:]])
+        return generalized_friction_N(params, clearance, coupler, rocker,
+                                      state["impact_velocity"])
+
+    mbs.AddObject(items.ObjectGenericODE2(nodeNumbers=[coupler_node, rocker_node],
+                                          massMatrix=np.zeros((6, 6)),
+                                          forceUserFunction=generalized_friction))
+
+
+def generalized_friction_N(params, clearance, coupler, rocker, impact_velocity_m_s):
+    """Generalized forces (N, N, N m per link) of the contact friction on the coupler and rocker
+    centre coordinates (x, y, theta), for link states (x, y, theta, vx, vy, omega): the friction
+    force F_t at the pin centre plus the moment R_pin (F_t . t), and -F_t at the bushing centre
+    plus -R_bushing (F_t . t); zero out of contact. Their power is (F_t . t) v_t <= 0."""
+    gap = clearance.clearance_m()
+    e, e_rate = _pin_offset(params, coupler, rocker)
+    distance = float(np.linalg.norm(e))
+    if distance <= gap:
+        return np.zeros(6)
+    normal_force = _normal_force(clearance, distance - gap, float(e @ e_rate) / distance,
+                                 impact_velocity_m_s)
+    force, along_t = _pin_friction(params, clearance, coupler, rocker, normal_force)
+    arm_pin = params.coupler_m / 2 * np.array([math.cos(coupler[2]), math.sin(coupler[2])])
+    arm_bushing = params.rocker_m / 2 * np.array([math.cos(rocker[2]), math.sin(rocker[2])])
+    moment_pin = _cross2(arm_pin, force) + clearance.pin_radius_m * along_t
+    moment_bushing = -_cross2(arm_bushing, force) - clearance.bushing_radius_m * along_t
+    return np.array([*force, moment_pin, *(-force), moment_bushing])
+
+
+def _cross2(r, f):
+    return float(r[0] * f[1] - r[1] * f[0])
+
+
+def _pin_offset(params, coupler, rocker):
+    """e = pin centre - bushing centre (m) and its rate (m/s) from the link states
+    (x, y, theta, vx, vy, omega) of the coupler and rocker centres."""
+    def end(state, half_length):
+        direction = np.array([math.cos(state[2]), math.sin(state[2])])
+        normal = np.array([-direction[1], direction[0]])
+        return (state[:2] + half_length * direction,
+                state[3:5] + half_length * state[5] * normal)
+
+    pin, pin_velocity = end(coupler, params.coupler_m / 2)
+    bushing, bushing_velocity = end(rocker, params.rocker_m / 2)
+    return pin - bushing, pin_velocity - bushing_velocity
+
+
+def _pin_friction(params, clearance, coupler, rocker, normal_force):
+    """Regularised Coulomb friction on the pin (N) and its component along t: with n = e/|e|,
+    t = n rotated +90 deg, the slip speed of the contact points
+    v_t = e' . t + w_coupler R_pin - w_rocker R_bushing, and
+    F_t = -mu F_n min(|v_t| / v_s, 1) sign(v_t) t (linear ramp through zero slip, v_s =
+    ``friction_ramp_velocity_m_s``). The bushing carries -F_t."""
+    e, e_rate = _pin_offset(params, coupler, rocker)
+    normal = e / np.linalg.norm(e)
+    tangent = np.array([-normal[1], normal[0]])
+    slip = (float(e_rate @ tangent) + coupler[5] * clearance.pin_radius_m
+            - rocker[5] * clearance.bushing_radius_m)
+    along_t = (-clearance.friction_coefficient * normal_force
+               * float(np.clip(slip / clearance.friction_ramp_velocity_m_s, -1.0, 1.0)))
+    return along_t * tangent, along_t
 
 
 def _solve(mbs, exu, step_s, total_steps, rho_inf, newton_tolerance, relative_only):
@@ -300,6 +390,15 @@ def _outputs(variant, records, model, params, keep):
         out["eccentricity_m"] = eccentricity
         out["penetration_m"] = distance - clearance.clearance_m()
         out["contact_force_N"] = np.sum(out["force_B"] * eccentricity, axis=1) / distance
+        if clearance.friction_coefficient > 0.0:
+            coupler = np.hstack([records["coupler"][keep, 1:4],
+                                 records["coupler_velocity"][keep, 1:4]])
+            rocker = np.hstack([records["rocker"][keep, 1:4],
+                                records["rocker_velocity"][keep, 1:4]])
+            on_pin = np.array([_pin_friction(params, clearance, c, r, f)[0] if f > 0 else (0, 0)
+                               for c, r, f in zip(coupler, rocker, out["contact_force_N"])])
+            out["friction_force_N"] = -on_pin  # on the bushing (rocker)
+            out["force_B"] = out["force_B"] + out["friction_force_N"]
     return out
 
 

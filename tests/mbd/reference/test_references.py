@@ -200,3 +200,64 @@ def test_clearance_cycle_statistics_count_a_known_signal():
     assert np.allclose(stats["contact_share"], [0.4, 0.8])
     assert np.allclose(stats["peak_force_N"], [5.0, 9.0])
     assert list(stats["impacts"]) == [2, 1]
+
+
+def test_contact_stiffness_and_friction_forces():
+    """Lankarani-Nikravesh K of the steel pin in the brass bushing by hand; the friction's
+    generalized forces are tangential, at most mu F_n, dissipative, and their power equals the
+    friction force times the slip speed of the two contact points (moment arms right)."""
+    from tests.mbd.reference.exudyn_four_bar import ClearanceJoint, generalized_friction_N
+
+    joint = ClearanceJoint(friction_coefficient=0.1, friction_ramp_velocity_m_s=1e-2)
+    h_pin = (1 - 0.27**2) / (math.pi * 207e9)
+    h_bushing = (1 - 0.32**2) / (math.pi * 90e9)
+    stiffness = 4 / (3 * math.pi * (h_pin + h_bushing)) * math.sqrt(9.5e-3 * 10e-3 / 0.5e-3)
+    assert joint.stiffness_N_m15() == pytest.approx(stiffness, rel=1e-12)
+    rng = np.random.default_rng(7)
+    b, c = PARAMS.coupler_m, PARAMS.rocker_m
+    in_contact = 0
+    for _ in range(50):
+        coupler = np.concatenate([rng.uniform(-0.2, 0.2, 2), rng.uniform(-3, 3, 1),
+                                  rng.uniform(-5, 5, 2), rng.uniform(-80, 80, 1)])
+        rocker_angle, offset_angle = rng.uniform(-3, 3, 2)
+        distance = joint.clearance_m() * (1 + rng.uniform(-0.005, 0.02))
+        pin = coupler[:2] + b / 2 * np.array([math.cos(coupler[2]), math.sin(coupler[2])])
+        normal = np.array([math.cos(offset_angle), math.sin(offset_angle)])
+        rocker_centre = (pin - distance * normal
+                         - c / 2 * np.array([math.cos(rocker_angle), math.sin(rocker_angle)]))
+        rocker = np.concatenate([rocker_centre, [rocker_angle], rng.uniform(-5, 5, 2),
+                                 rng.uniform(-80, 80, 1)])
+        forces = generalized_friction_N(PARAMS, joint, coupler, rocker, 0.5)
+        if distance <= joint.clearance_m():
+            assert not forces.any()
+            continue
+        in_contact += 1
+        tangent = np.array([-normal[1], normal[0]])
+        slip = (_contact_point_velocity(coupler, b / 2, joint.pin_radius_m, normal)
+                - _contact_point_velocity(rocker, c / 2, joint.bushing_radius_m, normal)
+                ) @ tangent
+        penetration = distance - joint.clearance_m()
+        rate = (coupler[3:5] - rocker[3:5]
+                + b / 2 * coupler[5] * np.array([-math.sin(coupler[2]), math.cos(coupler[2])])
+                - c / 2 * rocker[5] * np.array([-math.sin(rocker_angle), math.cos(rocker_angle)])
+                ) @ normal
+        normal_force = max(stiffness * penetration**1.5
+                           * (1 + 3 * (1 - 0.9**2) / 4 * rate / 0.5), 0.0)
+        friction = forces[:2]
+        assert abs(friction @ normal) < 1e-12 * (1 + np.linalg.norm(friction))
+        assert np.linalg.norm(friction) <= 0.1 * normal_force * (1 + 1e-9)
+        if abs(slip) > 1e-2:  # full sliding beyond the regularisation speed
+            assert np.linalg.norm(friction) == pytest.approx(0.1 * normal_force, rel=1e-9)
+        velocities = np.concatenate([coupler[3:], rocker[3:]])
+        power = forces @ velocities
+        assert power == pytest.approx((friction @ tangent) * slip, rel=1e-9, abs=1e-12)
+        assert power <= 1e-12
+    assert in_contact > 25
+
+
+def _contact_point_velocity(state, half_length, radius, normal):
+    """Velocity (m/s) of the point at radius * normal from the link end at half_length from the
+    centre of a link with state (x, y, theta, vx, vy, omega)."""
+    direction = np.array([math.cos(state[2]), math.sin(state[2])])
+    arm = half_length * direction + radius * normal
+    return state[3:5] + state[5] * np.array([-arm[1], arm[0]])
