@@ -89,7 +89,9 @@ def four_bar_cycle(variant: str = "rigid", cycles_settle: int = 2, step_s: float
     ``cycles_record`` turns (both ends included) as a dict of arrays (module docstring for signs):
     time_s (n,), theta2, theta3, theta4 (rad), force_O2, force_A, force_B, force_O4 (n, 2; N),
     torque_crank (n,; N m). The clearance variant adds eccentricity_m (n, 2) = pin centre -
-    bushing centre, penetration_m (n,) = |e| - c and contact_force_N (n,) = F_n.
+    bushing centre, penetration_m (n,) = |e| - c and contact_force_N (n,) = F_n, and with friction
+    friction_force_N (n, 2), the friction force on the bushing (included in force_B). The
+    clearance run starts from the ideal mechanism with the rocker turned so that |e| = c/5.
     ``step_s`` is rounded so that a turn is a whole number of steps. ``newton_tolerance``
     (default 1e-10, relative and absolute; 1e-8 relative only for the cable and the clearance,
     whose stiff axial or contact forces keep Exudyn's absolute residual above 1e-10).
