@@ -66,6 +66,7 @@ def build_parser() -> argparse.ArgumentParser:
                          help="add the Coulomb traction mu p against the slip ([joint] "
                               "friction_coefficient; needs --rotation)")
     _add_config_and_out(contact, "out/contact")
+    _add_overwrite(contact)
 
     dynamics = sub.add_parser("dynamics", help="slider-crank dynamics with a clearance joint")
     dynamics.add_argument("--rod", choices=["rigid", "flexible"], default=None,
@@ -76,6 +77,7 @@ def build_parser() -> argparse.ArgumentParser:
                           help="crank cycles recorded after the settling cycles "
                                "(default: the config's)")
     _add_config_and_out(dynamics, "out/dynamics")
+    _add_overwrite(dynamics)
 
     diagnose = sub.add_parser("diagnose", help="what a wear model gets wrong on measured data")
     diagnose.add_argument("measured", metavar="MEASURED.csv", nargs="+",
@@ -83,6 +85,7 @@ def build_parser() -> argparse.ArgumentParser:
                                "in um), or wear measured on the joint (bore profiles and/or "
                                "maximum-depth growth, with the model as --config)")
     _add_config_and_out(diagnose, "out/diagnose")
+    _add_overwrite(diagnose)
 
     run = sub.add_parser("run", help="the paper's slider-crank wear prediction (main job)")
     _add_config_and_out(run, "out/run")
@@ -101,6 +104,7 @@ def build_parser() -> argparse.ArgumentParser:
     scar = sub.add_parser("scar", help="a block-on-ring or fretting wear scar beside the "
                                        "measured one(s)")
     _add_config_and_out(scar, "out/scar")
+    _add_overwrite(scar)
 
     plot = sub.add_parser("plot", help="PyVista view of a run's worn bushing, coloured by depth")
     plot.add_argument("folder", metavar="DIR", help="the output folder of `fewear run`")
@@ -112,6 +116,32 @@ def _add_config_and_out(parser: argparse.ArgumentParser, default_out: str) -> No
                         help="configuration (default: the embedded paper case; `fewear config`)")
     parser.add_argument("--out", metavar="DIR", default=default_out,
                         help=f"output folder (default: {default_out})")
+
+
+def _add_overwrite(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--overwrite", action="store_true",
+                        help="replace another command's results in --out (without it, a folder "
+                             "that holds them is refused); they are removed once this "
+                             "command's outputs are written")
+
+
+def output_folder_of(args: argparse.Namespace):
+    """The transaction on the folder the command writes (:func:`fewear.io.transaction.
+    output_folder`): ``--out``, or the folder ``fewear plot`` writes its figure into."""
+    from contextlib import nullcontext
+
+    from fewear.io.transaction import output_folder
+
+    if args.command == "plot":
+        return output_folder(args.folder, "plot", required=False)
+    if args.command == "config":
+        return nullcontext()
+    comm = None
+    if launcher_rank_and_size()[1] > 1:
+        from mpi4py import MPI
+
+        comm = MPI.COMM_WORLD
+    return output_folder(args.out, args.command, getattr(args, "overwrite", False), comm)
 
 
 def print_default_config(args: argparse.Namespace) -> int:
@@ -158,7 +188,8 @@ def main(argv: list[str] | None = None) -> int:
     previous = _terminate_as_exception()
     try:
         handler = getattr(importlib.import_module(module_name), function_name)
-        return int(handler(args) or 0)
+        with output_folder_of(args):
+            return int(handler(args) or 0)
     except FewearInputError as exc:
         message = naming_the_config(one_line(str(exc)), getattr(args, "config", None))
         return _report("error", message, 2)
