@@ -11,6 +11,7 @@ import argparse
 import errno
 import importlib
 import logging
+import os
 import signal
 import sys
 
@@ -177,14 +178,15 @@ def main(argv: list[str] | None = None) -> int:
 
     - bad input (:class:`FewearInputError`): ``fewear: error: ...``, exit status 2;
     - a file or folder the OS refuses (permissions, a full disk, ...): the same, naming the path;
-    - Ctrl-C (exit status 130) or SIGTERM / SIGHUP (143): ``fewear: interrupted: ...`` saying what
-      was kept and how to go on (:func:`fewear.errors.set_interrupt_note`); the command's staging
-      folder is removed on the way out, as for any failure.
+    - Ctrl-C (exit status 130), SIGTERM (143) or SIGHUP (129): ``fewear: interrupted: ...``
+      saying what was kept and how to go on (:func:`fewear.errors.set_interrupt_note`); the
+      command's staging folder is removed on the way out, as for any failure.
     """
     args = build_parser().parse_args(argv)
     quiet_compiler_logs()
     module_name, function_name = HANDLERS[args.command].split(":")
     set_interrupt_note(None)
+    _without_petsc_signal_handlers()
     previous = _terminate_as_exception()
     try:
         handler = getattr(importlib.import_module(module_name), function_name)
@@ -204,7 +206,7 @@ def main(argv: list[str] | None = None) -> int:
     except (KeyboardInterrupt, Terminated) as exc:
         what = "Ctrl-C" if isinstance(exc, KeyboardInterrupt) else str(exc) or "SIGTERM"
         return _report("interrupted", f"{what}: {interrupt_note()}",
-                       130 if isinstance(exc, KeyboardInterrupt) else 143)
+                       130 if isinstance(exc, KeyboardInterrupt) else _signal_status(str(exc)))
     finally:
         set_interrupt_note(None)
         for signum, handler in previous.items():
@@ -241,6 +243,23 @@ def os_error_message(exc: OSError) -> str:
         reason += " (choose a folder you may write to, or change its permissions)"
     paths = [str(path) for path in (exc.filename, exc.filename2) if path]
     return f"{' -> '.join(paths)}: {reason}" if paths else reason
+
+
+def _signal_status(name: str) -> int:
+    """The exit status of a command ended by signal ``name``: 128 + its number (SIGTERM: 143,
+    SIGHUP: 129), as a shell reports it."""
+    try:
+        return 128 + signal.Signals[name].value
+    except KeyError:
+        return 128 + signal.SIGTERM.value
+
+
+def _without_petsc_signal_handlers() -> None:
+    """PETSc's own handlers (installed when it starts, over Python's) would turn SIGHUP into its
+    "Caught signal" banner and MPI_ABORT; with this option Python's handlers stay."""
+    options = os.environ.get("PETSC_OPTIONS", "")
+    if "-no_signal_handler" not in options.split():
+        os.environ["PETSC_OPTIONS"] = f"{options} -no_signal_handler".strip()
 
 
 def _terminate_as_exception() -> dict:
