@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import json
 import os
+import tokenize
 import zipfile
 from dataclasses import asdict, fields
 from pathlib import Path
@@ -37,7 +38,8 @@ from fewear.wear.state import WearState
 FOLDER = "fewear-checkpoint"
 FORMAT = "fewear-run-checkpoint-3"
 LOOP_COUNT_NAMES = [count.name for count in fields(LoopCounts)]
-UNREADABLE = (OSError, ValueError, KeyError, zipfile.BadZipFile, json.JSONDecodeError)
+UNREADABLE = (OSError, ValueError, KeyError, zipfile.BadZipFile, json.JSONDecodeError, EOFError,
+              SyntaxError, tokenize.TokenError)  # the last: numpy parsing a corrupt array header
 
 
 class Checkpoint:
