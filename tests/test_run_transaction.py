@@ -119,3 +119,33 @@ def test_a_second_run_into_a_folder_being_written_is_refused(tmp_path, capsys):
     finally:
         os.killpg(process.pid, signal.SIGTERM)
         process.communicate(timeout=120)
+
+
+def test_an_overwrite_interrupted_before_its_first_block_says_the_earlier_run_is_kept(
+        tmp_path, complete_run, monkeypatch, capsys):
+    import fewear.loop.command
+
+    def interrupt(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    out = tmp_path / "out"
+    shutil.copytree(complete_run, out)
+    earlier = contents(out)
+    monkeypatch.setattr(fewear.loop.command, "new_bushing", interrupt)
+    assert run(longer_config(tmp_path), out, "--overwrite") == 130
+    last = capsys.readouterr().err.strip().splitlines()[-1]
+    assert last == (f"fewear: interrupted: Ctrl-C: no wear block had finished; the earlier run in "
+                    f"{out} is kept as it was; start the new run again with: fewear run "
+                    f"--overwrite --config {tmp_path / 'longer.toml'} --out {out}")
+    assert contents(out) == earlier
+
+
+def test_a_run_into_another_commands_folder_names_that_command(tmp_path, capsys):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "profiles.csv").write_text("x_m,depth_m\n")
+    (out / "summary.json").write_text('{"max_depth_m": 1e-6}')
+    assert run(write_config(tmp_path), out) == 2
+    err = capsys.readouterr().err
+    assert "holds the results of `fewear scar` (summary.json, profiles.csv)" in err
+    assert "--resume" not in err

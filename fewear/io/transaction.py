@@ -120,6 +120,8 @@ def _open(out: str | Path, command: str, overwrite: bool, required: bool) -> dic
             raise FewearInputError(
                 f"output folder {out} holds the results of {named}; replace them with "
                 f"`fewear {command} --overwrite`, or choose another --out")
+        if "run" in others:  # with it goes the earlier run it was to replace
+            others["run"] += sorted(out.glob(PREVIOUS_PREFIX + "*"))
         state["replaced"] = [(path, _identity(path)) for paths in others.values()
                              for path in paths]
     except BaseException:

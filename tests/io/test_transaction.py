@@ -119,3 +119,14 @@ def test_output_folders_that_cannot_be_meant_are_refused(tmp_path, monkeypatch, 
     with pytest.raises(FewearInputError, match=message), output_folder(out, "run"):
         pass
     assert list(tmp_path.iterdir()) == []
+
+
+def test_overwriting_an_unfinished_run_drops_the_earlier_run_it_was_to_replace(tmp_path):
+    out = tmp_path / "out"
+    run_folder(out / ".fewear-previous-x1")
+    (out / "fewear-checkpoint").mkdir()
+    (out / "fewear-checkpoint" / "rigid.npz").write_bytes(b"case")
+    with output_folder(out, "contact", overwrite=True):
+        with staged_output(out) as stage:
+            write_json(stage / "summary.json", {"peak_pressure_Pa": 1.0})
+    assert sorted(path.name for path in out.iterdir()) == ["summary.json"]
