@@ -152,6 +152,9 @@ def print_default_config(args: argparse.Namespace) -> int:
     if args.out is None:
         sys.stdout.write(text)
         return 0
+    if os.path.isdir(args.out):
+        raise FewearInputError(f"cannot write {args.out}: it is a folder; `fewear config --out` "
+                               "takes a file name (e.g. --out my_case.toml)")
     try:
         with open(args.out, "x") as handle:
             handle.write(text)

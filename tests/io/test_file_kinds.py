@@ -73,3 +73,20 @@ def test_a_checkpoint_that_is_a_fifo_is_named_so(tmp_path):
     assert status == 2, err
     assert (f"checkpoint {folder / 'rigid.npz'} is unreadable (it is a FIFO (named pipe), not a "
             "regular file)") in err, err
+
+
+def test_config_out_names_a_folder_as_a_folder(tmp_path, capsys):
+    assert main(["config", "--out", str(tmp_path)]) == 2
+    assert f"cannot write {tmp_path}: it is a folder" in capsys.readouterr().err
+
+
+def test_a_plain_file_named_like_the_checkpoint_folder_is_refused_at_once(tmp_path, capsys):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "fewear-checkpoint").write_text("not a folder")
+    config = tmp_path / "rigid.toml"
+    config.write_text('[wear_loop]\nrod_models = ["rigid"]\n')
+    assert main(["run", "--config", str(config), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err == (f"fewear: error: {out / 'fewear-checkpoint'} is a file, not the checkpoint "
+                   "folder of a run; move it away, or choose another --out\n")
