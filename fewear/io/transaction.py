@@ -70,6 +70,9 @@ def output_folder(out: str | Path, command: str, overwrite: bool = False, comm=N
             state = _open(out, command, overwrite, required)
         except FewearInputError as exc:
             error = str(exc)
+        except OSError as exc:  # said on every rank, not raised on rank 0 alone
+            where = f" ({exc.filename})" if exc.filename else ""
+            error = f"cannot prepare output folder {out}{where}: {exc.strerror or exc}"
     if comm is not None:
         error = comm.bcast(error, root=0)
     if error is not None:
@@ -90,9 +93,9 @@ def _open(out: str | Path, command: str, overwrite: bool, required: bool) -> dic
         raise FewearInputError(f"--out {str(out)!r}: an empty folder name; give the output "
                                "folder (e.g. --out results)")
     out = Path(out)
-    _check_out_path(out)
     if not required and not out.is_dir():
         return None
+    _check_out_path(out)
     created = not out.exists()
     try:
         out.mkdir(parents=True, exist_ok=True)
@@ -131,7 +134,7 @@ def _open(out: str | Path, command: str, overwrite: bool, required: bool) -> dic
 
 
 def _check_out_path(out: Path) -> None:
-    if CHECKPOINT in out.resolve().parts[:-1] or out.resolve().name == CHECKPOINT:
+    if CHECKPOINT in out.resolve().parts:
         raise FewearInputError(f"--out {out} is inside the checkpoint folder of a run "
                                f"({CHECKPOINT}); give a folder outside it")
     if out.exists() and not out.is_dir():
