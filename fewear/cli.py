@@ -94,8 +94,8 @@ def build_parser() -> argparse.ArgumentParser:
                      help="continue the run whose checkpoint is in --out (same config)")
     run.add_argument("--overwrite", action="store_true",
                      help="replace an earlier run (checkpoint and outputs) in --out; without it "
-                          "a run refuses a folder that holds one. The earlier run is restored "
-                          "if the new one fails")
+                          "a run refuses a folder that holds one. The earlier run is kept "
+                          "aside until the new one completes, and restored if it fails")
     run.add_argument("--jobs", type=int, default=None, metavar="N",
                      help="rod models run side by side in worker processes (default: one per "
                           "rod model, at most the CPU cores; 1: one after the other in this "

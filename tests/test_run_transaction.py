@@ -149,3 +149,24 @@ def test_a_run_into_another_commands_folder_names_that_command(tmp_path, capsys)
     err = capsys.readouterr().err
     assert "holds the results of `fewear scar` (summary.json, profiles.csv)" in err
     assert "--resume" not in err
+
+
+def test_a_full_disk_during_an_overwrite_keeps_both_runs(tmp_path, complete_run, monkeypatch,
+                                                        capsys):
+    import errno
+
+    import fewear.loop.outputs
+
+    def full(folder, *args):
+        raise OSError(errno.ENOSPC, "No space left on device", str(folder / "summary.json"))
+
+    out = tmp_path / "out"
+    shutil.copytree(complete_run, out)
+    earlier = contents(out)
+    monkeypatch.setattr(fewear.loop.outputs, "write_run_outputs", full)
+    assert run(write_config(tmp_path), out, "--overwrite") == 2
+    last = capsys.readouterr().err.strip().splitlines()[-1]
+    assert "No space left on device" in last and "keeps rigid at 4,000/4,000 cycles" in last
+    assert "the earlier run stays in" in last
+    [aside] = [path for path in out.iterdir() if path.name.startswith(".fewear-previous-")]
+    assert contents(aside) == earlier
