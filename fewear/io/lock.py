@@ -64,8 +64,11 @@ def lock_folder(folder: str | Path, command: str) -> FolderLock:
             if held is None:  # no flock here: the recorded owner decides
                 held = not _owner_alive(owner)
             if not held:
-                raise FolderInUse(f"{folder} is in use by {describe_owner(owner)}; wait "
-                                       "until it ends, or choose another --out")
+                elsewhere = owner.get("host") not in (None, socket.gethostname())
+                raise FolderInUse(
+                    f"{folder} is in use by {describe_owner(owner)}; wait until it ends, or "
+                    "choose another --out" + (f" (if it has ended, delete {path})"
+                                              if elsewhere else ""))
             if not _same_file(descriptor, path):
                 os.close(descriptor)  # its owner removed it while we locked: lock the new one
                 continue

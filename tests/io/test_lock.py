@@ -88,3 +88,28 @@ def test_a_lock_is_released_when_its_command_ends(tmp_path, capsys):
     assert not out.exists()  # made for the command, removed again (nothing was written)
     lock_folder(tmp_path, "run").release()
     lock_folder(tmp_path, "run").release()
+
+
+@pytest.mark.parametrize("owner, in_use", [("live", True), ("dead", False), ("elsewhere", True)])
+def test_without_flock_the_recorded_owner_decides(tmp_path, monkeypatch, owner, in_use):
+    """A file system without flock (some network ones): the lock is held while its recorded
+    owner runs; one on another host is assumed to run (and the message says how to clear it)."""
+    import fewear.io.lock
+
+    monkeypatch.setattr(fewear.io.lock, "_try_flock", lambda descriptor: None)
+    sleeper = subprocess.Popen(["sleep", "30"])
+    try:
+        pid = {"live": sleeper.pid, "dead": dead_pid(), "elsewhere": 12345}[owner]
+        host = "another-host" if owner == "elsewhere" else os.uname().nodename
+        (tmp_path / LOCK_NAME).write_text(json.dumps({"pid": pid, "host": host}))
+        if in_use:
+            with pytest.raises(FolderInUse, match=f"in use by pid {pid}") as raised:
+                lock_folder(tmp_path, "run")
+            assert ("delete" in str(raised.value)) == (owner == "elsewhere")
+        else:
+            lock = lock_folder(tmp_path, "run")
+            assert f"took over the lock of pid {pid}" in lock.stale_note
+            lock.release()
+    finally:
+        sleeper.kill()
+        sleeper.wait()
