@@ -11,6 +11,7 @@ import argparse
 import errno
 import importlib
 import logging
+import os
 import signal
 import sys
 
@@ -68,6 +69,7 @@ def build_parser() -> argparse.ArgumentParser:
                          help="add the Coulomb traction mu p against the slip ([joint] "
                               "friction_coefficient; needs --rotation)")
     _add_config_and_out(contact, "out/contact")
+    _add_overwrite(contact)
 
     dynamics = sub.add_parser("dynamics", help="slider-crank dynamics with a clearance joint")
     dynamics.add_argument("--rod", choices=["rigid", "flexible"], default=None,
@@ -78,6 +80,7 @@ def build_parser() -> argparse.ArgumentParser:
                           help="crank cycles recorded after the settling cycles "
                                "(default: the config's)")
     _add_config_and_out(dynamics, "out/dynamics")
+    _add_overwrite(dynamics)
 
     diagnose = sub.add_parser("diagnose", help="what a wear model gets wrong on measured data")
     diagnose.add_argument("measured", metavar="MEASURED.csv", nargs="+",
@@ -85,6 +88,7 @@ def build_parser() -> argparse.ArgumentParser:
                                "in um), or wear measured on the joint (bore profiles and/or "
                                "maximum-depth growth, with the model as --config)")
     _add_config_and_out(diagnose, "out/diagnose")
+    _add_overwrite(diagnose)
 
     run = sub.add_parser("run", help="the paper's slider-crank wear prediction (main job)")
     _add_config_and_out(run, "out/run")
@@ -92,8 +96,8 @@ def build_parser() -> argparse.ArgumentParser:
                      help="continue the run whose checkpoint is in --out (same config)")
     run.add_argument("--overwrite", action="store_true",
                      help="replace an earlier run (checkpoint and outputs) in --out; without it "
-                          "a run refuses a folder that holds one. The earlier run is restored "
-                          "if the new one fails")
+                          "a run refuses a folder that holds one. The earlier run is kept "
+                          "aside until the new one completes, and restored if it fails")
     run.add_argument("--jobs", type=int, default=None, metavar="N",
                      help="rod models run side by side in worker processes (default: one per "
                           "rod model, at most the CPU cores; 1: one after the other in this "
@@ -103,6 +107,7 @@ def build_parser() -> argparse.ArgumentParser:
     scar = sub.add_parser("scar", help="a block-on-ring or fretting wear scar beside the "
                                        "measured one(s)")
     _add_config_and_out(scar, "out/scar")
+    _add_overwrite(scar)
 
     plot = sub.add_parser("plot", help="PyVista view of a run's worn bushing, coloured by depth")
     plot.add_argument("folder", metavar="DIR", help="the output folder of `fewear run`")
@@ -116,6 +121,32 @@ def _add_config_and_out(parser: argparse.ArgumentParser, default_out: str) -> No
                         help=f"output folder (default: {default_out})")
 
 
+def _add_overwrite(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--overwrite", action="store_true",
+                        help="replace another command's results in --out (without it, a folder "
+                             "that holds them is refused); they are removed once this "
+                             "command's outputs are written")
+
+
+def output_folder_of(args: argparse.Namespace):
+    """The transaction on the folder the command writes (:func:`fewear.io.transaction.
+    output_folder`): ``--out``, or the folder ``fewear plot`` writes its figure into."""
+    from contextlib import nullcontext
+
+    from fewear.io.transaction import output_folder
+
+    if args.command == "plot":
+        return output_folder(args.folder, "plot", required=False)
+    if args.command == "config":
+        return nullcontext()
+    comm = None
+    if launcher_rank_and_size()[1] > 1:
+        from mpi4py import MPI
+
+        comm = MPI.COMM_WORLD
+    return output_folder(args.out, args.command, getattr(args, "overwrite", False), comm)
+
+
 def print_default_config(args: argparse.Namespace) -> int:
     from fewear.io.config import default_config_text
 
@@ -123,6 +154,9 @@ def print_default_config(args: argparse.Namespace) -> int:
     if args.out is None:
         sys.stdout.write(text)
         return 0
+    if os.path.isdir(args.out):
+        raise FewearInputError(f"cannot write {args.out}: it is a folder; `fewear config --out` "
+                               "takes a file name (e.g. --out my_case.toml)")
     try:
         with open(args.out, "x") as handle:
             handle.write(text)
@@ -149,18 +183,20 @@ def main(argv: list[str] | None = None) -> int:
 
     - bad input (:class:`FewearInputError`): ``fewear: error: ...``, exit status 2;
     - a file or folder the OS refuses (permissions, a full disk, ...): the same, naming the path;
-    - Ctrl-C (exit status 130) or SIGTERM / SIGHUP (143): ``fewear: interrupted: ...`` saying what
-      was kept and how to go on (:func:`fewear.errors.set_interrupt_note`); the command's staging
-      folder is removed on the way out, as for any failure.
+    - Ctrl-C (exit status 130), SIGTERM (143) or SIGHUP (129): ``fewear: interrupted: ...``
+      saying what was kept and how to go on (:func:`fewear.errors.set_interrupt_note`); the
+      command's staging folder is removed on the way out, as for any failure.
     """
     args = build_parser().parse_args(argv)
     quiet_compiler_logs()
     module_name, function_name = HANDLERS[args.command].split(":")
     set_interrupt_note(None)
+    _without_petsc_signal_handlers()
     previous = _terminate_as_exception()
     try:
         handler = getattr(importlib.import_module(module_name), function_name)
-        return int(handler(args) or 0)
+        with output_folder_of(args):
+            return int(handler(args) or 0)
     except FewearInputError as exc:
         message = naming_the_config(one_line(str(exc)), getattr(args, "config", None))
         return _report("error", message, 2)
@@ -175,7 +211,7 @@ def main(argv: list[str] | None = None) -> int:
     except (KeyboardInterrupt, Terminated) as exc:
         what = "Ctrl-C" if isinstance(exc, KeyboardInterrupt) else str(exc) or "SIGTERM"
         return _report("interrupted", f"{what}: {interrupt_note()}",
-                       130 if isinstance(exc, KeyboardInterrupt) else 143)
+                       130 if isinstance(exc, KeyboardInterrupt) else _signal_status(str(exc)))
     finally:
         set_interrupt_note(None)
         for signum, handler in previous.items():
@@ -212,6 +248,23 @@ def os_error_message(exc: OSError) -> str:
         reason += " (choose a folder you may write to, or change its permissions)"
     paths = [str(path) for path in (exc.filename, exc.filename2) if path]
     return f"{' -> '.join(paths)}: {reason}" if paths else reason
+
+
+def _signal_status(name: str) -> int:
+    """The exit status of a command ended by signal ``name``: 128 + its number (SIGTERM: 143,
+    SIGHUP: 129), as a shell reports it."""
+    try:
+        return 128 + signal.Signals[name].value
+    except KeyError:
+        return 128 + signal.SIGTERM.value
+
+
+def _without_petsc_signal_handlers() -> None:
+    """PETSc's own handlers (installed when it starts, over Python's) would turn SIGHUP into its
+    "Caught signal" banner and MPI_ABORT; with this option Python's handlers stay."""
+    options = os.environ.get("PETSC_OPTIONS", "")
+    if "-no_signal_handler" not in options.split():
+        os.environ["PETSC_OPTIONS"] = f"{options} -no_signal_handler".strip()
 
 
 def _terminate_as_exception() -> dict:

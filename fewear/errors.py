@@ -94,6 +94,13 @@ def set_interrupt_note(note) -> None:
     _interrupt_note[0] = note
 
 
+def add_interrupt_note(text: str) -> None:
+    """Add ``text`` to the note of :func:`set_interrupt_note` (e.g. where an earlier result
+    was kept)."""
+    note = _interrupt_note[0]
+    set_interrupt_note(lambda: f"{note() if note is not None else NOTHING_KEPT}; {text}")
+
+
 def has_interrupt_note() -> bool:
     """Whether the running command said what an interruption keeps (:func:`set_interrupt_note`)."""
     return _interrupt_note[0] is not None

@@ -43,6 +43,16 @@ MAX_WEAR_STEPS = 10_000
 SECONDS_PER_WEAR_STEP = 0.5
 """About the wall time of one wear step on the default mesh, its share of the block's dynamics
 included (the cost estimate)."""
+MAX_CONFIG_FILE_BYTES = 1_000_000
+"""A config file of more than 1 MB is no config (the complete default config has about 28 kB)."""
+MAX_DATA_FILE_BYTES = 200_000_000
+"""A measured-data file (CSV) of more than 200 MB is refused: reading its cells as text takes
+several times that in memory."""
+
+
+def max_file_bytes(what: str) -> int:
+    """The size bound of a file the user gives: a config file, or measured data (the rest)."""
+    return MAX_CONFIG_FILE_BYTES if what.startswith("config") else MAX_DATA_FILE_BYTES
 
 
 def check_limits(config: dict, source: str) -> None:

@@ -51,7 +51,8 @@ def staged_output(out_dir: str | Path, comm=None) -> Iterator[Path]:
                 out.rmdir()
         raise
     if rank == 0:
-        with _signals_held():  # Ctrl-C or SIGTERM waits until every file is in place
+        _record_command(staging)
+        with signals_held():  # Ctrl-C or SIGTERM waits until every file is in place
             for item in staging.iterdir():
                 target = out / item.name
                 if target.is_dir() and not target.is_symlink():
@@ -63,7 +64,7 @@ def staged_output(out_dir: str | Path, comm=None) -> Iterator[Path]:
 
 
 @contextmanager
-def _signals_held():
+def signals_held():
     """Hold Ctrl-C, SIGTERM and SIGHUP while the outputs move into place, and deliver them right
     after: an interruption then finds the folder with all of them or none. (The Python handlers
     are swapped, not the signal mask: another thread may take a signal the main thread masks.)"""
@@ -87,6 +88,19 @@ def _signals_held():
                 handler(caught[0], None)
             elif handler == signal.SIG_DFL:
                 signal.raise_signal(caught[0])
+
+
+def _record_command(staging: Path) -> None:
+    """Name the command that made the outputs in their ``summary.json`` (key ``command``), by
+    which another command recognises them (:mod:`fewear.io.transaction`)."""
+    from fewear.io.transaction import SUMMARY, current_command
+
+    command, summary = current_command(), staging / SUMMARY
+    if command is None or not summary.is_file():
+        return
+    data = json.loads(summary.read_text())
+    if isinstance(data, dict) and "command" not in data:
+        summary.write_text(json.dumps({"command": command, **data}, indent=2) + "\n")
 
 
 def _make_staging(out: Path) -> tuple[str | None, str | None, bool]:

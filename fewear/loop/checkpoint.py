@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import json
 import os
+import tokenize
 import zipfile
 from dataclasses import asdict, fields
 from pathlib import Path
@@ -29,6 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from fewear.errors import FewearInputError
+from fewear.io.text import not_a_regular_file
 from fewear.loop.progress import BlockRecord, CaseProgress, LoopCounts
 from fewear.wear.extensions import SlidingState
 from fewear.wear.state import WearState
@@ -36,7 +38,8 @@ from fewear.wear.state import WearState
 FOLDER = "fewear-checkpoint"
 FORMAT = "fewear-run-checkpoint-3"
 LOOP_COUNT_NAMES = [count.name for count in fields(LoopCounts)]
-UNREADABLE = (OSError, ValueError, KeyError, zipfile.BadZipFile, json.JSONDecodeError)
+UNREADABLE = (OSError, ValueError, KeyError, zipfile.BadZipFile, json.JSONDecodeError, EOFError,
+              SyntaxError, tokenize.TokenError)  # the last: numpy parsing a corrupt array header
 
 
 class Checkpoint:
@@ -73,6 +76,8 @@ class Checkpoint:
         found = {}
         for path in sorted(self.path.glob("*.npz")) if self.path.is_dir() else []:
             try:
+                if not_a_regular_file(path):
+                    continue  # reading a FIFO would block
                 with np.load(path, allow_pickle=False) as archive:
                     found[path.stem] = int(json.loads(str(archive["meta"]))["case"]["cycles"])
             except (*UNREADABLE, TypeError):
@@ -98,6 +103,8 @@ class Checkpoint:
     def _load_case(self, rod: str) -> CaseProgress:
         path = self.case_path(rod)
         try:
+            if not_a_regular_file(path):
+                raise ValueError(f"it is {not_a_regular_file(path)}, not a regular file")
             if path.stat().st_size == 0:
                 raise ValueError("the file is empty (0 bytes): a write cut short")
             with np.load(path, allow_pickle=False) as archive:

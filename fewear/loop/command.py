@@ -12,14 +12,11 @@ from __future__ import annotations
 
 import math
 import shlex
-import shutil
 import sys
-import tempfile
 import time
-from contextlib import contextmanager
 from pathlib import Path
 
-from fewear.errors import FewearInputError, Terminated, set_interrupt_note
+from fewear.errors import FewearInputError, set_interrupt_note
 from fewear.loop.block import new_bushing, new_case, predict_case, restored_bushing
 from fewear.loop.checkpoint import FOLDER, Checkpoint
 from fewear.loop.progress import CaseProgress
@@ -146,6 +143,7 @@ def main(args) -> int:
 
     from fewear.io.config import load_config
     from fewear.io.output import staged_output
+    from fewear.io.transaction import run_replaced
     from fewear.loop.outputs import write_run_outputs
 
     world = MPI.COMM_WORLD
@@ -161,7 +159,9 @@ def main(args) -> int:
     if resumed and world.rank == 0:
         _say(f"resuming from {store.path}: " + ", ".join(
             f"{rod} at {case.state.cycles:,} cycles" for rod, case in resumed.items()))
-    with earlier_run_kept(args, store, world):
+    overwrite = getattr(args, "overwrite", False)
+    with run_replaced(args.out, earlier_run, store, args.resume, overwrite,
+                      resume_command(args).replace(" --resume", " --overwrite"), world):
         set_interrupt_note(lambda: interrupt_note(args, store, rods, inputs.loop.total_cycles))
         with staged_output(args.out, world) as stage:
             if world.size > 1:
@@ -207,51 +207,6 @@ def earlier_run(out: Path) -> list[Path]:
     if found:  # the cases' XDMF files belong to a run only beside its checkpoint or summary
         found += sorted(path for pattern in ("*.xdmf", "*.h5") for path in out.glob(pattern))
     return found
-
-
-@contextmanager
-def earlier_run_kept(args, store: Checkpoint, world):
-    """Nothing lost: a run refuses a folder that holds an earlier run unless ``--resume`` (the
-    same run, continued) or ``--overwrite`` (the earlier run is set aside, and restored if this
-    run fails or is interrupted before its first block). A failed run leaves the folder as it
-    found it: a new run's checkpoint is removed, a resumed run's stays (it is the same run); an
-    interruption or an OS error (a full disk) keeps the checkpoint of the blocks done."""
-    out = Path(args.out).resolve()
-    error, aside, existed = None, None, out.exists()
-    if world.rank == 0:
-        store.remove_temporary_files()
-        earlier = [] if args.resume else earlier_run(out)
-        if earlier and not args.overwrite:
-            error = (f"output folder {out} holds an earlier run ("
-                     + ", ".join(path.name for path in earlier[:4])
-                     + (", ..." if len(earlier) > 4 else "") + "); continue it with --resume, "
-                     "replace it with --overwrite, or choose another --out")
-        elif earlier:
-            aside = Path(tempfile.mkdtemp(prefix=".fewear-previous-", dir=out))
-            for path in earlier:
-                path.replace(aside / path.name)
-    error = world.bcast(error, root=0)
-    if error:
-        raise FewearInputError(error)
-    try:
-        yield
-    except BaseException as exc:
-        if world.rank == 0:
-            # an interruption, or the OS refusing a write (a full disk), is no fault of the run:
-            # its checkpoint stays, to be resumed
-            interrupted = isinstance(exc, (KeyboardInterrupt, Terminated, OSError))
-            if not args.resume and not (interrupted and store.saved_cycles()):
-                shutil.rmtree(store.path, ignore_errors=True)  # this run's, not worth keeping
-                if aside is not None:
-                    for path in aside.iterdir():
-                        path.replace(out / path.name)
-            if aside is not None:
-                shutil.rmtree(aside, ignore_errors=True)
-            if not existed and out.is_dir() and not any(out.iterdir()):
-                out.rmdir()
-        raise
-    if world.rank == 0 and aside is not None:
-        shutil.rmtree(aside, ignore_errors=True)
 
 
 def _jobs(requested: int | None, n_rods: int) -> int:
