@@ -105,9 +105,9 @@ def test_pendulum_in_an_elastic_clearance_joint_keeps_its_energy():
 
 
 def test_tabulated_driver_follows_its_spline_with_its_rates():
-    """A bar pinned at its centre, its angle driven by a table of 30 sin(2 pi t / T + 1) degrees: the
-    angle is the periodic spline's, the velocity its derivative (Phi_t) and the start's
-    acceleration its second derivative (Phi_tt)."""
+    """A bar pinned at its centre, its angle driven by a table of 30 sin(2 pi t / T + 1)
+    degrees: the angle is the periodic spline's, the velocity its derivative (Phi_t) and the
+    start's acceleration its second derivative (Phi_tt)."""
     period, samples = 0.1, 24
     times = np.linspace(0.0, period, samples + 1)
     angles = 30.0 * np.sin(2 * math.pi * times / period + 1.0)
