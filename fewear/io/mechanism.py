@@ -99,10 +99,17 @@ def joint_sections(config: dict) -> dict[str, dict]:
 def read_mechanism(path: str | Path) -> tuple[Mechanism, dict[str, dict]]:
     """The file's :class:`Mechanism` and each joint's own config tables (checked against the
     defaults' sections), by joint name."""
-    from fewear.io.config import read_toml
+    import tomllib
+
+    from fewear.io.text import read_text_file
 
     path = Path(path)
-    return parse_mechanism(read_toml(path), str(path))
+    text = read_text_file(path, "mechanism file ([mechanism] file)")
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise FewearInputError(f"mechanism file {path} is not valid TOML: {exc}") from None
+    return parse_mechanism(data, str(path))
 
 
 def parse_mechanism(data: dict, source: str) -> tuple[Mechanism, dict[str, dict]]:

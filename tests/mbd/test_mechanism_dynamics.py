@@ -169,3 +169,33 @@ def test_block_slides_down_an_inclined_prismatic_joint():
     travel = -9.81 * 0.5 * path.time_s**2 / 2
     np.testing.assert_allclose(path.q[:, :2], start + np.outer(travel, direction), atol=1e-12)
     np.testing.assert_allclose(path.q[:, 2], angle, atol=1e-13)
+
+
+def test_clearance_profile_and_history_are_in_the_rotating_bushing_frame():
+    """A bar hangs (angle -90 degrees) with its bushing on a pin fixed to the ground; the worn
+    profile c(theta) = 0.3, 0.5, 0.7, 0.5 mm at 0, 90, 180, 270 degrees of the BAR's frame. The
+    pin touches the bore on the bar's -x side (globally above the bore centre), where c = 0.7 mm:
+    at rest the eccentricity in the bar's frame is (-(0.7 mm + delta), 0), delta = (m g / K)^(2/3)
+    the static penetration, and the force on the pin (m g, 0) points along the bar. Read in the
+    global frame the profile would give 0.5 mm there, and the bar would fall by 0.2 mm."""
+    length = 0.25
+    text = (GROUND + bar("bar", length, (0.0, -length / 2), -90.0, {"O": -length / 2})
+            + joint("hang", "revolute", "ground.O", "bar.O", "clearance = true\n"))
+    stiffness = lankarani_nikravesh_stiffness(0.0095, 0.010, 207e9, 0.27, 90e9, 0.32)
+    profile = ClearanceProfile(np.radians([0.0, 90.0, 180.0, 270.0]),
+                               np.array([0.3e-3, 0.5e-3, 0.7e-3, 0.5e-3]))
+    joints = {"hang": JointModel(0.0095, 0.010, profile,
+                                 ContactLaw("hunt-crossley", stiffness, restitution=0.5),
+                                 Friction(0.0))}
+    model = MechanismModel(mechanism(text), joints)
+    weight = 0.702 * length * 9.81
+    eccentricity = 0.7e-3 + (weight / stiffness) ** (2.0 / 3.0)
+    q = np.array([0.0, -eccentricity - length / 2, -math.pi / 2])
+    settings = IntegratorSettings(rho_inf=0.5, step_s=1e-5, min_step_s=1e-5, adaptive=False,
+                                  newton_tolerance=1e-13)
+    _, path = run(model, settings, 0.02, q, np.zeros(3))
+    measures = model.measure(path)["hang"]
+    np.testing.assert_allclose(measures["eccentricity_m"][:, 0], -eccentricity, atol=1e-9)
+    np.testing.assert_allclose(measures["eccentricity_m"][:, 1], 0.0, atol=1e-9)
+    np.testing.assert_allclose(measures["reaction_force_N"][:, 0], weight, rtol=1e-6)
+    np.testing.assert_allclose(measures["reaction_force_N"][:, 1], 0.0, atol=1e-6 * weight)
