@@ -192,43 +192,43 @@ def _constraints(mechanism: Mechanism, point, first: dict, clearance: bool):
     ``first[body]``: the body's first coordinate."""
     constraints, forces = [], []
     for joint in mechanism.joints:
-        owner = f"joint {joint.name!r}"
-        a, b = point(joint.first), point(joint.second)
-        if joint.type == "revolute":
-            if joint.clearance and clearance:
-                forces.append((joint, a, b))
-            else:
-                constraints.append((Revolute(a, b), owner))
-        elif joint.type == "prismatic":
-            body = mechanism.body(joint.second.body)
-            constraints.append((Prismatic(first[body.name], mechanism_point(mechanism, joint.first),
-                                          joint.direction, body.point(joint.second.point),
-                                          body.angle_rad), owner))
-        else:  # fixed
-            constraints.append((Revolute(a, b), owner))
-            bodies = [None if ref.body == GROUND else mechanism.body(ref.body)
-                      for ref in (joint.first, joint.second)]
-            angles = [0.0 if body is None else body.angle_rad for body in bodies]
-            if bodies[1] is None:
-                constraints.append((FixedAngle(first[bodies[0].name], angles[0]), owner))
-            else:
-                constraints.append((FixedAngle(first[bodies[1].name], angles[1] - angles[0],
-                                               None if bodies[0] is None
-                                               else first[bodies[0].name]), owner))
-    owners = [owner for _, owner in constraints]
-    ends = [sum(owners.count(f"joint {j.name!r}") for j in mechanism.joints[:k + 1])
-            for k in range(len(mechanism.joints))]  # where each joint's rows end
-    for driver in reversed(mechanism.drivers):
-        owner = f"driver of {driver.body!r}"
+        if joint.type == "revolute" and joint.clearance and clearance:
+            forces.append((joint, point(joint.first), point(joint.second)))
+        else:
+            constraints += [(row, f"joint {joint.name!r}")
+                            for row in _joint_rows(mechanism, joint, point, first)]
+    for driver in mechanism.drivers:
         if driver.tabulated:
             row = PrescribedAngle(first[driver.body], driver.table_time_s,
                                   driver.table_angle_rad)
         else:
             row = DrivenAngle(first[driver.body], driver.initial_angle_rad, driver.speed_rad_s)
-        joined = [k for k, joint in enumerate(mechanism.joints)
-                  if driver.body in (joint.first.body, joint.second.body)]
-        constraints.insert(ends[joined[-1]] if joined else len(constraints), (row, owner))
+        holding = [f"joint {joint.name!r}" for joint in mechanism.joints
+                   if driver.body in (joint.first.body, joint.second.body)]
+        rows = [k for k, (_, owner) in enumerate(constraints) if owner in holding]
+        constraints.insert(rows[-1] + 1 if rows else len(constraints),
+                           (row, f"driver of {driver.body!r}"))
     return constraints, forces
+
+
+def _joint_rows(mechanism: Mechanism, joint, point, first: dict) -> list:
+    """The constraints of an ideal joint: revolute; prismatic (the body's angle held at its
+    pose's); fixed = revolute + the relative angle of the poses held."""
+    if joint.type == "revolute":
+        return [Revolute(point(joint.first), point(joint.second))]
+    if joint.type == "prismatic":
+        body = mechanism.body(joint.second.body)
+        return [Prismatic(first[body.name], mechanism_point(mechanism, joint.first),
+                          joint.direction, body.point(joint.second.point), body.angle_rad)]
+    base, moving = ((joint.second, joint.first) if joint.second.body == GROUND
+                    else (joint.first, joint.second))
+    body = mechanism.body(moving.body)
+    if base.body == GROUND:
+        held = FixedAngle(first[body.name], body.angle_rad)
+    else:
+        other = mechanism.body(base.body)
+        held = FixedAngle(first[body.name], body.angle_rad - other.angle_rad, first[other.name])
+    return [Revolute(point(joint.first), point(joint.second)), held]
 
 
 def mechanism_point(mechanism: Mechanism, ref: PointRef) -> tuple[float, float]:

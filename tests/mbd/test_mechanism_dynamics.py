@@ -199,3 +199,16 @@ def test_clearance_profile_and_history_are_in_the_rotating_bushing_frame():
     np.testing.assert_allclose(measures["eccentricity_m"][:, 1], 0.0, atol=1e-9)
     np.testing.assert_allclose(measures["reaction_force_N"][:, 0], weight, rtol=1e-6)
     np.testing.assert_allclose(measures["reaction_force_N"][:, 1], 0.0, atol=1e-6 * weight)
+
+
+@pytest.mark.parametrize("points", [("ground.O", "bar.A"), ("bar.A", "ground.O")])
+def test_body_fixed_to_the_ground_stays(points):
+    """A bar welded to the ground at one end (either way round) does not move under gravity."""
+    text = (GROUND + bar("bar", 0.2, (0.1, 0.0), 20.0) + joint("weld", "fixed", *points))
+    model = MechanismModel(mechanism(text), {})
+    settings = IntegratorSettings(rho_inf=0.8, step_s=1e-3, min_step_s=1e-3, adaptive=False,
+                                  newton_tolerance=1e-13)
+    state, path = run(model, settings, 0.05)
+    angle = math.radians(20.0)
+    expected = [0.1 * math.cos(angle), 0.1 * math.sin(angle), angle]  # assembled about O
+    np.testing.assert_allclose(path.q, np.tile(expected, (path.q.shape[0], 1)), atol=1e-12)
