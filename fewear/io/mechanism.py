@@ -140,6 +140,7 @@ def parse_mechanism(data: dict, source: str) -> tuple[Mechanism, dict[str, dict]
     variable = data.get("variable_body")
     if variable is not None:
         _variable_body(variable, bodies, where)
+        _rigid_only(variable, joints, drivers, where)
     name = data.get("name", Path(source).stem)
     if not isinstance(name, str):
         raise FewearInputError(f"{where}: name = {name!r}: expected a string")
@@ -317,6 +318,22 @@ def _variable_body(name: Any, bodies: tuple[Body, ...], where: str) -> None:
                                "by the run's case)")
     for point, _ in body.points:
         beam_node(body, point)
+
+
+def _rigid_only(variable: str, joints: list[Joint], drivers: tuple[Driver, ...],
+                where: str) -> None:
+    """The variable body may be flexible: it may carry no driver, prismatic or fixed joint, or
+    clearance joint's bushing (as a flexible body may not)."""
+    for joint in joints:
+        rigid = (joint.type != "revolute" and variable in (joint.first.body, joint.second.body)
+                 or joint.clearance and joint.second.body == variable)
+        if rigid:
+            carried = "a clearance joint's bushing" if joint.clearance else f"a {joint.type} joint"
+            raise FewearInputError(f"{where}: joint {joint.name!r}: variable_body = {variable!r} "
+                                   f"may be flexible, so it cannot carry {carried}")
+    if any(driver.body == variable for driver in drivers):
+        raise FewearInputError(f"{where}: variable_body = {variable!r} may be flexible, so it "
+                               "cannot be driven")
 
 
 def _point_ref(value: Any, known: dict, where: str) -> PointRef:

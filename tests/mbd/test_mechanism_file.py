@@ -75,9 +75,22 @@ def test_bad_file_is_a_one_line_error_naming_the_culprit(old, new, message):
 def test_bushing_on_a_flexible_body_is_refused():
     text = edited('pin_point = "coupler.B"\nbushing_point = "rocker.B"',
                   'pin_point = "rocker.B"\nbushing_point = "coupler.B"')
+    text = edited('variable_body = "coupler"\n', '', text)
     parse(text)  # the rigid coupler may carry it
     with pytest.raises(FewearInputError, match=r"bushing is on the flexible body 'coupler'"):
         parse(edited('model = "rigid"', 'model = "flexible"', text))
+
+
+def test_the_variable_body_carries_no_bushing_or_driver():
+    """The variable body is flexible in the flexible case: what a flexible body cannot carry is
+    refused even while its file model is rigid."""
+    with pytest.raises(FewearInputError, match=r"joint 'coupler_rocker': variable_body = "
+                                               r"'coupler' may be flexible.*bushing"):
+        parse(edited('pin_point = "coupler.B"\nbushing_point = "rocker.B"',
+                     'pin_point = "rocker.B"\nbushing_point = "coupler.B"'))
+    with pytest.raises(FewearInputError, match=r"variable_body = 'coupler' may be flexible, so "
+                                               r"it cannot be driven"):
+        parse(edited('body = "crank"\nspeed_rpm', 'body = "coupler"\nspeed_rpm'))
 
 
 def test_a_flexible_body_point_off_its_nodes_is_refused():
