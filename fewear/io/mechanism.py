@@ -29,6 +29,7 @@ from fewear.mbd.description import (
     Joint,
     Mechanism,
     PointRef,
+    beam_node,
 )
 
 EXAMPLES_DIR = Path(__file__).resolve().parent.parent / "mechanisms"
@@ -203,22 +204,6 @@ def _bar(table: dict, where: str, model: str) -> Bar | None:
     if damping < 0.0:
         raise FewearInputError(f"{where}: damping_s = {damping!r}: expected >= 0")
     return Bar(**values, elements=elements, damping_s=damping)
-
-
-def beam_node(body: Body, point: str) -> int:
-    """The node of a flexible body's ANCF beam at ``point`` (a point on the axis at a node:
-    (s, 0) with s + L/2 a multiple of half an element)."""
-    x, y = body.point(point)
-    bar = body.bar
-    spacing = bar.length_m / (2 * bar.elements)
-    node = round((x + bar.length_m / 2.0) / spacing)
-    if (abs(y) > 1e-9 * bar.length_m or not 0 <= node <= 2 * bar.elements
-            or abs(node * spacing - bar.length_m / 2.0 - x) > 1e-9 * bar.length_m):
-        raise FewearInputError(
-            f"body {body.name!r}: point {point} = {[x, y]!r} is not at a node of the flexible "
-            f"body's beam (the axis y = 0 at x = -L/2 + k L/{2 * bar.elements}, L = "
-            f"{bar.length_m!r} m)")
-    return node
 
 
 def _joint(table: Any, known: dict, models: dict, where: str, index: int):

@@ -18,6 +18,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
+from fewear.errors import FewearInputError
+
 GROUND = "ground"
 BODY_MODELS = ("rigid", "flexible")
 JOINT_TYPES = ("revolute", "prismatic", "fixed")
@@ -65,6 +67,22 @@ class Body:
 
     def point(self, name: str) -> tuple[float, float]:
         return dict(self.points)[name]
+
+
+def beam_node(body: Body, point: str) -> int:
+    """The node of a flexible body's ANCF beam at ``point`` (a point on the axis at a node:
+    (s, 0) with s + L/2 a multiple of half an element)."""
+    x, y = body.point(point)
+    bar = body.bar
+    spacing = bar.length_m / (2 * bar.elements)
+    node = round((x + bar.length_m / 2.0) / spacing)
+    if (abs(y) > 1e-9 * bar.length_m or not 0 <= node <= 2 * bar.elements
+            or abs(node * spacing - bar.length_m / 2.0 - x) > 1e-9 * bar.length_m):
+        raise FewearInputError(
+            f"body {body.name!r}: point {point} = {[x, y]!r} is not at a node of the flexible "
+            f"body's beam (the axis y = 0 at x = -L/2 + k L/{2 * bar.elements}, L = "
+            f"{bar.length_m!r} m)")
+    return node
 
 
 @dataclass(frozen=True)
@@ -151,8 +169,6 @@ class Mechanism:
     def with_case(self, case: str) -> Mechanism:
         """The mechanism of a run's case: the variable body's model set to ``case``."""
         if case not in CASES:
-            from fewear.errors import FewearInputError
-
             raise FewearInputError(f"case {case!r}: expected one of {', '.join(CASES)}")
         if self.variable_body is None:
             return self

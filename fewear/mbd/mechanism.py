@@ -36,7 +36,7 @@ from fewear.mbd.constraints import (
     Revolute,
 )
 from fewear.mbd.contact import ClearanceProfile, ContactLaw, Friction, lankarani_nikravesh_stiffness
-from fewear.mbd.description import GROUND, Mechanism, PointRef
+from fewear.mbd.description import GROUND, Mechanism, PointRef, beam_node
 from fewear.mbd.history import JointHistory, classify_modes
 from fewear.mbd.integrator import GeneralizedAlpha, IntegratorSettings, State, Trajectory
 from fewear.mbd.points import GroundPoint, NodePoint, RigidPoint, point_motion
@@ -243,7 +243,6 @@ class MechanismModel:
 
     def __init__(self, mechanism: Mechanism, joints: dict[str, JointModel],
                  ideal_joints: bool = False):
-        from fewear.io.mechanism import beam_node
         from fewear.mbd.ancf import AncfBeam, BeamSection
 
         self.mechanism, self.joints = mechanism, joints
