@@ -127,3 +127,14 @@ def test_unknown_example_name_lists_the_examples():
     config["mechanism"]["file"] = "three_bar"
     with pytest.raises(FewearInputError, match=r"three_bar.*four_bar, four_bar_two_joints"):
         dynamics_inputs(config, "rigid")
+
+
+def test_a_profile_for_an_unknown_joint_is_refused():
+    from fewear.mbd.contact import ClearanceProfile
+    from fewear.mbd.mechanism import simulate
+
+    config = load_config(None, SECTIONS)
+    config["mechanism"]["file"] = "four_bar"
+    inputs = dynamics_inputs(config, "rigid")
+    with pytest.raises(FewearInputError, match=r"'rod_slider'.*coupler_rocker"):
+        simulate(inputs, profiles={"rod_slider": ClearanceProfile.constant(6e-4)})
