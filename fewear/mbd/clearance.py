@@ -374,7 +374,9 @@ def measure_rows(data, j, q_rows, qd_rows, memory_rows):
 
 
 class ClearanceJoint:
-    """Pin (any point) in a bushing fixed to a rigid body (a :class:`RigidPoint`).
+    """Pin (any point) in a bushing fixed to a rigid body or the ground (a :class:`RigidPoint`
+    or :class:`GroundPoint`); the profile's angle and the measured quantities are in the
+    bushing body's frame, which may rotate.
 
     The joint's memory (in contact, impact velocity, approach velocity) becomes a row of its
     system's :class:`JointData` when the system is finalized (:meth:`share_memory`); the methods

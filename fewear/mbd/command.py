@@ -1,15 +1,19 @@
-"""``fewear dynamics``: simulate the slider-crank and write the joint-load history.
+"""``fewear dynamics``: simulate the mechanism ([mechanism]: the paper's slider-crank, or a
+mechanism file) and write the joint-load history of each clearance joint.
 
 Outputs (all-or-nothing, in ``--out``): ``joint_history.csv`` (one row per time step of the
 recorded cycles: time_s, crank_angle_deg, slider_x_m, ex_m, ey_m, penetration_m, fn_N, ft_N,
 fx_N, fy_N, rel_omega_rad_s, mode; see fewear.mbd.history for frames and signs),
 ``summary.json`` (peak_contact_force_N, impacts, steps, wall_time_s, ... and the config used),
-``forces.png`` and ``orbit.png``. A line per crank cycle goes to standard error.
+``forces.png`` and ``orbit.png``; with several clearance joints, ``joint_history_<joint>.csv``
+and ``orbit_<joint>.png`` for each, and the summary's top-level figures are the first joint's
+(all in ``joints``). A line per crank cycle goes to standard error.
 """
 
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 
 import numpy as np
 
@@ -18,12 +22,8 @@ from fewear.io.config import load_config
 from fewear.io.limits import MAX_DYNAMICS_CYCLES
 from fewear.io.output import staged_output
 from fewear.mbd.history import MODES, JointHistory
-from fewear.mbd.slider_crank import (
-    SECTIONS,
-    UNINTEGRABLE_HINT,
-    joint_model_from_config,
-    simulate_slider_crank,
-)
+from fewear.mbd.mechanism import dynamics_inputs, simulate
+from fewear.mbd.slider_crank import SECTIONS, UNINTEGRABLE_HINT
 
 CSV_COLUMNS = ("time_s", "crank_angle_deg", "slider_x_m", "ex_m", "ey_m", "penetration_m", "fn_N",
                "ft_N", "fx_N", "fy_N", "rel_omega_rad_s", "mode")
@@ -34,10 +34,13 @@ def main(args) -> int:
     if args.cycles is not None and not 1 <= args.cycles <= MAX_DYNAMICS_CYCLES:
         raise FewearInputError(f"--cycles {args.cycles}: expected a whole number from 1 to "
                                f"{MAX_DYNAMICS_CYCLES:,} (crank cycles, a few seconds each)")
-    joint_model = joint_model_from_config(config)
+    inputs = dynamics_inputs(config, args.rod)
+    if args.joint is not None:
+        inputs = replace(inputs, ideal_joints=args.joint == "ideal")
+    if args.cycles is not None:
+        inputs = replace(inputs, recorded_cycles=args.cycles)
     try:
-        history, summary = simulate_slider_crank(config, rod=args.rod, joint=args.joint,
-                                                 cycles=args.cycles, progress=True)
+        histories, summary, _ = simulate(inputs, progress=True)
     except RuntimeError as exc:  # the integrator's step size collapsed
         raise FewearInputError(
             f"the dynamics cannot integrate this mechanism ({exc}): {UNINTEGRABLE_HINT}; a "
@@ -47,29 +50,44 @@ def main(args) -> int:
                        ("recorded_cycles", args.cycles)):
         if value is not None:
             used["mechanism"][key] = value
+    several = len(histories) > 1
+    figures = {name: _figures(history) for name, history in histories.items()}
     with staged_output(args.out) as stage:
-        write_history_csv(history, stage / "joint_history.csv")
+        for name, history in histories.items():
+            write_history_csv(history, stage / (f"joint_history_{name}.csv" if several
+                                                 else "joint_history.csv"))
         report = {
-            "peak_contact_force_N": history.peak_contact_force_N,
-            "impacts": history.impacts,
+            **next(iter(figures.values()), {}),
             "steps": summary.steps,
             "rejected_steps": summary.rejected_steps,
             "newton_iterations": summary.newton_iterations,
             "wall_time_s": summary.wall_time_s,
             "wall_time_per_cycle_s": summary.wall_time_per_cycle_s,
             "smallest_step_s": summary.smallest_step_s,
-            "recorded_steps": history.n_steps,
-            "mode_fractions": {name: float(np.mean(history.mode == code))
-                               for code, name in enumerate(MODES)},
+            "joints": figures,
             "config": used,
         }
         (stage / "summary.json").write_text(json.dumps(report, indent=2) + "\n")
         from fewear.plot.dynamics import plot_forces, plot_orbit
 
         label = f"{used['mechanism']['rod']} rod, {used['mechanism']['joint']} joint"
-        plot_forces({label: history}, stage / "forces.png")
-        plot_orbit(history, joint_model.nominal_clearance_m, stage / "orbit.png", label)
+        if inputs.mechanism.variable_body not in (None, "rod"):
+            label = f"{used['mechanism']['rod']} {inputs.mechanism.variable_body}"
+        plot_forces({f"{name}: {label}" if several else label: history
+                     for name, history in histories.items()}, stage / "forces.png")
+        for name, history in histories.items():
+            plot_orbit(history, inputs.joints[name].nominal_clearance_m,
+                       stage / (f"orbit_{name}.png" if several else "orbit.png"),
+                       f"{name}: {label}" if several else label)
     return 0
+
+
+def _figures(history: JointHistory) -> dict:
+    """A joint's summary figures."""
+    return {"peak_contact_force_N": history.peak_contact_force_N, "impacts": history.impacts,
+            "recorded_steps": history.n_steps,
+            "mode_fractions": {name: float(np.mean(history.mode == code))
+                               for code, name in enumerate(MODES)}}
 
 
 def write_history_csv(history: JointHistory, path) -> None:

@@ -14,17 +14,27 @@ written as the complex number w_p = (u_p0 + i u_p1) exp(i phi_p):
 - Jacobian Phi_q = D plus, in the column of phi_p, dw_p/dphi_p = i w_p (rows of its joint);
 - d(Phi_q^T lambda)/dq is diagonal, -lambda_j . w_p in the column of phi_p (lambda_j: the joint's
   two multipliers);
-- Phi_t = c1 (constant) and (dPhi_q/dt) q' = -phi_p'^2 w_p in the joint's rows (convective term of
-  the acceleration constraint Phi_q q'' = -(dPhi_q/dt) q' - Phi_tt, Phi_tt = 0).
+- (dPhi_q/dt) q' = -phi_p'^2 w_p in the joint's rows (convective term of the acceleration
+  constraint Phi_q q'' = -(dPhi_q/dt) q' - Phi_tt).
+
+A tabulated driver (:class:`PrescribedAngle`) adds -f(t) to its row, f a periodic cubic spline
+of the time, so Phi_t = c1 - f'(t) and Phi_tt = -f''(t) (:func:`prescribed_terms`; without one,
+Phi_t = c1 is constant and Phi_tt = 0).
 """
 
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 import numpy as np
 
 from fewear.jit import compiled
+from fewear.mbd.contact import clearance_at, periodic_cubic
+
+Drives = namedtuple("Drives", [
+    "rows", "phase", "cubic", "size", "timing",  # (k,), (k, P), (k, P, 4), (k,), (k, 2): t0, T
+])
 
 
 class Revolute:
@@ -46,14 +56,38 @@ class _LinearConstraint:
         self.d1 = np.asarray(d1, dtype=float)
 
 
-class PrismaticX(_LinearConstraint):
-    """A rigid body sliding along the ground's x axis at height ``y_m`` without rotating."""
+class Prismatic(_LinearConstraint):
+    """A rigid body sliding along a fixed direction of the ground without rotating: its point u
+    stays on the line through the ground point p along the unit ``direction`` d, and its angle at
+    ``angle_rad``. With n = k x d: n . (R + A(angle) u - p) = 0 (linear in R because the angle is
+    held), phi = angle."""
 
     n_rows = 2
 
-    def __init__(self, first_index: int, y_m: float = 0.0, angle_rad: float = 0.0):
-        self.indices = np.arange(first_index + 1, first_index + 3)
-        self._set(np.eye(2), [y_m, angle_rad], [0.0, 0.0])
+    def __init__(self, first_index: int, ground_point_m=(0.0, 0.0), direction=(1.0, 0.0),
+                 u_m=(0.0, 0.0), angle_rad: float = 0.0):
+        self.indices = np.arange(first_index, first_index + 3)
+        normal = np.array([-direction[1], direction[0]], dtype=float)
+        c, s = math.cos(angle_rad), math.sin(angle_rad)
+        rotated = np.array([c * u_m[0] - s * u_m[1], s * u_m[0] + c * u_m[1]])
+        self._set([[normal[0], normal[1], 0.0], [0.0, 0.0, 1.0]],
+                  [normal @ np.asarray(ground_point_m, dtype=float) - normal @ rotated, angle_rad],
+                  [0.0, 0.0])
+
+
+class FixedAngle(_LinearConstraint):
+    """A rigid body's angle held: phi_b - phi_a = ``angle_rad`` (``first_a`` None: the ground,
+    phi_b = ``angle_rad``); with a revolute joint at a common point, a fixed joint."""
+
+    n_rows = 1
+
+    def __init__(self, first_b: int, angle_rad: float, first_a: int | None = None):
+        if first_a is None:
+            self.indices = np.array([first_b + 2])
+            self._set([[1.0]], [angle_rad], [0.0])
+        else:
+            self.indices = np.array([first_a + 2, first_b + 2])
+            self._set([[-1.0, 1.0]], [angle_rad], [0.0])
 
 
 class DrivenAngle(_LinearConstraint):
@@ -65,6 +99,22 @@ class DrivenAngle(_LinearConstraint):
         self.indices = np.array([first_index + 2])
         self.phi0, self.omega = initial_angle_rad, speed_rad_s
         self._set(np.ones((1, 1)), [initial_angle_rad], [speed_rad_s])
+
+
+class PrescribedAngle(_LinearConstraint):
+    """A rigid body's angle follows a periodic table: phi = f(t), f the periodic cubic spline (C2)
+    through ``angle_rad`` at ``time_s`` (one period: increasing times, the last angle equal to the
+    first), so the driven velocity and acceleration f', f'' are continuous."""
+
+    n_rows = 1
+
+    def __init__(self, first_index: int, time_s, angle_rad):
+        self.indices = np.array([first_index + 2])
+        self._set(np.ones((1, 1)), [0.0], [0.0])
+        time_s, angle_rad = np.asarray(time_s, dtype=float), np.asarray(angle_rad, dtype=float)
+        self.start_s, self.period_s = time_s[0], time_s[-1] - time_s[0]
+        self.phase = 2.0 * math.pi * (time_s[:-1] - time_s[0]) / self.period_s
+        self.cubic = np.ascontiguousarray(periodic_cubic(self.phase, angle_rad[:-1]).c.T)
 
 
 class ConstraintSet:
@@ -79,6 +129,9 @@ class ConstraintSet:
         self.n_rows = m = start
         self._D, self._c0, self.c1 = np.zeros((m, n_coordinates)), np.zeros(m), np.zeros(m)
         offsets = []  # (first row, column of phi, u) of each rigid point's rotated offset
+        self.drives = _drives([(constraint, rows.start) for constraint, rows
+                               in zip(constraints, self.rows)
+                               if isinstance(constraint, PrescribedAngle)])
         for constraint, rows in zip(constraints, self.rows):
             if isinstance(constraint, Revolute):
                 offsets += self._add_revolute(constraint, rows)
@@ -121,12 +174,54 @@ class ConstraintSet:
                                        jac)
         return jac
 
-    def convective(self, q, qd):
-        """(dPhi_q/dt) q' (m,)."""
+    def values(self, q, t: float):
+        """Phi(q, t) (m,)."""
+        phi, jac = np.zeros(self.n_rows), np.zeros(self._D.shape)
+        constraint_values_and_jacobian(*self.kernel_data, np.asarray(q, dtype=float), t, phi,
+                                       jac)
+        add_prescribed(self.drives, t, 0, phi)
+        return phi
+
+    def time_derivative(self, t: float):
+        """Phi_t(t) (m,)."""
+        out = self.c1.copy()
+        add_prescribed(self.drives, t, 1, out)
+        return out
+
+    def convective(self, q, qd, t: float = 0.0):
+        """(dPhi_q/dt) q' + Phi_tt(t) (m,): what the acceleration constraint subtracts."""
         out = np.zeros(self.n_rows)
         constraint_convective(*self.kernel_data[3:], np.asarray(q, dtype=float),
                               np.asarray(qd, dtype=float), out)
+        add_prescribed(self.drives, t, 2, out)
         return out
+
+
+def _drives(prescribed) -> Drives:
+    """The :data:`Drives` arrays of the (PrescribedAngle, row) pairs."""
+    size = max([drive.phase.size for drive, _ in prescribed], default=1)
+    count = len(prescribed)
+    drives = Drives(np.zeros(count, dtype=np.int64), np.zeros((count, size)),
+                    np.zeros((count, size, 4)), np.zeros(count, dtype=np.int64),
+                    np.zeros((count, 2)))
+    for k, (drive, row) in enumerate(prescribed):
+        n = drive.phase.size
+        drives.rows[k], drives.size[k] = row, n
+        drives.phase[k, :n], drives.cubic[k, :n] = drive.phase, drive.cubic
+        drives.timing[k] = drive.start_s, drive.period_s
+    return drives
+
+
+@compiled
+def add_prescribed(drives, t, order, out):
+    """out -= the ``order``-th time derivative of the tabulated drivers' angles f(t) in their
+    rows (order 0: Phi, 1: Phi_t, 2: Phi_tt)."""
+    for k in range(drives.rows.size):
+        start, period = drives.timing[k, 0], drives.timing[k, 1]
+        rate = 2.0 * math.pi / period
+        terms = clearance_at(drives.phase[k], drives.cubic[k], drives.size[k],
+                             rate * (t - start))
+        out[drives.rows[k]] -= terms[order] * rate**order
 
 
 @compiled

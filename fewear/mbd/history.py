@@ -3,9 +3,12 @@
 One row per accepted time step (the steps are variable when the step-size control is on: resample
 with ``np.interp`` on ``time_s`` or ``crank_angle_rad``; the crank angle is theta0 + omega t, not
 wrapped, so it increases through the recorded cycles). The first row is the state at the start of
-the recorded cycles. Vectors are in the bushing frame (the slider's: x along the slide, y normal
-to it); for the slider-crank this equals the global frame. For a flexible rod the pin's angular
-velocity is that of the end node's cross-section (the direction of r_,y).
+the recorded cycles. Vectors are in the bushing body's frame, which turns with it (the slider's:
+x along the slide, y normal to it, for the slider-crank the global frame; a four-bar rocker's:
+x along the rocker). For a flexible rod the pin's angular velocity is that of the end node's
+cross-section (the direction of r_,y). For a general mechanism (:mod:`fewear.mbd.mechanism`),
+the crank angle is the first driver's body angle and ``slider_x_m``, ``slider_velocity_m_s``
+are the bushing body's x and x'.
 
 Sign conventions. The eccentricity e = r_pin - r_bushing (pin centre relative to the bushing
 centre). ``reaction_force_N`` is the force exerted BY the bushing (slider) ON the pin (connecting

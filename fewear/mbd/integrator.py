@@ -60,6 +60,7 @@ from fewear.jit import compiled
 from fewear.mbd.clearance import begin_step, end_step, measure_rows, step_error
 from fewear.mbd.constraints import (
     add_constraint_hessian,
+    add_prescribed,
     constraint_values_and_jacobian,
 )
 from fewear.mbd.system import system_forces
@@ -367,6 +368,7 @@ def _project_velocities(data, jac, qd, t):
     weighted = jac @ data.inverse_mass
     schur = weighted @ jac.T
     mu = jac @ qd + data.c1
+    add_prescribed(data.drives, t, 1, mu)
     pivots = np.zeros(mu.size, dtype=np.int64)
     if not lu_factor(schur, pivots):
         return False
@@ -421,6 +423,7 @@ def _newton(data, settings, t1, Y1, lam1, update, h, lu, pivots, newton, counts)
         system_forces(data, Y1[0], Y1[1], t1, rebuild, Q, K, C)
         constraint_values_and_jacobian(data.D, data.c0, data.c1, data.offset_rows,
                                        data.offset_columns, data.offset_u, Y1[0], t1, phi, jac)
+        add_prescribed(data.drives, t1, 0, phi)
         _scaled_residual(data.mass, Y1[2], jac, lam1, Q, bh2, x)
         if rebuild:
             if not _factorize(data, settings, Y1[0], lam1, jac, K, C, h, lu, pivots):

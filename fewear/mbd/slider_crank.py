@@ -1,4 +1,6 @@
-"""The paper's slider-crank (seed section 5) built from the config, and its simulation.
+"""The paper's slider-crank (seed section 5): its parameters ([mechanism] keys), its description
+as a general mechanism (:func:`describe`, simulated by :mod:`fewear.mbd.mechanism`) and the
+single-joint entry points the commands and the wear loop call.
 
 Layout (SI units): the crank turns about the ground point O = (0, 0) at the constant speed omega,
 angle theta(t) = theta0 + omega t from the x axis; the connecting rod joins the crank pin
@@ -12,29 +14,33 @@ The crank is driven (a constraint), so its inertia does not change the joint for
 driving torque. Gravity acts along -y (the plane of the mechanism is vertical).
 
 Rod: rigid (mass rho A l, inertia m l^2/12 about its centre) or an
-:class:`fewear.mbd.ancf.AncfBeam` of ``rod_elements`` elements (pin at its last node).
-Rod-slider joint: ideal revolute, or :class:`fewear.mbd.clearance.ClearanceJoint` with the
-bushing/pin radii and materials of [bushing]/[pin] and the friction coefficient of [joint].
+:class:`fewear.mbd.ancf.AncfBeam` of ``rod_elements`` elements (pin at its last node): the
+description's variable body. Rod-slider joint "rod_slider": ideal revolute, or a clearance joint
+with the bushing on the slider and the data of [bushing], [pin], [joint], [clearance_joint].
 """
 
 from __future__ import annotations
 
 import math
-import sys
-import time
 from dataclasses import dataclass, replace
 
 import numpy as np
 
 from fewear.errors import FewearInputError
 from fewear.io.config import Config, load_config
-from fewear.mbd.clearance import ClearanceJoint, measure_rows
-from fewear.mbd.constraints import DrivenAngle, PrismaticX, Revolute
-from fewear.mbd.contact import ClearanceProfile, ContactLaw, Friction, lankarani_nikravesh_stiffness
-from fewear.mbd.history import JointHistory, classify_modes
-from fewear.mbd.integrator import GeneralizedAlpha, IntegratorSettings, State, Trajectory
-from fewear.mbd.points import GroundPoint, NodePoint, RigidPoint, point_motion
-from fewear.mbd.system import MultibodySystem
+from fewear.io.mechanism import template_keys
+from fewear.mbd.description import GROUND, Bar, Body, Driver, Joint, Mechanism, PointRef
+from fewear.mbd.history import JointHistory
+from fewear.mbd.integrator import GeneralizedAlpha, IntegratorSettings
+from fewear.mbd.mechanism import (
+    JointModel,
+    MechanismInputs,
+    MechanismModel,
+    MechanismState,
+    RunSummary,
+    joint_model_from_config,
+)
+from fewear.mbd.mechanism import simulate as simulate_mechanism
 
 UNINTEGRABLE_HINT = ("a value of [mechanism], [clearance_joint] or [integrator] makes the "
                      "mechanism too stiff, too light or too fast to integrate (compare with "
@@ -124,204 +130,109 @@ class SliderCrank:
 
 
 @dataclass(frozen=True)
-class JointModel:
-    """The clearance joint's data ([bushing], [pin], [joint], [clearance_joint])."""
-
-    pin_radius_m: float
-    bushing_radius_m: float
-    profile: ClearanceProfile
-    law: ContactLaw
-    friction: Friction
-    impact_max_duration_s: float = 1.0e-3
-
-    @property
-    def nominal_clearance_m(self) -> float:
-        return self.bushing_radius_m - self.pin_radius_m
-
-
-@dataclass(frozen=True)
 class DynamicsInputs:
-    """Everything the dynamics stage needs, parsed once from the config: the mechanism
+    """The slider-crank's dynamics inputs, parsed once from the config: the mechanism
     ([mechanism]), the clearance joint ([bushing], [pin], [joint], [clearance_joint]) and the
-    integrator settings ([integrator])."""
+    integrator settings ([integrator]). :func:`mechanism_inputs` turns them into the general
+    :class:`fewear.mbd.mechanism.MechanismInputs`."""
 
     crank: SliderCrank
     joint: JointModel
     integrator: IntegratorSettings
 
 
-@dataclass(frozen=True)
-class MechanismState:
-    """Positions ``q`` and velocities ``qd`` (generalized coordinates) at time ``time_s``: where a
-    later simulation of the same mechanism can start (a warm start)."""
-
-    time_s: float
-    q: np.ndarray
-    qd: np.ndarray
-
-
 def dynamics_inputs_from_config(config: Config) -> DynamicsInputs:
-    """The :class:`DynamicsInputs` of the config sections of ``SECTIONS``."""
-    return DynamicsInputs(SliderCrank(**config["mechanism"]), joint_model_from_config(config),
+    """The :class:`DynamicsInputs` of the config sections of ``SECTIONS`` (the slider-crank of
+    the [mechanism] keys; a mechanism file needs :func:`fewear.mbd.mechanism.dynamics_inputs`)."""
+    if config["mechanism"].get("file"):
+        raise FewearInputError(
+            f"[mechanism] file = {config['mechanism']['file']!r}: this command runs the paper's "
+            "slider-crank only (leave file empty); `fewear dynamics` runs any mechanism")
+    return DynamicsInputs(SliderCrank(**template_keys(config["mechanism"])),
+                          joint_model_from_config(config),
                           IntegratorSettings(**config["integrator"]))
 
 
-def joint_model_from_config(config: Config) -> JointModel:
-    bushing, pin, cj = config["bushing"], config["pin"], config["clearance_joint"]
-    for name, section in (("bushing", bushing), ("pin", pin)):
-        for key in ("youngs_modulus_Pa",):
-            if not section[key] > 0.0:
-                raise FewearInputError(f"[{name}] {key} = {section[key]!r}: expected > 0")
-    clearance = bushing["inner_radius_m"] - pin["radius_m"]
-    if not (pin["radius_m"] > 0.0 and clearance > 0.0):
-        raise FewearInputError(
-            f"radial clearance = [bushing] inner_radius_m - [pin] radius_m = {clearance!r} m "
-            f"(pin radius {pin['radius_m']!r} m): expected a pin radius > 0 and a clearance > 0")
-    angles = [math.radians(a) for a in _numbers(cj, "clearance_angles_deg")]
-    values = _numbers(cj, "clearance_values_m")
-    if len(angles) != len(values):
-        raise FewearInputError(
-            "[clearance_joint] clearance_angles_deg and clearance_values_m must have the same "
-            f"length (got {len(angles)} and {len(values)})")
-    profile = (ClearanceProfile(np.array(angles), np.array(values)) if angles
-               else ClearanceProfile.constant(clearance))
-    stiffness = lankarani_nikravesh_stiffness(
-        pin["radius_m"], bushing["inner_radius_m"], pin["youngs_modulus_Pa"],
-        pin["poisson_ratio"], bushing["youngs_modulus_Pa"], bushing["poisson_ratio"])
-    law = ContactLaw(
-        law=cj["contact_law"], stiffness_N_m1_5=stiffness,
-        restitution=cj["restitution_coefficient"],
-        min_impact_velocity_m_s=cj["min_impact_velocity_m_s"],
-        penetration_m=np.array(_numbers(cj, "tabulated_penetration_m")),
-        force_N=np.array(_numbers(cj, "tabulated_force_N")))
-    friction = Friction(config["joint"]["friction_coefficient"], cj["friction_v0_m_s"],
-                        cj["friction_v1_m_s"])
-    duration = config["dynamics_output"]["impact_max_duration_s"]
-    if not duration > 0.0:
-        raise FewearInputError(
-            f"[dynamics_output] impact_max_duration_s = {duration!r}: expected > 0")
-    return JointModel(pin["radius_m"], bushing["inner_radius_m"], profile, law, friction,
-                      duration)
+def describe(crank: SliderCrank) -> Mechanism:
+    """The slider-crank as a mechanism description (fewear/mechanisms/slider_crank.toml is the
+    same with the default values): the bodies at the poses of the ideal mechanism's closed form,
+    the rod the variable body (``crank.rod``), the rod-slider joint "rod_slider" with clearance
+    (bushing on the slider)."""
+    r, rod, omega = crank.crank_length_m, crank.rod_length_m, crank.omega_rad_s
+    theta = math.radians(crank.initial_crank_angle_deg)
+    _, x_b, _ = crank.closed_form(0.0)
+    beta = math.asin(-r * math.sin(theta) / rod)
+    a = r * np.array([math.cos(theta), math.sin(theta)])
+    axis = np.array([math.cos(beta), math.sin(beta)])
+    bar = Bar(rod, crank.rod_density_kg_m3, crank.rod_height_m, crank.rod_width_m,
+              crank.rod_youngs_modulus_Pa, crank.rod_poisson_ratio, crank.rod_elements,
+              crank.rod_damping_s)
+    bodies = (
+        Body("crank", "rigid", crank.crank_mass_kg, crank.crank_inertia_kg_m2,
+             (("O", (-r / 2.0, 0.0)), ("A", (r / 2.0, 0.0))), (a[0] / 2, a[1] / 2), theta),
+        Body("rod", crank.rod, bar.mass_kg, bar.inertia_kg_m2,
+             (("A", (-rod / 2.0, 0.0)), ("B", (rod / 2.0, 0.0))),
+             tuple(a + rod / 2 * axis), beta, bar),
+        Body("slider", "rigid", crank.slider_mass_kg, crank.slider_mass_kg * 1e-4,
+             (("B", (0.0, 0.0)),), (float(x_b), 0.0), 0.0),
+    )
+    joints = (
+        Joint("crank_ground", "revolute", PointRef("crank", "O"), PointRef(GROUND, "O")),
+        Joint("crank_rod", "revolute", PointRef("crank", "A"), PointRef("rod", "A")),
+        Joint("slider_ground", "prismatic", PointRef(GROUND, "O"), PointRef("slider", "B")),
+        Joint("rod_slider", "revolute", PointRef("rod", "B"), PointRef("slider", "B"),
+              clearance=True),
+    )
+    return Mechanism("slider_crank", bodies, (("O", (0.0, 0.0)),), joints,
+                     (Driver("crank", theta, omega),), crank.gravity_m_s2, "rod")
 
 
-def _numbers(section: dict, key: str) -> list[float]:
-    values = section[key]
-    if not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in values):
-        raise FewearInputError(f"[clearance_joint] {key} = {values!r}: expected a list of numbers")
-    return [float(v) for v in values]
+def mechanism_inputs(inputs: DynamicsInputs) -> MechanismInputs:
+    """The general inputs of the slider-crank's (joint "rod_slider"), starting from the ideal
+    mechanism's closed form (:func:`closed_form_state`)."""
+    crank = inputs.crank
+    mechanism, joints = describe(crank), {"rod_slider": inputs.joint}
+    return MechanismInputs(mechanism, joints, inputs.integrator, crank.settling_cycles,
+                           crank.recorded_cycles, crank.joint == "ideal",
+                           closed_form_state(crank, MechanismModel(mechanism, joints)))
 
 
-class SliderCrankModel:
-    """The assembled system with the indices needed to set it up and read it out."""
-
-    def __init__(self, crank: SliderCrank, joint: JointModel):
-        self.crank, self.joint = crank, joint
-        system = MultibodySystem((0.0, -crank.gravity_m_s2))
-        r, rod = crank.crank_length_m, crank.rod_length_m
-        self.i_crank = system.add_rigid_body(crank.crank_mass_kg, crank.crank_inertia_kg_m2,
-                                             "crank")
-        if crank.rod == "rigid":
-            m_rod = crank.rod_mass_kg
-            self.i_rod = system.add_rigid_body(m_rod, m_rod * rod * rod / 12.0, "rod")
-            rod_a = RigidPoint(self.i_rod, (-rod / 2.0, 0.0))
-            rod_b = RigidPoint(self.i_rod, (rod / 2.0, 0.0))
-            self.beam = None
-        else:
-            from fewear.mbd.ancf import AncfBeam, BeamSection
-
-            section = BeamSection(crank.rod_youngs_modulus_Pa, crank.rod_poisson_ratio,
-                                  crank.rod_density_kg_m3, crank.rod_height_m, crank.rod_width_m)
-            self.beam = AncfBeam(rod, crank.rod_elements, section)
-            self.i_rod = system.add_beam(self.beam, crank.rod_damping_s)
-            rod_a = NodePoint(self.i_rod + self.beam.node_index(0).start)
-            rod_b = NodePoint(self.i_rod + self.beam.node_index(self.beam.n_nodes - 1).start)
-        self.i_slider = system.add_rigid_body(crank.slider_mass_kg,
-                                              crank.slider_mass_kg * 1e-4, "slider")
-        system.add_constraint(Revolute(RigidPoint(self.i_crank, (-r / 2.0, 0.0)),
-                                       GroundPoint(0.0, 0.0)))
-        system.add_constraint(Revolute(RigidPoint(self.i_crank, (r / 2.0, 0.0)), rod_a))
-        system.add_constraint(DrivenAngle(self.i_crank, math.radians(crank.initial_crank_angle_deg),
-                                          crank.omega_rad_s))
-        system.add_constraint(PrismaticX(self.i_slider, 0.0))
-        bushing = RigidPoint(self.i_slider)
-        if crank.joint == "ideal":
-            system.add_constraint(Revolute(rod_b, bushing))
-            self.clearance = None
-        else:
-            self.clearance = ClearanceJoint(rod_b, bushing, joint.pin_radius_m,
-                                            joint.bushing_radius_m, joint.profile, joint.law,
-                                            joint.friction)
-            system.add_force(self.clearance)
-        self.rod_b = rod_b
-        self.system = system.finalize()
-        self._joint_rows = system._rows[-1] if crank.joint == "ideal" else None
-
-    def initial_conditions(self):
-        """Positions and velocities of the ideal rigid mechanism at t = 0 (pin centred)."""
-        c = self.crank
-        r, rod, omega = c.crank_length_m, c.rod_length_m, c.omega_rad_s
-        theta = math.radians(c.initial_crank_angle_deg)
-        _, x_b, v_b = c.closed_form(0.0)
-        beta = math.asin(-r * math.sin(theta) / rod)
-        beta_dot = -r * omega * math.cos(theta) / (rod * math.cos(beta))
-        a = r * np.array([math.cos(theta), math.sin(theta)])
-        v_a = r * omega * np.array([-math.sin(theta), math.cos(theta)])
-        axis = np.array([math.cos(beta), math.sin(beta)])
-        normal = np.array([-math.sin(beta), math.cos(beta)])
-        n = self.system.n_coordinates
-        q, qd = np.zeros(n), np.zeros(n)
-        q[self.i_crank:self.i_crank + 3] = [a[0] / 2, a[1] / 2, theta]
-        qd[self.i_crank:self.i_crank + 3] = [v_a[0] / 2, v_a[1] / 2, omega]
-        if self.beam is None:
-            q[self.i_rod:self.i_rod + 3] = [*(a + rod / 2 * axis), beta]
-            qd[self.i_rod:self.i_rod + 3] = [*(v_a + rod / 2 * beta_dot * normal), beta_dot]
-        else:
-            k = self.beam.n_coordinates
-            q_rod = self.beam.reference_coordinates(a[0], a[1], beta)
-            nodes = q_rod.reshape(-1, 4)
-            qd_nodes = np.zeros_like(nodes)
-            arc = nodes[:, 0:2] - a
-            qd_nodes[:, 0:2] = v_a + beta_dot * np.stack([-arc[:, 1], arc[:, 0]], axis=1)
-            qd_nodes[:, 2:4] = beta_dot * np.stack([-nodes[:, 3], nodes[:, 2]], axis=1)
-            q[self.i_rod:self.i_rod + k] = q_rod
-            qd[self.i_rod:self.i_rod + k] = qd_nodes.ravel()
-        q[self.i_slider] = x_b
-        qd[self.i_slider] = float(v_b)
-        return q, qd
-
-    def measure(self, trajectory: Trajectory) -> dict:
-        """The joint quantities at each row of a trajectory (arrays, see JointHistory)."""
-        if self.clearance is not None:
-            columns = measure_rows(self.system.data.joints, 0, trajectory.q, trajectory.qd,
-                                   trajectory.joint_memory)
-            return {"eccentricity_m": columns[:, 0:2], "penetration_m": columns[:, 2],
-                    "normal_force_N": columns[:, 3], "friction_force_N": columns[:, 4],
-                    "reaction_force_N": columns[:, 5:7], "rel_omega_rad_s": columns[:, 7]}
-        force = -trajectory.lam[:, self._joint_rows]  # the constraint force on the pin
-        point, idx = self.rod_b, self.rod_b.indices
-        omega_pin = [point_motion(point.kind, point.offset, q[idx], qd[idx])[5]
-                     for q, qd in zip(trajectory.q, trajectory.qd)]
-        return {
-            "eccentricity_m": np.zeros((force.shape[0], 2)),
-            "penetration_m": np.zeros(force.shape[0]),
-            "normal_force_N": np.hypot(force[:, 0], force[:, 1]),
-            "friction_force_N": np.zeros(force.shape[0]),
-            "reaction_force_N": force,
-            "rel_omega_rad_s": np.array(omega_pin),
-        }
-
-
-@dataclass(frozen=True)
-class RunSummary:
-    """Counts and timings of a simulation."""
-
-    steps: int
-    rejected_steps: int
-    newton_iterations: int
-    wall_time_s: float
-    wall_time_per_cycle_s: float
-    smallest_step_s: float
-    cycles: int
+def closed_form_state(crank: SliderCrank, model: MechanismModel) -> MechanismState:
+    """The ideal rigid mechanism at t = 0 (pin centred), from the closed form; a flexible rod
+    straight, moving rigidly. The general assembly (:func:`fewear.mbd.mechanism.assemble`)
+    finds the same state to rounding, but the clearance joint's history is chaotic at that
+    level: starting from the closed form keeps the runs what they were, to the last bit."""
+    r, rod, omega = crank.crank_length_m, crank.rod_length_m, crank.omega_rad_s
+    theta = math.radians(crank.initial_crank_angle_deg)
+    _, x_b, v_b = crank.closed_form(0.0)
+    beta = math.asin(-r * math.sin(theta) / rod)
+    beta_dot = -r * omega * math.cos(theta) / (rod * math.cos(beta))
+    a = r * np.array([math.cos(theta), math.sin(theta)])
+    v_a = r * omega * np.array([-math.sin(theta), math.cos(theta)])
+    axis = np.array([math.cos(beta), math.sin(beta)])
+    normal = np.array([-math.sin(beta), math.cos(beta)])
+    n = model.system.n_coordinates
+    q, qd = np.zeros(n), np.zeros(n)
+    i_crank, i_rod, i_slider = (model.first[name] for name in ("crank", "rod", "slider"))
+    q[i_crank:i_crank + 3] = [a[0] / 2, a[1] / 2, theta]
+    qd[i_crank:i_crank + 3] = [v_a[0] / 2, v_a[1] / 2, omega]
+    beam = model.beams.get("rod")
+    if beam is None:
+        q[i_rod:i_rod + 3] = [*(a + rod / 2 * axis), beta]
+        qd[i_rod:i_rod + 3] = [*(v_a + rod / 2 * beta_dot * normal), beta_dot]
+    else:
+        k = beam.n_coordinates
+        q_rod = beam.reference_coordinates(a[0], a[1], beta)
+        nodes = q_rod.reshape(-1, 4)
+        qd_nodes = np.zeros_like(nodes)
+        arc = nodes[:, 0:2] - a
+        qd_nodes[:, 0:2] = v_a + beta_dot * np.stack([-arc[:, 1], arc[:, 0]], axis=1)
+        qd_nodes[:, 2:4] = beta_dot * np.stack([-nodes[:, 3], nodes[:, 2]], axis=1)
+        q[i_rod:i_rod + k] = q_rod
+        qd[i_rod:i_rod + k] = qd_nodes.ravel()
+    q[i_slider] = x_b
+    qd[i_slider] = float(v_b)
+    return MechanismState(0.0, q, qd)
 
 
 def simulate_slider_crank(config: Config | None = None, rod: str | None = None,
@@ -356,89 +267,24 @@ def simulate_slider_crank(config: Config | None = None, rod: str | None = None,
 
 
 def compile_dynamics() -> None:
-    """Compile, or load from numba's cache, every kernel a dynamics run calls (the same for both
-    rods and joints: the arrays only change size) by a few steps of the default clearance
-    mechanism; worker processes started afterwards load the cached code instead of each compiling
-    it (:mod:`fewear.jit`)."""
+    """Compile, or load from numba's cache, every kernel a dynamics run calls (the same for any
+    mechanism: the arrays only change size) by a few steps of the default clearance mechanism;
+    worker processes started afterwards load the cached code instead of each compiling it
+    (:mod:`fewear.jit`)."""
     inputs = dynamics_inputs_from_config(load_config(None, SECTIONS))
-    model = SliderCrankModel(replace(inputs.crank, joint="clearance"), inputs.joint)
-    integrator = GeneralizedAlpha(model.system, inputs.integrator)
+    crank = replace(inputs.crank, joint="clearance", settling_cycles=0)
+    settings = inputs.integrator
+    model = MechanismModel(describe(crank), {"rod_slider": inputs.joint})
+    integrator = GeneralizedAlpha(model.system, settings)
     state = integrator.initial_state(*model.initial_conditions())
-    _, trajectory = integrator.run_recorded(state, state.t + 3 * inputs.integrator.step_s)
-    model.measure(_joined([trajectory]))
+    _, trajectory = integrator.run_recorded(state, state.t + 3 * settings.step_s)
+    model.history(trajectory)
 
 
 def simulate(inputs: DynamicsInputs, start: MechanismState | None = None,
              progress: bool = False) -> tuple[JointHistory, RunSummary, MechanismState]:
-    """Simulate ``inputs.crank.settling_cycles`` + ``recorded_cycles`` crank cycles.
-
-    ``start``: begin from this state (e.g. the end of the previous wear block, on the same
-    mechanism with another clearance profile) instead of the ideal mechanism at t = 0; the time
-    continues from ``start.time_s`` so the driven crank angle stays consistent. Returns the
-    history of the recorded cycles, the run's counts and timings, and the final state.
-    """
-    crank, joint_model, settings = inputs.crank, inputs.joint, inputs.integrator
-    model = SliderCrankModel(crank, joint_model)
-    integrator = GeneralizedAlpha(model.system, settings)
-    if start is None:
-        state = integrator.initial_state(*model.initial_conditions())
-    else:
-        state = integrator.initial_state(start.q, start.qd, start.time_s)
-    t0, period = state.t, crank.period_s
-    recorded: list[Trajectory] = []
-    total = crank.settling_cycles + crank.recorded_cycles
-    clock = time.perf_counter()
-    for cycle in range(total):
-        recording = cycle >= crank.settling_cycles
-        t_end = t0 + (cycle + 1) * period
-        if recording and not recorded:
-            recorded.append(_single_row(state, model.system))
-        if recording:
-            state, trajectory = integrator.run_recorded(state, t_end)
-            recorded.append(trajectory)
-        else:
-            state = integrator.run(state, t_end)
-        if progress:
-            print(f"fewear dynamics: cycle {cycle + 1}/{total} "
-                  f"({'recorded' if recording else 'settling'}), t = {state.t:.4f} s, "
-                  f"{integrator.stats.steps} steps, {time.perf_counter() - clock:.1f} s",
-                  file=sys.stderr, flush=True)
-    wall = time.perf_counter() - clock
-    history = _history(model, _joined(recorded), joint_model.impact_max_duration_s,
-                       crank.joint == "ideal")
-    stats = integrator.stats
-    summary = RunSummary(stats.steps, stats.rejected, stats.newton_iterations, wall, wall / total,
-                         stats.smallest_step_s, total)
-    return history, summary, MechanismState(state.t, state.q.copy(), state.qd.copy())
-
-
-def _joined(parts: list[Trajectory]) -> Trajectory:
-    """The trajectories one after the other (contiguous arrays, as the kernels are compiled
-    for)."""
-    return Trajectory(*(np.concatenate([getattr(part, name) for part in parts])
-                        for name in Trajectory.__dataclass_fields__))
-
-
-def _single_row(state: State, system) -> Trajectory:
-    """The trajectory of one row: ``state`` with the joints' memory now."""
-    return Trajectory(np.array([state.t]), np.zeros(1), state.q[None], state.qd[None],
-                      state.qdd[None], state.a[None], state.lam[None],
-                      system.data.joints.memory[None].copy())
-
-
-def _history(model: SliderCrankModel, trajectory: Trajectory, impact_max_duration_s: float,
-             ideal: bool) -> JointHistory:
-    measures = model.measure(trajectory)
-    time_s = trajectory.time_s
-    if ideal:
-        mode = np.full(time_s.size, 2, dtype=int)
-    else:
-        mode = classify_modes(time_s, measures["normal_force_N"], impact_max_duration_s)
-    return JointHistory(
-        time_s=time_s,
-        crank_angle_rad=trajectory.q[:, model.i_crank + 2],
-        slider_x_m=trajectory.q[:, model.i_slider],
-        slider_velocity_m_s=trajectory.qd[:, model.i_slider],
-        mode=mode,
-        **measures,
-    )
+    """:func:`fewear.mbd.mechanism.simulate` of the slider-crank: the history of its rod-slider
+    joint, the run's counts and timings, and the final state (``start``: a warm start)."""
+    histories, summary, state = simulate_mechanism(mechanism_inputs(inputs), start,
+                                                   progress=progress)
+    return histories["rod_slider"], summary, state

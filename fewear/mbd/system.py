@@ -31,6 +31,7 @@ SystemData = namedtuple("SystemData", [
     "mass", "inverse_mass", "gravity_forces",  # (n, n), (n, n), (n,)
     "beam_dofs", "beam_B", "beam_H", "beam_tau", "beam_beta",  # ancf.add_beam_forces (all beams)
     "D", "c0", "c1", "offset_rows", "offset_columns", "offset_u",  # constraints.py
+    "drives",  # constraints.Drives (tabulated drivers)
     "joints",  # clearance.JointData
 ])
 
@@ -101,7 +102,8 @@ class MultibodySystem:
         for j, element in enumerate(self.force_elements):
             element.share_memory(joints.memory[j:j + 1])
         self.data = SystemData(self.mass, self.inverse_mass, self.gravity_forces,
-                               *self._beam_arrays(), *self.constraint_set.kernel_data, joints)
+                               *self._beam_arrays(), *self.constraint_set.kernel_data,
+                               self.constraint_set.drives, joints)
         return self
 
     def _beam_arrays(self):
@@ -128,12 +130,13 @@ class MultibodySystem:
 
     # --- consistent initial values ------------------------------------------------------------
     def consistent_accelerations(self, q, qd, t):
-        """Solve M q'' + Phi_q^T lambda = Q, Phi_q q'' = -(dPhi_q/dt) q' for (q'', lambda)."""
+        """Solve M q'' + Phi_q^T lambda = Q, Phi_q q'' = -(dPhi_q/dt) q' - Phi_tt for
+        (q'', lambda)."""
         Q, _, _ = self.forces(q, qd, t)
         jac = self.constraint_set.jacobian(q)
         m = self.n_constraints
         A = np.block([[self.mass, jac.T], [jac, np.zeros((m, m))]])
-        rhs = np.concatenate([Q, -self.constraint_set.convective(q, qd)])
+        rhs = np.concatenate([Q, -self.constraint_set.convective(q, qd, t)])
         sol = np.linalg.solve(A, rhs)
         return sol[: self.n_coordinates], sol[self.n_coordinates:]
 

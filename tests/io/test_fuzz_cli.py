@@ -42,13 +42,6 @@ def _accept(*args, **kwargs):
     raise Accepted
 
 
-def _dynamics_parsed(config, **kwargs):
-    from fewear.mbd.slider_crank import dynamics_inputs_from_config
-
-    dynamics_inputs_from_config(config)
-    raise Accepted
-
-
 @pytest.fixture
 def stubbed(monkeypatch):
     """The commands' work after their input is checked replaced by :func:`_accept`."""
@@ -59,7 +52,7 @@ def stubbed(monkeypatch):
     import fewear.mbd.command
 
     monkeypatch.setattr(fewear.contact.command, "_solve", _accept)
-    monkeypatch.setattr(fewear.mbd.command, "simulate_slider_crank", _dynamics_parsed)
+    monkeypatch.setattr(fewear.mbd.command, "simulate", _accept)
     for name in ("run_cases", "_in_processes", "_on_ranks"):
         monkeypatch.setattr(fewear.loop.command, name, _accept)
     monkeypatch.setattr(fewear.diagnose.tribometer.command, "diagnose", _accept)
