@@ -27,12 +27,12 @@ from fewear.parallel import launcher_rank_and_size
 # subcommand -> "module:function" that takes the parsed arguments and returns an exit status
 HANDLERS = {
     "config": "fewear.cli:print_default_config",
-    "contact": "fewear.contact.command:main",
-    "dynamics": "fewear.mbd.command:main",
-    "diagnose": "fewear.diagnose.command:main",
-    "run": "fewear.loop.command:main",
+    "contact": "fewear.commands.contact:main",
+    "dynamics": "fewear.commands.dynamics:main",
+    "diagnose": "fewear.commands.diagnose:main",
+    "run": "fewear.commands.run:main",
     "plot": "fewear.plot.worn_bushing:main",
-    "scar": "fewear.loop.scar_command:main",
+    "scar": "fewear.loop.scar:main",
 }
 
 
