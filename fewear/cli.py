@@ -1,4 +1,5 @@
-"""The ``fewear`` command line: one subcommand per stage, each a thin layer over the library.
+"""The ``fewear`` command line's entry point: the argument parser and the edge where failures
+become one line; the subcommands are the modules of :mod:`fewear.commands`.
 
 Bad input is reported as ``fewear: error: <message>`` on standard error with exit status 2 and no
 traceback; the stage modules raise :class:`fewear.errors.FewearInputError` for it. Handlers are
@@ -26,13 +27,13 @@ from fewear.parallel import launcher_rank_and_size
 
 # subcommand -> "module:function" that takes the parsed arguments and returns an exit status
 HANDLERS = {
-    "config": "fewear.cli:print_default_config",
+    "config": "fewear.commands.config:main",
     "contact": "fewear.commands.contact:main",
     "dynamics": "fewear.commands.dynamics:main",
     "diagnose": "fewear.commands.diagnose:main",
     "run": "fewear.commands.run:main",
-    "plot": "fewear.plot.worn_bushing:main",
-    "scar": "fewear.loop.scar:main",
+    "plot": "fewear.commands.plot:main",
+    "scar": "fewear.commands.scar:main",
 }
 
 
@@ -112,24 +113,6 @@ def _add_config_and_out(parser: argparse.ArgumentParser, default_out: str) -> No
                         help="configuration (default: the embedded paper case; `fewear config`)")
     parser.add_argument("--out", metavar="DIR", default=default_out,
                         help=f"output folder (default: {default_out})")
-
-
-def print_default_config(args: argparse.Namespace) -> int:
-    from fewear.io.config import default_config_text
-
-    text = default_config_text()
-    if args.out is None:
-        sys.stdout.write(text)
-        return 0
-    try:
-        with open(args.out, "x") as handle:
-            handle.write(text)
-    except FileExistsError:
-        raise FewearInputError(f"cannot write {args.out}: the file exists; `fewear config --out` "
-                               "never overwrites a file: remove it or give another name") from None
-    except OSError as exc:
-        raise FewearInputError(f"cannot write {args.out}: {exc.strerror}") from None
-    return 0
 
 
 def quiet_compiler_logs() -> None:
