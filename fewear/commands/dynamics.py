@@ -31,17 +31,9 @@ CSV_COLUMNS = ("time_s", "crank_angle_deg", "slider_x_m", "ex_m", "ey_m", "penet
 
 def main(args) -> int:
     config = load_config(args.config, SECTIONS)
-    if args.cycles is not None and not 1 <= args.cycles <= MAX_DYNAMICS_CYCLES:
-        raise FewearInputError(f"--cycles {args.cycles}: expected a whole number from 1 to "
-                               f"{MAX_DYNAMICS_CYCLES:,} (crank cycles, a few seconds each)")
+    history, summary = simulate(config, rod=args.rod, joint=args.joint, cycles=args.cycles,
+                                progress=True)
     joint_model = joint_model_from_config(config)
-    try:
-        history, summary = simulate_slider_crank(config, rod=args.rod, joint=args.joint,
-                                                 cycles=args.cycles, progress=True)
-    except RuntimeError as exc:  # the integrator's step size collapsed
-        raise FewearInputError(
-            f"the dynamics cannot integrate this mechanism ({exc}): {UNINTEGRABLE_HINT}; a "
-            "smaller [integrator] min_step_s or a larger gap_tolerance_m may get past it") from None
     used = {name: dict(table) for name, table in config.items()}
     for key, value in (("rod", args.rod), ("joint", args.joint),
                        ("recorded_cycles", args.cycles)):
@@ -70,6 +62,23 @@ def main(args) -> int:
         plot_forces({label: history}, stage / "forces.png")
         plot_orbit(history, joint_model.nominal_clearance_m, stage / "orbit.png", label)
     return 0
+
+
+def simulate(config: dict, rod: str | None = None, joint: str | None = None,
+             cycles: int | None = None, progress: bool = False):
+    """(JointHistory, RunSummary) of the slider-crank of ``config`` (loaded), the rod and joint
+    models and the recorded cycles overridden when given; a collapsed step size is an input
+    error. :func:`fewear.api.dynamics` calls it too."""
+    if cycles is not None and not 1 <= cycles <= MAX_DYNAMICS_CYCLES:
+        raise FewearInputError(f"--cycles {cycles}: expected a whole number from 1 to "
+                               f"{MAX_DYNAMICS_CYCLES:,} (crank cycles, a few seconds each)")
+    try:
+        return simulate_slider_crank(config, rod=rod, joint=joint, cycles=cycles,
+                                     progress=progress)
+    except RuntimeError as exc:  # the integrator's step size collapsed
+        raise FewearInputError(
+            f"the dynamics cannot integrate this mechanism ({exc}): {UNINTEGRABLE_HINT}; a "
+            "smaller [integrator] min_step_s or a larger gap_tolerance_m may get past it") from None
 
 
 def write_history_csv(history: JointHistory, path) -> None:
