@@ -20,6 +20,7 @@ re-exported here (``fewear.run``, ``fewear.solve_contact``, ...) and imported on
 that ``import fewear`` stays cheap; everything else is internal.
 """
 
+import logging
 import os
 
 _API = ("ContactResult", "Diagnosis", "DynamicsResult", "RunResult", "ScarResult",
@@ -39,6 +40,20 @@ def __getattr__(name: str):
 def __dir__():
     return sorted([*globals(), *_API])
 
+
+class _BuildChatter(logging.Filter):
+    """Drops distutils' records below WARNING: DOLFINx's form compiler builds each new form with
+    cffi, which sets the root logger to INFO and logs the gcc command lines through distutils,
+    and FFCx gives the root logger a handler; a first run printed dozens of ``INFO:root:`` lines.
+    On the root logger (distutils logs to it), so that every process fewear runs in (a command,
+    its worker processes and MPI ranks, a notebook) has it; other records pass."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        return record.levelno >= logging.WARNING or "distutils" not in record.pathname
+
+
+if not any(isinstance(each, _BuildChatter) for each in logging.getLogger().filters):
+    logging.getLogger().addFilter(_BuildChatter())
 
 # OpenBLAS (installed by .ci/setup) on one thread: fewear spreads its work over processes and MPI
 # ranks, and the wear loop runs a block's dynamics in a thread beside the mesh stage, both calling

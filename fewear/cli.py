@@ -11,7 +11,6 @@ from __future__ import annotations
 import argparse
 import errno
 import importlib
-import logging
 import signal
 import sys
 
@@ -115,16 +114,6 @@ def _add_config_and_out(parser: argparse.ArgumentParser, default_out: str) -> No
                         help=f"output folder (default: {default_out})")
 
 
-def quiet_compiler_logs() -> None:
-    """Keep the form compiler's gcc command lines off the user's terminal: FFCx installs a root
-    log handler (``logging.basicConfig``) and cffi sets the root logger to INFO while it compiles
-    (distutils' ``set_threshold``), which printed ~50 ``INFO:root:`` lines on a first run. The
-    root handler is made here, before either is imported, and passes warnings and errors only."""
-    logging.basicConfig()
-    for handler in logging.getLogger().handlers:
-        handler.setLevel(logging.WARNING)
-
-
 def main(argv: list[str] | None = None) -> int:
     """The command line's edge: every failure a user can cause ends here as one line on stderr.
 
@@ -135,7 +124,6 @@ def main(argv: list[str] | None = None) -> int:
       folder is removed on the way out, as for any failure.
     """
     args = build_parser().parse_args(argv)
-    quiet_compiler_logs()
     module_name, function_name = HANDLERS[args.command].split(":")
     set_interrupt_note(None)
     previous = _terminate_as_exception()
