@@ -26,6 +26,15 @@ def test_import_fewear_is_cheap_and_names_the_api():
     assert set(api.__all__) <= set(dir(fewear))
 
 
+def test_the_docstring_examples_run():
+    import doctest
+
+    from fewear import api
+
+    results = doctest.testmod(api, extraglobs={"fewear": fewear})
+    assert results.failed == 0 and results.attempted >= 4
+
+
 def test_config_may_be_a_dict_a_path_or_none(tmp_path):
     path = tmp_path / "case.toml"
     path.write_text("[bushing]\nwidth_m = 0.02\n")
