@@ -41,7 +41,6 @@
 
 # +
 import csv
-import dataclasses
 import math
 import os
 from pathlib import Path
@@ -49,10 +48,9 @@ from pathlib import Path
 import numpy as np
 from mpi4py import MPI
 
+import fewear
 from fewear.contact.analytic import compare_with_hertz, hertz_reference, wrap_angle_rad
-from fewear.contact.params import CONFIG_SECTIONS, contact_problem_from_config
-from fewear.contact.solver import BushingContactSolver
-from fewear.io.config import load_config
+from fewear.contact.params import contact_problem_from_config
 
 COMM = MPI.COMM_WORLD
 OUT = Path(os.environ.get("FEWEAR_DEMO_OUT", "out/demos/hertz_contact"))
@@ -80,7 +78,7 @@ if os.environ.get("FEWEAR_DEMO_COARSE") == "1":
     ELEMENTS_PER_HALF_WIDTH, RADIAL_ELEMENT_COUNT = (0.75, 1.25), 6
 RADIAL_GRADING_RATIO = 12.0     # outermost over innermost radial element size (-)
 
-problem = contact_problem_from_config(load_config(None, CONFIG_SECTIONS))
+problem = contact_problem_from_config(fewear.load_config())
 hertz = hertz_reference(problem, FORCE_N)
 report(f"Hertz: P = {hertz.line_load_N_per_m:.4g} N/m, R = {hertz.relative_radius_m * 1e3:.4g} mm,"
        f" E* = {hertz.contact_modulus_Pa / 1e9:.4g} GPa")
@@ -112,11 +110,9 @@ def bore_element_size_m(elements_per_half_width):
 
 
 def solve_on(element_size_m):
-    mesh = dataclasses.replace(
-        problem.mesh, bore_element_size_m=element_size_m,
-        radial_element_count=RADIAL_ELEMENT_COUNT, radial_grading_ratio=RADIAL_GRADING_RATIO)
-    solver = BushingContactSolver(dataclasses.replace(problem, mesh=mesh), comm=COMM)
-    return solver.solve((0.0, -FORCE_N))
+    return fewear.solve_contact((0.0, -FORCE_N), config={"mesh": {
+        "bore_element_size_m": element_size_m, "radial_element_count": RADIAL_ELEMENT_COUNT,
+        "radial_grading_ratio": RADIAL_GRADING_RATIO}})
 
 
 rows, results = [], []

@@ -33,9 +33,8 @@ from pathlib import Path
 
 import numpy as np
 
-from fewear.io.config import load_config
+import fewear
 from fewear.mbd.history import MODES
-from fewear.mbd.slider_crank import SECTIONS, simulate_slider_crank
 from fewear.plot.dynamics import plot_forces, plot_orbit
 
 OUT = Path(os.environ.get("FEWEAR_DEMO_OUT", "out/demos/slider_crank_dynamics"))
@@ -46,7 +45,8 @@ PRINTED_CRANK_INERTIA_KG_M2 = 1.0e5  # the paper's printed (typo) crank inertia
 QUICK = os.environ.get("FEWEAR_DEMO_QUICK") == "1"
 
 OUT.mkdir(parents=True, exist_ok=True)
-config = load_config(None, SECTIONS)
+config = fewear.load_config()
+config["mechanism"]["settling_cycles"] = SETTLING_CYCLES
 # -
 
 # ## The three cases of Fig. 6(a)
@@ -63,8 +63,8 @@ CASES = {
 histories, timings = {}, {}
 for label, case in CASES.items():
     start = time.perf_counter()
-    history, summary = simulate_slider_crank(config, cycles=RECORDED_CYCLES,
-                                             settling_cycles=SETTLING_CYCLES, **case)
+    result = fewear.dynamics(config, cycles=RECORDED_CYCLES, **case)
+    history, summary = result.history, result.summary
     histories[label] = history
     timings[label] = summary.wall_time_per_cycle_s
     print(f"{label:32s} peak |F| = {history.peak_contact_force_N:8.1f} N, "
@@ -115,9 +115,9 @@ sensitivity = {}
 for name, (rod, mechanism, joint_change) in ({} if QUICK else SENSITIVITY).items():
     changed = {section: dict(table) for section, table in config.items()}
     changed["clearance_joint"].update(joint_change)
-    history, _ = simulate_slider_crank(changed, rod=rod, joint="clearance",
-                                       cycles=RECORDED_CYCLES, settling_cycles=SETTLING_CYCLES,
-                                       mechanism=mechanism)
+    changed["mechanism"].update(mechanism)
+    history = fewear.dynamics(changed, rod=rod, joint="clearance",
+                              cycles=RECORDED_CYCLES).history
     default_peak = rcr_peak if rod == "rigid" else fcr_peak
     sensitivity[name] = history.peak_contact_force_N
     print(f"{name:32s}: peak |F| = {history.peak_contact_force_N:8.1f} N "

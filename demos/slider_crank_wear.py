@@ -37,8 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fewear.cli import main
-from fewear.mbd.slider_crank import simulate_slider_crank
+import fewear
 from fewear.plot.wear import plot_max_wear_bands
 
 OUT = Path(os.environ.get("FEWEAR_DEMO_OUT", "out/demos/slider_crank_wear"))
@@ -92,7 +91,7 @@ def config_text(density_kg_m3: float, start_angle_deg: float, changes: dict) -> 
 
 def run_members(name: str, density_kg_m3: float, changes: dict) -> list[Path]:
     """The members' run folders of one study case: a complete run of the same config is read,
-    an interrupted one resumed, any other replaced (`--overwrite`)."""
+    an interrupted one resumed, any other replaced (overwrite)."""
     folders = []
     for member in range(MEMBERS):
         folder = OUT / f"{name}-member{member}"
@@ -101,11 +100,9 @@ def run_members(name: str, density_kg_m3: float, changes: dict) -> list[Path]:
         same = config.exists() and config.read_text() == text
         if not (same and (folder / "summary.json").exists()):
             config.write_text(text)
-            if same and (folder / "fewear-checkpoint").is_dir():
-                how = ["--resume"]
-            else:
-                how = ["--overwrite"] if folder.exists() else []
-            assert main(["run", "--config", str(config), "--out", str(folder), *how]) == 0
+            resume = same and (folder / "fewear-checkpoint").is_dir()
+            fewear.run(config, out=folder, resume=resume,
+                       overwrite=not resume and folder.exists())
         folders.append(folder)
     return folders
 
@@ -174,8 +171,9 @@ MECHANICS_CYCLES = 2 if COARSE else 6
 
 
 def cycle_mechanics(rod: str, density_kg_m3: float) -> dict:
-    history, _ = simulate_slider_crank(rod=rod, cycles=MECHANICS_CYCLES, settling_cycles=2,
-                                       mechanism={"rod_density_kg_m3": density_kg_m3})
+    history = fewear.dynamics({"mechanism": {"settling_cycles": 2,
+                                             "rod_density_kg_m3": density_kg_m3}},
+                              rod=rod, cycles=MECHANICS_CYCLES).history
     dt = np.diff(history.time_s, prepend=history.time_s[0])
     loaded = history.normal_force_N > 0.0
     slip_speed = PIN_RADIUS_M * np.abs(history.rel_omega_rad_s)

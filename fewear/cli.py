@@ -1,4 +1,5 @@
-"""The ``fewear`` command line: one subcommand per stage, each a thin layer over the library.
+"""The ``fewear`` command line's entry point: the argument parser and the edge where failures
+become one line; the subcommands are the modules of :mod:`fewear.commands`.
 
 Bad input is reported as ``fewear: error: <message>`` on standard error with exit status 2 and no
 traceback; the stage modules raise :class:`fewear.errors.FewearInputError` for it. Handlers are
@@ -10,7 +11,6 @@ from __future__ import annotations
 import argparse
 import errno
 import importlib
-import logging
 import os
 import signal
 import sys
@@ -28,13 +28,13 @@ from fewear.parallel import launcher_rank_and_size
 
 # subcommand -> "module:function" that takes the parsed arguments and returns an exit status
 HANDLERS = {
-    "config": "fewear.cli:print_default_config",
-    "contact": "fewear.contact.command:main",
-    "dynamics": "fewear.mbd.command:main",
-    "diagnose": "fewear.diagnose.command:main",
-    "run": "fewear.loop.command:main",
-    "plot": "fewear.plot.worn_bushing:main",
-    "scar": "fewear.loop.scar_command:main",
+    "config": "fewear.commands.config:main",
+    "contact": "fewear.commands.contact:main",
+    "dynamics": "fewear.commands.dynamics:main",
+    "diagnose": "fewear.commands.diagnose:main",
+    "run": "fewear.commands.run:main",
+    "plot": "fewear.commands.plot:main",
+    "scar": "fewear.commands.scar:main",
 }
 
 
@@ -147,37 +147,6 @@ def output_folder_of(args: argparse.Namespace):
     return output_folder(args.out, args.command, getattr(args, "overwrite", False), comm)
 
 
-def print_default_config(args: argparse.Namespace) -> int:
-    from fewear.io.config import default_config_text
-
-    text = default_config_text()
-    if args.out is None:
-        sys.stdout.write(text)
-        return 0
-    if os.path.isdir(args.out):
-        raise FewearInputError(f"cannot write {args.out}: it is a folder; `fewear config --out` "
-                               "takes a file name (e.g. --out my_case.toml)")
-    try:
-        with open(args.out, "x") as handle:
-            handle.write(text)
-    except FileExistsError:
-        raise FewearInputError(f"cannot write {args.out}: the file exists; `fewear config --out` "
-                               "never overwrites a file: remove it or give another name") from None
-    except OSError as exc:
-        raise FewearInputError(f"cannot write {args.out}: {exc.strerror}") from None
-    return 0
-
-
-def quiet_compiler_logs() -> None:
-    """Keep the form compiler's gcc command lines off the user's terminal: FFCx installs a root
-    log handler (``logging.basicConfig``) and cffi sets the root logger to INFO while it compiles
-    (distutils' ``set_threshold``), which printed ~50 ``INFO:root:`` lines on a first run. The
-    root handler is made here, before either is imported, and passes warnings and errors only."""
-    logging.basicConfig()
-    for handler in logging.getLogger().handlers:
-        handler.setLevel(logging.WARNING)
-
-
 def main(argv: list[str] | None = None) -> int:
     """The command line's edge: every failure a user can cause ends here as one line on stderr.
 
@@ -188,7 +157,6 @@ def main(argv: list[str] | None = None) -> int:
       command's staging folder is removed on the way out, as for any failure.
     """
     args = build_parser().parse_args(argv)
-    quiet_compiler_logs()
     module_name, function_name = HANDLERS[args.command].split(":")
     set_interrupt_note(None)
     _without_petsc_signal_handlers()

@@ -4,12 +4,12 @@ nogil=True)``.
 Compiled are the multibody dynamics (:mod:`fewear.mbd`, the whole step loop) and the contact
 Newton's kernels (:mod:`fewear.contact`: the free region's corners and vertices, gaps, the line
 search, and on the condensed path the whole coupled Newton iteration and the wear step's
-pressure sensitivity). The machine code is cached on disk, so only the
-first process after a change of the sources pays the compile (see README, "Dynamics");
-:func:`compile_kernels` compiles before worker processes start, so that they load the code
-instead of each compiling it. The kernels release Python's global interpreter lock
-(``nogil``): the wear loop runs the next block's dynamics in a thread while this block's mesh
-stage and checkpoint run (:func:`fewear.loop.block.predict_case`).
+pressure sensitivity). The machine code is cached on disk, so only the first process after a
+change of the sources pays the compile; :func:`fewear.kernels.compile_kernels` compiles before
+worker processes start, so that they load the code instead of each compiling it. The kernels
+release Python's global interpreter lock (``nogil``): the wear loop runs the next block's
+dynamics in a thread while this block's mesh stage and checkpoint run
+(:func:`fewear.loop.block.predict_case`).
 
 numba keys each function's cache on its own source file only, but a compiled caller inlines its
 callees from other files (the integrator's step loop holds the whole dynamics), so a change of
@@ -86,20 +86,3 @@ compiled = numba.njit(cache=True, nogil=True)
 def holds_compiled_code(directory: str) -> bool:
     """Whether numba's cache ``directory`` holds compiled code (its index files, ``*.nbi``)."""
     return bool(glob.glob(os.path.join(directory, "**", "*.nbi"), recursive=True))
-
-
-def compile_kernels(report=None) -> None:
-    """Compile, or load from the cache, the kernels of a wear run: the dynamics'
-    (:func:`fewear.mbd.slider_crank.compile_dynamics`) and the contact's
-    (:func:`fewear.contact.condensed_newton.compile_contact`). ``report(text)``, if given, is
-    told first when the cache holds no compiled code (the first run after a change of the
-    sources compiles for about a minute: 30 s the dynamics, 37 s the contact, on a 2-core
-    machine), so that the user is not left without a word."""
-    from fewear.contact.condensed_newton import compile_contact
-    from fewear.mbd.slider_crank import compile_dynamics
-
-    if report is not None and not holds_compiled_code(numba.config.CACHE_DIR):
-        report("compiling the dynamics and contact kernels (once after a change of fewear's "
-               "sources, about a minute; later runs load them)")
-    compile_dynamics()
-    compile_contact()

@@ -54,7 +54,7 @@ def synthetic(tmp_path_factory):
     """The coarse config and two synthetic scar files, at k x1.6 and at the source's k."""
     from fewear.diagnose.scar.forward import ScarModel
     from fewear.io.config import load_config
-    from fewear.loop.scar_command import SCAR_SECTIONS
+    from fewear.loop.scar import SCAR_SECTIONS
 
     folder = tmp_path_factory.mktemp("scar_diagnose")
     config = folder / "coarse.toml"
@@ -167,7 +167,7 @@ def test_dispatcher_routes_scar_files_to_the_scar_room(monkeypatch):
 
     import fewear.diagnose.scar.command
     import fewear.diagnose.tribometer.command
-    from fewear.diagnose.command import main as dispatch
+    from fewear.commands.diagnose import main as dispatch
 
     rooms = []
     monkeypatch.setattr(fewear.diagnose.scar.command, "run", lambda args: rooms.append("scar"))
@@ -219,7 +219,7 @@ def test_fretting_hidden_k_factor_is_told_from_the_cylinders(tmp_path):
     from fewear.data import FRETTING_MCCOLL2004_CSV
     from fewear.diagnose.scar.forward import ScarModel
     from fewear.io.config import load_config
-    from fewear.loop.scar_command import SCAR_SECTIONS
+    from fewear.loop.scar import SCAR_SECTIONS
 
     config = tmp_path / "coarse.toml"
     config.write_text(COARSE_FRETTING)

@@ -2,7 +2,8 @@
 
 import numba
 
-from fewear.jit import compile_kernels, holds_compiled_code
+from fewear.jit import holds_compiled_code
+from fewear.kernels import compile_kernels
 
 
 def test_an_empty_cache_holds_no_compiled_code_and_an_index_file_does(tmp_path):

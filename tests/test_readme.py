@@ -5,16 +5,12 @@ The blocks are the fenced ones that follow an ``<!-- example: cli -->`` or
 ``<!-- example: python -->`` marker.
 """
 
-import importlib
-import importlib.util
 import os
 import re
 import shlex
 import subprocess
 import sys
 from pathlib import Path
-
-import pytest
 
 README = Path(__file__).resolve().parents[1] / "README.md"
 
@@ -51,13 +47,6 @@ def test_cli_example_runs(tmp_path):
     assert (tmp_path / "out" / "dynamics" / "orbit.png").is_file()
 
 
-# the public API (another branch): fewear.api, re-exported as fewear.contact, fewear.run, ...
-API_MISSING = (importlib.util.find_spec("fewear.api") is None
-               and not hasattr(importlib.import_module("fewear"), "default_config"))
-
-
-@pytest.mark.xfail(API_MISSING, strict=False,
-                   reason="the public Python API (fewear.api) is not merged on this branch yet")
 def test_python_example_runs(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     exec(compile(example_block("python"), "README.md (python example)", "exec"), {})

@@ -52,8 +52,9 @@ def default_config() -> Config:
     return merged
 
 
-def load_config(path: str | Path | None, sections: Iterable[str]) -> Config:
-    """The sections a command uses: the defaults, overridden by the user's file at ``path``.
+def load_config(path: str | Path | dict | None, sections: Iterable[str]) -> Config:
+    """The sections a command uses: the defaults, overridden by the user's file at ``path`` (or
+    by a dict of sections, as a parsed file: :mod:`fewear.api`).
 
     Raises :class:`FewearInputError` naming the file, section and key of any violation of the
     rules in the module docstring. Sections of the file that this command does not use are
@@ -63,9 +64,12 @@ def load_config(path: str | Path | None, sections: Iterable[str]) -> Config:
     defaults = default_config()
     from fewear.io.limits import check_limits
 
-    checked = {} if path is None else check_config(read_toml(path), defaults, source=str(path))
+    source = ("the embedded default config" if path is None else
+              "the config dict" if isinstance(path, dict) else str(path))
+    user = {} if path is None else path if isinstance(path, dict) else read_toml(path)
+    checked = check_config(user, defaults, source=source)
     config = {name: {**defaults[name], **checked.get(name, {})} for name in sections}
-    check_limits(config, "the embedded default config" if path is None else str(path))
+    check_limits(config, source)
     return config
 
 

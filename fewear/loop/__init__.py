@@ -33,6 +33,6 @@ mesh's bore are both derived from it. A checkpoint is written after every block
 The modules: :mod:`~fewear.loop.settings` (the typed inputs), :mod:`~fewear.loop.stages` (stages
 2-4 on one recorded history), :mod:`~fewear.loop.bushing` (the FE bushing on the worn bore),
 :mod:`~fewear.loop.block` (one block, stages 1-5), :mod:`~fewear.loop.progress` (a case's run so
-far), :mod:`~fewear.loop.checkpoint`, :mod:`~fewear.loop.outputs` and
-:mod:`~fewear.loop.command` (``fewear run``).
+far), :mod:`~fewear.loop.checkpoint`, :mod:`~fewear.loop.outputs`; the command is
+:mod:`fewear.commands.run` (``fewear run``).
 """

@@ -15,7 +15,7 @@ sum_j p_j s_j (the flat's wear depth of the cycle is k times it: Archard, J. App
 dissipates per unit area). The energy dissipated per cycle, L sum_i w_i sum_j |tau_ij| s_ij (w_i
 the nodes' quadrature weights, L the out-of-plane length), is the area of the hysteresis loop
 Q(x) once the loop is steady; in gross slip it is 4 mu P (d - d_stick) to the normals' tilt
-(tests/test_loop_fretting_cycle.py).
+(tests/loop/test_fretting_cycle.py).
 
 **The wear blocks** (:func:`run_fretting_wear`). One solved cycle stands for N cycles
 (LevelSetWear: 180 blocks of N = 100). The cylinder is pressed once (``solve(P)``), then the

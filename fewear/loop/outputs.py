@@ -7,7 +7,8 @@
 - ``<case>.xdmf`` (+ ``.h5``): the bushing mesh with, per block (time = cycles), the mesh
   displacement from the unworn bushing and its radial part (at the bore: the wear depth), for
   ParaView (Warp By Vector with ``mesh_displacement_m`` shows the worn bushing).
-- ``wear_profiles.png`` (seed Fig. 7a) and ``max_wear.png`` (seed Fig. 7b).
+- ``wear_profiles.png`` (seed Fig. 7a) and ``max_wear.png`` (seed Fig. 7b), drawn by the command
+  (:func:`fewear.commands.run.write_run_figures`).
 """
 
 from __future__ import annotations
@@ -28,8 +29,6 @@ RUN_FILES = (SUMMARY, PROFILES_CSV, MAX_WEAR_CSV, PROFILES_PNG, MAX_WEAR_PNG)
 
 
 def write_run_outputs(folder: Path, cases: dict, inputs, config: dict) -> None:
-    from fewear.plot.wear import plot_max_wear, plot_wear_profiles
-
     loop = inputs.loop
     write_json(folder / SUMMARY, {
         "what": "seed section 5: wear at the rod-slider clearance joint, block by block with "
@@ -45,12 +44,6 @@ def write_run_outputs(folder: Path, cases: dict, inputs, config: dict) -> None:
     write_max_wear_csv(folder / MAX_WEAR_CSV, cases)
     for rod, case in cases.items():
         write_xdmf(folder / f"{rod}.xdmf", case)
-    plot_wear_profiles({rod: (case.state.angle_rad, case.state.depth_m)
-                        for rod, case in cases.items()}, folder / PROFILES_PNG,
-                       loop.total_cycles)
-    plot_max_wear({rod: (np.array([r.cycles for r in case.records]),
-                         np.array([r.depth_m.max() for r in case.records]))
-                   for rod, case in cases.items()}, folder / MAX_WEAR_PNG)
 
 
 def case_summary(case: CaseProgress, inputs) -> dict:

@@ -1,18 +1,12 @@
-"""``fewear plot DIR``: the worn bushing of a ``fewear run`` in PyVista, coloured by wear depth.
-
-Reads only the run's files (``<case>.xdmf`` + ``.h5``, through meshio), never the model; this
-command's process imports neither DOLFINx nor PETSc, so VTK and DOLFINx never share a process.
-The mesh is drawn at its last block, the displacement exaggerated so that microns of wear show on
-a centimetre bushing; the rod models side by side at one exaggeration and on one colour scale
-from zero, so that the panels compare; shown on screen, or written to ``DIR/worn_bushing.png``
-off screen (``PYVISTA_OFF_SCREEN=true`` or no display; VTK's warnings, such as the missing X
-server's, are switched off).
+"""The worn bushing of a ``fewear run`` read back from its files (``<case>.xdmf`` + ``.h5``,
+through meshio, never the model), and the view that compares the rod models: one exaggeration of
+the displacement, so that microns of wear show on a centimetre bushing, and one colour scale from
+zero (``fewear plot``, :mod:`fewear.commands.plot`, draws it in PyVista).
 """
 
 from __future__ import annotations
 
 import math
-import os
 from pathlib import Path
 
 import numpy as np
@@ -52,43 +46,3 @@ def common_view(displacements: list[np.ndarray], radials: list[np.ndarray],
     scale = max(step * decade for step in (1.0, 2.0, 5.0) if step * decade <= raw)
     deepest_um = 1e6 * max(float(r.max()) for r in radials)
     return scale, (0.0, max(deepest_um, 1e-6))
-
-
-def main(args) -> int:
-    folder = Path(args.folder)
-    files = sorted(folder.glob("*.xdmf"))
-    if not files:
-        raise FewearInputError(f"{folder}: no <case>.xdmf of a `fewear run` to plot")
-    import pyvista
-    import vtk
-
-    vtk.vtkObject.GlobalWarningDisplayOff()
-    off_screen = os.environ.get("PYVISTA_OFF_SCREEN", "").lower() == "true" or not (
-        os.environ.get("DISPLAY"))
-    cases = [last_block(path) for path in files]
-    scale, clim = common_view([case[2] for case in cases], [case[3] for case in cases],
-                              float(np.ptp(cases[0][0][:, 0])))
-    plotter = pyvista.Plotter(shape=(1, len(files)), off_screen=off_screen,
-                              window_size=(600 * len(files), 600))
-    for column, (path, (points, quads, displacement, radial, cycles)) in enumerate(
-            zip(files, cases)):
-        grid = pyvista.UnstructuredGrid(
-            np.column_stack([np.full(len(quads), 9), quads]).ravel(),
-            np.full(len(quads), VTK_BIQUADRATIC_QUAD), points + scale * displacement)
-        grid.point_data["wear depth (um)"] = 1e6 * np.maximum(radial, 0.0)
-        plotter.subplot(0, column)
-        plotter.add_mesh(grid, scalars="wear depth (um)", cmap="viridis", clim=clim,
-                         scalar_bar_args={"fmt": "%.1f"})
-        plotter.add_text(f"{path.stem} rod, {cycles:,.0f} cycles, motion x{scale:g}",
-                         font_size=10)
-        plotter.view_xy()
-    if off_screen:
-        target = folder / FIGURE
-        try:
-            plotter.screenshot(str(target))
-        except OSError as exc:
-            raise FewearInputError(f"cannot write {target}: {exc.strerror or exc}") from None
-        print(f"fewear plot: wrote {target}")
-    else:
-        plotter.show()
-    return 0

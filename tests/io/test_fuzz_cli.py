@@ -45,16 +45,16 @@ def _accept(*args, **kwargs):
 @pytest.fixture
 def stubbed(monkeypatch):
     """The commands' work after their input is checked replaced by :func:`_accept`."""
-    import fewear.contact.command
+    import fewear.commands.contact
+    import fewear.commands.dynamics
+    import fewear.commands.run
     import fewear.diagnose.joint.command
     import fewear.diagnose.tribometer.command
-    import fewear.loop.command
-    import fewear.mbd.command
 
-    monkeypatch.setattr(fewear.contact.command, "_solve", _accept)
-    monkeypatch.setattr(fewear.mbd.command, "simulate", _accept)
+    monkeypatch.setattr(fewear.commands.contact, "_solve", _accept)
+    monkeypatch.setattr(fewear.commands.dynamics, "simulate_mechanism", _accept)
     for name in ("run_cases", "_in_processes", "_on_ranks"):
-        monkeypatch.setattr(fewear.loop.command, name, _accept)
+        monkeypatch.setattr(fewear.commands.run, name, _accept)
     monkeypatch.setattr(fewear.diagnose.tribometer.command, "diagnose", _accept)
     monkeypatch.setattr(fewear.diagnose.joint.command, "diagnose_joint", _accept)
 

@@ -56,7 +56,7 @@ def test_the_config_reader_reads_or_names_the_problem(tmp_path_factory, flips, c
 @pytest.fixture(scope="module")
 def checkpoint(tmp_path_factory):
     """(the complete config, the checkpoint folder) of a small finished run."""
-    from tests.test_wear_loop import run, write_config
+    from tests.loop.test_wear_loop import run, write_config
 
     folder = tmp_path_factory.mktemp("run")
     config = write_config(folder)

@@ -197,7 +197,7 @@ def simulate_wears(requests: list[tuple[dict, str]]) -> list[WearHistory]:
     first (:func:`expected_cost`: a worker that takes the next run as it finishes one then ends
     the batch on short runs, not one core on a long run while the other idles), then all from
     the memo. Serial under ``mpirun`` (the ranks share each run) or on one core."""
-    from fewear.jit import compile_kernels
+    from fewear.kernels import compile_kernels
     from fewear.parallel import side_by_side
 
     missing = sorted({_key(config): (config, label) for config, label in requests

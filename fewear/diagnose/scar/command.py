@@ -24,7 +24,7 @@ def run(args: argparse.Namespace) -> int:
     """The diagnosis of the one scar file ``args.measured``, its outputs written to
     ``args.out``."""
     from fewear.diagnose.scar.forward import ScarModel
-    from fewear.loop.scar_command import SCAR_SECTIONS
+    from fewear.loop.scar import SCAR_SECTIONS
 
     if len(args.measured) != 1:
         raise FewearInputError(f"{len(args.measured)} files given: a measured scar is one file "

@@ -1,7 +1,7 @@
 """The believed scar model run at a scaled wear coefficient (DOLFINx): ``fewear scar``'s case
 (``[scar] case``) built from the config once, into its typed stage inputs
-(:func:`fewear.loop.scar_command.block_on_ring_from_config`,
-:func:`~fewear.loop.scar_command.fretting_from_config`), each run the same problem with the wear
+(:func:`fewear.loop.scar.block_on_ring_from_config`,
+:func:`~fewear.loop.scar.fretting_from_config`), each run the same problem with the wear
 settings' coefficient times a factor (:func:`dataclasses.replace`)."""
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from mpi4py import MPI
 from fewear.contact.params import FlatContactProblem
 from fewear.diagnose.scar.catalogue import CAUSES, untestable_reason
 from fewear.errors import FewearInputError
-from fewear.loop.scar_command import (
+from fewear.loop.scar import (
     SCAR_CASES,
     block_on_ring_from_config,
     fretting_from_config,

@@ -95,7 +95,7 @@ def _run_in_worker(rods, config: dict, out_dir, resumed: dict) -> dict:
 def _in_processes(rods, config: dict, out_dir, resumed: dict, jobs: int) -> dict:
     """One worker process per group of rods (``jobs`` of them, :func:`fewear.parallel.
     worker_pool`); a worker's error stops the others at once (their checkpoints stay)."""
-    from fewear.jit import compile_kernels
+    from fewear.kernels import compile_kernels
     from fewear.parallel import worker_pool
 
     groups = [rods[index::jobs] for index in range(jobs)]
@@ -114,7 +114,7 @@ def _on_ranks(rods, config: dict, out_dir, resumed: dict, world) -> dict:
     gathered on rank 0 (the other ranks get an empty dict). An input error in one group is
     raised on every rank, after the other groups have finished."""
     import fewear.contact.condensed  # noqa: F401 (PETSc starts on every rank, collectively)
-    from fewear.jit import compile_kernels
+    from fewear.kernels import compile_kernels
 
     if world.rank == 0:
         compile_kernels(_say)  # the other ranks then load it instead of compiling it at once
@@ -139,18 +139,27 @@ def _on_ranks(rods, config: dict, out_dir, resumed: dict, world) -> dict:
 def main(args) -> int:
     """``fewear run``: the prediction for every rod model of ``[wear_loop]``, written all or
     nothing into ``args.out``; a checkpoint after every block (``--resume`` continues it)."""
+    from fewear.io.config import load_config
+
+    if args.resume and getattr(args, "overwrite", False):
+        raise FewearInputError("--resume and --overwrite: choose one (--resume continues the run "
+                               "in --out, --overwrite replaces it with a new one)")
+    predict_and_write(load_config(args.config, run_sections()), args)
+    return 0
+
+
+def predict_and_write(config: dict, args) -> dict[str, CaseProgress]:
+    """The prediction of ``config`` (loaded) for every rod model, written into ``args.out`` as
+    :func:`main` says (``args``: ``out``, ``resume``, ``overwrite``, ``jobs``, and ``config``, the
+    file named in messages); rod -> case on rank 0 ({} on the others). :func:`fewear.api.run`
+    calls it too."""
     from mpi4py import MPI
 
-    from fewear.io.config import load_config
     from fewear.io.output import staged_output
     from fewear.io.transaction import run_replaced
     from fewear.loop.outputs import write_run_outputs
 
     world = MPI.COMM_WORLD
-    if args.resume and getattr(args, "overwrite", False):
-        raise FewearInputError("--resume and --overwrite: choose one (--resume continues the run "
-                               "in --out, --overwrite replaces it with a new one)")
-    config = load_config(args.config, run_sections())
     inputs = run_inputs_from_config(config)
     rods = list(inputs.loop.rod_models)
     jobs = _jobs(args.jobs, len(rods))
@@ -171,10 +180,26 @@ def main(args) -> int:
             else:
                 cases = run_cases(rods, config, args.out, resumed, world)
             if world.rank == 0:
-                write_run_outputs(stage, {rod: cases[rod] for rod in rods}, inputs, config)
+                cases = {rod: cases[rod] for rod in rods}
+                write_run_outputs(stage, cases, inputs, config)
+                write_run_figures(stage, cases, inputs.loop.total_cycles)
     if world.rank == 0:
         _say(f"done: {args.out}")
-    return 0
+    return cases if world.rank == 0 else {}
+
+
+def write_run_figures(folder: Path, cases: dict[str, CaseProgress], total_cycles: int) -> None:
+    """``wear_profiles.png`` (seed Fig. 7a) and ``max_wear.png`` (seed Fig. 7b) of the cases."""
+    import numpy as np
+
+    from fewear.loop.outputs import MAX_WEAR_PNG, PROFILES_PNG
+    from fewear.plot.wear import plot_max_wear, plot_wear_profiles
+
+    plot_wear_profiles({rod: (case.state.angle_rad, case.state.depth_m)
+                        for rod, case in cases.items()}, folder / PROFILES_PNG, total_cycles)
+    plot_max_wear({rod: (np.array([r.cycles for r in case.records]),
+                         np.array([r.depth_m.max() for r in case.records]))
+                   for rod, case in cases.items()}, folder / MAX_WEAR_PNG)
 
 
 def resume_command(args) -> str:

@@ -12,7 +12,7 @@ top and the cycles; flat and cylinder share p and s, so their areas stand as k :
 to 1e-5), and together they are (k + k_c) times the integral. Every slipping node carries
 |tau| = mu p, so that integral is the friction work over mu, N sum_blocks E_d / (mu L), E_d the
 energy a cycle dissipates. In gross slip E_d = 4 Q* (d - d_stick)
-(tests/test_loop_fretting_cycle.py), so the area is (k + k_c) P' 4 (d - d_stick) N_total to the
+(tests/loop/test_fretting_cycle.py), so the area is (k + k_c) P' 4 (d - d_stick) N_total to the
 normals' tilt: measured 0.973 of (k + k_c) P' 4 d N_total (d_stick about 0.7 um). The scar is a
 U (gross slip): deepest in the middle, its mirrored flanks 13 % of the depth apart (the
 increments wear in turn, each block lopsided towards its first sense, the blocks alternating

@@ -22,7 +22,8 @@ from fewear.io.config import load_config
 from fewear.io.limits import MAX_DYNAMICS_CYCLES
 from fewear.io.output import staged_output
 from fewear.mbd.history import MODES, JointHistory
-from fewear.mbd.mechanism import dynamics_inputs, simulate
+from fewear.mbd.mechanism import dynamics_inputs
+from fewear.mbd.mechanism import simulate as simulate_mechanism
 from fewear.mbd.slider_crank import SECTIONS, UNINTEGRABLE_HINT
 
 CSV_COLUMNS = ("time_s", "crank_angle_deg", "slider_x_m", "ex_m", "ey_m", "penetration_m", "fn_N",
@@ -31,20 +32,8 @@ CSV_COLUMNS = ("time_s", "crank_angle_deg", "slider_x_m", "ex_m", "ey_m", "penet
 
 def main(args) -> int:
     config = load_config(args.config, SECTIONS)
-    if args.cycles is not None and not 1 <= args.cycles <= MAX_DYNAMICS_CYCLES:
-        raise FewearInputError(f"--cycles {args.cycles}: expected a whole number from 1 to "
-                               f"{MAX_DYNAMICS_CYCLES:,} (crank cycles, a few seconds each)")
-    inputs = dynamics_inputs(config, args.rod)
-    if args.joint is not None:
-        inputs = replace(inputs, ideal_joints=args.joint == "ideal")
-    if args.cycles is not None:
-        inputs = replace(inputs, recorded_cycles=args.cycles)
-    try:
-        histories, summary, _ = simulate(inputs, progress=True)
-    except RuntimeError as exc:  # the integrator's step size collapsed
-        raise FewearInputError(
-            f"the dynamics cannot integrate this mechanism ({exc}): {UNINTEGRABLE_HINT}; a "
-            "smaller [integrator] min_step_s or a larger gap_tolerance_m may get past it") from None
+    histories, summary, inputs = simulate(config, rod=args.rod, joint=args.joint,
+                                          cycles=args.cycles, progress=True)
     used = {name: dict(table) for name, table in config.items()}
     for key, value in (("rod", args.rod), ("joint", args.joint),
                        ("recorded_cycles", args.cycles)):
@@ -80,6 +69,29 @@ def main(args) -> int:
                        stage / (f"orbit_{name}.png" if several else "orbit.png"),
                        f"{name}: {label}" if several else label)
     return 0
+
+
+def simulate(config: dict, rod: str | None = None, joint: str | None = None,
+             cycles: int | None = None, progress: bool = False):
+    """(histories per clearance joint, RunSummary, MechanismInputs) of the mechanism of
+    ``config`` (loaded), the case (``rod``: the variable body's model), the joint models and the
+    recorded cycles overridden when given; a collapsed step size is an input error.
+    :func:`fewear.api.dynamics` calls it too."""
+    if cycles is not None and not 1 <= cycles <= MAX_DYNAMICS_CYCLES:
+        raise FewearInputError(f"--cycles {cycles}: expected a whole number from 1 to "
+                               f"{MAX_DYNAMICS_CYCLES:,} (crank cycles, a few seconds each)")
+    inputs = dynamics_inputs(config, rod)
+    if joint is not None:
+        inputs = replace(inputs, ideal_joints=joint == "ideal")
+    if cycles is not None:
+        inputs = replace(inputs, recorded_cycles=cycles)
+    try:
+        histories, summary, _ = simulate_mechanism(inputs, progress=progress)
+    except RuntimeError as exc:  # the integrator's step size collapsed
+        raise FewearInputError(
+            f"the dynamics cannot integrate this mechanism ({exc}): {UNINTEGRABLE_HINT}; a "
+            "smaller [integrator] min_step_s or a larger gap_tolerance_m may get past it") from None
+    return histories, summary, inputs
 
 
 def _figures(history: JointHistory) -> dict:

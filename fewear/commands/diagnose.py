@@ -23,10 +23,14 @@ from fewear.diagnose.scar.measured import is_scar_file
 from fewear.parallel import launcher_rank_and_size
 
 
+def data_kind(path) -> str:
+    """Which diagnosis the measured file ``path`` asks for: "scar", "joint" or "tribometer"."""
+    return ("scar" if is_scar_file(path) else
+            "joint" if joint_data_kind(path) is not None else "tribometer")
+
+
 def main(args: argparse.Namespace) -> int:
-    first = args.measured[0]
-    kind = ("scar" if is_scar_file(first) else
-            "joint" if joint_data_kind(first) is not None else "tribometer")
+    kind = data_kind(args.measured[0])
     if kind != "joint":  # serial: rank 0 alone
         rank, size = launcher_rank_and_size()
         if rank > 0:

@@ -13,7 +13,7 @@ from fewear.io.config import load_config
 from fewear.loop.block import block_dynamics, new_bushing, new_case, run_block
 from fewear.loop.checkpoint import Checkpoint
 from fewear.loop.settings import run_inputs_from_config, run_sections
-from tests.test_wear_loop import write_config
+from tests.loop.test_wear_loop import write_config
 
 
 def done(result) -> Future:
@@ -24,7 +24,8 @@ def done(result) -> Future:
 
 @pytest.fixture(scope="module")
 def small_inputs(tmp_path_factory):
-    """The small case of tests/test_wear_loop.py: rigid rod, 40 load steps, A = 2000 per step."""
+    """The small case of tests/loop/test_wear_loop.py: rigid rod, 40 load steps, A = 2000 per
+    step."""
     config = load_config(write_config(tmp_path_factory.mktemp("block")), run_sections())
     config["wear_loop"]["total_cycles"] = 7000
     return run_inputs_from_config(config)

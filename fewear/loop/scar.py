@@ -1,44 +1,22 @@
-"""``fewear scar [--config FILE.toml] [--out DIR]``: a wear scar predicted by the FE wear loop on
-the flat beside the measured one(s); ``[scar] case`` chooses the case.
+"""A wear scar predicted by the FE wear loop on the flat, beside the measured one(s): the typed
+inputs of ``[scar] case`` read from the config, the prediction, and the figures compared.
 
-``case = "fretting"``: the fretting scar of McColl, Ding & Leen, Wear 256 (2004) 1114-1127
-(``fewear/data/scar_fretting_mccoll2004.csv``) by :mod:`fewear.loop.fretting`, from
-``[fretting]`` and ``[fretting_mesh]`` (and ``[contact]``'s penalty and Newton settings): a
-progress line per wear block on stderr; ``profiles.csv`` (x_m on the measured grid, predicted and
-measured depth), ``predicted_nodes.csv``, ``scar.png`` as below; ``summary.json``: predicted and
-measured largest depth, width (5 % of the depth), worn area (over that width), shape (U or W,
-:func:`fewear.wear.scar.scar_shape`), the RMS of predicted less measured depth on the measured
-grid, Archard's global area k P' 4 d N beside (gross slip, d_stick neglected), the cylinder's
-largest depth and worn area (when it wears: ``cylinder_wear_coefficient_m2_N`` > 0,
-:mod:`fewear.loop.fretting`), the run's blocks and wall time, and the config.
-
-``case = "block_on_ring"`` (the default): a block-on-ring wear scar predicted by the FE wear
-loop on the flat (:mod:`fewear.loop.flat_wear`) beside the three measured ones of Cruzado et
-al., Rev. Metal. 46 (2010) 106-114 (``fewear/data/scar_block_on_ring_cruzado2010.csv``).
-
-Reads ``[block_on_ring]``, ``[block_on_ring_mesh]`` and ``[contact]`` (penalty and Newton
-settings; the contact is frictionless), prints a progress line per wear step on stderr, and
-writes, all or nothing (:func:`fewear.io.output.staged_output`):
-
-- ``profiles.csv``: x_m on the measured profiles' grid, the predicted depth there (linear between
-  the FE nodes) and the three tests' depths (m, positive: worn; the measured heights negated);
-- ``predicted_nodes.csv``: x_m and depth_m at the FE top nodes;
-- ``summary.json``: the largest depth, the width (where the depth exceeds 5 % of it, crossings
-  interpolated: :func:`fewear.wear.scar.scar_depth_and_width_m`) and the worn area, predicted,
-  of the ring-arc closed form and of each test with the tests' mean, least and largest; the RMS
-  of predicted less measured depth on each test's grid and their mean (``rms_difference_m``); the
-  run's steps, mesh quality and wall time; the config used;
-- ``scar.png``: the profiles.
+``case = "block_on_ring"`` (the default): the block-on-ring scar (:mod:`fewear.loop.flat_wear`)
+beside the three measured ones of Cruzado et al., Rev. Metal. 46 (2010) 106-114
+(``fewear/data/scar_block_on_ring_cruzado2010.csv``), with the ring-arc closed form of Archard's
+worn area k P' S. ``case = "fretting"``: the fretting scar (:mod:`fewear.loop.fretting`) beside
+McColl, Ding & Leen, Wear 256 (2004) 1114-1127 (``fewear/data/scar_fretting_mccoll2004.csv``),
+with Archard's global area k P' 4 d N (gross slip). ``fewear scar``
+(:mod:`fewear.commands.scar`) writes what :func:`predict_scar` returns.
 
 The measured worn area is the integral of the raw depth over the scar's width (no baseline
-removed), so it carries the digitised profile's offset over 2.7 mm. Runs under ``mpirun -n N``;
-rank 0 writes.
+removed), so it carries the digitised profile's offset.
 """
-
 from __future__ import annotations
 
-import argparse
-import sys
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -53,6 +31,9 @@ from fewear.wear.scar import (
     scar_depth_and_width_m,
     scar_shape,
 )
+
+if TYPE_CHECKING:
+    from fewear.wear.state import FlatWearState
 
 SCAR_SECTIONS = ["scar", "block_on_ring", "block_on_ring_mesh", "fretting", "fretting_mesh",
                  "contact"]
@@ -255,89 +236,77 @@ def _cell_shape(quality) -> dict[str, float]:
             "min_angle_sine": quality.min_angle_sine}
 
 
-def main(args: argparse.Namespace) -> int:
-    from mpi4py import MPI
+@dataclass(frozen=True)
+class ScarResult:
+    """A predicted wear scar beside the measured one(s).
 
-    from fewear.io.config import load_config
-    from fewear.io.output import staged_output
+    - ``case``: ``"block_on_ring"`` or ``"fretting"``;
+    - ``state``: the worn flat (:class:`fewear.wear.state.FlatWearState`: the FE top nodes'
+      ``x_m`` and ``depth_m``, m, positive: worn; ``depth_at(x_m)`` between them);
+    - ``measured``: label -> (x_m, depth_m) of each measured profile;
+    - ``summary``: what ``summary.json`` holds (:mod:`fewear.commands.scar`);
+    - ``title``: the comparison figure's title.
+    """
 
-    comm = MPI.COMM_WORLD
-    config = load_config(args.config, SCAR_SECTIONS)
+    case: str
+    state: FlatWearState
+    measured: dict[str, tuple[np.ndarray, np.ndarray]]
+    summary: dict
+    title: str
+
+
+@dataclass(frozen=True)
+class ScarCase:
+    """The typed inputs of one scar: ``[scar] case``, its contact problem and wear settings."""
+
+    case: str
+    problem: FlatContactProblem
+    settings: SlidingWearSettings | FrettingWearSettings
+
+
+def scar_case_from_config(config: dict) -> ScarCase:
+    """The checked inputs of ``config``'s ``[scar] case`` (the config of ``SCAR_SECTIONS``)."""
     case = config["scar"]["case"]
     if case not in SCAR_CASES:
         raise FewearInputError(f"[scar] case = {case!r}: expected one of "
                                + ", ".join(repr(name) for name in SCAR_CASES))
-    if case == "fretting":
-        return _fretting_main(args, config, comm)
-    problem, settings = block_on_ring_from_config(config)
-    with staged_output(args.out, comm) as stage:
-        run = _run(problem, settings, comm)
-        if comm.rank == 0:
-            _write_outputs(stage, run, problem, settings, config)
-    return 0
+    from_config = fretting_from_config if case == "fretting" else block_on_ring_from_config
+    return ScarCase(case, *from_config(config))
 
 
-def _run(problem, settings, comm):
+def predict_scar(inputs: ScarCase, config: dict, comm,
+                 say: Callable[[str], None] | None = None) -> ScarResult:
+    """The scar of ``inputs`` (:func:`scar_case_from_config` of ``config``, which the summary
+    records) on ``comm``; ``say(text)`` is told a progress line per wear step or block."""
+    problem, settings = inputs.problem, inputs.settings
+    if inputs.case == "fretting":
+        return _predict_fretting(problem, settings, config, comm, say)
     from fewear.loop.flat_wear import run_flat_wear
 
     def progress(step) -> None:
-        if comm.rank == 0:
+        if say is not None:
             done = round(step.sliding_distance_m / settings.slide_m)
-            print(f"fewear scar: step {done}/{settings.wear_steps}, "
-                  f"{step.sliding_distance_m:.4g} m slid: depth {step.max_depth_m * 1e6:.2f} um, "
-                  f"peak pressure {step.max_pressure_Pa / 1e6:.3g} MPa", file=sys.stderr,
-                  flush=True)
+            say(f"step {done}/{settings.wear_steps}, {step.sliding_distance_m:.4g} m slid: "
+                f"depth {step.max_depth_m * 1e6:.2f} um, peak pressure "
+                f"{step.max_pressure_Pa / 1e6:.3g} MPa")
 
-    return run_flat_wear(problem, settings, comm, report=progress)
-
-
-def _write_outputs(stage, run, problem, settings, config) -> None:
-    from fewear.io.output import write_json
-    from fewear.plot.scar import plot_scar
-
+    run = run_flat_wear(problem, settings, comm, report=progress)
     measured = measured_scars()
-    x = next(iter(measured.values()))[0]
-    columns = [x, run.state.depth_at(x)] + [depth for _, depth in measured.values()]
-    header = ",".join(["x_m", "predicted_depth_m"] + [f"{name}_depth_m" for name in measured])
-    np.savetxt(stage / "profiles.csv", np.column_stack(columns), delimiter=",", header=header,
-               comments="", fmt="%.9g")
-    _write_predicted_nodes(stage, run.state)
-    write_json(stage / "summary.json", scar_summary(run, problem, settings, measured, config))
-    plot_scar(stage / "scar.png", (run.state.x_m, run.state.depth_m), measured,
-              f"block on ring after {settings.sliding_distance_m:g} m")
+    return ScarResult("block_on_ring", run.state, measured,
+                      scar_summary(run, problem, settings, measured, config),
+                      f"block on ring after {settings.sliding_distance_m:g} m")
 
 
-def _fretting_main(args, config, comm) -> int:
-    from fewear.io.output import staged_output, write_json
+def _predict_fretting(problem, settings, config: dict, comm, say) -> ScarResult:
     from fewear.loop.fretting import run_fretting_wear
-    from fewear.plot.scar import plot_scar
-
-    problem, settings = fretting_from_config(config)
 
     def progress(block) -> None:
-        if comm.rank == 0:
-            print(f"fewear scar: block {block.cycles // settings.cycles_per_block}/"
-                  f"{settings.blocks}, {block.cycles} cycles: depth "
-                  f"{block.max_depth_m * 1e6:.3f} um, peak pressure "
-                  f"{block.max_pressure_Pa / 1e6:.3g} MPa, Q {block.tangential_force_N:.4g} N",
-                  file=sys.stderr, flush=True)
+        if say is not None:
+            say(f"block {block.cycles // settings.cycles_per_block}/{settings.blocks}, "
+                f"{block.cycles} cycles: depth {block.max_depth_m * 1e6:.3f} um, peak pressure "
+                f"{block.max_pressure_Pa / 1e6:.3g} MPa, Q {block.tangential_force_N:.4g} N")
 
-    with staged_output(args.out, comm) as stage:
-        run = run_fretting_wear(problem, settings, comm, report=progress)
-        if comm.rank == 0:
-            x, measured = measured_fretting_scar()
-            np.savetxt(stage / "profiles.csv",
-                       np.column_stack([x, run.state.depth_at(x), measured]), delimiter=",",
-                       header="x_m,predicted_depth_m,measured_depth_m", comments="", fmt="%.9g")
-            _write_predicted_nodes(stage, run.state)
-            write_json(stage / "summary.json", fretting_summary(run, problem, settings, config))
-            plot_scar(stage / "scar.png", (run.state.x_m, run.state.depth_m),
-                      {"McColl et al. 2004": (x, measured)},
+    run = run_fretting_wear(problem, settings, comm, report=progress)
+    return ScarResult("fretting", run.state, {"McColl et al. 2004": measured_fretting_scar()},
+                      fretting_summary(run, problem, settings, config),
                       f"fretting cylinder on flat after {settings.cycles} cycles")
-    return 0
-
-
-def _write_predicted_nodes(stage, state) -> None:
-    """predicted_nodes.csv: x_m and depth_m at the FE top nodes of the worn flat."""
-    np.savetxt(stage / "predicted_nodes.csv", np.column_stack([state.x_m, state.depth_m]),
-               delimiter=",", header="x_m,depth_m", comments="", fmt="%.12g")

@@ -11,7 +11,7 @@ import sys
 
 import pytest
 
-from tests.test_wear_loop import run, write_config
+from tests.loop.test_wear_loop import run, write_config
 
 
 def contents(folder):
@@ -123,7 +123,7 @@ def test_a_second_run_into_a_folder_being_written_is_refused(tmp_path, capsys):
 
 def test_an_overwrite_interrupted_before_its_first_block_says_the_earlier_run_is_kept(
         tmp_path, complete_run, monkeypatch, capsys):
-    import fewear.loop.command
+    import fewear.commands.run
 
     def interrupt(*args, **kwargs):
         raise KeyboardInterrupt
@@ -131,7 +131,7 @@ def test_an_overwrite_interrupted_before_its_first_block_says_the_earlier_run_is
     out = tmp_path / "out"
     shutil.copytree(complete_run, out)
     earlier = contents(out)
-    monkeypatch.setattr(fewear.loop.command, "new_bushing", interrupt)
+    monkeypatch.setattr(fewear.commands.run, "new_bushing", interrupt)
     assert run(longer_config(tmp_path), out, "--overwrite") == 130
     last = capsys.readouterr().err.strip().splitlines()[-1]
     assert last == (f"fewear: interrupted: Ctrl-C: no wear block had finished; the earlier run in "

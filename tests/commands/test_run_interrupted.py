@@ -12,7 +12,7 @@ import sys
 import pytest
 
 from fewear.cli import main
-from tests.test_wear_loop import run, write_config
+from tests.loop.test_wear_loop import run, write_config
 
 
 def contents(folder):
@@ -50,12 +50,12 @@ def test_an_interrupted_run_says_what_it_kept_and_leaves_no_staging_folder(tmp_p
 
 
 def test_an_interruption_before_the_first_block_keeps_nothing(tmp_path, monkeypatch, capsys):
-    import fewear.loop.command
+    import fewear.commands.run
 
     def interrupt(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(fewear.loop.command, "new_bushing", interrupt)
+    monkeypatch.setattr(fewear.commands.run, "new_bushing", interrupt)
     assert run(write_config(tmp_path), tmp_path / "out") == 130
     assert "nothing was kept" in capsys.readouterr().err
     assert not (tmp_path / "out").exists()

@@ -106,18 +106,18 @@ def test_ale_moved_the_bore_nodes_exactly_to_the_worn_radius(explicit_run):
 
 def _interrupted_and_resumed(config, out, monkeypatch) -> np.ndarray:
     """Stop ``config``'s run after its first block, resume it; the final wear depths."""
-    import fewear.loop.command
+    import fewear.commands.run
 
-    original = fewear.loop.command.Progress.block
+    original = fewear.commands.run.Progress.block
 
     def interrupt(self, *args):
         original(self, *args)
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(fewear.loop.command.Progress, "block", interrupt)
+    monkeypatch.setattr(fewear.commands.run.Progress, "block", interrupt)
     assert run(config, out) == 130  # Ctrl-C: reported in one line, the checkpoint kept
     assert not (out / "summary.json").exists()  # all or nothing
-    monkeypatch.setattr(fewear.loop.command.Progress, "block", original)
+    monkeypatch.setattr(fewear.commands.run.Progress, "block", original)
     assert run(config, out, "--resume") == 0
     return _final_depth_m(out)
 

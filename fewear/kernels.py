@@ -1,0 +1,23 @@
+"""The compile of fewear's kernels, kept out of :mod:`fewear.jit` (the decorator every kernel
+module imports) so that the kernels and their compile form no import circle."""
+
+from __future__ import annotations
+
+import numba
+
+from fewear.contact.condensed_newton import compile_contact
+from fewear.jit import holds_compiled_code
+from fewear.mbd.slider_crank import compile_dynamics
+
+
+def compile_kernels(report=None) -> None:
+    """Compile, or load from the cache, the kernels of a wear run: the dynamics'
+    (:func:`fewear.mbd.slider_crank.compile_dynamics`) and the contact's
+    (:func:`fewear.contact.condensed_newton.compile_contact`). ``report(text)``, if given, is
+    told first when the cache holds no compiled code (the first run after a change of the
+    sources compiles for about a minute), so that the user is not left without a word."""
+    if report is not None and not holds_compiled_code(numba.config.CACHE_DIR):
+        report("compiling the dynamics and contact kernels (once after a change of fewear's "
+               "sources, about a minute; later runs load them)")
+    compile_dynamics()
+    compile_contact()
