@@ -488,6 +488,8 @@ def advance(data, settings, t, Y, lam, t_end, h, lu, pivots, newton, counts, tim
         if recorded == times.size and times.size > 0:
             return BUFFER_FULL, t, h, recorded
         h = min(h, step_s, t_end - t)
+        if t_end - t - h < 1e-6 * h:  # end on t_end: no sliver step of rounding's size left
+            h = t_end - t
         predictor, update = _predictor_and_update(settings, h)
         Y1, lam1 = predictor @ Y, lam.copy()
         accept, jac = _newton(data, settings, t + h, Y1, lam1, update, h, lu, pivots, newton,
