@@ -1,8 +1,8 @@
 """``fewear dynamics``: simulate the slider-crank and write the joint-load history.
 
 Outputs (all-or-nothing, in ``--out``): ``joint_history.csv`` (one row per time step of the
-recorded cycles: time_s, crank_angle_deg, slider_x_m, ex_m, ey_m, penetration_m, fn_N, ft_N,
-fx_N, fy_N, rel_omega_rad_s, mode; see fewear.mbd.history for frames and signs),
+recorded cycles, in the form ``fewear run --joint-history`` reads: :mod:`fewear.io.joint_history`;
+see fewear.mbd.history for frames and signs),
 ``summary.json`` (peak_contact_force_N, impacts, steps, wall_time_s, ... and the config used),
 ``forces.png`` and ``orbit.png``. A line per crank cycle goes to standard error.
 """
@@ -15,18 +15,16 @@ import numpy as np
 
 from fewear.errors import FewearInputError
 from fewear.io.config import load_config
+from fewear.io.joint_history import write_joint_history
 from fewear.io.limits import MAX_DYNAMICS_CYCLES
 from fewear.io.output import staged_output
-from fewear.mbd.history import MODES, JointHistory
+from fewear.mbd.history import MODES
 from fewear.mbd.slider_crank import (
     SECTIONS,
     UNINTEGRABLE_HINT,
     joint_model_from_config,
     simulate_slider_crank,
 )
-
-CSV_COLUMNS = ("time_s", "crank_angle_deg", "slider_x_m", "ex_m", "ey_m", "penetration_m", "fn_N",
-               "ft_N", "fx_N", "fy_N", "rel_omega_rad_s", "mode")
 
 
 def main(args) -> int:
@@ -48,7 +46,7 @@ def main(args) -> int:
         if value is not None:
             used["mechanism"][key] = value
     with staged_output(args.out) as stage:
-        write_history_csv(history, stage / "joint_history.csv")
+        write_joint_history(history, stage / "joint_history.csv")
         report = {
             "peak_contact_force_N": history.peak_contact_force_N,
             "impacts": history.impacts,
@@ -71,14 +69,3 @@ def main(args) -> int:
         plot_orbit(history, joint_model.nominal_clearance_m, stage / "orbit.png", label)
     return 0
 
-
-def write_history_csv(history: JointHistory, path) -> None:
-    """The history as CSV with the columns of ``CSV_COLUMNS`` (mode as free/impact/contact)."""
-    numbers = np.column_stack([
-        history.time_s, np.degrees(history.crank_angle_rad), history.slider_x_m,
-        history.eccentricity_m, history.penetration_m, history.normal_force_N,
-        history.friction_force_N, history.reaction_force_N, history.rel_omega_rad_s])
-    with open(path, "w") as handle:
-        handle.write(",".join(CSV_COLUMNS) + "\n")
-        for row, mode in zip(numbers, history.mode):
-            handle.write(",".join(f"{v:.10g}" for v in row) + f",{MODES[mode]}\n")
