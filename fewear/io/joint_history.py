@@ -85,10 +85,15 @@ def write_joint_history(history: JointHistory, path) -> None:
             handle.write(",".join(f"{v:.17g}" for v in row) + f",{MODES[mode]}\n")
 
 
-def read_joint_history(path, cycles: int = 1) -> JointHistory:
+IMPACT_COLUMNS = ("penetration", "normal_force", "mode")
+"""The optional columns an impact wear law needs (the hysteresis work and the impact episodes)."""
+
+
+def read_joint_history(path, cycles: int = 1, impacts: bool = False) -> JointHistory:
     """The :class:`JointHistory` of the CSV at ``path`` spanning ``cycles`` cycles (module
     docstring; SI units, bushing frame); every fault a :class:`FewearInputError` naming the file,
-    the line or column, and what is allowed."""
+    the line or column, and what is allowed. ``impacts``: the wear law wears by the contact's
+    hysteresis work or the impacts, so the file must give ``IMPACT_COLUMNS``."""
     path = Path(path)
     header_line, header, rows = read_rows(path)
     lines = [number for number, _ in rows]
@@ -97,6 +102,12 @@ def read_joint_history(path, cycles: int = 1) -> JointHistory:
         return f"{path} line {lines[index]}"
 
     columns = _columns(path, header)
+    missing = [quantity for quantity in IMPACT_COLUMNS if quantity not in columns]
+    if impacts and missing:
+        raise FewearInputError(
+            f"{path}: [wear] impact wear (impact_*) needs the impacts of the history: missing "
+            f"column(s) {', '.join(missing)} (penetration_<m|mm|um>, normal_force_<N|kN>, mode); "
+            "give them, or no impact wear")
     values = {}
     for quantity, (name, unit) in columns.items():
         if quantity == "mode":
