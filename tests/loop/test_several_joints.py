@@ -116,3 +116,26 @@ def test_an_interrupted_two_joint_run_resumes_both(tmp_path, monkeypatch, histor
     # a checkpoint of other joints is refused by name
     fake_mechanism(monkeypatch, histories, ["a"])
     assert run(config, tmp_path / "out", "--resume") == 2
+
+
+def test_fewear_plot_draws_a_row_per_joint_or_the_one_asked_for(two_joints, tmp_path):
+    """`fewear plot` (its own process: PyVista, no DOLFINx) on the two-joint run; the layout
+    read from the file names, and an unknown --joint refused naming the joints there are."""
+    import os
+    import subprocess
+    import sys
+
+    from fewear.errors import FewearInputError
+    from fewear.plot.worn_bushing import panels
+
+    out = two_joints / "both"
+    assert {joint: list(cases) for joint, cases in panels(out).items()} == {
+        "a": ["rigid"], "b": ["rigid"]}
+    assert list(panels(out, "b")) == ["b"]
+    with pytest.raises(FewearInputError, match="--joint c: no such joint .* its joints: a, b"):
+        panels(out, "c")
+    process = subprocess.run([sys.executable, "-m", "fewear.cli", "plot", str(out)],
+                             capture_output=True, text=True, timeout=300,
+                             env={**os.environ, "PYVISTA_OFF_SCREEN": "true"})
+    assert process.returncode == 0, process.stderr
+    assert (out / "worn_bushing.png").stat().st_size > 10_000
