@@ -155,7 +155,8 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
 
 
 def wear_block(joints: dict, histories: dict, mechanism, dynamics_s: float,
-               start_next=None, added_depth_per_cycle: dict | None = None) -> None:
+               start_next=None, added_depth_per_cycle: dict | None = None,
+               fewest_cycles=None) -> None:
     """Stages 2-5 of a wear block of every joint of ``joints`` (name -> :class:`JointRun`), each
     on its recorded history of ``histories`` (name -> history), their progress updated in place:
     ``[wear_loop] wear_steps_per_block`` wear steps (:func:`joint_wear_step`), each with the
@@ -171,7 +172,8 @@ def wear_block(joints: dict, histories: dict, mechanism, dynamics_s: float,
     (joint name -> worn state), optional: called once the block's last wear step is known and
     before its mesh stage, unless the run is done (the next block's dynamics start there).
     ``added_depth_per_cycle``: joint name -> (history, state) -> depth per cycle (m), as
-    :func:`run_block`'s."""
+    :func:`run_block`'s. ``fewest_cycles`` (cycles) -> cycles, optional: the fewest cycles of
+    this and the case's other ranks' joints (:class:`fewear.loop.joint_ranks.JointRanks`)."""
     first = next(iter(joints.values()))
     loop = first.inputs.loop
     steps, starts, peaks, inner = {}, {}, {}, {name: [] for name in joints}
@@ -189,6 +191,8 @@ def wear_block(joints: dict, histories: dict, mechanism, dynamics_s: float,
         proposed = {name: joint_wear_step(joint, histories[name], steps[name], added.get(name))
                     for name, joint in joints.items()}
         cycles = min(proposal.cycles for proposal in proposed.values())
+        if fewest_cycles is not None:
+            cycles = fewest_cycles(cycles)
         worn = {name: proposal.worn_over(cycles, joints[name])
                 for name, proposal in proposed.items()}
         done = next(iter(worn.values())).cycles >= loop.total_cycles
@@ -342,26 +346,30 @@ def predict_case(rod: str, inputs: RunInputs, bushing, case: CaseProgress, after
             after_block(case)
 
 
-def predict_joints(label: str, joints: dict, simulate_block, after_block) -> None:
+def predict_joints(label: str, joints: dict, simulate_block, after_block, ranks=None) -> None:
     """Wear blocks of every joint of a case (joint name -> :class:`JointRun`, in step) until
     ``total_cycles``; ``after_block()`` runs after each (checkpoint, progress).
-    ``simulate_block(states, mechanism)``: stage 1 for the joints' wear states (joint name ->
+    ``simulate_block(states, mechanism)``: stage 1 for every joint's wear state (joint name ->
     :class:`WearState`) from the mechanism's last state, returning ((joint name -> history,
     summary, final state), wall time in s); it runs in a thread ahead, as in
-    :func:`predict_case`."""
+    :func:`predict_case`. ``ranks``: a :class:`fewear.loop.joint_ranks.JointRanks` when the
+    case's joints are split among its ranks (``joints`` this rank's only)."""
     first = next(iter(joints.values()))
+    share = dict if ranks is None else ranks.all_states
+    fewest = None if ranks is None else ranks.fewest_cycles
     with ThreadPoolExecutor(max_workers=1, thread_name_prefix=f"fewear-{label}-dynamics") as ahead:
         following = None
         while first.case.state.cycles < first.inputs.loop.total_cycles:
             if following is None:
-                following = ahead.submit(simulate_block, {name: joint.case.state for name, joint
-                                                          in joints.items()}, first.case.mechanism)
+                following = ahead.submit(simulate_block, share(
+                    {name: joint.case.state for name, joint in joints.items()}),
+                    first.case.mechanism)
             (histories, _, mechanism), seconds = following.result()
             following = None
 
             def start_next(worn: dict, mechanism=mechanism) -> None:
                 nonlocal following
-                following = ahead.submit(simulate_block, worn, mechanism)
+                following = ahead.submit(simulate_block, share(worn), mechanism)
 
-            wear_block(joints, histories, mechanism, seconds, start_next)
+            wear_block(joints, histories, mechanism, seconds, start_next, fewest_cycles=fewest)
             after_block()

@@ -5,9 +5,10 @@ The cases are independent runs, so they run side by side: under ``mpirun -n N`` 
 split into one sub-communicator per case (a case with several ranks splits its FE work among
 them); a plain ``fewear run`` starts one worker process per case, up to the CPU cores
 (``--jobs``). A case on one rank or in one process computes exactly what the serial run does,
-so the results are the same, bit for bit. The joints of a case are worn one after the other on
-its communicator: they share its dynamics every block, and every wear step of the block covers
-the same crank cycles for all of them (:func:`fewear.loop.block.wear_block`).
+so the results are the same, bit for bit. The joints of a case share its dynamics every block,
+and every wear step of the block covers the same crank cycles for all of them
+(:func:`fewear.loop.block.wear_block`); a case on several ranks splits its joints among them
+(:mod:`fewear.loop.joint_ranks`), else they are worn one after the other.
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ from pathlib import Path
 from fewear.errors import FewearInputError, Terminated, set_interrupt_note
 from fewear.loop.block import JointRun, new_bushing, new_case, predict_joints, restored_bushing
 from fewear.loop.checkpoint import FOLDER, Checkpoint
+from fewear.loop.joint_ranks import JointRanks
 from fewear.loop.plan import run_plan
 from fewear.loop.settings import run_sections
 from fewear.parallel import usable_cores
@@ -64,9 +66,10 @@ def _say(text: str) -> None:
 
 
 def run_cases(case_names, config: dict, out_dir, resumed: dict, comm) -> dict:
-    """The wear prediction of each case of ``case_names`` in turn on ``comm``, continuing the
-    cases of ``resumed`` (case -> joint name -> :class:`CaseProgress`), a checkpoint after every
-    block; case -> joint name -> progress."""
+    """The wear prediction of each case of ``case_names`` in turn on ``comm`` (its joints split
+    among the ranks, :class:`fewear.loop.joint_ranks.JointRanks`), continuing the cases of
+    ``resumed`` (case -> joint name -> :class:`CaseProgress`), a checkpoint after every block;
+    case -> joint name -> progress (complete on the first rank)."""
     plan = run_plan(config)
     store = Checkpoint(out_dir, config)
     note = "" if plan.imported is None else " (imported joint history: no feedback)"
@@ -80,29 +83,35 @@ def run_cases(case_names, config: dict, out_dir, resumed: dict, comm) -> dict:
             continue
         progress.message("meshing the bushing and condensing it onto the bore"
                          + ("s" if len(plan.joints) > 1 else ""))
-        joints = {}
+        ranks = JointRanks(list(plan.joints), comm)
+        joints, whole = {}, dict(saved or {})
         try:
-            for name, inputs in plan.joints.items():
+            for name in ranks.mine:
+                inputs = plan.joints[name]
                 label = (f"{case} case, joint {name}" if len(plan.joints) > 1
                          else f"{case} rod" if plan.imported is None else "imported joint history")
                 if saved is None:
-                    bushing = new_bushing(inputs, comm)
+                    bushing = new_bushing(inputs, ranks.sub)
                     joints[name] = JointRun(label, inputs, bushing, new_case(bushing))
                 else:
                     joints[name] = JointRun(label, inputs, restored_bushing(
-                        inputs, saved[name], comm), saved[name])
+                        inputs, saved[name], ranks.sub), saved[name])
 
-            def after_block(case=case, joints=joints, progress=progress):
-                progress_of = {name: joint.case for name, joint in joints.items()}
+            def after_block(case=case, joints=joints, whole=whole, progress=progress,
+                            ranks=ranks):
+                ranks.gathered({name: joint.case for name, joint in joints.items()}, whole)
                 if comm.rank == 0:
-                    store.save(case, progress_of)
-                progress.block(progress_of)
+                    ordered = {name: whole[name] for name in plan.joints}
+                    store.save(case, ordered)
+                    progress.block(ordered)
 
-            predict_joints(case, joints, plan.simulate_block(config, case), after_block)
+            predict_joints(case, joints, plan.simulate_block(config, case), after_block,
+                           ranks if ranks.split else None)
         finally:
             for joint in joints.values():
                 joint.bushing.close()
-        cases[case] = {name: joint.case for name, joint in joints.items()}
+            ranks.close()
+        cases[case] = {name: whole[name] for name in plan.joints} if comm.rank == 0 else whole
     return cases
 
 

@@ -26,11 +26,16 @@ def turned(history, angle_rad, scale):
                    friction_force_N=scale * history.friction_force_N)
 
 
+def two_histories(folder):
+    """Joint "a": the slider-crank's first-block history; "b": it turned by 90 deg, scaled by
+    0.7."""
+    first = first_block_history(write_config(folder, implicit=False, smoothing=0.0))
+    return {"a": first, "b": turned(first, math.pi / 2, 0.7)}
+
+
 @pytest.fixture(scope="module")
 def histories(tmp_path_factory):
-    first = first_block_history(write_config(tmp_path_factory.mktemp("history"),
-                                             implicit=False, smoothing=0.0))
-    return {"a": first, "b": turned(first, math.pi / 2, 0.7)}
+    return two_histories(tmp_path_factory.mktemp("history"))
 
 
 def fake_mechanism(monkeypatch, histories, joints):
@@ -139,3 +144,26 @@ def test_fewear_plot_draws_a_row_per_joint_or_the_one_asked_for(two_joints, tmp_
                              env={**os.environ, "PYVISTA_OFF_SCREEN": "true"})
     assert process.returncode == 0, process.stderr
     assert (out / "worn_bushing.png").stat().st_size > 10_000
+
+
+@pytest.mark.mpi
+def test_two_ranks_split_the_joints_and_give_the_serial_result(tmp_path, two_joints):
+    """`mpirun -n 2 fewear run` with one case and two joints: a joint per rank, each wearing
+    on its own communicator what it wears in the serial run, the dynamics run on both ranks from
+    the shared worn states: the same files as the serial run, byte for byte."""
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from tests.mpi import MPI_ENV, mpirun_or_skip
+
+    config = write_config(tmp_path, implicit=False, smoothing=0.0)
+    root = Path(__file__).resolve().parents[2]
+    process = subprocess.run(
+        [mpirun_or_skip(), "-n", "2", sys.executable, "-m", "tests.loop.fake_two_joint_run",
+         str(config), str(tmp_path / "mpi")], capture_output=True, text=True, timeout=600,
+        cwd=root, env={**os.environ, **MPI_ENV, "PYTHONPATH": str(root)})
+    assert process.returncode == 0, process.stderr
+    for name in ("wear_profile.csv", "max_wear.csv"):
+        assert (tmp_path / "mpi" / name).read_text() == (two_joints / "both" / name).read_text()
