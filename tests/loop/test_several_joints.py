@@ -167,3 +167,29 @@ def test_two_ranks_split_the_joints_and_give_the_serial_result(tmp_path, two_joi
     assert process.returncode == 0, process.stderr
     for name in ("wear_profile.csv", "max_wear.csv"):
         assert (tmp_path / "mpi" / name).read_text() == (two_joints / "both" / name).read_text()
+
+
+def test_adaptive_steps_cover_the_fewest_cycles_any_joint_chose(tmp_path, monkeypatch,
+                                                                histories):
+    """Adaptive A_j (each step's largest depth increment bounded): joint b, loaded 0.7 times as
+    hard, would take longer steps alone, but the joints step together, over the cycles joint a
+    (worn faster) chooses; so a wears as it would alone, and b at a's cycles."""
+    config = write_config(tmp_path, implicit=False, smoothing=0.0)
+    config.write_text(config.read_text().replace('extrapolation = "fixed"',
+                                                 'extrapolation = "adaptive"'))
+    fake_mechanism(monkeypatch, histories, ["a", "b"])
+    assert run(config, tmp_path / "both") == 0
+    for name in ("a", "b"):
+        fake_mechanism(monkeypatch, histories, [name])
+        assert run(config, tmp_path / name) == 0
+
+    def cycles(out, name):
+        table = np.genfromtxt(out / "max_wear.csv", delimiter=",", names=True, dtype=None,
+                              encoding=None)
+        return list(table["cycles"][table["joint"] == name])
+
+    together = cycles(tmp_path / "both", "a")
+    assert cycles(tmp_path / "both", "b") == together == cycles(tmp_path / "a", "a")
+    assert len(cycles(tmp_path / "b", "b")) < len(together)  # alone, b steps longer
+    np.testing.assert_array_equal(depth_by_node(tmp_path / "both", "rigid", "a")[1],
+                                  depth_by_node(tmp_path / "a", "rigid", "a")[1])

@@ -9,6 +9,7 @@ import pytest
 
 from fewear.cli import main
 from fewear.io.config import default_config_text
+from fewear.io.joint_history import read_joint_history
 
 
 def config_file(tmp_path, replacements=(), extra=""):
@@ -64,6 +65,10 @@ def test_writes_history_summary_and_plots(tmp_path, capsys):
     assert summary["peak_contact_force_N"] == pytest.approx(
         max(math.hypot(float(r["force_x_N"]), float(r["force_y_N"])) for r in rows), rel=1e-6)
     assert summary["config"]["mechanism"]["rod"] == "rigid"
+    # the form `fewear run --joint-history` reads (fewear.io.joint_history), to the same floats
+    history = read_joint_history(out / "joint_history.csv")
+    assert history.peak_contact_force_N == summary["peak_contact_force_N"]
+    assert history.n_steps == len(rows) and history.impacts == summary["impacts"]
     # eccentricities stay near the clearance circle: |e| <= c + the largest penetration
     largest = max(float(r["penetration_m"]) for r in rows)
     assert max(math.hypot(float(r["eccentricity_x_m"]), float(r["eccentricity_y_m"]))
