@@ -156,7 +156,7 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
 
 def wear_block(joints: dict, histories: dict, mechanism, dynamics_s: float,
                start_next=None, added_depth_per_cycle: dict | None = None,
-               fewest_cycles=None) -> None:
+               ranks=None) -> None:
     """Stages 2-5 of a wear block of every joint of ``joints`` (name -> :class:`JointRun`), each
     on its recorded history of ``histories`` (name -> history), their progress updated in place:
     ``[wear_loop] wear_steps_per_block`` wear steps (:func:`joint_wear_step`), each with the
@@ -172,8 +172,8 @@ def wear_block(joints: dict, histories: dict, mechanism, dynamics_s: float,
     (joint name -> worn state), optional: called once the block's last wear step is known and
     before its mesh stage, unless the run is done (the next block's dynamics start there).
     ``added_depth_per_cycle``: joint name -> (history, state) -> depth per cycle (m), as
-    :func:`run_block`'s. ``fewest_cycles`` (cycles) -> cycles, optional: the fewest cycles of
-    this and the case's other ranks' joints (:class:`fewear.loop.joint_ranks.JointRanks`)."""
+    :func:`run_block`'s. ``ranks``: the :class:`fewear.loop.joint_ranks.JointRanks` of a case
+    whose joints are split among its ranks (``joints`` this rank's only), else None."""
     first = next(iter(joints.values()))
     loop = first.inputs.loop
     steps, starts, peaks, inner = {}, {}, {}, {name: [] for name in joints}
@@ -188,13 +188,26 @@ def wear_block(joints: dict, histories: dict, mechanism, dynamics_s: float,
                 joint.inputs.joint.law, joint.inputs.impact_law)
     added = added_depth_per_cycle or {}
     for step in range(loop.wear_steps_per_block):
-        proposed = {name: joint_wear_step(joint, histories[name], steps[name], added.get(name))
-                    for name, joint in joints.items()}
-        cycles = min(proposal.cycles for proposal in proposed.values())
-        if fewest_cycles is not None:
-            cycles = fewest_cycles(cycles)
-        worn = {name: proposal.worn_over(cycles, joints[name])
-                for name, proposal in proposed.items()}
+        error, proposed, worn = None, {}, {}
+        try:
+            proposed = {name: joint_wear_step(joint, histories[name], steps[name],
+                                              added.get(name)) for name, joint in joints.items()}
+        except FewearInputError as exc:
+            if ranks is None:
+                raise
+            error = exc
+        cycles = min([proposal.cycles for proposal in proposed.values()] or [0])
+        if ranks is not None:
+            cycles = min(ranks.agreed(cycles, error))
+        try:
+            worn = {name: proposal.worn_over(cycles, joints[name])
+                    for name, proposal in proposed.items()}
+        except FewearInputError as exc:
+            if ranks is None:
+                raise
+            error = exc
+        if ranks is not None:
+            ranks.agreed(error=error)
         done = next(iter(worn.values())).cycles >= loop.total_cycles
         last = step == loop.wear_steps_per_block - 1 or done
         if last:
@@ -356,7 +369,6 @@ def predict_joints(label: str, joints: dict, simulate_block, after_block, ranks=
     case's joints are split among its ranks (``joints`` this rank's only)."""
     first = next(iter(joints.values()))
     share = dict if ranks is None else ranks.all_states
-    fewest = None if ranks is None else ranks.fewest_cycles
     with ThreadPoolExecutor(max_workers=1, thread_name_prefix=f"fewear-{label}-dynamics") as ahead:
         following = None
         while first.case.state.cycles < first.inputs.loop.total_cycles:
@@ -371,5 +383,5 @@ def predict_joints(label: str, joints: dict, simulate_block, after_block, ranks=
                 nonlocal following
                 following = ahead.submit(simulate_block, share(worn), mechanism)
 
-            wear_block(joints, histories, mechanism, seconds, start_next, fewest_cycles=fewest)
+            wear_block(joints, histories, mechanism, seconds, start_next, ranks=ranks)
             after_block()

@@ -4,7 +4,8 @@ A case on several ranks gives each joint (round robin) a sub-communicator of its
 work (contact, wear, mesh); every rank runs the case's dynamics, which need every joint's worn
 clearance, from the same wear states, so the ranks stay in step: each wear step covers the
 fewest cycles any joint chose (an all-reduce), each block's worn states are shared before the
-next dynamics, and the first rank gathers what the other joints added in the block (their
+next dynamics, an input error in one joint's wear is raised on every rank, and the first rank
+gathers what the other joints added in the block (their
 progress, the new mesh snapshots only) to checkpoint and report the whole case. A joint alone
 on its ranks computes exactly what it computes in the serial run, so the results are the same,
 bit for bit. With one rank, or one joint, nothing is split and nothing is sent.
@@ -13,6 +14,8 @@ bit for bit. With one rank, or one joint, nothing is split and nothing is sent.
 from __future__ import annotations
 
 import copy
+
+from fewear.errors import FewearInputError
 
 
 class JointRanks:
@@ -35,13 +38,18 @@ class JointRanks:
         if self.split:
             self.sub.Free()
 
-    def fewest_cycles(self, cycles: int) -> int:
-        """The fewest of every rank's ``cycles``."""
+    def agreed(self, value=None, error: Exception | None = None) -> list:
+        """Every rank's ``value``, once no rank failed: a rank's ``error`` (an input error in its
+        joints' wear) is raised on every rank, so that none waits for the others in vain."""
         if not self.split:
-            return cycles
-        from mpi4py import MPI
-
-        return self.comm.allreduce(cycles, op=MPI.MIN)
+            if error is not None:
+                raise error
+            return [value]
+        values = self.comm.allgather((value, None if error is None else str(error)))
+        failures = [message for _, message in values if message]
+        if failures:
+            raise FewearInputError(failures[0])
+        return [value for value, _ in values]
 
     def all_states(self, mine: dict) -> dict:
         """Every joint's wear state (joint name -> state) from this group's ``mine``."""

@@ -193,3 +193,29 @@ def test_adaptive_steps_cover_the_fewest_cycles_any_joint_chose(tmp_path, monkey
     assert len(cycles(tmp_path / "b", "b")) < len(together)  # alone, b steps longer
     np.testing.assert_array_equal(depth_by_node(tmp_path / "both", "rigid", "a")[1],
                                   depth_by_node(tmp_path / "a", "rigid", "a")[1])
+
+
+@pytest.mark.mpi
+def test_a_joint_worn_through_on_one_rank_stops_every_rank(tmp_path):
+    """Joint a wears through its wall in the first block (k 87.5 times the small case's: 2.9 mm
+    of the 2.5 mm allowed) on its rank while b, loaded 0.7 times as hard, does not:
+    the input error reaches both ranks (no rank waits for the other), one line, exit status 2."""
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from tests.mpi import MPI_ENV, mpirun_or_skip
+
+    config = write_config(tmp_path, implicit=False, smoothing=0.0)
+    config.write_text(config.read_text().replace(
+        'coefficient_model = "constant"', 'coefficient_model = "constant"\n'
+        'constant_k_m2_N = 1.75e-11'))
+    root = Path(__file__).resolve().parents[2]
+    process = subprocess.run(
+        [mpirun_or_skip(), "-n", "2", sys.executable, "-m", "tests.loop.fake_two_joint_run",
+         str(config), str(tmp_path / "mpi")], capture_output=True, text=True, timeout=600,
+        cwd=root, env={**os.environ, **MPI_ENV, "PYTHONPATH": str(root)})
+    assert process.returncode == 2, process.stderr
+    assert "rigid case, joint a: wear depth" in process.stderr
+    assert "worn through" in process.stderr and "Traceback" not in process.stderr
