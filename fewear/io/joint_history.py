@@ -95,7 +95,7 @@ def read_joint_history(path, cycles: int = 1, impacts: bool = False) -> JointHis
     the line or column, and what is allowed. ``impacts``: the wear law wears by the contact's
     hysteresis work or the impacts, so the file must give ``IMPACT_COLUMNS``."""
     path = Path(path)
-    header_line, header, rows = read_rows(path)
+    _, header, rows = read_rows(path)
     lines = [number for number, _ in rows]
 
     def where(index: int) -> str:

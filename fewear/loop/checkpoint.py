@@ -15,9 +15,9 @@ process that runs it, so cases run side by side):
 
 ``fewear run --resume`` rebuilds the same objects and continues; since every block starts from
 exactly these arrays, the resumed run ends with the result of an uninterrupted one. A checkpoint
-made with another config or another version (the single-joint format before this one), or one
-that cannot be read, is an input error naming the cause: resuming it would silently mix two
-different runs.
+made with another config, another imported joint history (its SHA-256) or another version (the
+single-joint format before this one), or one that cannot be read, is an input error naming the
+cause: resuming it would silently mix two different runs.
 """
 
 from __future__ import annotations
@@ -44,9 +44,10 @@ UNREADABLE = (OSError, ValueError, KeyError, zipfile.BadZipFile, json.JSONDecode
 class Checkpoint:
     """The checkpoint folder of a run writing into ``out_dir`` with ``config``."""
 
-    def __init__(self, out_dir, config: dict):
+    def __init__(self, out_dir, config: dict, history_sha256: str = ""):
         self.path = Path(out_dir).resolve() / FOLDER
         self.config = json.loads(json.dumps(config))
+        self.history_sha256 = history_sha256  # of an imported joint history ("": none)
 
     def case_path(self, case: str) -> Path:
         return self.path / f"{case}.npz"
@@ -72,7 +73,8 @@ class Checkpoint:
         if mechanism is not None:
             arrays.update(q=mechanism.q, qd=mechanism.qd)
         arrays["meta"] = np.array(json.dumps({
-            "format": FORMAT, "config": self.config, "case": {
+            "format": FORMAT, "config": self.config, "history_sha256": self.history_sha256,
+            "case": {
                 "cycles": int(first.state.cycles), "blocks": int(first.state.blocks),
                 "time_s": None if mechanism is None else float(mechanism.time_s),
                 "joints": meta}}))
@@ -136,6 +138,11 @@ class Checkpoint:
             raise FewearInputError(
                 f"--resume: checkpoint {path} was made with another config ({difference}); "
                 "resume with the same config, or run without --resume into another --out")
+        if meta.get("history_sha256", "") != self.history_sha256:
+            raise FewearInputError(
+                f"--resume: checkpoint {path} was made with another joint history (its file "
+                f"{self.config['wear_loop'].get('joint_history')} has changed since); resume "
+                "with the same history, or run without --resume into another --out")
         saved = list(meta.get("case", {}).get("joints", {}))
         if saved != joints:
             raise FewearInputError(

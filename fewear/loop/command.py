@@ -71,7 +71,7 @@ def run_cases(case_names, config: dict, out_dir, resumed: dict, comm) -> dict:
     ``resumed`` (case -> joint name -> :class:`CaseProgress`), a checkpoint after every block;
     case -> joint name -> progress (complete on the first rank)."""
     plan = run_plan(config)
-    store = Checkpoint(out_dir, config)
+    store = Checkpoint(out_dir, config, plan.history_sha256)
     note = "" if plan.imported is None else " (imported joint history: no feedback)"
     cases = {}
     for case in case_names:
@@ -186,7 +186,7 @@ def main(args) -> int:
     plan = run_plan(config)
     rods = list(plan.cases)
     jobs = _jobs(args.jobs, len(rods))
-    store = Checkpoint(args.out, config)
+    store = Checkpoint(args.out, config, plan.history_sha256)
     resumed = store.load(rods, plan.joints) if args.resume else {}
     if resumed and world.rank == 0:
         _say(f"resuming from {store.path}: " + ", ".join(

@@ -4,6 +4,7 @@ its clearance joints with their typed inputs, and where each block's joint histo
 
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
@@ -19,12 +20,13 @@ class RunPlan:
     """``cases``: the case names (the rod models; one ``IMPORTED_CASE`` for an imported
     history); ``joints``: clearance joint name -> its :class:`RunInputs`, in file order;
     ``imported``: the imported :class:`fewear.mbd.history.JointHistory` (None: the dynamics
-    make the histories) read from ``history_file``."""
+    make the histories) read from ``history_file``, whose bytes have ``history_sha256``."""
 
     cases: tuple[str, ...]
     joints: dict
     imported: object = None
     history_file: str = ""
+    history_sha256: str = ""  # of the imported history's file (a resume checks it)
 
     @property
     def loop(self) -> WearLoopSettings:
@@ -35,8 +37,8 @@ class RunPlan:
         """Where the joint histories come from, in words (summary.json, the progress lines)."""
         if self.imported is None:
             return "the dynamics of the case on the worn clearances, every block"
-        return (f"imported from {self.history_file}: the same history every block, no feedback "
-                "of the wear to the dynamics")
+        return (f"imported from {self.history_file} (SHA-256 {self.history_sha256}): the same "
+                "history every block, no feedback of the wear to the dynamics")
 
     def simulate_block(self, config: dict, case: str):
         """Stage 1 of ``case``'s blocks: (states, mechanism) -> ((joint name -> history, summary,
@@ -66,7 +68,9 @@ def run_plan(config: dict) -> RunPlan:
         inputs: RunInputs = joint_inputs_from_config(config)
         history = read_joint_history(Path(history_file), inputs.loop.recorded_cycles_per_block,
                                      impacts=inputs.impact_law.wears_by_impacts)
-        return RunPlan((IMPORTED_CASE,), {IMPORTED_JOINT: inputs}, history, history_file)
+        digest = hashlib.sha256(Path(history_file).read_bytes()).hexdigest()
+        return RunPlan((IMPORTED_CASE,), {IMPORTED_JOINT: inputs}, history, history_file,
+                       digest)
     joints = {name: joint_inputs_from_config(view)
               for name, view in adapter.joint_sections(config).items()}
     cases = tuple(next(iter(joints.values())).loop.rod_models)

@@ -2,6 +2,7 @@
 `fewear dynamics`' writer and imported, wears the bushing as the coupled run's first block does
 (the same contact and wear law; only the history's source differs)."""
 
+import hashlib
 import json
 
 import numpy as np
@@ -66,6 +67,8 @@ def test_the_outputs_say_the_history_was_imported_without_feedback(coupled_and_i
     case = summary["cases"]["imported"]
     assert "no feedback of the wear to the dynamics" in case["history_source"]
     assert str(coupled_and_imported / "history.csv") in case["history_source"]
+    assert hashlib.sha256((coupled_and_imported / "history.csv").read_bytes()).hexdigest() in (
+        case["history_source"])
     assert summary["config"]["wear_loop"]["joint_history"] == str(
         coupled_and_imported / "history.csv")
     assert case["joints"]["joint"]["cycles"] == 2000
@@ -73,6 +76,7 @@ def test_the_outputs_say_the_history_was_imported_without_feedback(coupled_and_i
 
 
 def test_an_imported_run_resumes_and_wears_the_same_history_every_block(tmp_path, monkeypatch,
+                                                                        capsys,
                                                                         coupled_and_imported):
     """Two blocks on the imported history, interrupted after the first and resumed: the same
     profile as uninterrupted, and the second block worn by the same history (the same peak
@@ -97,3 +101,12 @@ def test_an_imported_run_resumes_and_wears_the_same_history_every_block(tmp_path
     summary = json.loads((tmp_path / "whole" / "summary.json").read_text())
     joint = summary["cases"]["imported"]["joints"]["joint"]
     assert joint["blocks"] == 2 and joint["cycles"] == 4000
+    # a history file changed since the checkpoint is refused by --resume, however alike
+    changed = tmp_path / "changed.csv"
+    changed.write_text((coupled_and_imported / "history.csv").read_text() + "# edited\n")
+    monkeypatch.setattr(fewear.loop.command.Progress, "block", interrupt)
+    assert run(config, tmp_path / "again", "--joint-history", str(changed)) == 130
+    monkeypatch.setattr(fewear.loop.command.Progress, "block", original)
+    changed.write_text(changed.read_text() + "# edited again\n")
+    assert run(config, tmp_path / "again", "--joint-history", str(changed), "--resume") == 2
+    assert "another joint history" in capsys.readouterr().err
