@@ -87,9 +87,7 @@ def run_cases(case_names, config: dict, out_dir, resumed: dict, comm) -> dict:
         joints, whole = {}, dict(saved or {})
         try:
             for name in ranks.mine:
-                inputs = plan.joints[name]
-                label = (f"{case} case, joint {name}" if len(plan.joints) > 1
-                         else f"{case} rod" if plan.imported is None else "imported joint history")
+                inputs, label = plan.joints[name], _joint_label(plan, case, name)
                 if saved is None:
                     bushing = new_bushing(inputs, ranks.sub)
                     joints[name] = JointRun(label, inputs, bushing, new_case(bushing))
@@ -113,6 +111,13 @@ def run_cases(case_names, config: dict, out_dir, resumed: dict, comm) -> dict:
             ranks.close()
         cases[case] = {name: whole[name] for name in plan.joints} if comm.rank == 0 else whole
     return cases
+
+
+def _joint_label(plan, case: str, joint: str) -> str:
+    """How the messages name a joint of a case: the slider-crank's one joint by its rod model."""
+    if len(plan.joints) > 1:
+        return f"{case} case, joint {joint}"
+    return f"{case} rod" if plan.imported is None else "imported joint history"
 
 
 def _run_in_worker(rods, config: dict, out_dir, resumed: dict) -> dict:
