@@ -96,7 +96,7 @@ def build_parser() -> argparse.ArgumentParser:
                      help="rod models run side by side in worker processes (default: one per "
                           "rod model, at most the CPU cores; 1: one after the other in this "
                           "process). Under mpirun the ranks are split among the rod models "
-                          "instead")
+                          "instead, and a rod model's ranks among its clearance joints")
     run.add_argument("--joint-history", metavar="FILE.csv", default=None,
                      help="wear one bushing (the config's joint sections) with a joint history "
                           "made elsewhere instead of the dynamics, the same history every block, "
