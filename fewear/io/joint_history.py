@@ -222,7 +222,7 @@ def _check_angle_unit(path: Path, column: tuple[str, str], rotation_rad: np.ndar
     a swinging joint would sweep less than 2 pi degrees (6.3 deg) in all: such a small swing is
     accepted in rad only."""
     name, unit = column
-    full_turns = abs(rotation_rad[-1]) // (2.0 * math.pi)
+    full_turns = round(abs(rotation_rad[-1]) / (2.0 * math.pi))
     swing = float(np.ptp(rotation_rad)) - 2.0 * math.pi * full_turns
     if unit in ("rad", "rad_s") and swing > 2.0 * math.pi + PERIODIC_ROTATION_TOLERANCE_RAD:
         raise FewearInputError(

@@ -82,6 +82,16 @@ def test_what_fewear_dynamics_writes_reads_back_to_the_same_floats(tmp_path):
     np.testing.assert_allclose(back.crank_angle_rad, history.crank_angle_rad, rtol=1e-15)
 
 
+@pytest.mark.parametrize("unit, turn", [("rad", 2 * math.pi), ("deg", 360.0)])
+def test_a_joint_turning_once_per_cycle_in_either_unit(tmp_path, unit, turn):
+    """A crank pin: the relative angle grows by one turn over the cycle, in rad or deg."""
+    time, fx, fy, _ = one_cycle(11)
+    history = read_joint_history(write(
+        tmp_path, ["time_s", "force_x_N", "force_y_N", f"relative_angle_{unit}"],
+        [time, fx, fy, turn * time / PERIOD_S]))
+    np.testing.assert_allclose(history.rel_omega_rad_s, 2 * math.pi / PERIOD_S, rtol=1e-9)
+
+
 GOOD = "time_s,force_x_N,force_y_N,relative_angle_rad\n"
 
 
