@@ -220,6 +220,6 @@ results = {"reported_cycles": REPORTED_CYCLES, "members": MEMBERS, "comparison":
 # -
 
 # The figures: `max_wear_members.png` (the members' mean and spread, both densities), and in each
-# run folder `wear_profiles.png` (Fig. 7a) and `max_wear.png` (Fig. 7b); `rigid.xdmf` and
-# `flexible.xdmf` open in ParaView (Warp By Vector with `mesh_displacement_m`). The README's
-# "The paper's results" section gives our numbers beside the paper's and the reasons.
+# run folder `wear_profiles.png` (Fig. 7a) and `max_wear.png` (Fig. 7b); `rigid-rod_slider.xdmf`
+# and `flexible-rod_slider.xdmf` open in ParaView (Warp By Vector with `mesh_displacement_m`). The
+# README's "The paper's results" section gives our numbers beside the paper's and the reasons.

@@ -49,16 +49,18 @@ ConfigLike = str | os.PathLike | dict | None
 
 @dataclass(frozen=True)
 class RunResult:
-    """The wear prediction of every rod model of a run.
+    """The wear prediction of every case (rod model) and clearance joint of a run.
 
     Attributes
     ----------
-    wear : dict[str, WearState]
-        Rod model -> the worn bore after the last block: ``angle_rad`` and ``depth_m`` of the bore
-        nodes (m, radial), ``cycles``, ``blocks``.
+    wear : dict[str, dict[str, WearState]]
+        Case -> joint -> the worn bore after the last block: ``angle_rad`` and ``depth_m`` of the
+        bore nodes (m, radial, in the bushing body's frame), ``cycles``, ``blocks``. The paper's
+        slider-crank has one joint, ``"rod_slider"``.
     summary : dict
-        What ``summary.json`` holds: per rod model (``summary["cases"][rod]``) the maximum depth
-        and its angle, the worn volume, cycles, blocks, wall times; the config used.
+        What ``summary.json`` holds: per case and joint
+        (``summary["cases"][case]["joints"][joint]``) the maximum depth and its angle, the worn
+        volume, cycles, blocks, wall times; the config used.
     out : Path or None
         The output folder, or None when the outputs were not kept.
 
@@ -66,7 +68,7 @@ class RunResult:
     ``summary``.
     """
 
-    wear: dict[str, WearState]
+    wear: dict[str, dict[str, WearState]]
     summary: dict
     out: Path | None
 
@@ -193,7 +195,7 @@ def run(config: ConfigLike = None, *, out: str | os.PathLike | None = None,
     Examples
     --------
     >>> result = fewear.run("coarse.toml", out="out/run")  # doctest: +SKIP
-    >>> result.summary["cases"]["rigid"]["max_wear_depth_m"]  # doctest: +SKIP
+    >>> result.wear["rigid"]["rod_slider"].depth_m.max()  # doctest: +SKIP
     """
     from fewear.commands.run import predict_and_write
     from fewear.io.config import load_config as load
@@ -208,7 +210,8 @@ def run(config: ConfigLike = None, *, out: str | os.PathLike | None = None,
                                   config=_path_or_none(config))
         cases = predict_and_write(loaded, args)
         summary = json.loads((folder / SUMMARY).read_text()) if cases else {}
-    return RunResult({rod: case.state for rod, case in cases.items()}, summary,
+    return RunResult({case: {joint: progress.state for joint, progress in joints.items()}
+                      for case, joints in cases.items()}, summary,
                      None if out is None else Path(out))
 
 

@@ -102,7 +102,18 @@ def build_parser() -> argparse.ArgumentParser:
                      help="rod models run side by side in worker processes (default: one per "
                           "rod model, at most the CPU cores; 1: one after the other in this "
                           "process). Under mpirun the ranks are split among the rod models "
-                          "instead")
+                          "instead, and a rod model's ranks among its clearance joints")
+    run.add_argument("--joint-history", metavar="FILE.csv", default=None,
+                     help="wear one bushing (the config's joint sections) with a joint history "
+                          "made elsewhere instead of the dynamics, the same history every block, "
+                          "no feedback ([wear_loop] joint_history). CSV, units in the header: "
+                          "time_<s|ms>; force_x_<N|kN>, force_y_<N|kN> on the pin in the "
+                          "bushing's frame, or global_force_x_, global_force_y_ with "
+                          "bushing_angle_<rad|deg>; relative_angle_<rad|deg> or "
+                          "relative_omega_<rad_s|deg_s|rpm> (pin minus bushing); optional "
+                          "crank_angle_, eccentricity_x_/_y_ and penetration_<m|mm|um>, "
+                          "normal_force_, friction_force_, mode. Spans recorded_cycles_per_block "
+                          "whole cycles. `fewear dynamics` writes one")
 
     scar = sub.add_parser("scar", help="a block-on-ring or fretting wear scar beside the "
                                        "measured one(s)")
@@ -111,6 +122,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     plot = sub.add_parser("plot", help="PyVista view of a run's worn bushing, coloured by depth")
     plot.add_argument("folder", metavar="DIR", help="the output folder of `fewear run`")
+    plot.add_argument("--joint", metavar="NAME", default=None,
+                      help="only this clearance joint (default: a row of panels per joint)")
     return parser
 
 

@@ -139,14 +139,14 @@ def test_run_returns_the_wear_it_writes(tmp_path):
     out = tmp_path / "out"
     result = fewear.run(SMALL_RUN, out=out, jobs=1)
     assert isinstance(result, fewear.RunResult) and result.out == out
-    wear = result.wear["rigid"]
+    wear = result.wear["rigid"]["rod_slider"]
     assert wear.cycles == 4000
     profile = np.genfromtxt(out / "wear_profile.csv", delimiter=",", names=True, dtype=None,
                             encoding=None)
     last = profile[profile["cycles"] == 4000]
     np.testing.assert_allclose(np.radians(last["angle_deg"]), wear.angle_rad, atol=2e-8)
     np.testing.assert_allclose(last["wear_depth_m"], wear.depth_m, rtol=1e-8, atol=1e-20)
-    case = result.summary["cases"]["rigid"]
+    case = result.summary["cases"]["rigid"]["joints"]["rod_slider"]
     area = np.sum(0.010 * wear.depth_m + 0.5 * wear.depth_m**2) * 2 * math.pi / wear.depth_m.size
     assert case["worn_volume_m3"] == pytest.approx(0.018 * area, rel=1e-9)
     with pytest.raises(FewearInputError, match="earlier run"):

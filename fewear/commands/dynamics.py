@@ -2,8 +2,8 @@
 mechanism file) and write the joint-load history of each clearance joint.
 
 Outputs (all-or-nothing, in ``--out``): ``joint_history.csv`` (one row per time step of the
-recorded cycles: time_s, crank_angle_deg, slider_x_m, ex_m, ey_m, penetration_m, fn_N, ft_N,
-fx_N, fy_N, rel_omega_rad_s, mode; see fewear.mbd.history for frames and signs),
+recorded cycles, in the form ``fewear run --joint-history`` reads: :mod:`fewear.io.joint_history`;
+see fewear.mbd.history for frames and signs),
 ``summary.json`` (peak_contact_force_N, impacts, steps, wall_time_s, ... and the config used),
 ``forces.png`` and ``orbit.png``; with several clearance joints, ``joint_history_<joint>.csv``
 and ``orbit_<joint>.png`` for each, and the summary's top-level figures are the first joint's
@@ -19,15 +19,13 @@ import numpy as np
 
 from fewear.errors import FewearInputError
 from fewear.io.config import load_config
+from fewear.io.joint_history import write_joint_history
 from fewear.io.limits import MAX_DYNAMICS_CYCLES
 from fewear.io.output import staged_output
 from fewear.mbd.history import MODES, JointHistory
 from fewear.mbd.mechanism import dynamics_inputs
 from fewear.mbd.mechanism import simulate as simulate_mechanism
 from fewear.mbd.slider_crank import SECTIONS, UNINTEGRABLE_HINT
-
-CSV_COLUMNS = ("time_s", "crank_angle_deg", "slider_x_m", "ex_m", "ey_m", "penetration_m", "fn_N",
-               "ft_N", "fx_N", "fy_N", "rel_omega_rad_s", "mode")
 
 
 def main(args) -> int:
@@ -43,7 +41,7 @@ def main(args) -> int:
     figures = {name: _figures(history) for name, history in histories.items()}
     with staged_output(args.out) as stage:
         for name, history in histories.items():
-            write_history_csv(history, stage / (f"joint_history_{name}.csv" if several
+            write_joint_history(history, stage / (f"joint_history_{name}.csv" if several
                                                  else "joint_history.csv"))
         report = {
             **next(iter(figures.values()), {}),
@@ -102,13 +100,3 @@ def _figures(history: JointHistory) -> dict:
                                for code, name in enumerate(MODES)}}
 
 
-def write_history_csv(history: JointHistory, path) -> None:
-    """The history as CSV with the columns of ``CSV_COLUMNS`` (mode as free/impact/contact)."""
-    numbers = np.column_stack([
-        history.time_s, np.degrees(history.crank_angle_rad), history.slider_x_m,
-        history.eccentricity_m, history.penetration_m, history.normal_force_N,
-        history.friction_force_N, history.reaction_force_N, history.rel_omega_rad_s])
-    with open(path, "w") as handle:
-        handle.write(",".join(CSV_COLUMNS) + "\n")
-        for row, mode in zip(numbers, history.mode):
-            handle.write(",".join(f"{v:.10g}" for v in row) + f",{MODES[mode]}\n")

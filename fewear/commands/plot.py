@@ -2,7 +2,8 @@
 
 Reads only the run's files (:mod:`fewear.plot.worn_bushing`); this command's process imports
 neither DOLFINx nor PETSc, so VTK and DOLFINx never share a process. The mesh is drawn at its last
-block, the rod models side by side at one exaggeration and on one colour scale; shown on screen,
+block: one row of panels per clearance joint, the cases (rod models) side by side, all at one
+exaggeration and on one colour scale (``--joint NAME``: that joint's row only); shown on screen,
 or written to ``DIR/worn_bushing.png`` off screen (``PYVISTA_OFF_SCREEN=true`` or no display;
 VTK's warnings, such as the missing X server's, are switched off).
 """
@@ -15,37 +16,45 @@ from pathlib import Path
 import numpy as np
 
 from fewear.errors import FewearInputError
-from fewear.plot.worn_bushing import FIGURE, VTK_BIQUADRATIC_QUAD, common_view, last_block
+from fewear.plot.worn_bushing import (
+    FIGURE,
+    VTK_BIQUADRATIC_QUAD,
+    common_view,
+    last_block,
+    panels,
+)
 
 
 def main(args) -> int:
     folder = Path(args.folder)
-    files = sorted(folder.glob("*.xdmf"))
-    if not files:
-        raise FewearInputError(f"{folder}: no <case>.xdmf of a `fewear run` to plot")
+    layout = panels(folder, getattr(args, "joint", None))
     import pyvista
     import vtk
 
     vtk.vtkObject.GlobalWarningDisplayOff()
     off_screen = os.environ.get("PYVISTA_OFF_SCREEN", "").lower() == "true" or not (
         os.environ.get("DISPLAY"))
-    cases = [last_block(path) for path in files]
-    scale, clim = common_view([case[2] for case in cases], [case[3] for case in cases],
-                              float(np.ptp(cases[0][0][:, 0])))
-    plotter = pyvista.Plotter(shape=(1, len(files)), off_screen=off_screen,
-                              window_size=(600 * len(files), 600))
-    for column, (path, (points, quads, displacement, radial, cycles)) in enumerate(
-            zip(files, cases)):
-        grid = pyvista.UnstructuredGrid(
-            np.column_stack([np.full(len(quads), 9), quads]).ravel(),
-            np.full(len(quads), VTK_BIQUADRATIC_QUAD), points + scale * displacement)
-        grid.point_data["wear depth (um)"] = 1e6 * np.maximum(radial, 0.0)
-        plotter.subplot(0, column)
-        plotter.add_mesh(grid, scalars="wear depth (um)", cmap="viridis", clim=clim,
-                         scalar_bar_args={"fmt": "%.1f"})
-        plotter.add_text(f"{path.stem} rod, {cycles:,.0f} cycles, motion x{scale:g}",
-                         font_size=10)
-        plotter.view_xy()
+    blocks = {path: last_block(path) for cases in layout.values() for path in cases.values()}
+    first = next(iter(blocks.values()))
+    scale, clim = common_view([block[2] for block in blocks.values()],
+                              [block[3] for block in blocks.values()],
+                              float(np.ptp(first[0][:, 0])))
+    rows, columns = len(layout), max(len(cases) for cases in layout.values())
+    plotter = pyvista.Plotter(shape=(rows, columns), off_screen=off_screen,
+                              window_size=(600 * columns, 600 * rows))
+    for row, (joint, cases) in enumerate(layout.items()):
+        for column, (case, path) in enumerate(cases.items()):
+            points, quads, displacement, radial, cycles = blocks[path]
+            grid = pyvista.UnstructuredGrid(
+                np.column_stack([np.full(len(quads), 9), quads]).ravel(),
+                np.full(len(quads), VTK_BIQUADRATIC_QUAD), points + scale * displacement)
+            grid.point_data["wear depth (um)"] = 1e6 * np.maximum(radial, 0.0)
+            plotter.subplot(row, column)
+            plotter.add_mesh(grid, scalars="wear depth (um)", cmap="viridis", clim=clim,
+                             scalar_bar_args={"fmt": "%.1f"})
+            plotter.add_text(f"{case}, joint {joint}, {cycles:,.0f} cycles, motion x{scale:g}",
+                             font_size=10)
+            plotter.view_xy()
     if off_screen:
         target = folder / FIGURE
         try:

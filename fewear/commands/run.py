@@ -1,11 +1,14 @@
-"""``fewear run``: the prediction for every rod model, a checkpoint after every block, a progress
-line per block, the outputs written all or nothing.
+"""``fewear run``: the prediction for every case (rod model) and its clearance joints, a checkpoint
+after every block, a progress line per block, the outputs written all or nothing.
 
-The rod models are independent runs, so they run side by side: under ``mpirun -n N`` the ranks
-are split into one sub-communicator per rod model (a rod model with several ranks splits its FE
-work among them); a plain ``fewear run`` starts one worker process per rod model, up to the
-CPU cores (``--jobs``). A rod model on one rank or in one process computes exactly what the
-serial run does, so the results are the same, bit for bit.
+The cases are independent runs, so they run side by side: under ``mpirun -n N`` the ranks are
+split into one sub-communicator per case (a case with several ranks splits its FE work among
+them); a plain ``fewear run`` starts one worker process per case, up to the CPU cores
+(``--jobs``). A case on one rank or in one process computes exactly what the serial run does,
+so the results are the same, bit for bit. The joints of a case share its dynamics every block,
+and every wear step of the block covers the same crank cycles for all of them
+(:func:`fewear.loop.block.wear_block`); a case on several ranks splits its joints among them
+(:mod:`fewear.loop.joint_ranks`), else they are worn one after the other.
 """
 
 from __future__ import annotations
@@ -17,72 +20,101 @@ import time
 from pathlib import Path
 
 from fewear.errors import FewearInputError, set_interrupt_note
-from fewear.loop.block import new_bushing, new_case, predict_case, restored_bushing
+from fewear.loop.block import JointRun, new_bushing, new_case, predict_joints, restored_bushing
 from fewear.loop.checkpoint import FOLDER, Checkpoint
-from fewear.loop.progress import CaseProgress
-from fewear.loop.settings import run_inputs_from_config, run_sections
+from fewear.loop.joint_ranks import JointRanks
+from fewear.loop.plan import run_plan
+from fewear.loop.settings import run_sections
 from fewear.parallel import usable_cores
 
 
 class Progress:
-    """One line per block of a rod model on stderr (the first rank of its communicator): a bar of
-    its cycles done, the depth, its ETA."""
+    """One line per block of a case on stderr (the first rank of its communicator): a bar of its
+    cycles done, each joint's depth, its ETA (and that its history is imported, if it is)."""
 
-    def __init__(self, comm, rod: str, total_cycles: int, start_cycles: int = 0):
-        self.comm, self.rod, self.total = comm, rod, total_cycles
+    def __init__(self, comm, case: str, total_cycles: int, start_cycles: int = 0,
+                 note: str = ""):
+        self.comm, self.case, self.total, self.note = comm, case, total_cycles, note
         self.start_cycles = start_cycles  # done before this process (--resume)
         self.start = time.perf_counter()
 
     def message(self, text: str) -> None:
         if self.comm.rank == 0:
-            print(f"fewear run [{time.perf_counter() - self.start:6.1f} s] {self.rod}: {text}",
+            print(f"fewear run [{time.perf_counter() - self.start:6.1f} s] {self.case}: {text}",
                   file=sys.stderr, flush=True)
 
-    def block(self, case: CaseProgress) -> None:
-        cycles = case.state.cycles
+    def block(self, joints: dict) -> None:
+        """After a block of ``joints`` (joint name -> :class:`CaseProgress`, at the same block)."""
+        state = next(iter(joints.values())).state
+        cycles = state.cycles
         done_here = cycles - self.start_cycles
         elapsed = time.perf_counter() - self.start
         eta = elapsed * (self.total - cycles) / done_here if done_here > 0 else math.inf
         bar = "#" * int(20 * cycles / self.total) + "." * (20 - int(20 * cycles / self.total))
-        self.message(f"[{bar}] block {case.state.blocks}, {cycles:,}/{self.total:,} cycles, "
-                     f"max depth {case.state.depth_m.max():.3e} m, ETA {eta:.0f} s")
+        depths = ", ".join(f"{progress.state.depth_m.max():.3e} m"
+                           + (f" ({joint})" if len(joints) > 1 else "")
+                           for joint, progress in joints.items())
+        self.message(f"[{bar}] block {state.blocks}, {cycles:,}/{self.total:,} cycles, "
+                     f"max depth {depths}, ETA {eta:.0f} s{self.note}")
 
 
 def _say(text: str) -> None:
     print(f"fewear run: {text}", file=sys.stderr, flush=True)
 
 
-def run_cases(rods, config: dict, out_dir, resumed: dict, comm) -> dict:
-    """The wear prediction of each of ``rods`` in turn on ``comm``, continuing the cases of
-    ``resumed`` (rod -> :class:`CaseProgress`), a checkpoint after every block; rod -> case."""
-    inputs = run_inputs_from_config(config)
-    store = Checkpoint(out_dir, config)
+def run_cases(case_names, config: dict, out_dir, resumed: dict, comm) -> dict:
+    """The wear prediction of each case of ``case_names`` in turn on ``comm`` (its joints split
+    among the ranks, :class:`fewear.loop.joint_ranks.JointRanks`), continuing the cases of
+    ``resumed`` (case -> joint name -> :class:`CaseProgress`), a checkpoint after every block;
+    case -> joint name -> progress (complete on the first rank)."""
+    plan = run_plan(config)
+    store = Checkpoint(out_dir, config, plan.history_sha256)
+    note = "" if plan.imported is None else " (imported joint history: no feedback)"
     cases = {}
-    for rod in rods:
-        case = resumed.get(rod)
-        progress = Progress(comm, rod, inputs.loop.total_cycles,
-                            0 if case is None else case.state.cycles)
-        if case is not None and case.state.cycles >= inputs.loop.total_cycles:
-            cases[rod] = case  # finished before an interruption: nothing to mesh or solve
+    for case in case_names:
+        saved = resumed.get(case)
+        start_cycles = 0 if saved is None else next(iter(saved.values())).state.cycles
+        progress = Progress(comm, case, plan.loop.total_cycles, start_cycles, note)
+        if start_cycles >= plan.loop.total_cycles:
+            cases[case] = saved  # finished before an interruption: nothing to mesh or solve
             continue
-        progress.message("meshing the bushing and condensing it onto the bore")
-        if case is None:
-            bushing = new_bushing(inputs, comm)
-            case = new_case(bushing)
-        else:
-            bushing = restored_bushing(inputs, case, comm)
-
-        def after_block(case, rod=rod, progress=progress):
-            if comm.rank == 0:
-                store.save(rod, case)
-            progress.block(case)
-
+        progress.message("meshing the bushing and condensing it onto the bore"
+                         + ("s" if len(plan.joints) > 1 else ""))
+        ranks = JointRanks(list(plan.joints), comm)
+        joints, whole = {}, dict(saved or {})
         try:
-            predict_case(rod, inputs, bushing, case, after_block)
+            for name in ranks.mine:
+                inputs, label = plan.joints[name], _joint_label(plan, case, name)
+                if saved is None:
+                    bushing = new_bushing(inputs, ranks.sub)
+                    joints[name] = JointRun(label, inputs, bushing, new_case(bushing))
+                else:
+                    joints[name] = JointRun(label, inputs, restored_bushing(
+                        inputs, saved[name], ranks.sub), saved[name])
+
+            def after_block(case=case, joints=joints, whole=whole, progress=progress,
+                            ranks=ranks):
+                ranks.gathered({name: joint.case for name, joint in joints.items()}, whole)
+                if comm.rank == 0:
+                    ordered = {name: whole[name] for name in plan.joints}
+                    store.save(case, ordered)
+                    progress.block(ordered)
+
+            predict_joints(case, joints, plan.simulate_block(config, case), after_block,
+                           ranks if ranks.split else None)
         finally:
-            bushing.close()
-        cases[rod] = case
+            for joint in joints.values():
+                joint.bushing.close()
+            ranks.close()
+        cases[case] = {name: whole[name] for name in plan.joints} if comm.rank == 0 else whole
     return cases
+
+
+def _joint_label(plan, case: str, joint: str) -> str:
+    """How the messages name a joint of a case: the slider-crank's one joint by its rod model."""
+    if len(plan.joints) > 1:
+        return f"{case} case, joint {joint}"
+    return f"{case} rod" if plan.imported is None else "imported joint history"
 
 
 def _run_in_worker(rods, config: dict, out_dir, resumed: dict) -> dict:
@@ -137,22 +169,26 @@ def _on_ranks(rods, config: dict, out_dir, resumed: dict, world) -> dict:
 
 
 def main(args) -> int:
-    """``fewear run``: the prediction for every rod model of ``[wear_loop]``, written all or
-    nothing into ``args.out``; a checkpoint after every block (``--resume`` continues it)."""
+    """``fewear run``: the prediction for every rod model of ``[wear_loop]`` (or for the joint
+    history of ``--joint-history`` / ``[wear_loop] joint_history``), written all or nothing into
+    ``args.out``; a checkpoint after every block (``--resume`` continues it)."""
     from fewear.io.config import load_config
 
     if args.resume and getattr(args, "overwrite", False):
         raise FewearInputError("--resume and --overwrite: choose one (--resume continues the run "
                                "in --out, --overwrite replaces it with a new one)")
-    predict_and_write(load_config(args.config, run_sections()), args)
+    config = load_config(args.config, run_sections())
+    if getattr(args, "joint_history", None):
+        config["wear_loop"]["joint_history"] = str(args.joint_history)
+    predict_and_write(config, args)
     return 0
 
 
-def predict_and_write(config: dict, args) -> dict[str, CaseProgress]:
-    """The prediction of ``config`` (loaded) for every rod model, written into ``args.out`` as
+def predict_and_write(config: dict, args) -> dict:
+    """The prediction of ``config`` (loaded) for every case, written into ``args.out`` as
     :func:`main` says (``args``: ``out``, ``resume``, ``overwrite``, ``jobs``, and ``config``, the
-    file named in messages); rod -> case on rank 0 ({} on the others). :func:`fewear.api.run`
-    calls it too."""
+    file named in messages); case -> joint -> progress on rank 0 ({} on the others).
+    :func:`fewear.api.run` calls it too."""
     from mpi4py import MPI
 
     from fewear.io.output import staged_output
@@ -160,18 +196,19 @@ def predict_and_write(config: dict, args) -> dict[str, CaseProgress]:
     from fewear.loop.outputs import write_run_outputs
 
     world = MPI.COMM_WORLD
-    inputs = run_inputs_from_config(config)
-    rods = list(inputs.loop.rod_models)
+    plan = run_plan(config)
+    rods = list(plan.cases)
     jobs = _jobs(args.jobs, len(rods))
-    store = Checkpoint(args.out, config)
-    resumed = store.load(rods) if args.resume else {}
+    store = Checkpoint(args.out, config, plan.history_sha256)
+    resumed = store.load(rods, plan.joints) if args.resume else {}
     if resumed and world.rank == 0:
         _say(f"resuming from {store.path}: " + ", ".join(
-            f"{rod} at {case.state.cycles:,} cycles" for rod, case in resumed.items()))
+            f"{rod} at {next(iter(case.values())).state.cycles:,} cycles"
+            for rod, case in resumed.items()))
     overwrite = getattr(args, "overwrite", False)
     with run_replaced(args.out, earlier_run, store, args.resume, overwrite,
                       resume_command(args).replace(" --resume", " --overwrite"), world):
-        set_interrupt_note(lambda: interrupt_note(args, store, rods, inputs.loop.total_cycles))
+        set_interrupt_note(lambda: interrupt_note(args, store, rods, plan.loop.total_cycles))
         with staged_output(args.out, world) as stage:
             if world.size > 1:
                 cases = _on_ranks(rods, config, args.out, resumed, world)
@@ -181,31 +218,37 @@ def predict_and_write(config: dict, args) -> dict[str, CaseProgress]:
                 cases = run_cases(rods, config, args.out, resumed, world)
             if world.rank == 0:
                 cases = {rod: cases[rod] for rod in rods}
-                write_run_outputs(stage, cases, inputs, config)
-                write_run_figures(stage, cases, inputs.loop.total_cycles)
+                write_run_outputs(stage, cases, plan.joints, config, plan.history_source)
+                write_run_figures(stage, cases, plan.loop.total_cycles)
     if world.rank == 0:
         _say(f"done: {args.out}")
     return cases if world.rank == 0 else {}
 
 
-def write_run_figures(folder: Path, cases: dict[str, CaseProgress], total_cycles: int) -> None:
-    """``wear_profiles.png`` (seed Fig. 7a) and ``max_wear.png`` (seed Fig. 7b) of the cases."""
+def write_run_figures(folder: Path, cases: dict, total_cycles: int) -> None:
+    """``wear_profiles.png`` (seed Fig. 7a) and ``max_wear.png`` (seed Fig. 7b) of the cases'
+    joints (case -> joint -> :class:`fewear.loop.progress.CaseProgress`)."""
     import numpy as np
 
     from fewear.loop.outputs import MAX_WEAR_PNG, PROFILES_PNG
     from fewear.plot.wear import plot_max_wear, plot_wear_profiles
 
-    plot_wear_profiles({rod: (case.state.angle_rad, case.state.depth_m)
-                        for rod, case in cases.items()}, folder / PROFILES_PNG, total_cycles)
-    plot_max_wear({rod: (np.array([r.cycles for r in case.records]),
-                         np.array([r.depth_m.max() for r in case.records]))
-                   for rod, case in cases.items()}, folder / MAX_WEAR_PNG)
+    labelled = {case if len(joints) == 1 else f"{case}, {joint}": progress
+                for case, joints in cases.items() for joint, progress in joints.items()}
+    plot_wear_profiles({label: (progress.state.angle_rad, progress.state.depth_m)
+                        for label, progress in labelled.items()}, folder / PROFILES_PNG,
+                       total_cycles)
+    plot_max_wear({label: (np.array([r.cycles for r in progress.records]),
+                           np.array([r.depth_m.max() for r in progress.records]))
+                   for label, progress in labelled.items()}, folder / MAX_WEAR_PNG)
 
 
 def resume_command(args) -> str:
     """The command line that continues this run."""
     config = "" if args.config is None else f" --config {shlex.quote(str(args.config))}"
-    return f"fewear run --resume{config} --out {shlex.quote(str(args.out))}"
+    history = getattr(args, "joint_history", None)
+    history = "" if not history else f" --joint-history {shlex.quote(str(history))}"
+    return f"fewear run --resume{config}{history} --out {shlex.quote(str(args.out))}"
 
 
 def interrupt_note(args, store: Checkpoint, rods, total_cycles: int) -> str:

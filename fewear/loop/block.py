@@ -1,12 +1,15 @@
-"""One wear block of a rod model (stages 1-5 of the flowchart in :mod:`fewear.loop`), and the
-blocks of a case until its total cycles."""
+"""One wear block of a case's clearance joints (stages 1-5 of the flowchart in :mod:`fewear.loop`),
+and the blocks of a case until its total cycles: the slider-crank's one joint
+(:func:`run_block`, :func:`predict_case`), or every joint of a mechanism worn together on one
+dynamics (:func:`predict_joints`)."""
 
 from __future__ import annotations
 
 import math
 import time
 from concurrent.futures import Executor, Future, ThreadPoolExecutor
-from dataclasses import replace
+from contextlib import contextmanager
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -33,13 +36,12 @@ def smoothed_block_wear(per_cycle: CycleSliding, state: WearState, extension, cy
 
 
 def block_dynamics(rod: str, inputs: RunInputs, state: WearState, mechanism):
-    """Stage 1 of a block: the clearance-joint dynamics of ``rod`` on the worn clearance of
-    ``state``, warm-started from ``mechanism`` (None: the ideal mechanism, settling
-    ``[mechanism] settling_cycles``; else ``warm_settling_cycles``). Returns (the
-    :func:`fewear.mbd.slider_crank.simulate` result, its wall time in s); a mechanism the
+    """Stage 1 of a block of the slider-crank's one joint: the clearance-joint dynamics of
+    ``rod`` on the worn clearance of ``state``, warm-started from ``mechanism`` (None: the ideal
+    mechanism, settling ``[mechanism] settling_cycles``; else ``warm_settling_cycles``). Returns
+    (the :func:`fewear.mbd.slider_crank.simulate` result, its wall time in s); a mechanism the
     integrator cannot carry is a :class:`FewearInputError` (run ahead in a thread, its future
     raises it when its block comes)."""
-    from fewear.mbd.integrator import StepSizeCollapse
     from fewear.mbd.slider_crank import UNINTEGRABLE_HINT, simulate
 
     loop = inputs.loop
@@ -51,40 +53,83 @@ def block_dynamics(rod: str, inputs: RunInputs, state: WearState, mechanism):
     joint = replace(inputs.dynamics.joint,
                     profile=state.clearance_profile(geometry.inner_radius_m,
                                                     geometry.pin_radius_m))
-    start = time.perf_counter()
-    try:
+    with _dynamics_failure(f"{rod} rod", state, {"": inputs}, UNINTEGRABLE_HINT):
+        start = time.perf_counter()
         result = simulate(replace(inputs.dynamics, crank=crank, joint=joint), start=mechanism)
+    return result, time.perf_counter() - start
+
+
+def mechanism_dynamics(case: str, dynamics, joints: dict, states: dict, mechanism):
+    """Stage 1 of a block of a mechanism's clearance joints (:mod:`fewear.loop.mechanism_adapter`):
+    one run of the dynamics of ``case`` (its typed inputs ``dynamics``) with every joint on the
+    worn clearance of its wear state (``states``: joint name -> :class:`WearState`; ``joints``:
+    joint name -> its :class:`RunInputs`), warm-started as :func:`block_dynamics`. Returns ((joint
+    name -> history, summary, final state), wall time in s)."""
+    from fewear.loop import mechanism_adapter as adapter
+
+    loop = next(iter(joints.values())).loop
+    profiles = {name: states[name].clearance_profile(inputs.contact.geometry.inner_radius_m,
+                                                     inputs.contact.geometry.pin_radius_m)
+                for name, inputs in joints.items()}
+    inputs = adapter.block_inputs(dynamics, loop.recorded_cycles_per_block,
+                                  None if mechanism is None else loop.warm_settling_cycles)
+    first = next(iter(states.values()))
+    with _dynamics_failure(f"{case} case", first, joints, adapter.unintegrable_hint()):
+        start = time.perf_counter()
+        result = adapter.simulate(inputs, start=mechanism, profiles=profiles)
+    return result, time.perf_counter() - start
+
+
+@contextmanager
+def _dynamics_failure(label: str, state: WearState, joints: dict, hint: str):
+    """A collapse of the integrator's step size as a :class:`FewearInputError` saying why: the
+    pin pushed beyond a joint's radial clearance (a jammed worn pocket), or what may get past it
+    (``hint`` on the unworn clearance)."""
+    from fewear.mbd.integrator import StepSizeCollapse
+
+    try:
+        yield
     except StepSizeCollapse as exc:
-        clearance_m = geometry.inner_radius_m - geometry.pin_radius_m
-        if any(delta > clearance_m for delta, _, _ in exc.joints):
-            why = (f"the pin was pushed deeper into the bore than the joint's radial clearance "
-                   f"({clearance_m * 1e3:g} mm): the mechanism jammed it into its worn pocket, "
-                   "beyond the small elastic deformation the contact law describes; the wear "
-                   "cannot be predicted past this bore")
+        clearances = {name: inputs.contact.geometry.inner_radius_m
+                      - inputs.contact.geometry.pin_radius_m for name, inputs in joints.items()}
+        deepest = max(delta for delta, _, _ in exc.joints) if exc.joints else 0.0
+        jammed = [name for name, clearance in clearances.items() if deepest > clearance]
+        if jammed:
+            clearance_m = clearances[jammed[0]]
+            joint = f" of joint {jammed[0]}" if jammed[0] else ""
+            why = (f"the pin was pushed deeper into the bore than the joint's radial clearance"
+                   f"{joint} ({clearance_m * 1e3:g} mm): the mechanism jammed it into its worn "
+                   "pocket, beyond the small elastic deformation the contact law describes; the "
+                   "wear cannot be predicted past this bore")
         else:
             why = ("a smaller [integrator] min_step_s (1e-11 s carried the undamped rod through "
                    "a block where its Newton iterates cycled across the friction law's kink), a "
                    "larger gap_tolerance_m or a wider [wear_loop] wear_smoothing_width_deg may "
-                   "get past it" + ("" if state.blocks else f"; on the unworn clearance, "
-                                    f"{UNINTEGRABLE_HINT}"))
+                   "get past it" + ("" if state.blocks else f"; on the unworn clearance, {hint}"))
         raise FewearInputError(
-            f"{rod} rod, block {state.blocks + 1} at {state.cycles:,} cycles: the dynamics "
+            f"{label}, block {state.blocks + 1} at {state.cycles:,} cycles: the dynamics "
             f"on the worn clearance failed ({exc}): {why}") from None
-    return result, time.perf_counter() - start
+
+
+@dataclass
+class JointRun:
+    """One clearance joint of a case in the loop: ``label`` names it in messages, ``inputs`` its
+    typed inputs, ``bushing`` its FE bushing on the worn bore, ``case`` its progress."""
+
+    label: str
+    inputs: RunInputs
+    bushing: object
+    case: CaseProgress
 
 
 def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
               added_depth_per_cycle=None, dynamics: Future | None = None,
               ahead: Executor | None = None) -> Future | None:
-    """One wear block of ``case``, updating it in place: stage 1 (the dynamics on the worn
-    clearance), then ``[wear_loop] wear_steps_per_block`` wear steps (stages 2-5,
-    :func:`wear_step`) on its recorded cycles, each with the contact solved on the bore the
-    previous step left. The contact and wear respond to the bore within tens of crank cycles
-    (a stiff process: :func:`fewear.wear.archard.block_wear`), the joint's dynamics to the
-    clearance far more slowly; wear steps shorter than the dynamics' block buy accuracy at the
-    price of contact solves, not of dynamics. ``added_depth_per_cycle`` (history, state) ->
-    depth per cycle (m, per bore node), optional: a wear source of another law added to each
-    step's impact wear (a given source of the step, like it).
+    """One wear block of the slider-crank's one joint, ``case`` updated in place: stage 1 (the
+    dynamics on the worn clearance, :func:`block_dynamics`), then :func:`wear_block`.
+    ``added_depth_per_cycle`` (history, state) -> depth per cycle (m, per bore node), optional:
+    a wear source of another law added to each step's impact wear (a given source of the step,
+    like it).
 
     ``dynamics``: this block's stage 1 already under way (the future of :func:`block_dynamics`,
     as returned by the previous block), else it runs here. ``ahead``: an executor on which the
@@ -92,56 +137,158 @@ def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
     mesh stage; its future is returned (None without ``ahead`` or after the last block). The
     dynamics depend only on the wear state and the mechanism's last state, so the result is the
     same either way."""
-    loop, times = inputs.loop, case.stage_wall_time_s
-    start = case.state
     if dynamics is None:
-        (history, _, case.mechanism), seconds = block_dynamics(rod, inputs, start,
-                                                                case.mechanism)
+        (history, _, mechanism), seconds = block_dynamics(rod, inputs, case.state,
+                                                           case.mechanism)
     else:
-        (history, _, case.mechanism), seconds = dynamics.result()
-    times["dynamics"] += seconds
-    with timed(times, "contact"):
-        steps = load_steps(history, loop.load_steps_per_cycle * loop.recorded_cycles_per_block,
-                           inputs.dynamics.joint.law, inputs.impact_law)
-    following, peak_pressure, peak_rate, inner = None, 0.0, 0.0, []
+        (history, _, mechanism), seconds = dynamics.result()
+    following = []
+
+    def start_next(worn: dict) -> None:
+        if ahead is not None:
+            following.append(ahead.submit(block_dynamics, rod, inputs, worn[rod], mechanism))
+
+    added = None if added_depth_per_cycle is None else {rod: added_depth_per_cycle}
+    wear_block({rod: JointRun(f"{rod} rod", inputs, bushing, case)}, {rod: history}, mechanism,
+               seconds, start_next, added)
+    return following[0] if following else None
+
+
+def wear_block(joints: dict, histories: dict, mechanism, dynamics_s: float,
+               start_next=None, added_depth_per_cycle: dict | None = None,
+               ranks=None) -> None:
+    """Stages 2-5 of a wear block of every joint of ``joints`` (name -> :class:`JointRun`), each
+    on its recorded history of ``histories`` (name -> history), their progress updated in place:
+    ``[wear_loop] wear_steps_per_block`` wear steps (:func:`joint_wear_step`), each with the
+    contact solved on the bore the previous step left. The contact and wear respond to the bore
+    within tens of crank cycles (a stiff process: :func:`fewear.wear.archard.block_wear`), the
+    joint's dynamics to the clearance far more slowly; wear steps shorter than the dynamics'
+    block buy accuracy at the price of contact solves, not of dynamics.
+
+    The joints step together: a step covers the fewest cycles any joint's extrapolation chose (the
+    next block's dynamics needs every joint at the same crank cycle); the others' increment is
+    worn again over those cycles. ``mechanism``: the mechanism's state after the block's
+    dynamics (the next block's warm start), ``dynamics_s`` their wall time. ``start_next``
+    (joint name -> worn state), optional: called once the block's last wear step is known and
+    before its mesh stage, unless the run is done (the next block's dynamics start there).
+    ``added_depth_per_cycle``: joint name -> (history, state) -> depth per cycle (m), as
+    :func:`run_block`'s. ``ranks``: the :class:`fewear.loop.joint_ranks.JointRanks` of a case
+    whose joints are split among its ranks (``joints`` this rank's only), else None."""
+    first = next(iter(joints.values()))
+    loop = first.inputs.loop
+    steps, starts, peaks, inner = {}, {}, {}, {name: [] for name in joints}
+    for name, joint in joints.items():
+        times = joint.case.stage_wall_time_s
+        times["dynamics"] += dynamics_s
+        joint.case.mechanism = mechanism
+        starts[name], peaks[name] = joint.case.state, [0.0, 0.0]
+        with timed(times, "contact"):
+            steps[name] = load_steps(
+                histories[name], loop.load_steps_per_cycle * loop.recorded_cycles_per_block,
+                joint.inputs.joint.law, joint.inputs.impact_law)
+    added = added_depth_per_cycle or {}
     for step in range(loop.wear_steps_per_block):
-        worn, wear, rate = wear_step(rod, inputs, bushing, case.state, history, steps, times,
-                                     added_depth_per_cycle)
-        last = step == loop.wear_steps_per_block - 1 or worn.cycles >= loop.total_cycles
+        error, proposed, worn = None, {}, {}
+        try:
+            proposed = {name: joint_wear_step(joint, histories[name], steps[name],
+                                              added.get(name)) for name, joint in joints.items()}
+        except FewearInputError as exc:
+            if ranks is None:
+                raise
+            error = exc
+        cycles = min([proposal.cycles for proposal in proposed.values()] or [0])
+        if ranks is not None:
+            cycles = min(ranks.agreed(cycles, error))
+        try:
+            worn = {name: proposal.worn_over(cycles, joints[name])
+                    for name, proposal in proposed.items()}
+        except FewearInputError as exc:
+            if ranks is None:
+                raise
+            error = exc
+        if ranks is not None:
+            ranks.agreed(error=error)
+        done = next(iter(worn.values())).cycles >= loop.total_cycles
+        last = step == loop.wear_steps_per_block - 1 or done
         if last:
-            worn = replace(worn, blocks=start.blocks + 1)
-            if ahead is not None and worn.cycles < loop.total_cycles:
-                following = ahead.submit(block_dynamics, rod, inputs, worn, case.mechanism)
-        with timed(times, "mesh"):
-            bushing.move_to(worn)
-        case.state = worn
-        case.counts.dropped_steps += wear.dropped_steps
-        peak_pressure = max(peak_pressure, float(wear.pressure_Pa.max()))
-        peak_rate = max(peak_rate, rate)
+            worn = {name: replace(state, blocks=starts[name].blocks + 1)
+                    for name, state in worn.items()}
+            if start_next is not None and not done:
+                start_next(worn)
+        for name, joint in joints.items():
+            with timed(joint.case.stage_wall_time_s, "mesh"):
+                joint.bushing.move_to(worn[name])
+            joint.case.state = worn[name]
+            joint.case.counts.dropped_steps += proposed[name].wear.dropped_steps
+            peaks[name] = [max(peaks[name][0], float(proposed[name].wear.pressure_Pa.max())),
+                           max(peaks[name][1], proposed[name].peak_rate_m)]
+            if not last:
+                inner[name].append(worn[name])
         if last:
             break
-        inner.append(worn)
-    with timed(times, "mesh"):
-        snapshot = bushing.snapshot()
+    for name, joint in joints.items():
+        _record_block(joint, starts[name], histories[name], peaks[name], inner[name])
+
+
+def _record_block(joint: JointRun, start: WearState, history, peaks, inner: list) -> None:
+    """The mesh snapshot and the :class:`BlockRecord` of a joint's block from ``start``."""
+    case, worn = joint.case, joint.case.state
+    with timed(case.stage_wall_time_s, "mesh"):
+        snapshot = joint.bushing.snapshot()
     case.node_ids, case.cells, case.meshed_xy_m = (snapshot.node_ids, snapshot.cells,
-                                                   bushing.meshed_xy_m)
+                                                   joint.bushing.meshed_xy_m)
     case.snapshots.append(snapshot.xy_m)
     case.records.append(BlockRecord(
         worn.cycles, worn.cycles - start.cycles, worn.depth_m.copy(),
-        history.peak_contact_force_N, history.impacts, peak_pressure, peak_rate,
+        history.peak_contact_force_N, history.impacts, peaks[0], peaks[1],
         np.array([w.cycles for w in inner], dtype=int),
         np.array([w.depth_m for w in inner]).reshape(len(inner), worn.depth_m.size)))
-    return following
 
 
-def wear_step(rod: str, inputs: RunInputs, bushing, state: WearState, history, steps,
-              times: dict, added_depth_per_cycle=None):
-    """Stages 2-4 of one wear step on the bore of ``state``: the contact at every load step of
-    ``steps`` (cut from ``history``), Archard's law summed into one crank cycle, and the step's
-    A_j cycles extrapolated (:func:`fewear.wear.extrapolation.extrapolate_block`). Returns (the
-    worn state, its ``blocks`` count unchanged; the :class:`CycleWear`; the largest depth per
-    simulated cycle, m), the stage times added to ``times``."""
-    loop = inputs.loop
+@dataclass(frozen=True)
+class WearProposal:
+    """One joint's wear step as its own extrapolation chose it: ``cycles`` A_j, the depth
+    ``increment_m`` and sliding state after them; ``per_cycle``: what one crank cycle does (to
+    wear it over fewer cycles); ``wear``: the step's :class:`CycleWear`; ``peak_rate_m``: the
+    largest depth per simulated cycle (m)."""
+
+    state: WearState
+    cycles: int
+    increment_m: np.ndarray
+    sliding: object
+    per_cycle: CycleSliding
+    wear: object
+    peak_rate_m: float
+
+    def worn_over(self, cycles: int, joint: JointRun) -> WearState:
+        """The worn state after ``cycles`` <= ``self.cycles`` (its ``blocks`` count unchanged),
+        checked against the bushing wall."""
+        inputs, state = joint.inputs, self.state
+        increment, sliding = self.increment_m, self.sliding
+        if cycles != self.cycles:
+            with timed(joint.case.stage_wall_time_s, "wear"):
+                increment, sliding = smoothed_block_wear(
+                    self.per_cycle, state, inputs.extension, cycles,
+                    math.radians(inputs.loop.wear_smoothing_width_deg))
+        worn = WearState(state.angle_rad, state.depth_m + increment, sliding,
+                         state.cycles + cycles, state.blocks)
+        geometry = inputs.contact.geometry
+        try:
+            worn.checked_against_wall(geometry.inner_radius_m, geometry.outer_radius_m,
+                                      inputs.loop.max_wall_fraction)
+        except FewearInputError as exc:
+            raise FewearInputError(f"{joint.label}: {exc}") from None
+        return worn
+
+
+def joint_wear_step(joint: JointRun, history, steps, added_depth_per_cycle=None
+                    ) -> WearProposal:
+    """Stages 2-4 of one wear step of a joint on the bore of its state: the contact at every load
+    step of ``steps`` (cut from ``history``), Archard's law summed into one crank cycle, and the
+    step's A_j cycles extrapolated (:func:`fewear.wear.extrapolation.extrapolate_block`); the
+    stage times added to the joint's."""
+    inputs, bushing, state = joint.inputs, joint.bushing, joint.case.state
+    loop, times = inputs.loop, joint.case.stage_wall_time_s
     with timed(times, "contact"):
         try:
             wear = cycle_wear(bushing, steps, inputs.wear_coefficient, loop.friction_in_contact,
@@ -149,8 +296,8 @@ def wear_step(rod: str, inputs: RunInputs, bushing, state: WearState, history, s
                               footprints=inputs.impact_law.wears_by_impacts)
         except ContactLoadError as exc:  # a force the model cannot carry, or no equilibrium
             raise FewearInputError(
-                f"{rod} rod, block {state.blocks + 1} at {state.cycles:,} cycles: the FE contact "
-                f"on the worn bore failed ({exc}); peak joint force "
+                f"{joint.label}, block {state.blocks + 1} at {state.cycles:,} cycles: the FE "
+                f"contact on the worn bore failed ({exc}); peak joint force "
                 f"{history.peak_contact_force_N:.0f} N: a smaller [wear_loop] "
                 "max_depth_increment_fraction (adaptive extrapolation) or a wider "
                 "wear_smoothing_width_deg keeps the worn bore smoother") from None
@@ -166,12 +313,8 @@ def wear_step(rod: str, inputs: RunInputs, bushing, state: WearState, history, s
             lambda cycles: smoothed_block_wear(per_cycle, state, inputs.extension, cycles,
                                                math.radians(loop.wear_smoothing_width_deg)),
             bushing.element_height_m, loop.total_cycles - state.cycles)
-        worn = WearState(state.angle_rad, state.depth_m + increment, sliding,
-                         state.cycles + cycles, state.blocks)
-        geometry = inputs.contact.geometry
-        worn.checked_against_wall(geometry.inner_radius_m, geometry.outer_radius_m,
-                                  loop.max_wall_fraction)
-    return worn, wear, float((per_cycle.depth_m + per_cycle.impact_depth_m).max())
+    return WearProposal(state, cycles, increment, sliding, per_cycle, wear,
+                        float((per_cycle.depth_m + per_cycle.impact_depth_m).max()))
 
 
 def new_case(bushing) -> CaseProgress:
@@ -204,13 +347,41 @@ def restored_bushing(inputs: RunInputs, case: CaseProgress, comm):
 
 
 def predict_case(rod: str, inputs: RunInputs, bushing, case: CaseProgress, after_block) -> None:
-    """Wear blocks until ``total_cycles``; ``after_block(case)`` runs after each (checkpoint,
-    progress). Each block's dynamics runs in a thread from the moment the previous block's wear
-    is known, beside that block's mesh stage and ``after_block`` (:func:`run_block`; the compiled
-    dynamics release the interpreter lock): on a free core the mesh stage costs no wall time.
-    Stage times then overlap."""
+    """Wear blocks of the slider-crank's one joint until ``total_cycles``; ``after_block(case)``
+    runs after each (checkpoint, progress). Each block's dynamics runs in a thread from the
+    moment the previous block's wear is known, beside that block's mesh stage and
+    ``after_block`` (:func:`run_block`; the compiled dynamics release the interpreter lock): on a
+    free core the mesh stage costs no wall time. Stage times then overlap."""
     with ThreadPoolExecutor(max_workers=1, thread_name_prefix=f"fewear-{rod}-dynamics") as ahead:
         following = None
         while case.state.cycles < inputs.loop.total_cycles:
             following = run_block(rod, inputs, bushing, case, dynamics=following, ahead=ahead)
             after_block(case)
+
+
+def predict_joints(label: str, joints: dict, simulate_block, after_block, ranks=None) -> None:
+    """Wear blocks of every joint of a case (joint name -> :class:`JointRun`, in step) until
+    ``total_cycles``; ``after_block()`` runs after each (checkpoint, progress).
+    ``simulate_block(states, mechanism)``: stage 1 for every joint's wear state (joint name ->
+    :class:`WearState`) from the mechanism's last state, returning ((joint name -> history,
+    summary, final state), wall time in s); it runs in a thread ahead, as in
+    :func:`predict_case`. ``ranks``: a :class:`fewear.loop.joint_ranks.JointRanks` when the
+    case's joints are split among its ranks (``joints`` this rank's only)."""
+    first = next(iter(joints.values()))
+    share = dict if ranks is None else ranks.all_states
+    with ThreadPoolExecutor(max_workers=1, thread_name_prefix=f"fewear-{label}-dynamics") as ahead:
+        following = None
+        while first.case.state.cycles < first.inputs.loop.total_cycles:
+            if following is None:
+                following = ahead.submit(simulate_block, share(
+                    {name: joint.case.state for name, joint in joints.items()}),
+                    first.case.mechanism)
+            (histories, _, mechanism), seconds = following.result()
+            following = None
+
+            def start_next(worn: dict, mechanism=mechanism) -> None:
+                nonlocal following
+                following = ahead.submit(simulate_block, share(worn), mechanism)
+
+            wear_block(joints, histories, mechanism, seconds, start_next, ranks=ranks)
+            after_block()

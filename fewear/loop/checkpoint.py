@@ -1,21 +1,23 @@
 """The checkpoint of ``fewear run``: everything needed to continue after any wear block.
 
-One folder, ``OUT/fewear-checkpoint/``, with per rod model (each case is saved by the ranks or
-the process that runs it, so cases run side by side):
+One folder, ``OUT/fewear-checkpoint/``, with per case (each case is saved by the ranks or the
+process that runs it, so cases run side by side):
 
-- ``<rod>.npz``: the complete config the run used, the wear state, the mechanism's final state
-  (the next block's warm start), the block records, the mesh as made (the reference of its
-  motion), the counts and the stage times; rewritten atomically (a temporary file renamed over
-  it) after every block, so an interrupted run (Ctrl-C, a crash, a killed job) loses at most the
-  block in progress;
-- ``<rod>-mesh-<block>.npy``: the moved mesh's node coordinates after each block (block 0: the
-  unworn mesh), each written once, before the ``.npz`` that counts it: the I/O per block stays
-  the same however long the run.
+- ``<case>.npz``: the complete config the run used, the mechanism's final state (the next
+  block's warm start; none for an imported joint history) and, per clearance joint
+  (``<joint>/<array>``), the wear state, the block records, the mesh as made (the reference of
+  its motion), the counts and the stage times; rewritten atomically (a temporary file renamed
+  over it) after every block, so an interrupted run (Ctrl-C, a crash, a killed job) loses at
+  most the block in progress, and the joints of a case are always saved at the same block;
+- ``<case>-<joint>-mesh-<block>.npy``: a joint's moved mesh node coordinates after each block
+  (block 0: the unworn mesh), each written once, before the ``.npz`` that counts it: the I/O per
+  block stays the same however long the run.
 
 ``fewear run --resume`` rebuilds the same objects and continues; since every block starts from
 exactly these arrays, the resumed run ends with the result of an uninterrupted one. A checkpoint
-made with another config, or one that cannot be read, is an input error naming the cause:
-resuming it would silently mix two different runs.
+made with another config, another imported joint history (its SHA-256) or another version (the
+single-joint format before this one), or one that cannot be read, is an input error naming the
+cause: resuming it would silently mix two different runs.
 """
 
 from __future__ import annotations
@@ -36,7 +38,7 @@ from fewear.wear.extensions import SlidingState
 from fewear.wear.state import WearState
 
 FOLDER = "fewear-checkpoint"
-FORMAT = "fewear-run-checkpoint-3"
+FORMAT = "fewear-run-checkpoint-4"
 LOOP_COUNT_NAMES = [count.name for count in fields(LoopCounts)]
 UNREADABLE = (OSError, ValueError, KeyError, zipfile.BadZipFile, json.JSONDecodeError, EOFError,
               SyntaxError, tokenize.TokenError)  # the last: numpy parsing a corrupt array header
@@ -45,33 +47,47 @@ UNREADABLE = (OSError, ValueError, KeyError, zipfile.BadZipFile, json.JSONDecode
 class Checkpoint:
     """The checkpoint folder of a run writing into ``out_dir`` with ``config``."""
 
-    def __init__(self, out_dir, config: dict):
+    def __init__(self, out_dir, config: dict, history_sha256: str = ""):
         self.path = Path(out_dir).resolve() / FOLDER
         self.config = json.loads(json.dumps(config))
+        self.history_sha256 = history_sha256  # of an imported joint history ("": none)
 
-    def case_path(self, rod: str) -> Path:
-        return self.path / f"{rod}.npz"
+    def case_path(self, case: str) -> Path:
+        return self.path / f"{case}.npz"
 
-    def mesh_path(self, rod: str, block: int) -> Path:
-        return self.path / f"{rod}-mesh-{block:05d}.npy"
+    def mesh_path(self, case: str, joint: str, block: int) -> Path:
+        return self.path / f"{case}-{joint}-mesh-{block:05d}.npy"
 
-    def save(self, rod: str, case: CaseProgress) -> None:
-        """Write ``case``'s progress after a block: the new mesh snapshots, then the case."""
+    def save(self, case: str, joints: dict) -> None:
+        """Write a case's progress after a block (``joints``: joint name ->
+        :class:`CaseProgress`, all at the same block): the new mesh snapshots, then the case."""
         self.path.mkdir(parents=True, exist_ok=True)
-        last = len(case.snapshots) - 1  # new, or left by a block that did not finish: write it
-        for block in range(last + 1):
-            if block == last or not self.mesh_path(rod, block).exists():
-                np.save(self.mesh_path(rod, block), case.snapshots[block])
-        arrays = {"meta": np.array(json.dumps({
-            "format": FORMAT, "config": self.config, "case": _case_meta(case)})),
-            **_case_arrays(case)}
-        temporary = self.path / f".{rod}.{os.getpid()}.tmp"
+        arrays, meta = {}, {}
+        for joint, progress in joints.items():
+            last = len(progress.snapshots) - 1  # new, or left by a block that did not finish
+            for block in range(last + 1):
+                if block == last or not self.mesh_path(case, joint, block).exists():
+                    np.save(self.mesh_path(case, joint, block), progress.snapshots[block])
+            arrays.update({f"{joint}/{key}": value
+                           for key, value in _case_arrays(progress).items()})
+            meta[joint] = _case_meta(progress)
+        first = next(iter(joints.values()))
+        mechanism = first.mechanism
+        if mechanism is not None:
+            arrays.update(q=mechanism.q, qd=mechanism.qd)
+        arrays["meta"] = np.array(json.dumps({
+            "format": FORMAT, "config": self.config, "history_sha256": self.history_sha256,
+            "case": {
+                "cycles": int(first.state.cycles), "blocks": int(first.state.blocks),
+                "time_s": None if mechanism is None else float(mechanism.time_s),
+                "joints": meta}}))
+        temporary = self.path / f".{case}.{os.getpid()}.tmp"
         with open(temporary, "wb") as handle:
             np.savez(handle, **arrays)
-        os.replace(temporary, self.case_path(rod))
+        os.replace(temporary, self.case_path(case))
 
     def saved_cycles(self) -> dict:
-        """rod -> crank cycles of each case saved in the folder (read from the cases' metadata
+        """case -> crank cycles of each case saved in the folder (read from the cases' metadata
         only, whatever config made them; an unreadable case is left out)."""
         found = {}
         for path in sorted(self.path.glob("*.npz")) if self.path.is_dir() else []:
@@ -85,23 +101,25 @@ class Checkpoint:
         return found
 
     def remove_temporary_files(self) -> None:
-        """Drop the half-written ``.<rod>.<pid>.tmp`` files of a process that was killed while
+        """Drop the half-written ``.<case>.<pid>.tmp`` files of a process that was killed while
         it saved (the case files themselves are replaced atomically)."""
         for path in self.path.glob(".*.tmp") if self.path.is_dir() else []:
             path.unlink(missing_ok=True)
 
-    def load(self, rods) -> dict:
-        """The saved cases among ``rods`` (rod -> :class:`fewear.loop.progress.CaseProgress`); an
-        input error when there is none, or one is unreadable or made with another config."""
-        cases = {rod: self._load_case(rod) for rod in rods if self.case_path(rod).exists()}
-        if not cases:
+    def load(self, cases, joints) -> dict:
+        """The saved cases among ``cases`` (case -> joint name -> :class:`CaseProgress`, the
+        joints of ``joints`` in order); an input error when there is none, or one is unreadable,
+        made with another config or version, or holds other joints."""
+        saved = {case: self._load_case(case, list(joints)) for case in cases
+                 if self.case_path(case).exists()}
+        if not saved:
             raise FewearInputError(
                 f"--resume: no checkpoint in {self.path} (a run writes it after its first "
                 "block); run without --resume to start")
-        return cases
+        return saved
 
-    def _load_case(self, rod: str) -> CaseProgress:
-        path = self.case_path(rod)
+    def _load_case(self, case: str, joints: list) -> dict:
+        path = self.case_path(case)
         try:
             if not_a_regular_file(path):
                 raise ValueError(f"it is {not_a_regular_file(path)}, not a regular file")
@@ -127,10 +145,31 @@ class Checkpoint:
             raise FewearInputError(
                 f"--resume: checkpoint {path} was made with another config ({difference}); "
                 "resume with the same config, or run without --resume into another --out")
+        if meta.get("history_sha256", "") != self.history_sha256:
+            raise FewearInputError(
+                f"--resume: checkpoint {path} was made with another joint history (its file "
+                f"{self.config['wear_loop'].get('joint_history')} has changed since); resume "
+                "with the same history, or run without --resume into another --out")
+        saved = list(meta.get("case", {}).get("joints", {}))
+        if saved != joints:
+            raise FewearInputError(
+                f"--resume: checkpoint {path} holds the clearance joints {saved}, the run has "
+                f"{joints}; run without --resume into another --out")
         try:
-            snapshots = [np.load(self.mesh_path(rod, block), allow_pickle=False)
-                         for block in range(meta["case"]["blocks"] + 1)]
-            return _case_from(meta["case"], data, snapshots)
+            mechanism = None
+            if meta["case"]["time_s"] is not None:
+                from fewear.loop.mechanism_adapter import MechanismState
+
+                mechanism = MechanismState(meta["case"]["time_s"], data["q"], data["qd"])
+            progress = {}
+            for joint in joints:
+                snapshots = [np.load(self.mesh_path(case, joint, block), allow_pickle=False)
+                             for block in range(meta["case"]["blocks"] + 1)]
+                arrays = {key.split("/", 1)[1]: value for key, value in data.items()
+                          if key.startswith(f"{joint}/")}
+                progress[joint] = _case_from(meta["case"], meta["case"]["joints"][joint],
+                                             arrays, snapshots, mechanism)
+            return progress
         except (*UNREADABLE, TypeError) as exc:
             raise FewearInputError(
                 f"--resume: checkpoint {path} is incomplete ({exc}); delete {self.path} to "
@@ -138,10 +177,8 @@ class Checkpoint:
 
 
 def _case_meta(case: CaseProgress) -> dict:
-    return {"cycles": int(case.state.cycles), "blocks": int(case.state.blocks),
-            **{name: int(value) for name, value in asdict(case.counts).items()},
-            "stage_wall_time_s": dict(case.stage_wall_time_s),
-            "time_s": float(case.mechanism.time_s)}
+    return {**{name: int(value) for name, value in asdict(case.counts).items()},
+            "stage_wall_time_s": dict(case.stage_wall_time_s)}
 
 
 def _case_arrays(case: CaseProgress) -> dict:
@@ -150,7 +187,6 @@ def _case_arrays(case: CaseProgress) -> dict:
         "angle_rad": state.angle_rad, "depth_m": state.depth_m,
         "sliding_distance_m": state.sliding.distance_m, "sliding_time_s": state.sliding.time_s,
         "lagged_power_W_m2": state.sliding.lagged_power_W_m2,
-        "q": case.mechanism.q, "qd": case.mechanism.qd,
         "node_ids": case.node_ids, "cells": case.cells,
         "meshed_xy_m": case.meshed_xy_m,
         "record_cycles": np.array([r.cycles for r in records]),
@@ -169,9 +205,8 @@ def _case_arrays(case: CaseProgress) -> dict:
     }
 
 
-def _case_from(meta: dict, data: dict, snapshots: list[np.ndarray]) -> CaseProgress:
-    from fewear.mbd.slider_crank import MechanismState
-
+def _case_from(meta: dict, joint_meta: dict, data: dict, snapshots: list[np.ndarray],
+               mechanism) -> CaseProgress:
     def array(key):
         return data[key]
 
@@ -189,11 +224,11 @@ def _case_from(meta: dict, data: dict, snapshots: list[np.ndarray]) -> CaseProgr
                    array("record_depth_m"), array("record_impacts"), array("record_values"),
                    inner_cycles, inner_depth_m)]
     return CaseProgress(
-        state=state, mechanism=MechanismState(meta["time_s"], array("q"), array("qd")),
+        state=state, mechanism=mechanism,
         records=records, snapshots=snapshots, node_ids=array("node_ids"),
         cells=array("cells"), meshed_xy_m=array("meshed_xy_m"),
-        counts=LoopCounts(**{name: meta[name] for name in LOOP_COUNT_NAMES}),
-        stage_wall_time_s=dict(meta["stage_wall_time_s"]))
+        counts=LoopCounts(**{name: joint_meta[name] for name in LOOP_COUNT_NAMES}),
+        stage_wall_time_s=dict(joint_meta["stage_wall_time_s"]))
 
 
 def _first_difference(stored, current, where: str = "") -> str:

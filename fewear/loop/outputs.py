@@ -1,12 +1,14 @@
 """The files ``fewear run`` writes (rank 0), read from the cases' results only.
 
-- ``summary.json``: per rod model (``cases.<rod>``) the maximum wear depth and its angle, the worn
-  volume, cycles, blocks, ALE moves, re-meshes, wall time by stage; the complete config used.
-- ``wear_profile.csv``: long form ``case, cycles, angle_deg, wear_depth_m`` after every block.
-- ``max_wear.csv``: ``case, cycles, max_wear_depth_m`` after every block (seed Fig. 7b).
-- ``<case>.xdmf`` (+ ``.h5``): the bushing mesh with, per block (time = cycles), the mesh
-  displacement from the unworn bushing and its radial part (at the bore: the wear depth), for
-  ParaView (Warp By Vector with ``mesh_displacement_m`` shows the worn bushing).
+- ``summary.json``: per case and clearance joint (``cases.<case>.joints.<joint>``) the maximum
+  wear depth and its angle, the worn volume, cycles, blocks, ALE moves, re-meshes, wall time by
+  stage; per case where its joint histories came from (``history_source``); the config used.
+- ``wear_profile.csv``: long form ``case, joint, cycles, angle_deg, wear_depth_m`` after every
+  block.
+- ``max_wear.csv``: ``case, joint, cycles, max_wear_depth_m`` after every block (seed Fig. 7b).
+- ``<case>-<joint>.xdmf`` (+ ``.h5``): a joint's bushing mesh with, per block (time = cycles),
+  the mesh displacement from the unworn bushing and its radial part (at the bore: the wear
+  depth), for ParaView (Warp By Vector with ``mesh_displacement_m`` shows the worn bushing).
 - ``wear_profiles.png`` (seed Fig. 7a) and ``max_wear.png`` (seed Fig. 7b), drawn by the command
   (:func:`fewear.commands.run.write_run_figures`).
 """
@@ -28,26 +30,39 @@ RUN_FILES = (SUMMARY, PROFILES_CSV, MAX_WEAR_CSV, PROFILES_PNG, MAX_WEAR_PNG)
 """The files of a run with fixed names (besides ``<case>.xdmf`` and ``.h5``)."""
 
 
-def write_run_outputs(folder: Path, cases: dict, inputs, config: dict) -> None:
-    loop = inputs.loop
+def write_run_outputs(folder: Path, cases: dict, joints: dict, config: dict,
+                      history_source: str) -> None:
+    """The run's files from ``cases`` (case -> joint name -> :class:`CaseProgress`) of the
+    joints' typed inputs ``joints`` (joint name -> :class:`fewear.loop.settings.RunInputs`);
+    ``history_source``: where the joint histories came from, in words."""
+    loop = next(iter(joints.values())).loop
     write_json(folder / SUMMARY, {
-        "what": "seed section 5: wear at the rod-slider clearance joint, block by block with "
-                "the worn geometry fed back (ALE / re-meshing, worn clearance in the dynamics)",
+        "what": "seed section 5: wear at the clearance joints, block by block with the worn "
+                "geometry fed back (ALE / re-meshing, worn clearance in the dynamics)",
         "load_steps_per_cycle": loop.load_steps_per_cycle,
         "recorded_cycles_per_block": loop.recorded_cycles_per_block,
         "extrapolation": loop.extrapolation.mode,
         "total_cycles": loop.total_cycles,
-        "cases": {rod: case_summary(case, inputs) for rod, case in cases.items()},
+        "cases": {case: {"history_source": history_source,
+                         "joints": {joint: case_summary(progress, joints[joint])
+                                    for joint, progress in progress_of.items()}}
+                  for case, progress_of in cases.items()},
         "config": config,
     })
     write_profiles_csv(folder / PROFILES_CSV, cases)
     write_max_wear_csv(folder / MAX_WEAR_CSV, cases)
-    for rod, case in cases.items():
-        write_xdmf(folder / f"{rod}.xdmf", case)
+    for case, progress_of in cases.items():
+        for joint, progress in progress_of.items():
+            write_xdmf(folder / xdmf_name(case, joint), progress)
+
+
+def xdmf_name(case: str, joint: str) -> str:
+    """The XDMF file of a case's joint (``fewear plot`` reads the two names back from it)."""
+    return f"{case}-{joint}.xdmf"
 
 
 def case_summary(case: CaseProgress, inputs) -> dict:
-    """The numbers of one rod model for ``summary.json``."""
+    """The numbers of one joint of a case for ``summary.json``."""
     state, geometry = case.state, inputs.contact.geometry
     peak = int(np.argmax(state.depth_m))
     first = case.records[0]
@@ -78,21 +93,24 @@ def case_summary(case: CaseProgress, inputs) -> dict:
 def write_profiles_csv(path: Path, cases: dict) -> None:
     with open(path, "w", newline="") as handle:
         writer = csv.writer(handle)
-        writer.writerow(["case", "cycles", "angle_deg", "wear_depth_m"])
-        for rod, case in cases.items():
-            angle = np.degrees(case.state.angle_rad)
-            for record in case.records:
-                writer.writerows((rod, record.cycles, f"{a:.6f}", f"{h:.9e}")
-                                 for a, h in zip(angle, record.depth_m))
+        writer.writerow(["case", "joint", "cycles", "angle_deg", "wear_depth_m"])
+        for case, progress_of in cases.items():
+            for joint, progress in progress_of.items():
+                angle = np.degrees(progress.state.angle_rad)
+                for record in progress.records:
+                    writer.writerows((case, joint, record.cycles, f"{a:.6f}", f"{h:.9e}")
+                                     for a, h in zip(angle, record.depth_m))
 
 
 def write_max_wear_csv(path: Path, cases: dict) -> None:
     with open(path, "w", newline="") as handle:
         writer = csv.writer(handle)
-        writer.writerow(["case", "cycles", "max_wear_depth_m"])
-        for rod, case in cases.items():
-            writer.writerow((rod, 0, f"{0.0:.9e}"))
-            writer.writerows((rod, r.cycles, f"{r.depth_m.max():.9e}") for r in case.records)
+        writer.writerow(["case", "joint", "cycles", "max_wear_depth_m"])
+        for case, progress_of in cases.items():
+            for joint, progress in progress_of.items():
+                writer.writerow((case, joint, 0, f"{0.0:.9e}"))
+                writer.writerows((case, joint, r.cycles, f"{r.depth_m.max():.9e}")
+                                 for r in progress.records)
 
 
 def write_xdmf(path: Path, case) -> None:

@@ -31,6 +31,7 @@ class WearLoopSettings:
     implicit_wear_step: bool
     wear_smoothing_width_deg: float
     compliance_update: str
+    joint_history: str = ""  # a joint-history CSV worn with, no dynamics ("": none)
 
     def __post_init__(self):
         unknown = [rod for rod in self.rod_models if rod not in ("rigid", "flexible")]
@@ -69,14 +70,24 @@ class WearLoopSettings:
 
 @dataclass(frozen=True)
 class RunInputs:
-    """Everything ``fewear run`` needs, parsed once from the config at the command's edge."""
+    """What the wear loop needs for one clearance joint, parsed once from the config (or the
+    joint's view of it, :func:`joint_inputs_from_config`) at the command's edge.
 
-    dynamics: object  # fewear.mbd.slider_crank.DynamicsInputs
+    ``dynamics``: the slider-crank's inputs (None for a joint of a mechanism, whose dynamics the
+    run's case owns); ``joint``: the clearance joint's model (its contact law, for the
+    hysteresis work of the load steps)."""
+
+    dynamics: object  # fewear.mbd.slider_crank.DynamicsInputs or None
     contact: object  # fewear.contact.params.ContactProblem
     wear_coefficient: object  # k(p, v), fewear.wear.coefficient
     extension: object  # the wear law's history multiplier, fewear.wear.extensions
     loop: WearLoopSettings
     impact_law: ImpactWearLaw = NO_IMPACT_WEAR  # the impacts' wear (fewear.wear.impact)
+    joint: object = None  # fewear.mbd.slider_crank.JointModel (default: the dynamics')
+
+    def __post_init__(self):
+        if self.joint is None and self.dynamics is not None:
+            object.__setattr__(self, "joint", self.dynamics.joint)
 
 
 def run_sections() -> list[str]:
@@ -88,16 +99,33 @@ def run_sections() -> list[str]:
 
 
 def run_inputs_from_config(config: dict) -> RunInputs:
-    from fewear.contact.params import contact_problem_from_config
+    """The :class:`RunInputs` of the slider-crank's one clearance joint, its dynamics included."""
     from fewear.mbd.slider_crank import dynamics_inputs_from_config
+
+    dynamics = dynamics_inputs_from_config(config)
+    return _with_dynamics(joint_inputs_from_config(config), dynamics)
+
+
+def joint_inputs_from_config(view: dict) -> RunInputs:
+    """The :class:`RunInputs` of one clearance joint from its view of the config (the run's
+    config with the joint's own [bushing], [pin], [joint], [clearance_joint], [wear], [mesh] and
+    [contact]), without dynamics: the case's mechanism owns them."""
+    from fewear.contact.params import contact_problem_from_config
+    from fewear.mbd.slider_crank import joint_model_from_config
     from fewear.wear.coefficient import wear_coefficient_from_config
     from fewear.wear.extensions import wear_extension_from_config
 
-    return RunInputs(dynamics_inputs_from_config(config), contact_problem_from_config(config),
-                     wear_coefficient_from_config(config["wear"]),
-                     wear_extension_from_config(config["wear"]),
-                     WearLoopSettings.from_config(config["wear_loop"]),
-                     ImpactWearLaw.from_config(config["wear"]))
+    return RunInputs(None, contact_problem_from_config(view),
+                     wear_coefficient_from_config(view["wear"]),
+                     wear_extension_from_config(view["wear"]),
+                     WearLoopSettings.from_config(view["wear_loop"]),
+                     ImpactWearLaw.from_config(view["wear"]), joint_model_from_config(view))
+
+
+def _with_dynamics(inputs: RunInputs, dynamics) -> RunInputs:
+    from dataclasses import replace
+
+    return replace(inputs, dynamics=dynamics, joint=dynamics.joint)
 
 
 @dataclass(frozen=True)

@@ -21,9 +21,9 @@ def plot_wear_profiles(profiles: dict, path, cycles: float) -> None:
     polar = figure.add_subplot(1, 2, 2, projection="polar")
     peak = max(float(np.max(depth)) for _, depth in profiles.values()) or 1.0
     for label, (angle, depth) in profiles.items():
-        unrolled.plot(np.degrees(angle), 1e6 * depth, label=f"{label} rod")
+        unrolled.plot(np.degrees(angle), 1e6 * depth, label=label)
         closed = np.append(angle, angle[0] + 2 * np.pi)
-        polar.plot(closed, 1.0 + 0.3 * np.append(depth, depth[0]) / peak, label=f"{label} rod")
+        polar.plot(closed, 1.0 + 0.3 * np.append(depth, depth[0]) / peak, label=label)
     polar.plot(np.linspace(0, 2 * np.pi, 361), np.ones(361), "k:", lw=0.8, label="unworn bore")
     polar.set_yticklabels([])
     polar.set_title("bore outline, wear exaggerated", fontsize=10)
@@ -51,9 +51,9 @@ def plot_max_wear(series: dict, path) -> None:
     figure, axes = plt.subplots(figsize=(6, 4.5))
     for label, (cycles, depth) in series.items():
         axes.plot(np.append(0, cycles), 1e6 * np.append(0.0, depth), "o-", ms=3,
-                  label=f"{label} rod")
+                  label=label)
     axes.set(xlabel="crank cycles", ylabel="maximum wear depth (um)",
-             title="maximum wear depth at the rod-slider joint")
+             title="maximum wear depth at the clearance joints")
     axes.grid(alpha=0.3)
     axes.legend()
     figure.tight_layout()

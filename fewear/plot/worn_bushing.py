@@ -1,8 +1,7 @@
-"""The worn bushing of a ``fewear run`` read back from its files (``<case>.xdmf`` + ``.h5``,
-through meshio, never the model), and the view that compares the rod models: one exaggeration of
-the displacement, so that microns of wear show on a centimetre bushing, and one colour scale from
-zero (``fewear plot``, :mod:`fewear.commands.plot`, draws it in PyVista).
-"""
+"""The worn bushing of a ``fewear run`` read back from its files (``<case>-<joint>.xdmf`` +
+``.h5``, through meshio, never the model), and the view that compares the cases and joints: one
+exaggeration of the displacement, so that microns of wear show on a centimetre bushing, and one
+colour scale from zero (``fewear plot``, :mod:`fewear.commands.plot`, draws it in PyVista)."""
 
 from __future__ import annotations
 
@@ -46,3 +45,21 @@ def common_view(displacements: list[np.ndarray], radials: list[np.ndarray],
     scale = max(step * decade for step in (1.0, 2.0, 5.0) if step * decade <= raw)
     deepest_um = 1e6 * max(float(r.max()) for r in radials)
     return scale, (0.0, max(deepest_um, 1e-6))
+
+
+def panels(folder: Path, joint: str | None = None) -> dict:
+    """The run's XDMF files by joint and case: joint -> case -> path (``<case>-<joint>.xdmf``;
+    the case names hold no ``-``); ``joint``: that joint's only."""
+    found: dict = {}
+    for path in sorted(folder.glob("*.xdmf")):
+        case, _, name = path.stem.partition("-")
+        found.setdefault(name or case, {})[case] = path
+    if not found:
+        raise FewearInputError(f"{folder}: no <case>-<joint>.xdmf of a `fewear run` to plot")
+    if joint is not None:
+        if joint not in found:
+            raise FewearInputError(f"--joint {joint}: no such joint in {folder}; its joints: "
+                                   + ", ".join(found))
+        found = {joint: found[joint]}
+    return found
+

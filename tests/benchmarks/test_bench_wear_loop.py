@@ -34,7 +34,8 @@ def test_wall_time_by_stage(tmp_path):
         summary = run_both_rods(tmp_path, jobs)
         walls[jobs] = time.perf_counter() - start
     print(f"\nfewear run, both rods, {CYCLES:,} cycles (default config otherwise):")
-    for rod, case in summary["cases"].items():
+    for rod, joints in summary["cases"].items():
+        case = joints["joints"]["rod_slider"]
         stages = case["stage_wall_time_s"]
         print(f"  {rod:8s} {case['blocks']:4d} blocks, {case['wall_time_s']:7.1f} s: "
               + ", ".join(f"{stage} {seconds:.1f} s" for stage, seconds in stages.items())

@@ -2,12 +2,14 @@
 
 import csv
 import json
+import math
 import re
 
 import pytest
 
 from fewear.cli import main
 from fewear.io.config import default_config_text
+from fewear.io.joint_history import read_joint_history
 
 
 def config_file(tmp_path, replacements=(), extra=""):
@@ -53,18 +55,22 @@ def test_writes_history_summary_and_plots(tmp_path, capsys):
     assert "cycle 1/1" in capsys.readouterr().err
     with open(out / "joint_history.csv") as handle:
         rows = list(csv.DictReader(handle))
-    assert list(rows[0]) == ["time_s", "crank_angle_deg", "slider_x_m", "ex_m", "ey_m",
-                             "penetration_m", "fn_N", "ft_N", "fx_N", "fy_N", "rel_omega_rad_s",
-                             "mode"]
+    assert list(rows[0]) == ["time_s", "force_x_N", "force_y_N", "relative_omega_rad_s",
+                             "crank_angle_deg", "eccentricity_x_m", "eccentricity_y_m",
+                             "penetration_m", "normal_force_N", "friction_force_N", "mode"]
     assert {row["mode"] for row in rows} <= {"free", "impact", "contact"}
     assert float(rows[-1]["crank_angle_deg"]) == pytest.approx(360.0)
     summary = json.loads((out / "summary.json").read_text())
     assert summary["steps"] >= len(rows) - 1
     assert summary["peak_contact_force_N"] == pytest.approx(
-        max((float(r["fx_N"]) ** 2 + float(r["fy_N"]) ** 2) ** 0.5 for r in rows), rel=1e-6)
+        max(math.hypot(float(r["force_x_N"]), float(r["force_y_N"])) for r in rows), rel=1e-6)
     assert summary["config"]["mechanism"]["rod"] == "rigid"
+    # the form `fewear run --joint-history` reads (fewear.io.joint_history), to the same floats
+    history = read_joint_history(out / "joint_history.csv")
+    assert history.peak_contact_force_N == summary["peak_contact_force_N"]
+    assert history.n_steps == len(rows) and history.impacts == summary["impacts"]
     # eccentricities stay near the clearance circle: |e| <= c + the largest penetration
     largest = max(float(r["penetration_m"]) for r in rows)
-    assert max((float(r["ex_m"]) ** 2 + float(r["ey_m"]) ** 2) ** 0.5 for r in rows) <= \
-        5e-4 + largest + 1e-12
+    assert max(math.hypot(float(r["eccentricity_x_m"]), float(r["eccentricity_y_m"]))
+               for r in rows) <= 5e-4 + largest + 1e-12
     assert (out / "forces.png").stat().st_size > 0 and (out / "orbit.png").stat().st_size > 0

@@ -130,7 +130,7 @@ def test_overwrite_replaces_the_earlier_run(tmp_path, complete_run):
     assert "2000" in (out / "summary.json").read_text()
     assert not [path for path in out.iterdir() if path.name.startswith(".fewear-")]
     assert sorted(path.name for path in (out / "fewear-checkpoint").iterdir()) == [
-        "rigid-mesh-00000.npy", "rigid-mesh-00001.npy", "rigid.npz"]
+        "rigid-rod_slider-mesh-00000.npy", "rigid-rod_slider-mesh-00001.npy", "rigid.npz"]
 
 
 def test_a_full_disk_keeps_the_checkpoint_and_says_how_to_resume(tmp_path, monkeypatch, capsys):

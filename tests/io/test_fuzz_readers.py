@@ -65,7 +65,7 @@ def checkpoint(tmp_path_factory):
 
 
 @FUZZ
-@given(flips=FLIPS, target=st.sampled_from(["rigid.npz", "rigid-mesh-00001.npy"]),
+@given(flips=FLIPS, target=st.sampled_from(["rigid.npz", "rigid-rod_slider-mesh-00001.npy"]),
        cut=st.one_of(st.none(), st.integers(0, 4096)))
 def test_the_checkpoint_reader_reads_or_names_the_problem(tmp_path_factory, checkpoint, flips,
                                                           target, cut):
@@ -82,7 +82,7 @@ def test_the_checkpoint_reader_reads_or_names_the_problem(tmp_path_factory, chec
     path.write_bytes(flipped(data, flips)[:None if cut is None else len(data) - cut])
     store = Checkpoint(out, load_config(config_path, run_sections()))
     try:
-        store.load(["rigid"])
+        store.load(["rigid"], ["rod_slider"])
     except FewearInputError as exc:
         assert "checkpoint" in str(exc)
     store.saved_cycles()  # the interruption note's reader: never raises

@@ -67,8 +67,8 @@ def test_wear_steps_of_one_block_are_the_blocks_they_replace_on_its_history(smal
         np.testing.assert_array_equal(stepped_, blocked)
     # and so does a checkpoint
     checkpoint = Checkpoint(tmp_path, {"case": "stepped"})
-    checkpoint.save("rigid", steps)
-    loaded, = checkpoint.load(["rigid"])["rigid"].records
+    checkpoint.save("rigid", {"rod_slider": steps})
+    loaded, = checkpoint.load(["rigid"], ["rod_slider"])["rigid"]["rod_slider"].records
     np.testing.assert_array_equal(loaded.inner_cycles, inner.inner_cycles)
     np.testing.assert_array_equal(loaded.inner_depth_m, inner.inner_depth_m)
     run_block("rigid", stepped, stepped_bushing, steps)

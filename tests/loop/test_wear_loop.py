@@ -53,7 +53,7 @@ def explicit_run(tmp_path_factory):
 
 def test_worn_volume_is_the_integral_of_depth_and_outputs_exist(explicit_run):
     summary = json.loads((explicit_run / "summary.json").read_text())
-    case = summary["cases"]["rigid"]
+    case = summary["cases"]["rigid"]["joints"]["rod_slider"]
     assert case["cycles"] == 4000 and case["blocks"] == 2 and case["ale_moves"] == 2
     profile = np.genfromtxt(explicit_run / "wear_profile.csv", delimiter=",", names=True,
                             dtype=None, encoding=None)
@@ -68,7 +68,9 @@ def test_worn_volume_is_the_integral_of_depth_and_outputs_exist(explicit_run):
                            dtype=None, encoding=None)
     assert list(maxima["cycles"]) == [0, 2000, 4000]
     assert np.all(np.diff(maxima["max_wear_depth_m"]) >= 0)
-    for name in ("rigid.xdmf", "rigid.h5", "wear_profiles.png", "max_wear.png"):
+    assert set(profile["joint"]) == {"rod_slider"} and set(maxima["joint"]) == {"rod_slider"}
+    for name in ("rigid-rod_slider.xdmf", "rigid-rod_slider.h5", "wear_profiles.png",
+                 "max_wear.png"):
         assert (explicit_run / name).stat().st_size > 0
     assert set(case["stage_wall_time_s"]) == {"dynamics", "contact", "wear", "mesh"}
 
@@ -93,12 +95,14 @@ def test_ale_moved_the_bore_nodes_exactly_to_the_worn_radius(explicit_run):
     """The checkpoint's last mesh: every node that was on the bore now sits at R_b + h(theta)."""
     folder = explicit_run / "fewear-checkpoint"
     data = np.load(folder / "rigid.npz")
-    assert sorted(path.name for path in folder.glob("rigid-mesh-*.npy")) == [
-        "rigid-mesh-00000.npy", "rigid-mesh-00001.npy", "rigid-mesh-00002.npy"]
-    unworn, moved = (np.load(folder / f"rigid-mesh-0000{block}.npy") for block in (0, 2))
+    assert sorted(path.name for path in folder.glob("rigid-rod_slider-mesh-*.npy")) == [
+        f"rigid-rod_slider-mesh-0000{block}.npy" for block in range(3)]
+    unworn, moved = (np.load(folder / f"rigid-rod_slider-mesh-0000{block}.npy")
+                     for block in (0, 2))
     on_bore = np.isclose(np.hypot(*unworn.T), R_B, rtol=1e-9)
     angle = np.mod(np.arctan2(unworn[on_bore, 1], unworn[on_bore, 0]), 2 * math.pi)
-    depth = np.interp(angle, data["angle_rad"], data["depth_m"], period=2 * math.pi)
+    depth = np.interp(angle, data["rod_slider/angle_rad"], data["rod_slider/depth_m"],
+                      period=2 * math.pi)
     np.testing.assert_allclose(np.hypot(*moved[on_bore].T), R_B + depth, atol=1e-15)
     radial = np.hypot(*moved[on_bore].T) / np.hypot(*unworn[on_bore].T)
     np.testing.assert_allclose(moved[on_bore], unworn[on_bore] * radial[:, None], atol=1e-15)
@@ -162,8 +166,9 @@ def test_resume_with_another_config_or_a_corrupt_checkpoint_is_an_input_error(
 
 
 def test_a_checkpoint_of_another_format_is_refused_by_name(tmp_path, capsys, explicit_run):
-    """A checkpoint written by another version (here the format before the blocks kept their
-    inner wear steps) is refused with the format it has, the one read, and what to do."""
+    """A checkpoint written by another version (here the single-joint format before the cases
+    kept several clearance joints) is refused with the format it has, the one read, and what to
+    do."""
     import shutil
 
     old = tmp_path / "old"
@@ -172,12 +177,12 @@ def test_a_checkpoint_of_another_format_is_refused_by_name(tmp_path, capsys, exp
     with np.load(case, allow_pickle=False) as archive:
         arrays = {key: archive[key] for key in archive.files}
     meta = json.loads(str(arrays["meta"]))
-    arrays["meta"] = np.array(json.dumps({**meta, "format": "fewear-run-checkpoint-2"}))
+    arrays["meta"] = np.array(json.dumps({**meta, "format": "fewear-run-checkpoint-3"}))
     with open(case, "wb") as handle:
         np.savez(handle, **arrays)
     assert run(write_config(tmp_path, implicit=False, smoothing=0.0), old, "--resume") == 2
     error = capsys.readouterr().err
-    assert "'fewear-run-checkpoint-2', this fewear reads 'fewear-run-checkpoint-3'" in error
+    assert "'fewear-run-checkpoint-3', this fewear reads 'fewear-run-checkpoint-4'" in error
     assert "run without --resume into another --out" in error
 
 

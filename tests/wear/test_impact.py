@@ -349,7 +349,7 @@ def _worn_volume_m3(folder, impact: str) -> float:
     config.write_text(IMPACT_RUN.format(impact=impact))
     assert main(["run", "--config", str(config), "--out", str(folder / "out")]) == 0
     summary = json.loads((folder / "out" / "summary.json").read_text())
-    return summary["cases"]["rigid"]["worn_volume_m3"]
+    return summary["cases"]["rigid"]["joints"]["rod_slider"]["worn_volume_m3"]
 
 
 @pytest.fixture(scope="module")
