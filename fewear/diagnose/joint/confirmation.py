@@ -91,8 +91,8 @@ def confirm(cause: str, extended: Realizations, reference: Realizations, against
     p_value = welch_lower_p(errors, reference_errors)
     return Confirmation(cause, against, tuple(map(float, errors)),
                         tuple(map(float, reference_errors)), gain, p_value,
-                        bool(gain >= settings.min_held_out_gain
-                             and p_value < settings.significance))
+                        bool(gain >= settings.acceptance.min_held_out_gain
+                             and p_value < settings.acceptance.significance))
 
 
 def confirm_no_worse(cause: str, extended: Realizations, reference: Realizations, against: str,
@@ -109,7 +109,8 @@ def confirm_no_worse(cause: str, extended: Realizations, reference: Realizations
     named."""
     found = confirm(cause, extended, reference, against, settings)
     p_worse = welch_lower_p(reference.held_out_rms_m, extended.held_out_rms_m)
-    worse = found.gain < -settings.min_held_out_gain and p_worse < settings.significance
+    accept = settings.acceptance
+    worse = found.gain < -accept.min_held_out_gain and p_worse < accept.significance
     return replace(found, p_value=p_worse, confirmed=not worse)
 
 

@@ -214,18 +214,18 @@ def verdict(fit_: Fit, reference: Fit, settings: JointDiagnoseSettings,
                         gain=fit_.held_out_gain(reference),
                         aicc_improvement=reference.aicc - fit_.aicc)
     return CauseVerdict(fit_, reference.name, evidence,
-                        settings.acceptance(tried).accepts(evidence))
+                        settings.acceptance.rule(tried).accepts(evidence))
 
 
 def testable(config: dict, settings: JointDiagnoseSettings) -> tuple[list[str], list[dict]]:
     """The causes the believed model can be extended by, and why the others cannot."""
     names, untestable = [], []
     for name in settings.candidates:
-        why = CAUSES[name].untestable_because(config)
+        why = CAUSES[name].cause.why_untestable(config)
         if why is None:
             names.append(name)
         else:
-            untestable.append({"cause": name, "why": why})
+            untestable.append({"cause": name, "untestable_reason": why})
     return names, untestable
 
 
@@ -510,7 +510,8 @@ def _round(data: JointMeasurements, obs: Observations, config: dict,
     make_runs = candidate_runner(reach, deepest_m)
     believed_model = Believed(config, base, needed_cycles(obs, settings), make_runs)
     candidates = {name: CAUSES[name].forms(believed_model, settings) for name in names}
-    untestable += [{"cause": name, "why": "every run with it switched on stops (far deeper than "
+    untestable += [{"cause": name,
+                    "untestable_reason": "every run with it switched on stops (far deeper than "
                     "the data, worn through or contact lost) before the cycles the fit needs"}
                    for name, forms in candidates.items() if not forms]
     candidates = {name: forms for name, forms in candidates.items() if forms}
@@ -587,8 +588,8 @@ def _trace_evidence(data: JointMeasurements, config: dict, candidates: dict, fit
     misfits, dispersions = combined_misfits(by_kind)
     options = [MechanismOption(label, cause, form, index, misfit)
                for (label, cause, form, index, _), misfit in zip(models[1:], misfits[1:])]
-    return trace_verdict(misfits[0], options, harmonics, settings.significance,
-                         settings.min_held_out_gain, tuple(zip(kinds, dispersions)))
+    return trace_verdict(misfits[0], options, harmonics, settings.acceptance.significance,
+                         settings.acceptance.min_held_out_gain, tuple(zip(kinds, dispersions)))
 
 
 def _dynamics_options(config: dict, candidates: dict) -> list[tuple]:
@@ -738,13 +739,13 @@ def _select_pairs(candidates: dict, fits: dict[str, Fit], obs: Observations, bas
     tried = sum(f.forms_tried for f in fits.values())
     pairs = pair_candidates(
         candidates, fits,
-        lambda f: f_test_p(baseline, f) < settings.significance / tried)
+        lambda f: f_test_p(baseline, f) < settings.acceptance.significance / tried)
     pair_fits = fit_pairs(pairs, fits, obs, float(baseline.x[0]), settings)
     verdicts = []
     for name, fitted in pair_fits.items():
         entry = _judged(fitted, baseline, settings, tried + len(pairs),
                         _at_noise(baseline, noise_m))
-        beyond_each = all(f_test_p(fits[cause], fitted) < settings.significance
+        beyond_each = all(f_test_p(fits[cause], fitted) < settings.acceptance.significance
                           for cause in causes_of(name))
         verdicts.append(replace(entry, accepted=entry.accepted and beyond_each))
     return _by_held_out_error(verdicts), verdicts, pair_fits

@@ -58,7 +58,8 @@ def fit_causes(candidates: dict[str, tuple[Candidate, ...]], obs: Observations, 
                                               for forms in candidates.values() for form in forms]))
     fits = {name: [next(first_fits) for _ in forms] for name, forms in candidates.items()}
     promising = [name for name in candidates
-                 if best_form(fits[name]).held_out_gain(baseline) >= settings.min_held_out_gain]
+                 if best_form(fits[name]).held_out_gain(baseline)
+                 >= settings.acceptance.min_held_out_gain]
     refinements = {(name, index): _refinement(form, fitted, obs, settings)
                    for name in promising
                    for index, (form, fitted) in enumerate(zip(candidates[name], fits[name]))}

@@ -37,7 +37,7 @@ import numpy as np
 
 from fewear.diagnose.core.evidence import Evidence
 from fewear.diagnose.core.statistics import aicc, nested_f_test_p
-from fewear.diagnose.scar.catalogue import CAUSES
+from fewear.diagnose.scar.catalogue import SCALED
 from fewear.diagnose.scar.fitting import FactorFit, ForwardRuns, fit_log_factor
 from fewear.diagnose.scar.measured import MeasuredScar
 from fewear.diagnose.scar.settings import ScarDiagnoseSettings
@@ -141,7 +141,7 @@ def try_cause(cause: str, measured: MeasuredScar, believed_m: np.ndarray, predic
               folds, settings: ScarDiagnoseSettings, report=None) -> CauseTrial:
     """Fit ``cause`` on all points and on each fold (``predict(factor)``: the depths at the
     points, one forward run) and judge it against the believed model (module docstring)."""
-    measured_m, scales_area = measured.depth_points_m, CAUSES[cause].scales_worn_area
+    measured_m, scales_area = measured.depth_points_m, SCALED[cause].scales_worn_area
     runs = ForwardRuns(believed_m, predict, report)
     every = np.ones(measured_m.size, dtype=bool)
     fit = fit_log_factor(runs, measured_m, every, settings, scales_area)
@@ -185,7 +185,7 @@ def diagnose_scar(measured: MeasuredScar, model, settings: ScarDiagnoseSettings,
 
     believed_m = predict_for(tried[0])(1.0)
     folds = held_out_folds(measured, settings.profile_blocks)
-    rule = settings.acceptance(len(tried))
+    rule = settings.acceptance.rule(len(tried))
     trials = []
     for cause in tried:
         trial = try_cause(cause, measured, believed_m, predict_for(cause), folds, settings,

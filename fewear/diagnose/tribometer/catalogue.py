@@ -34,10 +34,12 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 from scipy import special
 
+from fewear.diagnose.core.cause import Cause
 from fewear.wear.extensions import (
     RunningIn,
     RunningInPowerLaw,
@@ -172,6 +174,11 @@ class Form:
     bounds: tuple[tuple[float, float], ...]
     starts: Callable[[Context], list[tuple[float, ...]]]
 
+    @property
+    def all_needs(self) -> set[str]:
+        """``needs``, with "distance" for a shape law (the wear curve along sliding)."""
+        return set(self.needs) | ({"distance"} if self.kind == "shape" else set())
+
 
 # amplitude: ln(r - 1) or ln(beta q_max) in [ln 1e-3, ln 1e3]; scale: ln(s0/S) or ln(tau/T) in
 # [ln 1e-4, ln 10] (a transient much longer than the tests is a curvature, much shorter an offset).
@@ -264,7 +271,34 @@ FORMS: tuple[Form, ...] = (
          _threshold_law(_by_load_speed), _THRESHOLD_BOUNDS, _threshold_starts(_by_load_speed)),
 )
 
-MEANINGS = {
+NEEDS_TEXT = {"time": "time_s (or velocity_m_s, from which t = s / v)",
+              "friction": "friction_coefficient", "pressure": "pressure_Pa",
+              "load": "normal_load_N or pressure_Pa that varies between tests",
+              "power": "normal_load_N or pressure_Pa, and velocity_m_s, whose product varies "
+                       "between tests",
+              "distance": "tests or readings at different sliding distances under one material"}
+"""What each of the forms' needs asks of the data's columns."""
+
+
+def forms_of(cause: str) -> tuple[Form, ...]:
+    return tuple(form for form in FORMS if form.cause == cause)
+
+
+def missing_needs(cause: str, have: set[str]) -> list[str]:
+    """What data holding ``have`` lack for ``cause``: the fewest needs any of its forms misses
+    ([] where a form can be fitted)."""
+    missing_per_form = [sorted(form.all_needs - have) for form in forms_of(cause)]
+    return min(missing_per_form, key=len) if all(missing_per_form) else []
+
+
+def _lacking(cause: str, have: set[str]) -> str | None:
+    missing = missing_needs(cause, have)
+    if not missing:
+        return None
+    return "could not be tested: needs " + " and ".join(NEEDS_TEXT[need] for need in missing)
+
+
+_MEANINGS = {
     "running_in": "k falls from an initial to a steady value over sliding distance (running-in, "
                   "Blau 2005; exponential or power-law approach)",
     "time_transient": "k falls from an initial to a steady value over time (oxide or tribofilm "
@@ -277,9 +311,7 @@ MEANINGS = {
     "mild_to_severe": "k jumps to a higher (severe) value above a load, pressure or p v threshold "
                       "(Welsh 1965; Lim & Ashby 1987)",
 }
-CAUSES = tuple(MEANINGS)
-"""The causes of the catalogue, in the order they are listed."""
-
-
-def forms_of(cause: str) -> tuple[Form, ...]:
-    return tuple(form for form in FORMS if form.cause == cause)
+CAUSES = {name: Cause(name, meaning, tuple(form.name for form in forms_of(name)),
+                      partial(_lacking, name)) for name, meaning in _MEANINGS.items()}
+"""The causes of the catalogue, by name, in the order they are listed; each untestable by the
+measured quantities (:func:`missing_needs`)."""
