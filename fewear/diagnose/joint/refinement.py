@@ -107,8 +107,8 @@ def refine_running_in(candidate: Candidate, fitted: Fit, obs: Observations,
     more than :data:`SETTLED` or after :data:`REFINEMENTS` runs. At a fixed point the fit is that
     of the real run at its own parameters; the iteration is not sure to reach one (a shape the map
     cannot make is approached a step per run), so the fit that is named is run in full again
-    (:func:`_confirm`). A run that stops before the shortest time axis the fit needs ends the
-    refinement; the fit before it stands."""
+    (:func:`fewear.diagnose.joint.selection.confirm_first`). A run that stops before the
+    shortest time axis the fit needs ends the refinement; the fit before it stands."""
     bounds, _ = bounds_and_starts(candidate, obs, settings)
     for _ in range(REFINEMENTS):
         run = yield candidate, fitted

@@ -1,34 +1,7 @@
-"""The catalogue of candidate causes: departures from Archard's law V = k F s, each a law with one
-or two parameters, in one or more forms.
-
-Two kinds of law act on the logarithm of the wear volume:
-
-- *shape* laws change the wear curve along sliding: ln(S_eff / s), with S_eff the effective distance
-  of an extension of :mod:`fewear.wear.extensions` (running-in over distance, a transient over
-  time, frictional heating);
-- *level* laws change k from test to test with the load or the frictional power: ln m(x), x the
-  contact pressure p [Pa] (the normal load F [N] when no pressure is given) or p v [W/m^2] (F v
-  [W] without a pressure):
-
-  * ``thermal`` (steady form): an Arrhenius rate at the test's steady temperature, which rises
-    with q = mu p v (p v or F v without a friction coefficient), see :class:`SteadyHeating` (its
-    lagged form, a shape law, needs the time and the friction);
-
-  * ``load_exponent``: V ~ x^a, i.e. m = (x / x_ref)^(a - 1) (Rhee, Wear 16 (1970) 431-445: wear of
-    friction materials grows as F^a with a different from 1; a < 1 when the real contact area grows
-    less than the load, a > 1 when heating or fatigue add to it);
-  * ``mild_to_severe``: m rises from 1 to J > 1 across a threshold x_c, as a step or over a
-    width in ln x (the mild-to-severe transitions of the wear-mechanism maps, Lim & Ashby, Acta
-    Metall. 35 (1987) 1-24; Welsh, Phil. Trans. R. Soc. A 257 (1965) 31-50), with x the pressure
-    (load) or p v. The steady ``thermal`` law is, in ln m, a logistic of ln q of width 1: a broad
-    rise with the frictional power; a threshold of p v with a width near 1 is the same curve,
-    and then the simpler law (fewer parameters) is preferred.
-
-A cause with several forms (exponential and power-law running-in; a load or a p v threshold) is
-one cause: the form that fits best names its parameters. Each form maps its parameters to an
-unconstrained search vector (logarithms scaled by the campaign's own distances, times, powers
-and loads, so that one start grid serves every data set).
-"""
+"""The catalogue of candidate causes of the tribometer diagnosis: departures from Archard's law
+V = k F s, each a law of one to three parameters in one or more forms, acting on ln V along
+sliding (shape laws) or across tests (level laws). The laws and their sources:
+docs/diagnosis-method-notes.md."""
 
 from __future__ import annotations
 

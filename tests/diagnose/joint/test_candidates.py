@@ -23,7 +23,7 @@ from fewear.diagnose.joint.confirmation import (
     confirm,
     confirm_no_worse,
 )
-from fewear.diagnose.joint.diagnose import CAUSE_RUN_REACH, _confirm, _select, _unexplained
+from fewear.diagnose.joint.diagnose import CAUSE_RUN_REACH
 from fewear.diagnose.joint.fitting import (
     Fit,
     Observations,
@@ -43,7 +43,9 @@ from fewear.diagnose.joint.forward import (
     worn_volume_per_cycle_m3,
 )
 from fewear.diagnose.joint.refinement import REFINEMENTS, fit_causes
+from fewear.diagnose.joint.selection import confirm_first, select_causes
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
+from fewear.diagnose.joint.unexplained import unexplained_sentences
 from fewear.errors import FewearInputError
 
 
@@ -111,31 +113,33 @@ def _fit(train_rms_m: float) -> Fit:
 def test_none_with_a_large_misfit_names_the_model_setting_when_that_is_what_limits():
     baseline = _fit(10e-6)
     # 20 x the scatter (0.5 um), and halved wear steps move the bore by 8 um: not resolved
-    sentence, = _unexplained(baseline, baseline, [], _resolution(0.5e-6, 8e-6), [])
+    sentence, = unexplained_sentences(baseline, baseline, [], _resolution(0.5e-6, 8e-6), [])
     assert "20 times the instrument's scatter" in sentence and "(wear steps halved)" in sentence
     # the same misfit with well-resolved wear steps: unexplained, without the wear-step remark
-    sentence, = _unexplained(baseline, baseline, [], _resolution(0.5e-6, 0.2e-6), [])
+    sentence, = unexplained_sentences(baseline, baseline, [], _resolution(0.5e-6, 0.2e-6), [])
     assert "(wear steps halved)" not in sentence
     # ... but where recording twice the crank cycles moves the bore by 8 um, that is said
-    sentence, = _unexplained(baseline, baseline, [], _resolution(0.5e-6, 0.2e-6, 8e-6), [])
+    sentence, = unexplained_sentences(baseline, baseline, [], _resolution(0.5e-6, 0.2e-6, 8e-6), [])
     assert "(wear steps halved)" not in sentence and "more recorded cycles" in sentence
     # ... and where runs started 1 and 2 deg later part by 8 um, that (the largest) is said
-    sentence, = _unexplained(baseline, baseline, [], _resolution(0.5e-6, 3e-6, 2e-6, 8e-6), [])
+    sentence, = unexplained_sentences(baseline, baseline, [],
+                                      _resolution(0.5e-6, 3e-6, 2e-6, 8e-6), [])
     assert "crank starts 0, 1, 2 deg later" in sentence and "(wear steps halved)" not in sentence
     # within 3 x the scatter: nothing is unexplained
-    assert _unexplained(_fit(1.2e-6), _fit(1.2e-6), [], _resolution(0.5e-6, 8e-6), []) == []
+    assert unexplained_sentences(_fit(1.2e-6), _fit(1.2e-6), [],
+                                 _resolution(0.5e-6, 8e-6), []) == []
 
 
 def test_none_with_a_late_misfit_says_the_effect_shows_only_after_the_training_counts():
     resolution = _resolution(0.5e-6, 0.2e-6)
     # fits the training data at the scatter, misses the held-out count by 30 x the scatter
     late = Fit("baseline", np.zeros(1), 1, 0.0, 10, 15e-6, 0.6e-6, np.zeros(10))
-    sentence, = _unexplained(late, late, [], resolution, [])
+    sentence, = unexplained_sentences(late, late, [], resolution, [])
     assert "misses the held-out data by 1.5e-05 m RMS, 30 times" in sentence
     # a held-out misfit within 5 x the training misfit (e.g. the instrument's shrinkage growing
     # with the depth) is not an effect of its own
     steady = Fit("baseline", np.zeros(1), 1, 0.0, 10, 4.5e-6, 1.0e-6, np.zeros(10))
-    assert _unexplained(steady, steady, [], resolution, []) == []
+    assert unexplained_sentences(steady, steady, [], resolution, []) == []
 
 
 @pytest.mark.parametrize("name, grid", [("friction_grid", (0.0, 0.3)), ("friction_grid", ()),
@@ -630,7 +634,7 @@ def test_the_first_accepted_cause_whose_realizations_hold_up_is_named(
     baseline = _baseline(base, obs)
     fits = {"friction": _fitted("friction", 1.0, friction_coefficient=0.3),
             "wear_coefficient": _fitted("wear_coefficient", 1.5)}
-    cause, extended, final, depth, confirmations, realized = _confirm(
+    cause, extended, final, depth, confirmations, realized = confirm_first(
         config, accepted, fits, baseline, obs, settings, "believed model")
     assert cause == named
     assert realized.fits[0] is final
@@ -643,7 +647,7 @@ def test_the_first_accepted_cause_whose_realizations_hold_up_is_named(
         refused = confirmations[0]
         assert refused.cause == "friction" and refused.against == "wear_coefficient"
         assert len(refused.held_out_rms_m) == len(START_OFFSETS_DEG)
-        sentence, = _unexplained(baseline, final, [cause], _resolution(None, 0.0),
+        sentence, = unexplained_sentences(baseline, final, [cause], _resolution(None, 0.0),
                                  [refused])
         assert sentence.startswith("friction was accepted on its fitted runs")
     else:
@@ -674,7 +678,7 @@ def test_a_cause_s_realizations_are_run_only_when_the_causes_before_it_were_refu
             "impact_wear": replace(_fitted("impact_wear", 1.0,
                                            impact_wear_coefficient_m3_J=1e-13), form="energy"),
             "wear_coefficient": _fitted("wear_coefficient", 1.5)}
-    _confirm(config, accepted, fits, _baseline(base, obs), obs,
+    confirm_first(config, accepted, fits, _baseline(base, obs), obs,
              JointDiagnoseSettings.default(), "believed model")
     assert asked == batches
 
@@ -683,7 +687,7 @@ def test_no_cause_is_named_when_no_realizations_hold_up(monkeypatch):
     config, base, obs = _k_level_world(monkeypatch, 1.5, 0.9)
     baseline = _baseline(base, obs)
     fits = {"friction": _fitted("friction", 1.0, friction_coefficient=0.3)}
-    cause, extended, final, depth, confirmations, realized = _confirm(
+    cause, extended, final, depth, confirmations, realized = confirm_first(
         config, ["friction"], fits, baseline, obs, JointDiagnoseSettings.default(),
         "believed model")
     assert cause is None and final is baseline and extended == config and realized is None
@@ -750,11 +754,11 @@ def test_no_cause_is_accepted_where_the_believed_model_predicts_within_the_scatt
     baseline = _fit_of("baseline", 1, 0.520e-6, 0.61e-6)
     k_level = {"wear_coefficient": _fit_of("wear_coefficient", 2, 0.512e-6, 0.534e-6)}
     settings = JointDiagnoseSettings.default()
-    accepted, verdicts = _select(baseline, k_level, settings, noise_m=0.5e-6)
+    accepted, verdicts = select_causes(baseline, k_level, settings, noise_m=0.5e-6)
     assert accepted == [] and verdicts[0].evidence.p_value < 1e-10
     assert verdicts[0].evidence.gain > settings.acceptance.min_held_out_gain
-    assert _select(baseline, k_level, settings, noise_m=0.1e-6)[0] == ["wear_coefficient"]
-    assert _select(baseline, k_level, settings, noise_m=max(0.1e-6, 0.5e-6))[0] == []
+    assert select_causes(baseline, k_level, settings, noise_m=0.1e-6)[0] == ["wear_coefficient"]
+    assert select_causes(baseline, k_level, settings, noise_m=max(0.1e-6, 0.5e-6))[0] == []
 
 
 def _depth_at(run: WearHistory, cycles: float) -> np.ndarray:

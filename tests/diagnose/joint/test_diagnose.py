@@ -282,7 +282,7 @@ def _without_runs_around_the_rounds(monkeypatch, method) -> None:
     monkeypatch.setattr(method, "_check_run_length", lambda *args: None)
     monkeypatch.setattr(method, "_believed_config", lambda *args: None)
     monkeypatch.setattr(method, "cycle_structure", lambda *args: {})
-    monkeypatch.setattr(method, "_unexplained", lambda *args: [])
+    monkeypatch.setattr(method, "unexplained_sentences", lambda *args: [])
     monkeypatch.setattr(method, "_trace_notes", lambda *args: ())
 
 
@@ -348,9 +348,9 @@ def test_the_level_is_refitted_in_the_form_the_cause_was_named_in():
 def test_an_origin_fitted_at_its_bound_is_said(offset_deg, said):
     """The instrument's origin fitted within 1 % of the +-30 deg it may take: a sentence naming
     the offset, the bound and the setting; inside, none."""
-    from fewear.diagnose.joint.diagnose import _origin_at_bound
+    from fewear.diagnose.joint.unexplained import origin_at_bound
 
-    sentences = _origin_at_bound(replace(FIT, x=np.array([offset_deg, 1.0])), 30.0)
+    sentences = origin_at_bound(replace(FIT, x=np.array([offset_deg, 1.0])), 30.0)
     assert len(sentences) == said
     if said:
         assert f"{offset_deg:+.1f} deg" in sentences[0] and "max_offset_deg" in sentences[0]

@@ -15,11 +15,11 @@ import pytest
 
 from fewear.diagnose.joint.candidates import RUNNING_IN_FORMS
 from fewear.diagnose.joint.catalogue import CAUSES
-from fewear.diagnose.joint.diagnose import _select_pairs
 from fewear.diagnose.joint.fitting import Observations, fit_candidate
 from fewear.diagnose.joint.forward import WearHistory
 from fewear.diagnose.joint.pairs import causes_of, pair_config, pair_name
 from fewear.diagnose.joint.resolution import baseline_fit
+from fewear.diagnose.joint.selection import select_pairs
 from fewear.diagnose.joint.settings import JointDiagnoseSettings
 from fewear.io.config import default_config
 
@@ -76,7 +76,7 @@ def friction_and_running_in():
 
 def test_friction_and_running_in_together_are_fitted_and_accepted(friction_and_running_in):
     obs, candidates, fits, baseline = friction_and_running_in
-    accepted, verdicts, pair_fits = _select_pairs(candidates, fits, obs, baseline, SETTINGS,
+    accepted, verdicts, pair_fits = select_pairs(candidates, fits, obs, baseline, SETTINGS,
                                                   None)
     assert accepted == [pair_name("friction")] == [v.cause for v in verdicts]
     pair = pair_fits[pair_name("friction")]
@@ -102,12 +102,12 @@ def test_no_pair_is_tried_without_a_running_in_that_fits_better_than_the_believe
         friction_alone):
     obs, candidates, fits, baseline = friction_alone
     fits = {**fits, "running_in": baseline}  # running-in no better than the believed model
-    assert _select_pairs(candidates, fits, obs, baseline, SETTINGS, None) == ([], [], {})
+    assert select_pairs(candidates, fits, obs, baseline, SETTINGS, None) == ([], [], {})
 
 
 def test_a_pair_no_better_than_its_cause_alone_is_not_accepted(friction_alone):
     obs, candidates, fits, baseline = friction_alone
-    accepted, verdicts, _ = _select_pairs(candidates, fits, obs, baseline, SETTINGS, None)
+    accepted, verdicts, _ = select_pairs(candidates, fits, obs, baseline, SETTINGS, None)
     assert accepted == [] and len(verdicts) == 1
     assert verdicts[0].evidence.gain > 0.5  # as good as friction alone, which it must beat
 
@@ -116,7 +116,7 @@ def test_the_extended_config_of_a_pair_has_both_causes_and_the_level_once(
         friction_and_running_in):
     _, _, fits, baseline = friction_and_running_in
     obs, candidates = friction_and_running_in[0], friction_and_running_in[1]
-    _, _, pair_fits = _select_pairs(candidates, fits, obs, baseline, SETTINGS, None)
+    _, _, pair_fits = select_pairs(candidates, fits, obs, baseline, SETTINGS, None)
     pair = pair_fits[pair_name("friction")]
     config = default_config()
     config["wear"]["coefficient_model"] = "constant"

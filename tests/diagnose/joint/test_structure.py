@@ -100,8 +100,8 @@ def test_the_instruments_scatter_is_found_under_a_smooth_misfit(shape_m):
 
 
 def test_a_large_misfit_without_a_cause_is_reported_unexplained():
-    from fewear.diagnose.joint.diagnose import _unexplained
     from fewear.diagnose.joint.fitting import Fit
+    from fewear.diagnose.joint.unexplained import unexplained_sentences
 
     for shape_m, expected in ((0.0, 0), (20e-6, 1)):
         angle, residual, cycles = profiles_with(shape_m, 0.5e-6)
@@ -111,4 +111,4 @@ def test_a_large_misfit_without_a_cause_is_reported_unexplained():
         resolution = {"instrument_scatter_m": scatter_estimate_m(angle, residual, cycles),
                       "halved_blocks_rms_m": 0.0, "doubled_recorded_cycles_rms_m": 0.0,
                       "start_angle_spread_rms_m": 0.0}
-        assert len(_unexplained(fit, fit, [], resolution, [])) == expected
+        assert len(unexplained_sentences(fit, fit, [], resolution, [])) == expected
