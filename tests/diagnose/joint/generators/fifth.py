@@ -212,12 +212,16 @@ from fewear.diagnose.joint.forward import WearHistory, model_config
 from fewear.diagnose.joint.measured import MeasuredProfile, write_joint_profiles, write_max_wear
 from fewear.errors import FewearInputError
 from fewear.wear.extensions import SlidingState
+from tests.diagnose.joint.generators.scaffold import SeedPlan, believed_config
 from tests.diagnose.joint.generators.truth_numerics import with_truth_numerics
 
 CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in", "none",
           "friction+wear_coefficient", "flexible_link+running_in")
 SINGLE_CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in")
 SEED_BASE = 15000
+SEEDS = SeedPlan(CAUSES, SEED_BASE)
+"""Seeds 15000 + 100 * (cause index) + index."""
+data_set_seed = SEEDS.seed
 BELIEVED_TOML = """\
 # The model the user believes (merged onto fewear's embedded defaults).
 [mechanism]
@@ -356,15 +360,6 @@ class DataSet:
         """The files a user gives ``fewear diagnose`` (not the truth)."""
         return [self.profiles_csv, self.max_wear_csv] + ([self.force_csv] if self.force_csv
                                                          else [])
-
-
-def data_set_seed(cause: str, index: int) -> int:
-    """The seed of data set ``index`` (0-99) of ``cause``: 15000 + 100 * position + index."""
-    if cause not in CAUSES:
-        raise ValueError(f"unknown cause {cause!r}; expected one of {', '.join(CAUSES)}")
-    if isinstance(index, bool) or not (isinstance(index, (int, np.integer)) and 0 <= index <= 99):
-        raise ValueError(f"data set index {index!r}: expected a whole number in 0-99")
-    return SEED_BASE + 100 * CAUSES.index(cause) + int(index)
 
 
 def _streams(seed: int) -> tuple[np.random.Generator, ...]:
@@ -923,13 +918,6 @@ def write_force_traces(path: Path, traces: list, comment: str = "") -> None:
 
 
 # --- one data set ---------------------------------------------------------------------------
-
-def believed_config(path: Path) -> dict:
-    """The believed config (``believed.toml`` merged onto the defaults) with the run sections."""
-    from fewear.io.config import load_config
-    from fewear.loop.settings import run_sections
-
-    return load_config(path, run_sections())
 
 
 def hidden_truth(cause: str, seed: int, believed: dict):

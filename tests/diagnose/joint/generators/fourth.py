@@ -249,13 +249,13 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
-from itertools import combinations
 from pathlib import Path
 
 import numpy as np
 
 from fewear.diagnose.joint.forward import WearHistory, model_config, simulate_wear
 from fewear.diagnose.joint.measured import write_max_wear
+from tests.diagnose.joint.generators.scaffold import SeedPlan
 from tests.diagnose.joint.generators.truth_numerics import with_truth_numerics
 
 CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in", "none")
@@ -342,11 +342,15 @@ LOAD_CELL_PRETRIGGER_DEG = 36.0
 LOAD_CELL_NOISE_N = (1.0, 3.0)
 LOAD_CELL_FULL_SCALE_N = 25000.0
 LOAD_CELL_QUANTUM_N = 2.0 * LOAD_CELL_FULL_SCALE_N / 2**20
-TWO_CAUSE_PAIRS = tuple(combinations([cause for cause in CAUSES if cause != "none"], 2))
-"""The pairs of distinct hidden causes a two-cause data set hides, each in :data:`CAUSES` order
-(all ten: every pair combines in one truth, module doc)."""
+SEED_BASE = 9000
+"""Seeds 9000 + 100 * (cause index) + index."""
 TWO_CAUSE_SEED_BASE = 19000
 """Two-cause seeds 19000 + 100 * (pair index) + index: above every single-cause seed (9000-9599)."""
+SEEDS = SeedPlan(CAUSES, SEED_BASE, TWO_CAUSE_SEED_BASE)
+data_set_seed, checked_pair, two_cause_seed = SEEDS.seed, SEEDS.checked_pair, SEEDS.pair_seed
+TWO_CAUSE_PAIRS = SEEDS.pairs
+"""The pairs of distinct hidden causes a two-cause data set hides, each in :data:`CAUSES` order
+(all ten: every pair combines in one truth, module doc)."""
 CONFIG_CAUSES = ("wear_coefficient", "flexible_link")
 """The causes that change the truth's config (:func:`truth_config`)."""
 
@@ -444,34 +448,6 @@ class DataSet:
     def causes(self) -> tuple[str, ...]:
         """The hidden causes: one, or the two of a two-cause set."""
         return tuple(self.cause.split("+"))
-
-
-def data_set_seed(cause: str, index: int) -> int:
-    """The seed of data set ``index`` (0-99) of ``cause``: 9000 + 100 * position + index."""
-    if cause not in CAUSES:
-        raise ValueError(f"unknown cause {cause!r}; expected one of {', '.join(CAUSES)}")
-    if not (isinstance(index, (int, np.integer)) and 0 <= index <= 99):
-        raise ValueError(f"data set index {index!r}: expected a whole number in 0-99")
-    return 9000 + 100 * CAUSES.index(cause) + int(index)
-
-
-def checked_pair(pair) -> tuple[str, str]:
-    """``pair`` as a tuple of :data:`TWO_CAUSE_PAIRS`; a ValueError naming it otherwise."""
-    candidate = tuple(pair) if isinstance(pair, (tuple, list)) else None
-    if candidate not in TWO_CAUSE_PAIRS:
-        raise ValueError(f"cause pair {pair!r}: expected one of {TWO_CAUSE_PAIRS} (two distinct "
-                         "causes other than 'none', in CAUSES order)")
-    return candidate
-
-
-def two_cause_seed(pair, index: int) -> int:
-    """The seed of two-cause data set ``index`` (0-99) of ``pair`` (one of
-    :data:`TWO_CAUSE_PAIRS`): 19000 + 100 * position + index, apart from every single-cause
-    seed."""
-    pair = checked_pair(pair)
-    if not (isinstance(index, (int, np.integer)) and 0 <= index <= 99):
-        raise ValueError(f"data set index {index!r}: expected a whole number in 0-99")
-    return TWO_CAUSE_SEED_BASE + 100 * TWO_CAUSE_PAIRS.index(pair) + int(index)
 
 
 def _streams(seed: int) -> tuple[np.random.Generator, ...]:

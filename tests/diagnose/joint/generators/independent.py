@@ -126,9 +126,13 @@ from pathlib import Path
 import numpy as np
 
 from fewear.diagnose.joint.forward import WearHistory, model_config, simulate_wear
+from tests.diagnose.joint.generators.scaffold import SeedPlan
 from tests.diagnose.joint.generators.truth_numerics import with_truth_numerics
 
 CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in", "none")
+SEEDS = SeedPlan(CAUSES, 0)
+"""Seeds 100 * (cause index) + index: distinct labs across causes."""
+data_set_seed = SEEDS.seed
 BELIEVED_TOML = """\
 [mechanism]
 rod_density_kg_m3 = 7800.0
@@ -729,8 +733,4 @@ def write_data_set(cause: str, seed: int, folder: Path) -> DataSet:
     return DataSet(profiles_csv, max_wear_csv, believed_toml, truth, lab,
                    {**truth.params, **extra}, acceleration_csv, meter, force_csv, cell)
 
-
-def data_set_seed(cause: str, index: int) -> int:
-    """The seed of the ``index``-th data set of ``cause`` (distinct labs across causes)."""
-    return 100 * CAUSES.index(cause) + index
 

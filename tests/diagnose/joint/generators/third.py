@@ -182,11 +182,11 @@ from __future__ import annotations
 import copy
 import math
 from dataclasses import dataclass, replace
-from itertools import combinations
 from pathlib import Path
 
 import numpy as np
 
+from tests.diagnose.joint.generators.scaffold import SeedPlan, believed_config
 from tests.diagnose.joint.generators.truth_numerics import with_truth_numerics
 
 CAUSES = ("wear_coefficient", "flexible_link", "friction", "impact_wear", "running_in", "none")
@@ -206,11 +206,13 @@ wear_steps_per_block = 1
 """
 SEED_BASE = 7000
 """Seeds 7000 + 100 * (cause index) + index: apart from the small seeds of other generators."""
-TWO_CAUSE_PAIRS = tuple(combinations([cause for cause in CAUSES if cause != "none"], 2))
-"""The pairs of distinct hidden causes a two-cause data set hides, each in :data:`CAUSES` order
-(all ten: every pair combines in one truth, module doc)."""
 TWO_CAUSE_SEED_BASE = 17000
 """Seeds 17000 + 100 * (pair index) + index: above every single-cause seed (7000-7599)."""
+SEEDS = SeedPlan(CAUSES, SEED_BASE, TWO_CAUSE_SEED_BASE)
+data_set_seed, checked_pair, two_cause_seed = SEEDS.seed, SEEDS.checked_pair, SEEDS.pair_seed
+TWO_CAUSE_PAIRS = SEEDS.pairs
+"""The pairs of distinct hidden causes a two-cause data set hides, each in :data:`CAUSES` order
+(all ten: every pair combines in one truth, module doc)."""
 CONFIG_CAUSES = ("wear_coefficient", "flexible_link", "friction")
 """The causes that change the truth's config (:func:`truth_config`)."""
 FINE_POINTS = 2880
@@ -341,34 +343,6 @@ class DataSet:
     def causes(self) -> tuple[str, ...]:
         """The hidden causes: one, or the two of a two-cause set."""
         return tuple(self.cause.split("+"))
-
-
-def data_set_seed(cause: str, index: int) -> int:
-    """The seed of data set ``index`` (0-99) of ``cause``: distinct per cause and index."""
-    if cause not in CAUSES:
-        raise ValueError(f"unknown cause {cause!r}; expected one of {CAUSES}")
-    if not 0 <= index < 100:
-        raise ValueError(f"index {index}: expected 0-99")
-    return SEED_BASE + 100 * CAUSES.index(cause) + index
-
-
-def checked_pair(pair) -> tuple[str, str]:
-    """``pair`` as a tuple of :data:`TWO_CAUSE_PAIRS`; a ValueError naming it otherwise."""
-    candidate = tuple(pair) if isinstance(pair, (tuple, list)) else None
-    if candidate not in TWO_CAUSE_PAIRS:
-        raise ValueError(f"cause pair {pair!r}: expected one of {TWO_CAUSE_PAIRS} (two distinct "
-                         "causes other than 'none', in CAUSES order)")
-    return candidate
-
-
-def two_cause_seed(pair, index: int) -> int:
-    """The seed of two-cause data set ``index`` (0-99) of ``pair`` (one of
-    :data:`TWO_CAUSE_PAIRS`): distinct per pair and index, and from every single-cause seed."""
-    pair = checked_pair(pair)
-    if not (isinstance(index, (int, np.integer)) and not isinstance(index, bool)
-            and 0 <= index <= 99):
-        raise ValueError(f"data set index {index!r}: expected a whole number in 0-99")
-    return TWO_CAUSE_SEED_BASE + 100 * TWO_CAUSE_PAIRS.index(pair) + int(index)
 
 
 def cause_streams(seed: int, causes) -> dict[str, np.random.Generator]:
@@ -988,13 +962,6 @@ def write_force_csv(path: Path, traces, cell: LoadCell) -> None:
         lines += [f"{float(t)!r},{float(fx)!r},{float(fy)!r},{cycles}"
                   for t, (fx, fy) in zip(time_s, reading)]
     path.write_text("\n".join(lines) + "\n")
-
-
-def believed_config(path: Path) -> dict:
-    from fewear.io.config import load_config
-    from fewear.loop.settings import run_sections
-
-    return load_config(path, run_sections())
 
 
 def rms_difference_m(bore: TrueBore, config: dict, cycles: int) -> float:
