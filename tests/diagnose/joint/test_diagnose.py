@@ -29,6 +29,7 @@ from fewear.diagnose.joint.structure import MAX_LISTED_IMPACTS
 from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
 from tests.diagnose.joint.cases import believed_text, hidden_joint_case
+from tests.diagnose.shared_keys import assert_shared_keys
 
 SHORT = (1000, 2000, 3000, 4000)
 """The default suite's campaign: profile cycle counts (the full one: cases.PROFILE_CYCLES)."""
@@ -59,6 +60,7 @@ def test_the_hidden_friction_is_named_over_the_level_on_a_short_campaign(believe
     assert summary["gain"] > 0.25  # held-out error of the extended run at most 3/4
     assert summary["data_kind"] == "joint"
     assert {c["cause"] for c in summary["candidates"]} == {"wear_coefficient", "friction"}
+    assert_shared_keys(summary)
 
 
 # The default suite hides friction (above, on the short campaign with the quick catalogue); the

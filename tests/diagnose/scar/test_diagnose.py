@@ -22,6 +22,7 @@ from fewear.data import BLOCK_ON_RING_CRUZADO2010_CSV, STANDIN_PIN_ON_DISC_CSV
 from fewear.diagnose.scar.diagnose import diagnose_scar
 from fewear.diagnose.scar.measured import MeasuredScar, read_measured_scar
 from fewear.diagnose.scar.settings import ScarDiagnoseSettings
+from tests.diagnose.shared_keys import assert_shared_keys
 
 COARSE = """
 [block_on_ring]
@@ -89,6 +90,7 @@ def test_hidden_k_factor_is_recovered_and_named(synthetic, tmp_path):
     assert summary["untestable"] == [{
         "cause": "cylinder_wear_coefficient",
         "untestable_reason": "the case has no cylinder_wear_coefficient_m2_N"}]
+    assert_shared_keys(summary)
     assert {path.name for path in (tmp_path / "out").iterdir()} == {"diagnosis.json",
                                                                    "profiles.png"}
 

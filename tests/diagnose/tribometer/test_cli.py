@@ -12,6 +12,7 @@ from fewear.cli import main
 from fewear.io.config import DEFAULTS_DIR, load_config
 from fewear.wear.coefficient import wear_coefficient_from_config
 from fewear.wear.extensions import RunningIn, wear_extension_from_config
+from tests.diagnose.shared_keys import assert_shared_keys
 from tests.diagnose.tribometer.campaign_generator import hidden_case, write_measured_csv
 from tests.mpi import mpirun_fewear
 
@@ -40,6 +41,7 @@ def test_outputs_exist_and_parse(outputs):
     assert summary["data_kind"] == "cumulative_volume"
     assert summary["cause"] == "running_in" == summary["causes"][0]
     assert summary["baseline"]["held_out_error"] > summary["held_out_error"]["extended"]
+    assert_shared_keys(summary)
     for candidate in summary["candidates"]:
         assert {"cause", "form", "params", "held_out_error", "p_value", "verdict"} <= set(candidate)
     gain = summary["gain"]
