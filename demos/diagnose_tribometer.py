@@ -66,7 +66,7 @@ def show(summary):
         for number, step in enumerate(stage["steps"], start=1):
             for entry in step:
                 params = ", ".join(f"{k} = {v:.3g}" for k, v in entry["params"].items())
-                print(f"  {stage['name']}, step {number}: {entry['name']} ({entry['form']}: "
+                print(f"  {stage['name']}, step {number}: {entry['cause']} ({entry['form']}: "
                       f"{params}) {entry['verdict']}")
     for group in summary["confounded"]:
         print(f"confounded: {group['causes']}: {group['reason']}")

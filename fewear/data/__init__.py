@@ -1,9 +1,10 @@
-"""Data sets shipped with fewear, and the scripts that made them.
+"""Data sets shipped with fewear (the scripts that made the synthetic ones are in
+``tests/data_makers``).
 
 ``STANDIN_PIN_ON_DISC_CSV``: SYNTHETIC pin-on-disc readings for CuZn25Al6Fe3Mn3 on 42CrMo, a
-stand-in for the seed paper's unpublished tests (see ``make_standin_pin_on_disc.py``).
+stand-in for the seed paper's unpublished tests (``tests/data_makers/make_standin_pin_on_disc.py``).
 ``RUNNING_IN_SYNTHETIC_CSV``: SYNTHETIC histories with a hidden running-in, for the diagnosis demo
-(see ``make_running_in_pin_on_disc.py``).
+(``tests/data_makers/make_running_in_pin_on_disc.py``).
 ``SINGH2016_AL_SIC_CSV``: REAL published pin-on-disc data, transcribed from K. K. Singh et al.,
 Adv. Mater. Sci. Eng. 2016, Article ID 3813412 (CC BY; source, licence and transcription notes in
 the file's header).

@@ -30,6 +30,7 @@ from fewear.wear.scar import (
     ring_arc_width_m,
     scar_depth_and_width_m,
     scar_shape,
+    scar_worn_area_m2,
 )
 
 if TYPE_CHECKING:
@@ -192,11 +193,10 @@ def fretting_summary(run, problem: FlatContactProblem, settings: FrettingWearSet
 
 def scar_figures(x_m: np.ndarray, depth_m: np.ndarray) -> dict[str, float]:
     """The largest depth (m), the width at ``EDGE_SHARE`` of it (m) and the worn area (m^2,
-    the depth integrated over that width by the trapezoid rule on the nodes within it)."""
+    the depth integrated over that width), of the scar contiguous about the deepest point."""
     depth, width = scar_depth_and_width_m(x_m, depth_m)
-    worn = depth_m > EDGE_SHARE * depth
     return {"max_depth_m": depth, "width_m": width,
-            "worn_area_m2": float(np.trapz(depth_m[worn], x_m[worn]))}
+            "worn_area_m2": scar_worn_area_m2(x_m, depth_m)}
 
 
 def scar_summary(run, problem: FlatContactProblem, settings: SlidingWearSettings,

@@ -1,7 +1,8 @@
 """How often `fewear diagnose` names a hidden cause, and how often it invents one (issue 8).
 
-Two independently written generators (tests/calibrate/generators.py: ours and
-tests/calibrate/independent_generator.py), swept over a grid: the effect's length as a fraction of
+Two independently written generators (tests/diagnose/tribometer/generators.py: ours and
+tests/diagnose/tribometer/independent_generator.py),
+swept over a grid: the effect's length as a fraction of
 the test (``scale`` 0.01, 0.1, 0.5; for the level causes the independent generator maps it to the
 effect's strength), the relative noise of every cumulative reading (0.01, 0.03, 0.1; dips kept)
 and the sampling (histories: many readings per test; table: one reading per test). Per cell,
@@ -12,7 +13,7 @@ diagnosis with the default settings, through the CSV reader. Printed per cell:
 - ``named``: the hidden cause is among the causes named, or confounded with the first by the
   report (the report then says the data cannot tell the two apart);
 - ``family``: ``named``, or heating hidden and a p v threshold named or the reverse (one law
-  family, see tests/calibrate/generators.named_as_power_law);
+  family, see tests/diagnose/tribometer/generators.named_as_power_law);
 - ``fp``: plain-Archard data sets for which any cause was named.
 
 Goals of the issue: >= 90 % of hidden causes named, fp <= 5 % in every cell. Run with
@@ -31,7 +32,7 @@ import pytest
 
 from fewear.diagnose.tribometer.diagnose import diagnose
 from fewear.diagnose.tribometer.report import summarise
-from tests.calibrate.generators import (
+from tests.diagnose.tribometer.generators import (
     CAUSES,
     GENERATORS,
     SAMPLINGS,

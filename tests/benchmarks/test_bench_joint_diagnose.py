@@ -4,7 +4,7 @@ data, and the cost of a diagnosis (the first, which runs the candidate models, a
 against the same believed model, which reuse them).
 
 FEWEAR_BENCH_JOINT_SEEDS (default 4) data sets per cause and for the null case; the data are those
-of tests/calibrate/joint_cases.py (random effect parameters, random profilometer sampling and
+of tests/diagnose/joint/cases.py (random effect parameters, random profilometer sampling and
 angular origin, 0.5 um noise)."""
 
 import os
@@ -17,7 +17,7 @@ from fewear.diagnose.joint.diagnose import diagnose_joint
 from fewear.diagnose.joint.report import summarise
 from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
-from tests.calibrate.joint_cases import believed_text, hidden_joint_case
+from tests.diagnose.joint.cases import believed_text, hidden_joint_case
 
 pytestmark = pytest.mark.benchmark
 SEEDS = int(os.environ.get("FEWEAR_BENCH_JOINT_SEEDS", "4"))

@@ -1,5 +1,5 @@
 """`fewear diagnose` on joint wear from the fifth, blind generator
-(tests/calibrate/fifth_joint_generator.py), through the user's command line: the believed coarse
+(tests/diagnose/joint/generators/fifth.py), through the user's command line: the believed coarse
 slider-crank model with one hidden cause per data set (two in the two-cause sets), each by a law
 of its own (k by a scale or a pressure power, a lightly damped ANCF rod 2-20 % off in modulus, a
 friction step, impact wear by a power of the speed above a threshold, a power-tail running-in by
@@ -18,7 +18,7 @@ import time
 import pytest
 
 from fewear.cli import main
-from tests.calibrate.fifth_joint_generator import (
+from tests.diagnose.joint.generators.fifth import (
     CAUSES,
     cause_names,
     data_set_seed,

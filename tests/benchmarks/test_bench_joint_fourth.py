@@ -1,5 +1,5 @@
 """`fewear diagnose` on joint wear from a fourth, separately designed generator
-(tests/calibrate/fourth_joint_generator.py): the believed coarse slider-crank model with one hidden
+(tests/diagnose/joint/generators/fourth.py): the believed coarse slider-crank model with one hidden
 cause per data set, each by a law of its own (a bronze off its hardness, a 6-element damped ANCF
 steel rod, a friction that rises as the grease is lost, impact wear by the cube of the impact
 speed, running-in of the pin's roughness as a bore-wide warp of the cycles, or nothing), measured
@@ -19,7 +19,7 @@ from fewear.diagnose.joint.measured import read_joint_measurements
 from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
 from tests.benchmarks.joint_files import measured_files
-from tests.calibrate.fourth_joint_generator import (
+from tests.diagnose.joint.generators.fourth import (
     CAUSES,
     data_set_seed,
     truth_text,

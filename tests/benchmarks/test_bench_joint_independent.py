@@ -1,6 +1,6 @@
 """How often `fewear diagnose` names the cause hidden in joint data it was not built around.
 
-The data sets come from tests/calibrate/independent_joint_generator.py (written without reading
+The data sets come from tests/diagnose/joint/generators/independent.py (written without reading
 the diagnosis or the project's own generator): per cause of the catalogue ``SEEDS`` data sets
 (env ``FEWEAR_BENCH_JOINT_INDEPENDENT_SEEDS``, default 3), each with its own truth parameters and
 its own lab (sampling, origin, filter, noise, drift, dust, coverage, cycle counts). All are
@@ -10,7 +10,7 @@ readers, its slider-acceleration and joint-force traces with its bore. Printed p
 hidden truth, the causes named, the held-out gain and the wall time (data generation +
 diagnosis); then per cause how many were named first, the false positives on ``none`` and the
 total accuracy. No floor is asserted: the printed table is the result
-(tests/calibrate/test_joint_independent.py holds the asserts).
+(tests/diagnose/joint/test_independent.py holds the asserts).
 
 Run with ``pytest tests/benchmarks/test_bench_joint_independent.py -m benchmark -s``.
 
@@ -26,7 +26,7 @@ from collections import Counter
 import pytest
 
 from tests.benchmarks.joint_files import measured_files
-from tests.calibrate.independent_joint_generator import CAUSES, data_set_seed, write_data_set
+from tests.diagnose.joint.generators.independent import CAUSES, data_set_seed, write_data_set
 
 pytestmark = pytest.mark.benchmark
 SEEDS = int(os.environ.get("FEWEAR_BENCH_JOINT_INDEPENDENT_SEEDS", "3"))

@@ -1,6 +1,6 @@
 """`fewear diagnose` on joint wear from a third, separately designed generator.
 
-tests/calibrate/third_joint_generator.py draws a hidden cause (its own forms and ranges: a
+tests/diagnose/joint/generators/third.py draws a hidden cause (its own forms and ranges: a
 smoothstep running-in, impact wear from the squared Hertz-pressure excess, flexible steel or
 aluminium rods, ...) and measures the worn bore with its own lab (a CMM with a ball stylus and an
 unknown angular origin, a bore gauge). For each cause and seed index the data set (profiles,
@@ -22,7 +22,7 @@ from fewear.diagnose.joint.measured import read_joint_measurements
 from fewear.io.config import load_config
 from fewear.loop.settings import run_sections
 from tests.benchmarks.joint_files import measured_files
-from tests.calibrate.third_joint_generator import CAUSES, data_set_seed, write_data_set
+from tests.diagnose.joint.generators.third import CAUSES, data_set_seed, write_data_set
 
 pytestmark = pytest.mark.benchmark
 

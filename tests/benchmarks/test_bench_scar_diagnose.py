@@ -28,7 +28,7 @@ def test_published_scar_diagnosis(case, data, tmp_path):
     print(f"\n{case}: {summary['wall_time_s']:.0f} s, cause {summary['cause']}")
     for entry in summary["candidates"]:
         rms = entry["held_out_rms_m"]
-        print(f"  {entry['name']}: fitted x{entry['fitted_factor']:.4f}, folds "
+        print(f"  {entry['cause']}: fitted x{entry['fitted_factor']:.4f}, folds "
               + ", ".join(f"{factor:.4f}" for factor in entry["fold_factors"])
               + f"; held-out RMS {rms['believed'] * 1e6:.3f} -> {rms['fitted'] * 1e6:.3f} um "
               f"(gain {entry['gain']:.1%}); p {entry['p_value']:.3g} on "

@@ -1,7 +1,7 @@
 """The tribometer diagnosis's effect floor on data it was not tuned on (issue 23; prints its
 tables, asserts the issue's goal of at most 5 % false positives on null data).
 
-tests/calibrate/tribometer_floor_generator.py was written from a brief without reading the
+tests/diagnose/tribometer/floor_generator.py was written from a brief without reading the
 diagnosis: plain-Archard data (``null``) and data with a SMALL cause (running-in, load exponent,
 mild-to-severe, heating; each in two forms of its own, sizes from far inside the noise to well
 above it), test-to-test scatter of k in all of them, and a weighing instrument (balance
@@ -29,8 +29,8 @@ from fewear.diagnose.tribometer.measured import read_measured_wear
 from fewear.diagnose.tribometer.readings import readings_from_measured
 from fewear.diagnose.tribometer.report import summarise
 from fewear.diagnose.tribometer.settings import DiagnoseSettings
-from tests.calibrate.generators import named
-from tests.calibrate.tribometer_floor_generator import KINDS, make_dataset, write_csv
+from tests.diagnose.tribometer.floor_generator import KINDS, make_dataset, write_csv
+from tests.diagnose.tribometer.generators import named
 
 pytestmark = pytest.mark.benchmark
 SEEDS = int(os.environ.get("FEWEAR_BENCH_FLOOR_SEEDS", "6"))
@@ -55,7 +55,8 @@ def effect_bin(size_over_noise: float) -> str:
 
 def test_floor_on_independent_null_and_small_effect_data(tmp_path):
     default = DiagnoseSettings.default()
-    variants = {"floor": default, "no floor": replace(default, min_effect_over_scatter=0.0)}
+    no_floor = replace(default.acceptance, min_effect_over_scatter=0.0)
+    variants = {"floor": default, "no floor": replace(default, acceptance=no_floor)}
     false_positives = {name: Counter() for name in variants}
     detection = {name: defaultdict(Counter) for name in variants}
     for noise, sampling, seed in product(NOISES, SAMPLINGS, range(SEEDS)):

@@ -7,7 +7,6 @@ import numpy as np
 import pytest
 
 from fewear.data import STANDIN_PIN_ON_DISC_CSV
-from fewear.data import make_standin_pin_on_disc as standin
 from fewear.diagnose.tribometer.measured import read_measured_wear, wear_coefficient_samples
 from fewear.errors import FewearInputError
 from fewear.io.config import load_config
@@ -19,6 +18,7 @@ from fewear.wear.coefficient import (
     wear_section,
     wear_section_toml,
 )
+from tests.data_makers import make_standin_pin_on_disc as standin
 
 P_BOX_Pa = (0.5e6, 20e6)
 V_BOX_m_s = (0.05, 2.0)
@@ -202,7 +202,7 @@ def test_default_config_reproduces_the_standin_law_within_its_noise():
 
 
 def test_default_network_is_the_fit_to_the_shipped_data():
-    from fewear.data.fit_default_wear_coefficient import OUTPUT, fit_default, wear_toml_text
+    from tests.data_makers.fit_default_wear_coefficient import OUTPUT, fit_default, wear_toml_text
 
     shipped = wear_coefficient_from_config(load_config(None, ["wear"])["wear"])
     refitted, _ = fit_default()

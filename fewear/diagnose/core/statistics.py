@@ -4,9 +4,7 @@ A cause extends a reference model by q parameters; whether the data support it i
 ways: the extra-sum-of-squares F-test of the nested fits, the corrected Akaike criterion (AICc)
 of each, and (where the held-out units are many) a paired test of their held-out errors; where
 each model has several realizations (runs of a chaotic model), Welch's test of their held-out
-errors. The
-guards where a statistic is undefined differ between the two data kinds; each caller names its
-own (see the ``clamp_correction`` of :func:`aicc`).
+errors.
 """
 
 from __future__ import annotations
@@ -17,18 +15,14 @@ import numpy as np
 from scipy import stats
 
 
-def aicc(rss: float, n_observations: int, n_parameters: int, *,
-         clamp_correction: bool = False) -> float:
+def aicc(rss: float, n_observations: int, n_parameters: int) -> float:
     """Corrected Akaike criterion of a least-squares fit with residual sum of squares ``rss``,
     AICc = n ln(RSS / n) + 2 k + 2 k (k + 1) / (n - k - 1) (Hurvich & Tsai, Biometrika 76
     (1989) 297-307; Burnham & Anderson, *Model Selection and Multimodel Inference*, 2002).
 
     Where n - k - 1 <= 0 or RSS <= 0 the criterion is undefined: NaN (a NaN difference accepts
-    nothing), or, with ``clamp_correction``, the correction's denominator is clamped to 1 (and
-    RSS = 0 is an error of the logarithm)."""
+    nothing)."""
     n, k = n_observations, n_parameters
-    if clamp_correction:
-        return n * math.log(rss / n) + 2 * k + 2 * k * (k + 1) / max(n - k - 1, 1)
     if n - k - 1 <= 0 or rss <= 0.0:
         return float("nan")
     return n * math.log(rss / n) + 2 * k + 2 * k * (k + 1) / (n - k - 1)

@@ -1,15 +1,7 @@
-"""The catalogue of the joint diagnosis: the causes the believed model can be extended by, each an
-object that says
-
-- whether the believed config can be extended by it (:meth:`Cause.untestable_because`);
-- which runs of the wear loop it is fitted on, one :class:`Candidate` per form
-  (:meth:`Cause.forms`): the believed run itself (the level of k, running-in's time map) or runs
-  with the cause switched on at a grid of values;
-- what the believed config becomes at a fit's parameters, the level of k included
-  (:meth:`Cause.extended_config`), and how a run of it is labelled in the progress lines.
-
-The method that fits, refines and selects them is in :mod:`fewear.diagnose.joint.diagnose`.
-"""
+"""The catalogue of the joint diagnosis: each cause declared by a
+:class:`fewear.diagnose.core.cause.Cause` (untestable by the believed config) and fitted by a
+:class:`CauseModel`: the runs of the wear loop it is fitted on, one :class:`Candidate` per form,
+and what the believed config becomes at a fit's parameters."""
 
 from __future__ import annotations
 
@@ -18,6 +10,7 @@ import math
 from dataclasses import dataclass
 from typing import Protocol
 
+from fewear.diagnose.core.cause import Cause
 from fewear.diagnose.joint.candidates import (
     RUNNING_IN_FORMS,
     Candidate,
@@ -61,18 +54,22 @@ class Believed:
     make_runs: RunMaker
 
 
-class Cause:
-    """A departure from the believed model (the base of the catalogue's causes): the level of k
-    is always free, so every cause must beat :class:`WearCoefficient`, the cheapest explanation."""
+class CauseModel:
+    """How a departure from the believed model (``cause``) is fitted, the base of the
+    catalogue's models: the level of k is always free, so every cause must beat
+    :class:`WearCoefficient`, the cheapest explanation."""
 
-    name: str
-    meaning: str
+    cause: Cause
     changes_dynamics = False
     """Whether the cause changes the mechanism's dynamics (what measured traces can show)."""
 
-    def untestable_because(self, config: dict) -> str | None:
-        """Why the believed ``config`` cannot be extended by this cause (None: it can)."""
-        return None
+    @property
+    def name(self) -> str:
+        return self.cause.name
+
+    @property
+    def meaning(self) -> str:
+        return self.cause.meaning
 
     def forms(self, believed: Believed, settings: RunGrids) -> tuple[Candidate, ...]:
         """The runs the cause is fitted on, one candidate per form (none: untestable)."""
@@ -105,29 +102,35 @@ def _scale_wear_coefficient(config: dict, k_scale: float) -> None:
                                *wear["rbf"]["tail"][1:]]
 
 
-class WearCoefficient(Cause):
+def _extension_present(config: dict) -> str | None:
+    extension = config["wear"]["extension"]
+    if extension != "none":
+        return f"the believed model has a [wear] extension ({extension}) already"
+    return None
+
+
+def _rod_flexible(config: dict) -> str | None:
+    if config["wear_loop"]["rod_models"][0] == "flexible":
+        return "the believed model's rod is flexible"
+    return None
+
+
+class WearCoefficient(CauseModel):
     """Only the level s of k is off: the believed run with its cycles scaled by s."""
 
-    name = "wear_coefficient"
-    meaning = "only the level of the wear coefficient k is off"
+    cause = Cause("wear_coefficient", "only the level of the wear coefficient k is off", ("",))
 
     def forms(self, believed: Believed, settings: RunGrids) -> tuple[Candidate, ...]:
         return (Candidate(self.name, (believed.run,)),)
 
 
-class RunningIn(Cause):
+class RunningIn(CauseModel):
     """k falls from r k to k over each node's first metres of sliding or over the first crank
     cycles: the believed run's cycles mapped node by node, one form per [wear] extension of
     :data:`RUNNING_IN_FORMS`."""
 
-    name = "running_in"
-    meaning = "the joint runs in: k is higher over the first cycles and falls to its steady value"
-
-    def untestable_because(self, config: dict) -> str | None:
-        extension = config["wear"]["extension"]
-        if extension != "none":
-            return f"the believed model has a [wear] extension ({extension}) already"
-        return None
+    cause = Cause("running_in", "the joint runs in: k is higher over the first cycles and falls "
+                  "to its steady value", tuple(RUNNING_IN_FORMS), _extension_present)
 
     def forms(self, believed: Believed, settings: RunGrids) -> tuple[Candidate, ...]:
         return tuple(self.candidate(believed.run, form) for form in RUNNING_IN_FORMS)
@@ -148,7 +151,7 @@ class RunningIn(Cause):
                 + f", k x {params['k_scale']:.3g}")
 
 
-class GridCause(Cause):
+class GridCause(CauseModel):
     """A cause fitted on runs with it switched on at a grid of values of one parameter, the runs
     interpolated between (or, ``discrete``, one of them chosen); ``parameter_scales_with_level``:
     the fitted level s scales the parameter too (it is a wear rate)."""
@@ -188,19 +191,14 @@ class FlexibleLink(GridCause):
     follow either smoothly, so the runs are not interpolated; the best on the training data is
     taken (a discrete choice)."""
 
-    name = "flexible_link"
-    meaning = ("the connecting rod modelled rigid is flexible: its compliance changes the "
-               "impacts and the continuous-contact sliding in the joint")
+    cause = Cause("flexible_link", "the connecting rod modelled rigid is flexible: its "
+                  "compliance changes the impacts and the continuous-contact sliding in the joint",
+                  ("", "damping"), _rod_flexible)
     discrete = True
     changes_dynamics = True
 
     def parameter_of(self, form: str) -> str:
         return "rod_damping_factor" if form == "damping" else "rod_youngs_modulus_factor"
-
-    def untestable_because(self, config: dict) -> str | None:
-        if config["wear_loop"]["rod_models"][0] == "flexible":
-            return "the believed model's rod is flexible"
-        return None
 
     def switched_on(self, config: dict, value: float, form: str = "") -> dict:
         changed = copy.deepcopy(config)
@@ -234,8 +232,8 @@ class Friction(GridCause):
     """The friction coefficient differs: runs on a grid of mu (the believed one is the believed
     run), the worn bore interpolated linearly between neighbouring runs."""
 
-    name = "friction"
-    meaning = "the friction coefficient in the joint differs from the assumed one"
+    cause = Cause("friction", "the friction coefficient in the joint differs from the assumed one",
+                  ("",))
     parameter = "friction_coefficient"
     changes_dynamics = True
 
@@ -266,10 +264,9 @@ class ImpactWear(GridCause):
     s scales both wear rates, so the coefficient reported and written to the extended config is
     s times the grid's."""
 
-    name = "impact_wear"
-    meaning = ("the impacts remove material too (wear in proportion to the energy the contact "
-               "dissipates, to the impacts' impulse or to a power of their speed), not only the "
-               "sliding")
+    cause = Cause("impact_wear", "the impacts remove material too (wear in proportion to the "
+                  "energy the contact dissipates, to the impacts' impulse or to a power of their "
+                  "speed), not only the sliding", tuple(IMPACT_FORMS))
     parameter_scales_with_level = True
 
     def parameter_of(self, form: str) -> str:
@@ -315,6 +312,6 @@ class ImpactWear(GridCause):
         return grids
 
 
-CAUSES: dict[str, Cause] = {cause.name: cause for cause in (
+CAUSES: dict[str, CauseModel] = {cause.name: cause for cause in (
     WearCoefficient(), FlexibleLink(), Friction(), ImpactWear(), RunningIn())}
 """The catalogue, by name, in the order the causes are listed."""

@@ -1,21 +1,7 @@
-"""Confirming an accepted cause on realizations of its extended model (the joint diagnosis,
-:mod:`fewear.diagnose.joint.diagnose`).
-
-A cause is accepted on fits that interpolate between runs on a grid, map the cycles of one run or
-take the best of several (the flexible rod's moduli), and every run is one realization of a model
-whose worn bore depends on where the crank starts: an impacting pin's orbit differs from cycle to
-cycle, and the wear loop samples it once per dynamics block. On the third joint generator's data
-set hiding a k level x 1.67, five runs of the fitted k level started 0-4 deg apart predict the
-held-out profiles to 1.35-3.75 um, five of the flexible rod x 1.05 that one run had named (1.01
-um against the k level's 3.51) to 0.97-3.26 um: one run of each told nothing but luck apart.
-
-So the extended model of an accepted cause and its reference's (the k level when that was
-accepted and the cause is a richer one, else the round's own model) are each run from the crank
-starts :data:`START_OFFSETS_DEG`, each run fitted with its angle offset only, and the cause is
-confirmed when the mean of its runs' held-out RMS errors is at least ``min_held_out_gain`` below
-the reference's and lower by more than the runs' own scatter: Welch's one-sided t-test
-(:func:`fewear.diagnose.core.statistics.welch_lower_p`) gives p < ``significance``.
-"""
+"""Confirming an accepted cause on realizations of its extended model: the fits interpolate
+between runs or take the best of several, and runs of one model started a degree apart differ as
+much as the causes, so the cause's full runs from several crank starts must predict the held-out
+data better than its reference's. The method: docs/diagnosis-method-notes.md."""
 
 from __future__ import annotations
 
@@ -84,15 +70,15 @@ def realizations(configs: list[dict], labels: list[str], obs: Observations, offs
 def confirm(cause: str, extended: Realizations, reference: Realizations, against: str,
             settings: JointDiagnoseSettings) -> Confirmation:
     """Whether ``cause``'s ``extended`` realizations predict the held-out data better than the
-    ``reference``'s (the module docstring's rule)."""
+    ``reference``'s (the rule of docs/diagnosis-method-notes.md)."""
     errors, reference_errors = extended.held_out_rms_m, reference.held_out_rms_m
     mean, reference_mean = float(errors.mean()), float(reference_errors.mean())
     gain = 1.0 - mean / reference_mean if reference_mean > 0.0 else -math.inf
     p_value = welch_lower_p(errors, reference_errors)
     return Confirmation(cause, against, tuple(map(float, errors)),
                         tuple(map(float, reference_errors)), gain, p_value,
-                        bool(gain >= settings.min_held_out_gain
-                             and p_value < settings.significance))
+                        bool(gain >= settings.acceptance.min_held_out_gain
+                             and p_value < settings.acceptance.significance))
 
 
 def confirm_no_worse(cause: str, extended: Realizations, reference: Realizations, against: str,
@@ -109,7 +95,8 @@ def confirm_no_worse(cause: str, extended: Realizations, reference: Realizations
     named."""
     found = confirm(cause, extended, reference, against, settings)
     p_worse = welch_lower_p(reference.held_out_rms_m, extended.held_out_rms_m)
-    worse = found.gain < -settings.min_held_out_gain and p_worse < settings.significance
+    accept = settings.acceptance
+    worse = found.gain < -accept.min_held_out_gain and p_worse < accept.significance
     return replace(found, p_value=p_worse, confirmed=not worse)
 
 

@@ -111,13 +111,24 @@ class Fit:
 
     @property
     def aicc(self) -> float:
-        """AICc on the training data (the small-sample correction's denominator clamped to 1)."""
-        return aicc(self.sse_train, self.n_train, self.n_params, clamp_correction=True)
+        """AICc on the training data (:func:`training_aicc`)."""
+        return training_aicc(self.sse_train, self.n_train, self.n_params)
 
     def held_out_gain(self, reference: Fit) -> float:
         """1 - (held-out RMS error) / (``reference``'s): how much better this fit predicts the
         held-out data."""
         return 1.0 - self.held_out_rms_m / reference.held_out_rms_m
+
+
+def training_aicc(rss: float, n_observations: int, n_parameters: int) -> float:
+    """The AICc of :func:`fewear.diagnose.core.statistics.aicc`, but where n - k - 1 <= 0 the
+    small-sample correction's denominator is clamped to 1 rather than the criterion undefined:
+    a joint's few training profiles may hold no more points than a pair's parameters, and its
+    fits are still compared."""
+    n, k = n_observations, n_parameters
+    if n - k - 1 > 0:
+        return aicc(rss, n, k)
+    return n * math.log(rss / n) + 2 * k + 2 * k * (k + 1)
 
 
 def _mixed_depth(candidate: Candidate, position: float, scale: float, cycles: np.ndarray,

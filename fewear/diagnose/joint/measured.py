@@ -1,51 +1,9 @@
-"""Wear measured on the worn revolute clearance joint of a mechanism, read from CSV files.
-
-Each file holds one kind of data, recognised from its header (:func:`joint_data_kind`); SI units
-in the column names, ``#`` comment lines allowed anywhere, one row per reading:
-
-- bore profiles (``profiles``)::
-
-      cycles, angle_deg, wear_depth_m
-
-  one or more traces of the radial wear depth of the bore against the angle, one per cycle count
-  (crank revolutions since the start). The angle is measured in the bushing frame, in degrees in
-  [-360, 720); it is normalised to [0, 360) and sorted within each cycle count, and an angle that
-  appears twice within one cycle count (after normalisation) is an error. A trace may cover the
-  full circle or an arc of it, at any sampling (e.g. every 2-5 degrees); at least 3 angles.
-  Depths slightly below zero (instrument noise) are data: kept, and counted in the notes; a depth
-  further below zero than the file's deepest wear is above it (or 0.1 um) is an error.
-- maximum-depth growth (``max_wear``)::
-
-      cycles, max_wear_depth_m
-
-  the deepest point of the bore's wear at each cycle count; rows in any order, each cycle count
-  once; the depth may be noisy (it may dip below the previous reading or below zero: kept).
-- joint force trace (``force``, optional)::
-
-      time_s, fx_N, fy_N [, cycles]
-
-  the force on the joint in the bushing frame against time (strictly increasing within a trace).
-- slider acceleration trace (``acceleration``, optional)::
-
-      time_s, slider_acceleration_m_s2 [, cycles]
-
-In the traces the ``cycles`` column is the cycle count at which the trace was recorded (a file may
-hold traces at several cycle counts); without it the trace is taken as recorded at the start
-(cycle 0), and the notes say so. Cycle counts are non-negative integers (``50000.0`` and ``5e4``
-are read as 50000; ``1.5`` is an error).
-
-:func:`read_joint_measurements` reads one or more files into :class:`JointMeasurements`; files of
-the same kind are merged (a cycle count in two of them is an error). At least one bore-profile or
-maximum-depth file is required. Notes record what the reader observed and kept: partial angular
-coverage, the sampling step, depths below zero, a missing ``cycles`` column.
-
-Bad data raise :class:`~fewear.errors.FewearInputError` naming the file, line and column: a header
-of no joint kind or of two kinds, a missing or unknown column (a known quantity in other units,
-e.g. ``wear_depth_um`` or ``angle_rad``, gets the SI column to use and the conversion), an empty
-cell, text, NaN or infinity, a cycle count that is negative or not an integer, an angle outside
-[-360, 720) degrees, a wear depth of 1 cm or more (micrometres or millimetres written in a metre
-column), a repeated angle or cycle count, a time that does not increase.
-"""
+"""Wear measured on the worn revolute clearance joint of a mechanism, read from CSV files, one kind
+per file recognised from its header (SI units in the column names): bore profiles
+(``cycles, angle_deg, wear_depth_m``), maximum-depth growth (``cycles, max_wear_depth_m``) and
+optional force (``time_s, fx_N, fy_N [, cycles]``) and slider-acceleration
+(``time_s, slider_acceleration_m_s2 [, cycles]``) traces. The full rules, and what is refused:
+docs/diagnosis-method-notes.md (input files)."""
 
 from __future__ import annotations
 

@@ -1,19 +1,6 @@
-"""Two causes at once: running-in on top of another cause (the joint diagnosis,
-:mod:`fewear.diagnose.joint.diagnose`).
-
-Two causes acting together need not leave one that predicts the held-out counts better on its
-own, and a round names a cause only when one does. On the third generator's friction + running-in
-data set friction alone fitted the training counts to 2.0 um RMS against the believed model's
-15.3 um and predicted the held-out ones 4 % worse (its higher k, fitted to the run-in early wear,
-overshoots later), running-in alone 6 % better: nothing was named. So when the round on the
-believed model accepts no cause, running-in is fitted together with each other cause that, like
-running-in, fits the training data better than the believed model beyond chance: running-in's
-time map (:func:`fewear.diagnose.joint.fitting.running_in_time_map`, in running-in's best form)
-applied to each of that cause's runs, which are interpolated (or one chosen) as for the cause
-alone. Running-in is a map of a run's cycles, so the pair's fit needs no new run. Its extended
-model (:func:`pair_config`) is run in full when the pair is accepted, as a single cause's is
-(:mod:`fewear.diagnose.joint.confirmation`).
-"""
+"""Two causes at once: running-in on top of another cause, fitted on running-in's time map of
+that cause's runs, for when two causes together leave neither better on its own. The method:
+docs/diagnosis-method-notes.md."""
 
 from __future__ import annotations
 

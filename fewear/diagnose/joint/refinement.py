@@ -58,7 +58,8 @@ def fit_causes(candidates: dict[str, tuple[Candidate, ...]], obs: Observations, 
                                               for forms in candidates.values() for form in forms]))
     fits = {name: [next(first_fits) for _ in forms] for name, forms in candidates.items()}
     promising = [name for name in candidates
-                 if best_form(fits[name]).held_out_gain(baseline) >= settings.min_held_out_gain]
+                 if best_form(fits[name]).held_out_gain(baseline)
+                 >= settings.acceptance.min_held_out_gain]
     refinements = {(name, index): _refinement(form, fitted, obs, settings)
                    for name in promising
                    for index, (form, fitted) in enumerate(zip(candidates[name], fits[name]))}
@@ -106,8 +107,8 @@ def refine_running_in(candidate: Candidate, fitted: Fit, obs: Observations,
     more than :data:`SETTLED` or after :data:`REFINEMENTS` runs. At a fixed point the fit is that
     of the real run at its own parameters; the iteration is not sure to reach one (a shape the map
     cannot make is approached a step per run), so the fit that is named is run in full again
-    (:func:`_confirm`). A run that stops before the shortest time axis the fit needs ends the
-    refinement; the fit before it stands."""
+    (:func:`fewear.diagnose.joint.selection.confirm_first`). A run that stops before the
+    shortest time axis the fit needs ends the refinement; the fit before it stands."""
     bounds, _ = bounds_and_starts(candidate, obs, settings)
     for _ in range(REFINEMENTS):
         run = yield candidate, fitted

@@ -35,7 +35,7 @@ def config_differences(config: dict) -> str:
 
 def summarise(diagnosis: JointDiagnosis) -> dict[str, Any]:
     """The JSON-ready summary of ``diagnosis`` (``diagnosis.json``)."""
-    d, obs, settings = diagnosis, diagnosis.observations, diagnosis.settings
+    d, obs, accept = diagnosis, diagnosis.observations, diagnosis.settings.acceptance
     causes = list(d.causes)
     return {
         "source": ", ".join(d.data.sources),
@@ -46,9 +46,9 @@ def summarise(diagnosis: JointDiagnosis) -> dict[str, Any]:
                     "held_out_cycles": sorted(int(c) for c in np.unique(obs.cycles[~obs.train])),
                     "why": "life prediction: the model is fitted on the earlier measurements and "
                            "judged on how it predicts the later ones"},
-        "criterion": (f"F-test p < {settings.significance:g} / forms tried, held-out RMS at "
-                      f"least {settings.min_held_out_gain:.0%} lower, AICc at least "
-                      f"{settings.min_aicc_improvement:g} lower"),
+        "criterion": (f"F-test p < {accept.significance:g} / forms tried, held-out RMS at "
+                      f"least {accept.min_held_out_gain:.0%} lower, AICc at least "
+                      f"{accept.min_aicc_improvement:g} lower"),
         "baseline": {"model": "the believed config at the resolved wear blocks",
                      "held_out_error": d.baseline.held_out_rms_m,
                      "training_error": d.baseline.train_rms_m,
@@ -81,7 +81,7 @@ def _cause_gains(d: JointDiagnosis) -> list[dict[str, Any]]:
         if named_round.level_of:
             against += " at the believed level of k"
         entries.append({"cause": " + ".join(named_round.named),
-                        "held_out_gain": named_round.gain, "against": against})
+                        "gain": named_round.gain, "against": against})
         before += named_round.named
     return entries
 
@@ -91,7 +91,7 @@ def _candidate(entry: CauseVerdict) -> dict[str, Any]:
     fit_, evidence = entry.fit, entry.evidence
     return {"cause": fit_.name, "form": fit_.form, "against": entry.against,
             "p_value": evidence.p_value, "held_out_rms_m": fit_.held_out_rms_m,
-            "training_rms_m": fit_.train_rms_m, "held_out_gain": evidence.gain,
+            "training_rms_m": fit_.train_rms_m, "gain": evidence.gain,
             "aicc_improvement": evidence.aicc_improvement, "accepted": entry.accepted,
             "params": fit_.params}
 
@@ -150,7 +150,7 @@ def _resolution_lines(resolution: dict) -> list[str]:
 def report_markdown(s: dict) -> str:
     lines = [f"# Joint wear diagnosis: {s['source']}", "",
              f"**Cause: {s['cause']}** ({s['cause_meaning']}).", "",
-             *[f"- {e['cause']} adds a held-out gain of {e['held_out_gain']:.0%} to "
+             *[f"- {e['cause']} adds a held-out gain of {e['gain']:.0%} to "
                f"{e['against']}" for e in s["cause_gains"][1:]], "",
              f"Held-out error (cycles {s['holdout']['held_out_cycles']}): believed model "
              f"{s['held_out_error']['baseline']:.3g} m, extended "
@@ -161,7 +161,7 @@ def report_markdown(s: dict) -> str:
              "|---|---|---|---|---|---|---|"]
     lines += [f"| {_cause_label(e)} | {e['against']} | {e['p_value']:.2g} | "
               f"{e['held_out_rms_m']:.3g} "
-              f"| {e['held_out_gain']:.0%} | {e['aicc_improvement']:.1f} | {e['accepted']} |"
+              f"| {e['gain']:.0%} | {e['aicc_improvement']:.1f} | {e['accepted']} |"
               for e in s["candidates"]]
     b, x = s["prediction"]["baseline"], s["prediction"]["extended"]
     lines += ["", f"Maximum depth at {b['cycles']:,} cycles: measured "

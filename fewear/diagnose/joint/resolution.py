@@ -1,35 +1,6 @@
-"""Resolution first: the believed model's wear blocks refined until its own noise is below the
-instrument's scatter, before any cause is fitted.
-
-A wear loop with large blocks is a noisy model of the bore: each block's wear is extrapolated
-from a few recorded crank cycles of an orbit that varies from cycle to cycle (an impacting pin's
-orbit is chaotic), so runs that differ only in where the crank starts end on different bores,
-and halving the blocks moves the bore further still. A cause that moves the bore by less than
-this cannot be told from the model's own noise. On the tests' coarse model (48 bore elements,
-f = 0.25, one wear step per block) runs started 0-3 deg apart part by 5.6 um RMS after 4,000-
-20,000 cycles, ten times a profilometer's 0.5 um scatter, and lie 25-60 % deeper than the
-converged model's bore (README, the joint diagnosis's resolution).
-
-:func:`resolve_wear_step` measures, at the user's wear steps and then at wear steps halved again
-and again (:func:`fewear.diagnose.joint.forward.with_halved_wear_steps`: A_max and the depth-
-increment fraction f, with more wear steps per dynamics block, so that a level costs contact
-solves, not dynamics), the spread of runs whose crank starts 0, 1 and 2 deg later (RMS over the
-bore nodes at the measured cycle counts, about their mean, with the n - 1 of a sample) and how far
-their mean moves from one level to the next. The coarsest level whose spread is at most the
-instrument's scatter and whose mean the next level moves by at most the scatter is the model the
-diagnosis fits (its candidates are run at those blocks, and ``extended.toml`` carries them); at
-most ``max_wear_step_halvings`` halvings (then the finest is taken, its noise reported as the
-limit), and none more once the halvings left could not bring the runs' spread within the
-scatter even if each halved it (:func:`_out_of_reach`: that level is taken, its noise the limit).
-
-The level after one whose spread is within the scatter only judges that one, and is the dearest
-of the ladder (each level's runs cost about twice the level before's). So it runs first from
-the config's crank angle alone (:func:`_verified_by_one_run`): that run's RMS distance from the
-coarser level's mean is the move of the mean plus the run's own deviation from its level's
-mean, an upper estimate of the move, and when it is within the scatter the coarser level is
-resolved on it and the other two runs are not made (the finer level's spread is then not
-measured). Otherwise they are, and the ladder goes on as above.
-"""
+"""Resolution first: the believed model's wear blocks refined until its own noise (runs started a
+degree apart, halved wear steps) is at most the instrument's scatter, before any cause is fitted.
+The method: docs/diagnosis-method-notes.md."""
 
 from __future__ import annotations
 
@@ -79,7 +50,7 @@ def baseline_fit(name: str, run: WearHistory, obs: Observations, max_offset_deg:
 def resolve_wear_step(config: dict, obs: Observations, max_halvings: int,
                       max_offset_deg: float) -> tuple[dict, dict[str, Any]]:
     """(the believed ``config`` at the coarsest wear blocks its noise allows, the resolution)
-    by the module docstring's rule. The resolution (JSON-ready): ``instrument_scatter_m`` (from
+    by the rule of the method notes. The resolution (JSON-ready): ``instrument_scatter_m`` (from
     neighbouring profile points of the residuals of the user's model,
     :func:`fewear.diagnose.joint.structure.scatter_estimate_m`; None without profiles, and then
     the user's blocks are kept), ``wear_step_levels`` (every level measured), the chosen level's

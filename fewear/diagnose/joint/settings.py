@@ -6,8 +6,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from fewear.diagnose.core.evidence import AcceptanceRule
-from fewear.diagnose.core.statistics import bonferroni_threshold
+from fewear.diagnose.core.evidence import AcceptanceSettings
 from fewear.diagnose.joint.catalogue import CAUSES, IMPACT_FORMS
 from fewear.errors import FewearInputError
 from fewear.io.config import load_config
@@ -36,9 +35,8 @@ class JointDiagnoseSettings:
     """The ``[joint_diagnose]`` section (``fewear/defaults/diagnose.toml`` says why each value)."""
 
     candidates: tuple[str, ...]
-    significance: float
-    min_aicc_improvement: float
-    min_held_out_gain: float
+    acceptance: AcceptanceSettings
+    """significance, min_aicc_improvement and min_held_out_gain."""
     held_out_fraction: float
     max_k_scale: float
     friction_grid: tuple[float, ...]
@@ -86,20 +84,13 @@ class JointDiagnoseSettings:
             raise FewearInputError(
                 f"[joint_diagnose] max_k_scale = {self.max_k_scale!r}: expected > 1")
 
-    def acceptance(self, forms_tried: int) -> AcceptanceRule:
-        """The rule a cause must meet when ``forms_tried`` forms were fitted: p below the
-        Bonferroni threshold, a held-out gain of at least ``min_held_out_gain``, AICc at least
-        ``min_aicc_improvement`` lower."""
-        return AcceptanceRule(max_p=bonferroni_threshold(self.significance, forms_tried),
-                              min_gain=self.min_held_out_gain, gain_strictly_above=False,
-                              min_aicc_improvement=self.min_aicc_improvement)
-
     @classmethod
     def from_config(cls, section: dict) -> JointDiagnoseSettings:
         """From a ``[joint_diagnose]`` section (as :func:`fewear.io.config.load_config` returns
         it)."""
-        values = {key: tuple(v) if isinstance(v, list) else v for key, v in section.items()}
-        return cls(**values)
+        acceptance, values = AcceptanceSettings.split("[joint_diagnose]", section)
+        return cls(acceptance=acceptance,
+                   **{key: tuple(v) if isinstance(v, list) else v for key, v in values.items()})
 
     @classmethod
     def default(cls) -> JointDiagnoseSettings:

@@ -1,24 +1,7 @@
-"""Where the believed joint model's misses sit in the mechanism's cycle.
-
-A residual of the worn bore (measured minus believed depth) at a bore angle theta was worn there
-at the instants of the crank cycle when the pin pressed on theta. The believed model's dynamics,
-run for one crank cycle on its own worn bore at the profile's cycle count
-(:func:`fewear.diagnose.joint.forward.cycle_on_worn_bore`), give the contact direction
-theta_c(phi) = atan2(e_y, e_x) (eccentricity e in the bushing frame), the joint force and the
-contact mode (free, impact, continuous contact: :mod:`fewear.mbd.history`) against the crank
-angle phi. Read through them, the residual profile becomes
-
-- a table against the crank angle (:func:`crank_angle_table`): per sector of the cycle, the time
-  share in contact, the force-weighted mean bore angle pressed and the force-weighted mean
-  residual there: the part of the cycle the believed model gets wrong;
-- the impacts (:func:`impact_table`): each impact episode's crank angle, bore angle and peak
-  force, the residual at its bore angle, and the mean |residual| at the impacts against the RMS
-  residual of the bore (about 0.8 for a residual spread evenly, a Gaussian's E|r| / rms): a miss
-  concentrated where the pin strikes points at the impacts;
-- measured force or slider-acceleration traces against the simulated ones
-  (:func:`trace_table`): the crank phase of the trace aligned by circular cross-correlation
-  (1 deg steps), then the RMS difference, the peaks and the difference per sector.
-"""
+"""Where the believed joint model's misses sit in the mechanism's cycle: the bore's residuals
+read through the believed dynamics on its own worn bore (contact direction, force and mode
+against the crank angle), and measured traces against simulated ones. The method:
+docs/diagnosis-method-notes.md."""
 
 from __future__ import annotations
 

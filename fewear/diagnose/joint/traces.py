@@ -1,35 +1,6 @@
-"""Measured traces as evidence on the mechanism (item 4 of the joint diagnosis): which rod and
-friction the slider's acceleration and the joint's force say the joint runs in, beside what the
-bore says.
-
-The bore cannot tell a flexible rod from a level of k: on the generators' data a rod 3 % stiffer
-than the believed one's material, or another section, wears the bore as a k level x1.07-1.10 does
-(README, the joint diagnosis's accuracy). The slider's acceleration can: the rod's bending
-vibration and the way it softens the impacts move the crank harmonics 9-20 of the acceleration by
-1-3 % of the first (a rigid rod's 12th harmonic 8 m/s^2 against a flexible rod's 33 on the tests'
-mechanism, revolution to revolution +-1), a friction change by far less.
-
-A trace is read as its **harmonic signature**: the amplitude of each crank harmonic h = 2..H,
-per whole revolution, divided by the first harmonic's (the kinematic r omega^2 term: an
-instrument's sensitivity error cancels, and so does its offset, the trigger's crank phase
-and the trace's time origin). Of a joint force trace, whose two components rotate with the
-frame the load cell's axes are in, the amplitude of harmonic h is the length of the vector of
-the components' complex amplitudes, sqrt(|Fx_h|^2 + |Fy_h|^2): a rotation of the axes leaves it,
-and being linear in the force it takes no part of the load cell's zero, drift or AC coupling
-(which a nonlinear measure as |F| would). A measured revolution's amplitudes come from a
-least-squares fit of a Fourier series in the crank's period (:func:`revolution_amplitudes`); a
-simulated one's from exact integrals over the integrator's steps: of the slider velocity, a'
-integrated by parts (:func:`simulated_amplitudes`), and of the force's components directly
-(:func:`integrated_amplitudes`), so the impacts' spikes, which no grid resolves, count by their
-impulse. H keeps the harmonics well inside an anti-aliasing filter's pass band: at most
-:data:`MAX_HARMONIC` and an eighth of the sampling rate.
-
-The misfit of a model to the traces of one kind (:func:`trace_misfit`) is the sum over traces
-and harmonics of (measured - simulated mean)^2 over the variance of that difference, from the
-revolutions' spread on both sides: chi-square with one degree per harmonic if the model is
-right. The kinds' misfits are combined after each is divided by its own overdispersion
-(:func:`combined_misfits`).
-"""
+"""Measured traces as evidence on the mechanism: which rod and friction the slider's acceleration
+and the joint's force say the joint runs in, by the misfit of their crank harmonics against the
+believed mechanism's and each option's. The method: docs/diagnosis-method-notes.md."""
 
 from __future__ import annotations
 
@@ -214,7 +185,7 @@ def trace_kind(trace: AccelerationTrace | ForceTrace) -> str:
 def measured_signature(trace: AccelerationTrace | ForceTrace, period_s: float,
                        harmonics: int) -> Signature:
     """The signature of a measured trace: the slider's acceleration, or the joint force (its
-    components' amplitudes combined, module doc)."""
+    components' amplitudes combined, docs/diagnosis-method-notes.md)."""
     def amplitudes(signal):
         return revolution_amplitudes(trace.time_s, signal, period_s, harmonics)
     if isinstance(trace, ForceTrace):
@@ -237,7 +208,7 @@ class TraceMisfit:
 
 
 def trace_misfit(measured: list[Signature], simulated: list[Signature]) -> TraceMisfit:
-    """(module docstring) of ``simulated`` signatures (one per measured trace, at its count)
+    """(the method notes) of ``simulated`` signatures (one per measured trace, at its count)
     against the ``measured`` ones. Each harmonic's difference of means is a Welch t statistic
     (a few revolutions estimate each side's spread: Welch-Satterthwaite degrees of freedom),
     turned into the normal deviate of the same two-sided p, whose squares sum to chi-square."""

@@ -45,7 +45,7 @@ def run(args: argparse.Namespace) -> int:
     for note in diagnosis.notes:
         print(f"fewear diagnose: {note}", file=sys.stderr)
     for entry in summary["candidates"]:
-        print(f"fewear diagnose: {entry['name']}: fitted x{entry['fitted_factor']:.4g} (folds "
+        print(f"fewear diagnose: {entry['cause']}: fitted x{entry['fitted_factor']:.4g} (folds "
               + ", ".join(f"{factor:.3g}" for factor in entry["fold_factors"])
               + f"), held-out RMS {entry['held_out_rms_m']['believed'] * 1e6:.3g} -> "
               f"{entry['held_out_rms_m']['fitted'] * 1e6:.3g} um, p {entry['p_value']:.2g} on "

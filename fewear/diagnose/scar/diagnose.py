@@ -1,30 +1,7 @@
-"""Is the believed scar model wrong on a measured scar, and by which cause?
-
-The believed model is ``fewear scar``'s case with the source's wear coefficient(s); its
-prediction has no parameter fitted to the scar. Each cause of
-:mod:`fewear.diagnose.scar.catalogue` extends it by one parameter, theta = ln(factor) on a
-coefficient, fitted by least squares on the profile points (depth in m) with a few forward runs
-(:mod:`fewear.diagnose.scar.fitting`).
-
-Held out: with several profiles (repeated tests) each profile is held out in turn and predicted
-by the factor fitted on the others; with one, its points are cut into ``profile_blocks`` blocks
-along x, the factor fitted on the even blocks predicts the odd ones and the other way round.
-The held-out RMS error of the cause is compared with the believed model's on the same points
-(the gain 1 - e_cause / e_believed).
-
-Neighbouring points of a digitised profile are not independent: the residuals of profile p,
-taken as a first-order autoregression with lag-one correlation r_p (clipped to [0, 1)), count
-as n_p (1 - r_p) / (1 + r_p) effective observations (the AR(1) case of Bretherton, Widmann,
-Dymnikov, Wallace & Blade, J. Climate 12 (1999) 1990-2009), r_p of the fitted model's residuals
-(the fuller model whose scatter the F-test estimates). The evidence on those N_eff
-observations: the nested F-test of the fit against the believed model (q = 1, N_eff - 1 residual
-degrees of freedom; the sums of squares' ratio is that of all points) and AICc with the mean
-squares times N_eff
-(:mod:`fewear.diagnose.core.statistics`). A cause is named when it passes the core's rule
-(:class:`fewear.diagnose.core.evidence.AcceptanceRule`: p below ``significance`` over the causes
-tried, held-out gain at least ``min_held_out_gain``, AICc at least ``min_aicc_improvement``
-lower); of several, the one with the largest held-out gain first.
-"""
+"""Is the believed scar model wrong on a measured scar, and by which cause? Each cause is one
+log-scale factor on a wear coefficient, fitted to the profile points with a few forward runs and
+judged on held-out folds of the profile against the believed model, on effective observations
+(neighbouring points are correlated). The method: docs/diagnosis-method-notes.md."""
 
 from __future__ import annotations
 
@@ -37,7 +14,7 @@ import numpy as np
 
 from fewear.diagnose.core.evidence import Evidence
 from fewear.diagnose.core.statistics import aicc, nested_f_test_p
-from fewear.diagnose.scar.catalogue import CAUSES
+from fewear.diagnose.scar.catalogue import SCALED
 from fewear.diagnose.scar.fitting import FactorFit, ForwardRuns, fit_log_factor
 from fewear.diagnose.scar.measured import MeasuredScar
 from fewear.diagnose.scar.settings import ScarDiagnoseSettings
@@ -96,7 +73,7 @@ class ScarDiagnosis:
 
 def held_out_folds(measured: MeasuredScar, blocks: int) -> tuple[tuple[np.ndarray, str], ...]:
     """The folds as boolean masks of the FITTED points (the rest held out), each point held out
-    once, and what the folds are (module docstring)."""
+    once, and what the folds are (docs/diagnosis-method-notes.md)."""
     profile = measured.profile_of_point
     if len(measured.names) > 1:
         return tuple((profile != index, f"{name} held out, fitted on the other profiles")
@@ -123,7 +100,7 @@ def effective_observations(residual_m: np.ndarray, profile: np.ndarray) -> int:
 def nested_evidence(measured_m: np.ndarray, believed_m: np.ndarray, fitted_m: np.ndarray,
                     n_effective: int, gain: float) -> Evidence:
     """The F-test's p and the AICc improvement of the one-parameter fit against the believed
-    model on ``n_effective`` observations (module docstring), with the held-out ``gain``."""
+    model on ``n_effective`` observations (the method notes), with the held-out ``gain``."""
     n = measured_m.size
     rss_believed = float(np.sum((believed_m - measured_m) ** 2))
     rss_fitted = float(np.sum((fitted_m - measured_m) ** 2))
@@ -140,8 +117,8 @@ def _rms(values: np.ndarray) -> float:
 def try_cause(cause: str, measured: MeasuredScar, believed_m: np.ndarray, predict,
               folds, settings: ScarDiagnoseSettings, report=None) -> CauseTrial:
     """Fit ``cause`` on all points and on each fold (``predict(factor)``: the depths at the
-    points, one forward run) and judge it against the believed model (module docstring)."""
-    measured_m, scales_area = measured.depth_points_m, CAUSES[cause].scales_worn_area
+    points, one forward run) and judge it against the believed model (the method notes)."""
+    measured_m, scales_area = measured.depth_points_m, SCALED[cause].scales_worn_area
     runs = ForwardRuns(believed_m, predict, report)
     every = np.ones(measured_m.size, dtype=bool)
     fit = fit_log_factor(runs, measured_m, every, settings, scales_area)
@@ -185,7 +162,7 @@ def diagnose_scar(measured: MeasuredScar, model, settings: ScarDiagnoseSettings,
 
     believed_m = predict_for(tried[0])(1.0)
     folds = held_out_folds(measured, settings.profile_blocks)
-    rule = settings.acceptance(len(tried))
+    rule = settings.acceptance.rule(len(tried))
     trials = []
     for cause in tried:
         trial = try_cause(cause, measured, believed_m, predict_for(cause), folds, settings,

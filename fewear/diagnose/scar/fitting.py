@@ -1,19 +1,6 @@
-"""Fitting one log-scale factor on a wear coefficient by a few forward runs of the scar model.
-
-The model's depth at the measured points is known only where it was run; between runs it is
-taken linear in theta = ln(factor) (a surrogate through the runs, extrapolated linearly beyond
-them). A fit (all points, or a fold's training points) minimises the residual sum of squares of
-the surrogate over |theta| <= ln ``max_k_factor`` (Brent's bounded search,
-:func:`scipy.optimize.minimize_scalar`), runs the model at the minimiser and repeats, until the
-minimiser lies within ln(1 + ``factor_tolerance``) of a run (the surrogate exact there:
-converged) or the cause's ``max_forward_runs`` are spent (not converged: said in the result).
-With two runs the surrogate's minimiser is the secant (Gauss-Newton) step of the least-squares
-problem; the runs of one cause serve all its fits (all points and each fold).
-
-The first run beside the believed one (theta = 0) is Archard's guess where the cause scales the
-flat's worn area (A = k P' S): theta_1 = ln(measured / predicted area on the training points),
-at least :data:`FIRST_STEP_TOLERANCES` tolerances from 0 so that the secant's slope is resolved.
-"""
+"""Fitting one log-scale factor on a wear coefficient by a few forward runs of the scar model:
+between runs the depths are taken linear in ln(factor), and the surrogate's minimiser is run
+until it lies within the tolerance of a run. The method: docs/diagnosis-method-notes.md."""
 
 from __future__ import annotations
 
@@ -60,7 +47,7 @@ class ForwardRuns:
         return float(np.min(np.abs(np.array(self._log_factors) - log_factor)))
 
     def depth_m(self, log_factor: float) -> np.ndarray:
-        """The surrogate's depths at theta (module docstring); the believed ones with one run."""
+        """The surrogate's depths at theta (the method notes); the believed ones with one run."""
         order = np.argsort(self._log_factors)
         thetas, depths = np.array(self._log_factors)[order], [self._depths[i] for i in order]
         if thetas.size == 1:
@@ -88,7 +75,7 @@ def fit_log_factor(runs: ForwardRuns, measured_m: np.ndarray, fitted: np.ndarray
                    settings: ScarDiagnoseSettings, scales_worn_area: bool) -> FactorFit:
     """The least-squares ln(factor) on the points ``fitted`` (a boolean mask) of ``measured_m``,
     running the model while it has not converged and fewer than ``max_forward_runs`` runs were
-    made (module docstring)."""
+    made (docs/diagnosis-method-notes.md)."""
     bound, tolerance = settings.log_factor_bound, settings.log_factor_tolerance
     runs_allowed = settings.max_forward_runs
     if len(runs.factors) == 0:

@@ -12,7 +12,7 @@ import numpy as np
 from mpi4py import MPI
 
 from fewear.contact.params import FlatContactProblem
-from fewear.diagnose.scar.catalogue import CAUSES, untestable_reason
+from fewear.diagnose.scar.catalogue import CAUSES, SCALED
 from fewear.errors import FewearInputError
 from fewear.loop.scar import (
     SCAR_CASES,
@@ -44,16 +44,16 @@ class ScarModel:
 
     def untestable_reason(self, cause: str) -> str | None:
         """Why ``cause`` cannot be fitted in this case (None: it can)."""
-        return untestable_reason(CAUSES[cause], self.settings)
+        return CAUSES[cause].why_untestable(self.settings)
 
     def coefficient_m2_N(self, cause: str) -> float:
         """The source's value of the coefficient ``cause`` scales (m^2/N)."""
-        return float(getattr(self.settings, CAUSES[cause].setting))
+        return float(getattr(self.settings, SCALED[cause].setting))
 
     def depth_on(self, x_m: np.ndarray, cause: str, factor: float) -> np.ndarray:
         """The predicted scar's depth (m) at ``x_m`` (linear between the FE top nodes) with the
         coefficient of ``cause`` times ``factor``: one forward run, on this process alone."""
-        setting = CAUSES[cause].setting
+        setting = SCALED[cause].setting
         settings = replace(self.settings,
                            **{setting: getattr(self.settings, setting) * factor})
         if self.case == "block_on_ring":

@@ -1,19 +1,7 @@
-"""A measured wear scar: profiles of the worn flat's surface across the scar, read from CSV.
-
-The schema (``#`` comment lines allowed anywhere, one row per position across the scar)::
-
-    x_mm, <profile>_um [, <profile>_um ...]      or      x_m, <profile>_m [, ...]
-
-the position, then the surface height of each profile (one per repeated test) at it, NEGATIVE
-where worn: the form of the measured scars in ``fewear/data`` (digitised by LevelSetWear).
-Each height column is in um (``_um``) or m (``_m``); the depth is the height negated, in m.
-A file is a scar when its first column is ``x_mm`` or ``x_m`` (:func:`is_scar_file`).
-
-Bad data raise :class:`~fewear.errors.FewearInputError` naming the file, line and column: no
-height column, a column in another unit or of no unit, a repeated column, an empty cell, text,
-NaN or infinity, a position that does not increase, fewer than :data:`MIN_POINTS` positions, a
-profile without wear.
-"""
+"""A measured wear scar: profiles of the worn flat's surface across the scar, read from CSV,
+``x_mm, <profile>_um [, ...]`` or ``x_m, <profile>_m [, ...]``, heights NEGATIVE where worn (the
+form of the measured scars in ``fewear/data``). The full rules, and what is refused:
+docs/diagnosis-method-notes.md (input files)."""
 
 from __future__ import annotations
 

@@ -22,7 +22,7 @@ def summarise(diagnosis: ScarDiagnosis, case: str,
     named = next((trial for trial in trials if trial.cause in causes[:1]), None)
     before = trials[0].held_out_rms_before_m
     after = named.held_out_rms_after_m if named else before
-    settings = diagnosis.settings
+    accept = diagnosis.settings.acceptance
     return {
         "source": diagnosis.measured.source,
         "case": case,
@@ -30,12 +30,13 @@ def summarise(diagnosis: ScarDiagnosis, case: str,
         "points": int(diagnosis.measured.depth_points_m.size),
         "holdout": diagnosis.holdout,
         "criterion": (f"F-test against the believed model on effective observations, p < "
-                      f"{settings.significance:g} / {len(trials)} causes tried; held-out "
-                      f"RMS at least {settings.min_held_out_gain:.0%} lower; AICc at least "
-                      f"{settings.min_aicc_improvement:g} lower"),
+                      f"{accept.significance:g} / {len(trials)} causes tried; held-out "
+                      f"RMS at least {accept.min_held_out_gain:.0%} lower; AICc at least "
+                      f"{accept.min_aicc_improvement:g} lower"),
         "candidates": [_trial_entry(trial, source_coefficients_m2_N[trial.cause])
                        for trial in trials],
-        "untestable": diagnosis.untestable,
+        "untestable": [{"cause": cause, "untestable_reason": reason}
+                       for cause, reason in diagnosis.untestable.items()],
         **verdict(causes, CAUSES[causes[0]].meaning if causes else NONE_MEANING,
                   list(causes[1:]), before, after),
         "unexplained": [],
@@ -47,7 +48,7 @@ def summarise(diagnosis: ScarDiagnosis, case: str,
 def _trial_entry(trial: CauseTrial, source_m2_N: float) -> dict[str, Any]:
     evidence = trial.evidence
     return {
-        "name": trial.cause,
+        "cause": trial.cause,
         "fitted_factor": trial.fit.factor,
         "fitted_coefficient_m2_N": trial.fit.factor * source_m2_N,
         "source_coefficient_m2_N": source_m2_N,

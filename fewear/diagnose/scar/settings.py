@@ -7,8 +7,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from fewear.diagnose.core.evidence import AcceptanceRule
-from fewear.diagnose.core.statistics import bonferroni_threshold
+from fewear.diagnose.core.evidence import AcceptanceSettings
 from fewear.diagnose.scar.catalogue import CAUSES
 from fewear.errors import FewearInputError, require_whole_number
 from fewear.io.config import load_config
@@ -27,9 +26,8 @@ class ScarDiagnoseSettings:
     """The ``[scar_diagnose]`` section (``fewear/defaults/diagnose.toml`` says why each value)."""
 
     candidates: tuple[str, ...]
-    significance: float
-    min_held_out_gain: float
-    min_aicc_improvement: float
+    acceptance: AcceptanceSettings
+    """significance, min_held_out_gain and min_aicc_improvement."""
     max_k_factor: float
     max_forward_runs: int
     factor_tolerance: float
@@ -40,15 +38,10 @@ class ScarDiagnoseSettings:
         if unknown or not self.candidates:
             raise FewearInputError(f"{WHERE} candidates = {list(self.candidates)!r}: expected a "
                                    f"non-empty list of {', '.join(CAUSES)}")
-        _require_fraction("significance", self.significance, 0.0, 0.5)
-        _require_fraction("min_held_out_gain", self.min_held_out_gain, -1.0, 1.0)
         _require_fraction("factor_tolerance", self.factor_tolerance, 0.0, 0.1)
         if not (isinstance(self.max_k_factor, (int, float)) and 1.0 < self.max_k_factor <= 100.0):
             raise FewearInputError(f"{WHERE} max_k_factor = {self.max_k_factor!r}: expected a "
                                    "number in (1, 100]")
-        if not (math.isfinite(self.min_aicc_improvement) and self.min_aicc_improvement >= 0.0):
-            raise FewearInputError(f"{WHERE} min_aicc_improvement = "
-                                   f"{self.min_aicc_improvement!r}: expected a number >= 0")
         require_whole_number(f"{WHERE} max_forward_runs", self.max_forward_runs, 1, 100)
         require_whole_number(f"{WHERE} profile_blocks", self.profile_blocks, 2, 1000)
 
@@ -63,18 +56,11 @@ class ScarDiagnoseSettings:
         run's."""
         return math.log1p(self.factor_tolerance)
 
-    def acceptance(self, causes_tried: int) -> AcceptanceRule:
-        """The rule a cause must meet when ``causes_tried`` were fitted: p below the Bonferroni
-        threshold, a held-out gain of at least ``min_held_out_gain`` and an AICc
-        ``min_aicc_improvement`` lower."""
-        return AcceptanceRule(max_p=bonferroni_threshold(self.significance, causes_tried),
-                              min_gain=self.min_held_out_gain, gain_strictly_above=False,
-                              min_aicc_improvement=self.min_aicc_improvement)
-
     @classmethod
     def from_config(cls, section: dict[str, Any]) -> ScarDiagnoseSettings:
         """From a ``[scar_diagnose]`` section (as :func:`fewear.io.config.load_config` gives)."""
-        return cls(**{**section, "candidates": tuple(section["candidates"])})
+        acceptance, values = AcceptanceSettings.split(WHERE, section)
+        return cls(acceptance=acceptance, **{**values, "candidates": tuple(values["candidates"])})
 
     @classmethod
     def default(cls) -> ScarDiagnoseSettings:

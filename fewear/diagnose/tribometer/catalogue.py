@@ -1,43 +1,18 @@
-"""The catalogue of candidate causes: departures from Archard's law V = k F s, each a law with one
-or two parameters, in one or more forms.
-
-Two kinds of law act on the logarithm of the wear volume:
-
-- *shape* laws change the wear curve along sliding: ln(S_eff / s), with S_eff the effective distance
-  of an extension of :mod:`fewear.wear.extensions` (running-in over distance, a transient over
-  time, frictional heating);
-- *level* laws change k from test to test with the load or the frictional power: ln m(x), x the
-  contact pressure p [Pa] (the normal load F [N] when no pressure is given) or p v [W/m^2] (F v
-  [W] without a pressure):
-
-  * ``thermal`` (steady form): an Arrhenius rate at the test's steady temperature, which rises
-    with q = mu p v (p v or F v without a friction coefficient), see :class:`SteadyHeating` (its
-    lagged form, a shape law, needs the time and the friction);
-
-  * ``load_exponent``: V ~ x^a, i.e. m = (x / x_ref)^(a - 1) (Rhee, Wear 16 (1970) 431-445: wear of
-    friction materials grows as F^a with a different from 1; a < 1 when the real contact area grows
-    less than the load, a > 1 when heating or fatigue add to it);
-  * ``mild_to_severe``: m rises from 1 to J > 1 across a threshold x_c, as a step or over a
-    width in ln x (the mild-to-severe transitions of the wear-mechanism maps, Lim & Ashby, Acta
-    Metall. 35 (1987) 1-24; Welsh, Phil. Trans. R. Soc. A 257 (1965) 31-50), with x the pressure
-    (load) or p v. The steady ``thermal`` law is, in ln m, a logistic of ln q of width 1: a broad
-    rise with the frictional power; a threshold of p v with a width near 1 is the same curve,
-    and then the simpler law (fewer parameters) is preferred.
-
-A cause with several forms (exponential and power-law running-in; a load or a p v threshold) is
-one cause: the form that fits best names its parameters. Each form maps its parameters to an
-unconstrained search vector (logarithms scaled by the campaign's own distances, times, powers
-and loads, so that one start grid serves every data set).
-"""
+"""The catalogue of candidate causes of the tribometer diagnosis: departures from Archard's law
+V = k F s, each a law of one to three parameters in one or more forms, acting on ln V along
+sliding (shape laws) or across tests (level laws). The laws and their sources:
+docs/diagnosis-method-notes.md."""
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 from scipy import special
 
+from fewear.diagnose.core.cause import Cause
 from fewear.wear.extensions import (
     RunningIn,
     RunningInPowerLaw,
@@ -172,6 +147,11 @@ class Form:
     bounds: tuple[tuple[float, float], ...]
     starts: Callable[[Context], list[tuple[float, ...]]]
 
+    @property
+    def all_needs(self) -> set[str]:
+        """``needs``, with "distance" for a shape law (the wear curve along sliding)."""
+        return set(self.needs) | ({"distance"} if self.kind == "shape" else set())
+
 
 # amplitude: ln(r - 1) or ln(beta q_max) in [ln 1e-3, ln 1e3]; scale: ln(s0/S) or ln(tau/T) in
 # [ln 1e-4, ln 10] (a transient much longer than the tests is a curvature, much shorter an offset).
@@ -264,7 +244,34 @@ FORMS: tuple[Form, ...] = (
          _threshold_law(_by_load_speed), _THRESHOLD_BOUNDS, _threshold_starts(_by_load_speed)),
 )
 
-MEANINGS = {
+NEEDS_TEXT = {"time": "time_s (or velocity_m_s, from which t = s / v)",
+              "friction": "friction_coefficient", "pressure": "pressure_Pa",
+              "load": "normal_load_N or pressure_Pa that varies between tests",
+              "power": "normal_load_N or pressure_Pa, and velocity_m_s, whose product varies "
+                       "between tests",
+              "distance": "tests or readings at different sliding distances under one material"}
+"""What each of the forms' needs asks of the data's columns."""
+
+
+def forms_of(cause: str) -> tuple[Form, ...]:
+    return tuple(form for form in FORMS if form.cause == cause)
+
+
+def missing_needs(cause: str, have: set[str]) -> list[str]:
+    """What data holding ``have`` lack for ``cause``: the fewest needs any of its forms misses
+    ([] where a form can be fitted)."""
+    missing_per_form = [sorted(form.all_needs - have) for form in forms_of(cause)]
+    return min(missing_per_form, key=len) if all(missing_per_form) else []
+
+
+def _lacking(cause: str, have: set[str]) -> str | None:
+    missing = missing_needs(cause, have)
+    if not missing:
+        return None
+    return "could not be tested: needs " + " and ".join(NEEDS_TEXT[need] for need in missing)
+
+
+_MEANINGS = {
     "running_in": "k falls from an initial to a steady value over sliding distance (running-in, "
                   "Blau 2005; exponential or power-law approach)",
     "time_transient": "k falls from an initial to a steady value over time (oxide or tribofilm "
@@ -277,9 +284,7 @@ MEANINGS = {
     "mild_to_severe": "k jumps to a higher (severe) value above a load, pressure or p v threshold "
                       "(Welsh 1965; Lim & Ashby 1987)",
 }
-CAUSES = tuple(MEANINGS)
-"""The causes of the catalogue, in the order they are listed."""
-
-
-def forms_of(cause: str) -> tuple[Form, ...]:
-    return tuple(form for form in FORMS if form.cause == cause)
+CAUSES = {name: Cause(name, meaning, tuple(form.name for form in forms_of(name)),
+                      partial(_lacking, name)) for name, meaning in _MEANINGS.items()}
+"""The causes of the catalogue, by name, in the order they are listed; each untestable by the
+measured quantities (:func:`missing_needs`)."""

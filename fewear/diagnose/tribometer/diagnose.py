@@ -1,58 +1,7 @@
 """What plain Archard gets wrong on measured pin-on-disc data, which physical causes explain it,
-and how much better the extended model predicts tests it has not seen.
-
-Model of reading i of test j (wear volume V [m^3] after sliding distance s [m], time t [s], under
-normal load F [N] or contact pressure p [Pa], speed v [m/s], frictional power q = mu p v):
-
-.. math::  \\ln V_{ij} = \\ln F_j + c_{g(j)} + \\ln s_{ij}
-           + \\sum_{\\text{causes}} \\ln m(\\ldots; \\theta) + \\epsilon_{ij},
-
-plain Archard (the seed's eq. 10 integrated over a test, k = e^c) with one wear coefficient per
-*material group* g (tests that share their material and every other declared categorical factor)
-and multiplicative scatter: independent scatter of each reading (weighing, profilometry: readings
-that dip below the previous one are data) and test-to-test scatter of k. The causes of
-:mod:`fewear.diagnose.tribometer.catalogue` add ln m: *shape* laws bend the wear curve along sliding
-(ln S_eff / s), *level* laws change k with load, pressure or p v.
-
-The data decide how the causes are tested:
-
-- *histories* (every test read at least ``min_readings_along_test`` times): the shape causes are
-  tested along the tests with each test's own level c_j (stage "along tests": the test-to-test
-  scatter of k stays out of it); the level causes then across tests on those levels (stage
-  "across tests", one row per test);
-- *tables* (a design of experiments, one reading per test or a few): one stage over all readings
-  with the material-group levels; tests that share their conditions and differ in sliding
-  distance form the wear curve V(s) across tests, so the shape causes are testable too.
-
-Selection (forward, one cause at a time, while each still earns its place): at every step each
-untried cause is fitted jointly with those already chosen (its form with the smallest residual sum
-of squares) and scored on **whole tests held out**: leave-one-test-out, the cause's parameters
-fitted on the other tests, the held-out test predicted from its conditions (with its own level
-where the level is per test, so a transient that is over early still shows in the held-out curve).
-Per held-out test u the mean squared log error e_u is compared with the current model's. The cause
-is accepted when its evidence is significant at p below ``significance`` / m (Bonferroni over the
-m forms tried at that step, since the best form of each cause is picked: a family-wise
-false-positive rate of at most ``significance``), its
-held-out error is lower than the current model's, and its AICc on all rows is at least
-``min_aicc_improvement`` lower (Hurvich & Tsai 1989; Burnham & Anderson, *Model Selection and
-Multimodel Inference*, 2002). The evidence is the test that is valid for the stage's scatter:
-
-- along tests (many readings per held-out test, their scatter possibly correlated along the test,
-  e.g. wear scattered interval by interval): a one-sided paired t-test over the held-out tests of
-  ln(e_current,u / e_cause,u) > 0 (:func:`paired_improvement_p`), which counts tests, not
-  readings, so correlated scatter cannot make a cause look significant;
-- one row per test (levels across tests, tables of one reading per test): the rows are
-  independent, and the extra-sum-of-squares F-test of the nested fits (Seber & Wild 1989) uses
-  them all.
-
-Of the accepted causes one joins the model: along tests the one with the smallest held-out error;
-where each test is one row the one with the smallest AICc (with independent rows AICc and
-leave-one-out cross-validation agree asymptotically, Stone, J. R. Stat. Soc. B 39 (1977) 44-47,
-and AICc varies less between small samples).
-
-Causes accepted at the first step of a stage that the held-out errors do not tell apart from the
-one chosen (paired p >= ``significance``) are reported as confounded, with the evidence for each.
-"""
+and how much better the extended model predicts tests it has not seen: forward selection of the
+causes of :mod:`fewear.diagnose.tribometer.catalogue` on ln V, stage by stage, each judged on
+left-out tests. The method: docs/diagnosis-method-notes.md."""
 
 from __future__ import annotations
 
@@ -105,7 +54,7 @@ class Diagnosis:
 
 
 def diagnose(readings: Readings, settings: DiagnoseSettings | None = None) -> Diagnosis:
-    """The diagnosis of ``readings`` (module docstring for the method)."""
+    """The diagnosis of ``readings`` (docs/diagnosis-method-notes.md)."""
     settings = settings or DiagnoseSettings.default()
     if readings.n_tests < 3:
         raise FewearInputError(f"{readings.source}: {readings.n_tests} test(s) with wear; the "

@@ -152,7 +152,7 @@ def plot_candidates(diagnosis, summary: dict, path: str | Path) -> Path:
         errors.append(stage["baseline_held_out_error"])
         colours.append("tab:blue")
         for entry in stage["steps"][0] if stage["steps"] else []:
-            names.append(f"{stage['name']}: {entry['name']}")
+            names.append(f"{stage['name']}: {entry['cause']}")
             errors.append(entry["held_out_error"])
             colours.append("tab:red" if entry["accepted"] else "0.6")
     fig, ax = plt.subplots(figsize=(6.0, 0.4 * len(names) + 1.2))

@@ -192,11 +192,6 @@ class Trial:
         """RMS held-out error over the tests that could be predicted."""
         return held_out_rms(self.errors)
 
-    @property
-    def aicc_change(self) -> float:
-        """AICc of the cause's fit minus the current model's (negative favours the cause)."""
-        return -self.evidence.aicc_improvement
-
 
 @dataclass(frozen=True)
 class StageResult:
@@ -238,13 +233,13 @@ def select_causes(stage: Stage, causes: tuple[str, ...], settings: DiagnoseSetti
                  if (trial := _try_cause(stage, current, current_errors, cause)) is not None]
         if not tried:
             break
-        rule = settings.acceptance(sum(trial.forms_tried for trial in tried))
+        rule = settings.acceptance.rule(sum(trial.forms_tried for trial in tried))
         judged = tuple(_judged(trial, rule) for trial in tried)
         steps.append(judged)
         accepted = [trial for trial in judged if trial.accepted]
         if not accepted:
             break
-        best = min(accepted, key=lambda trial: trial.aicc_change if trial.test == "F"
+        best = min(accepted, key=lambda trial: -trial.evidence.aicc_improvement if trial.test == "F"
                    else trial.held_out_error)
         gains[best.cause] = best.evidence.gain
         chosen.append(best.cause)
@@ -280,7 +275,8 @@ def _try_cause(stage: Stage, current: StageFit, current_errors: np.ndarray,
                                              stage.y.size - n_fuller)
     else:
         test, p_value = "paired t", paired_improvement_p(current_errors, errors)
-    aicc_change = aicc(fit.rss, stage.y.size, n_fuller) - aicc(current.rss, stage.y.size, n_base)
+    aicc_improvement = (aicc(current.rss, stage.y.size, n_base)
+                        - aicc(fit.rss, stage.y.size, n_fuller))
     return Trial(
         cause=cause, form=fit.forms[-1].name, stage=stage.name, params=fit.laws[-1].params(),
         fit=fit, errors=errors, held_out_error_before=held_out_rms(current_errors), test=test,
@@ -290,7 +286,7 @@ def _try_cause(stage: Stage, current: StageFit, current_errors: np.ndarray,
         training_error=float(np.sqrt(np.mean(fit.residuals**2))),
         evidence=Evidence(p_value=p_value,
                           gain=1.0 - held_out_rms(errors) / held_out_rms(current_errors),
-                          aicc_improvement=-aicc_change,
+                          aicc_improvement=aicc_improvement,
                           effect_over_scatter=effect_over_scatter(current, fit)))
 
 
@@ -315,7 +311,8 @@ def _verdict(trial: Trial, rule: AcceptanceRule) -> str:
     shown = (f"{trial.test} p = {evidence.p_value:.2g}, held-out tests improved "
              f"{trial.tests_improved}, held-out gain {evidence.gain:+.0%}")
     if trial.accepted:
-        return f"accepted: {shown} (p < {rule.max_p:.2g}), AICc {trial.aicc_change:+.1f}"
+        return (f"accepted: {shown} (p < {rule.max_p:.2g}), AICc improvement "
+                f"{evidence.aicc_improvement:+.1f}")
     if evidence.p_value >= rule.max_p:
         return f"rejected: not significant ({shown}; needs p < {rule.max_p:.2g})"
     if not rule.predicts_better(evidence):
@@ -324,6 +321,6 @@ def _verdict(trial: Trial, rule: AcceptanceRule) -> str:
         return (f"rejected: an effect the data do not resolve ({shown}): it changes no fitted "
                 f"reading by more than {evidence.effect_over_scatter:.2g} times the scatter of "
                 f"a reading (needs {rule.min_effect_over_scatter:g})")
-    return (f"rejected: AICc {trial.aicc_change:+.1f} (needs <= "
-            f"-{rule.min_aicc_improvement:g}): the extra parameters do not pay for "
+    return (f"rejected: AICc improvement {evidence.aicc_improvement:+.1f} (needs >= "
+            f"{rule.min_aicc_improvement:g}): the extra parameters do not pay for "
             "themselves in the fit")

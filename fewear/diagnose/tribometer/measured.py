@@ -1,40 +1,8 @@
-"""Measured wear from tribometer tests (pin-on-disc), read from CSV into plain arrays.
-
-The schema: one row per reading, cumulative within a test, SI units in the column names,
-``#`` comment lines allowed anywhere::
-
-    test_id, pressure_Pa, velocity_m_s, sliding_distance_m, wear_volume_m3
-    [, time_s, normal_load_N, friction_coefficient, temperature_C, material, factor_*]
-
-Other common names of the same quantities in the same SI units are read as the schema's names
-(:data:`ALIASES`, e.g. ``sliding_speed_m_s``, ``contact_pressure_Pa``), and the notes say so.
-``material`` and any column named ``factor_<name>`` (e.g. ``factor_lubrication``) are categorical
-factors: text, one value per reading, constant within a test; tests that differ in one of them get
-their own wear coefficient level in the diagnosis.
-
-Three other forms that tribometer reports and papers give are converted on reading, and each
-conversion is recorded as a sentence in :attr:`MeasuredWear.notes`:
-
-- ``mass_loss_kg`` instead of ``wear_volume_m3``, with a density (column ``density_kg_m3`` or the
-  argument ``density_kg_m3``): V = m / rho.
-- ``specific_wear_rate_m3_N_m`` (k) instead of ``wear_volume_m3``, one row per test, with
-  ``normal_load_N`` and ``sliding_distance_m``: V = k F s (Archard).
-- ``wear_rate_m3_m`` (wear volume per metre of sliding, V / s) instead of ``wear_volume_m3``, one
-  row per test, with ``sliding_distance_m``: V = (V / s) s.
-
-Required: ``test_id``, exactly one wear column (``wear_volume_m3``, ``mass_loss_kg`` or
-``specific_wear_rate_m3_N_m``) and ``sliding_distance_m`` (or ``time_s`` with ``velocity_m_s``, from
-which s = v t is derived and noted). Every other variable may be absent: nothing is invented, a
-missing variable is ``None`` and :attr:`MeasuredWear.available` lists what is there.
-
-Bad data raise :class:`~fewear.errors.FewearInputError` naming the file line and the column: a
-missing required column, an unknown column (including known quantities in other units, e.g.
-``wear_volume_mm3``), an empty cell, text or NaN where a number belongs, a negative value, a
-sliding distance or time that decreases within a test, a categorical factor that changes within a
-test. A wear volume or mass loss that dips below the test's previous reading (or below zero) is
-data (the scatter of a weighing or a profile), not an error: it is kept and the dips are counted
-in the notes.
-"""
+"""Measured wear from tribometer tests (pin-on-disc), read from CSV into plain arrays: one row per
+reading, cumulative within a test, SI units in the column names, ``test_id, pressure_Pa,
+velocity_m_s, sliding_distance_m, wear_volume_m3 [, time_s, normal_load_N, friction_coefficient,
+temperature_C, material, factor_*]``; mass loss, specific wear rate or wear per metre converted
+on reading. The full rules, and what is refused: docs/diagnosis-method-notes.md (input files)."""
 
 from __future__ import annotations
 

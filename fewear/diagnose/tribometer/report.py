@@ -13,7 +13,7 @@ import numpy as np
 
 from fewear.diagnose.core.report import verdict
 from fewear.diagnose.core.statistics import paired_improvement_p
-from fewear.diagnose.tribometer.catalogue import MEANINGS
+from fewear.diagnose.tribometer.catalogue import CAUSES
 from fewear.diagnose.tribometer.diagnose import Diagnosis
 from fewear.diagnose.tribometer.figures import plot_candidates, plot_fits, plot_residuals
 from fewear.diagnose.tribometer.fitting import Trial
@@ -68,7 +68,7 @@ def summarise(diagnosis: Diagnosis) -> dict[str, Any]:
         "candidates": [trial_entry(trial) for st in stages
                        for trial in (st.steps[0] if st.steps else ())],
         "untestable": untestable_causes(readings, settings),
-        **verdict(causes, MEANINGS[causes[0]] if causes else _none_meaning(after),
+        **verdict(causes, CAUSES[causes[0]].meaning if causes else _none_meaning(after),
                   _confounded(stages, readings, settings), baseline_error, extended_error),
         "prediction": _prediction(readings, reading_stage, settings),
         "residual_structure": before,
@@ -83,15 +83,14 @@ def _rms(values: np.ndarray) -> float:
 
 
 def trial_entry(trial: Trial) -> dict[str, Any]:
-    """A cause tried, as ``diagnosis.json`` lists it (``aicc_change``: the cause's AICc minus the
-    current model's, negative favours the cause)."""
+    """A cause tried, as ``diagnosis.json`` lists it (docs/diagnosis-json.md)."""
     return {
-        "name": trial.cause, "form": trial.form, "stage": trial.stage, "params": trial.params,
+        "cause": trial.cause, "form": trial.form, "stage": trial.stage, "params": trial.params,
         "held_out_error": trial.held_out_error,
         "held_out_error_before": trial.held_out_error_before,
         "gain": trial.evidence.gain, "test": trial.test, "p_value": trial.evidence.p_value,
         "forms_tried": trial.forms_tried, "tests_improved": trial.tests_improved,
-        "aicc_change": trial.aicc_change, "training_error": trial.training_error,
+        "aicc_improvement": trial.evidence.aicc_improvement, "training_error": trial.training_error,
         "accepted": trial.accepted, "verdict": trial.verdict,
     }
 
@@ -151,8 +150,9 @@ def _holdout_why(form: str) -> str:
 def _criterion_text(settings) -> str:
     return (f"forward selection: a cause joins when it predicts the held-out tests better (paired "
             "t-test over tests along tests, F-test where each test is one row; p < "
-            f"{settings.significance:g} / number of forms tried at that step) "
-            f"and its AICc on all rows falls by at least {settings.min_aicc_improvement:g}")
+            f"{settings.acceptance.significance:g} / number of forms tried at that step) "
+            "and its AICc on all rows falls by at least "
+            f"{settings.acceptance.min_aicc_improvement:g}")
 
 
 def _none_meaning(after: dict[str, Any]) -> str:
@@ -173,7 +173,8 @@ def _confounded(stages, readings, settings) -> list[dict[str, Any]]:
         first = result.steps[0]
         best = next(trial for trial in first if trial.cause == result.chosen[0])
         others = [trial for trial in first if trial.accepted and trial.cause != best.cause
-                  and paired_improvement_p(trial.errors, best.errors) >= settings.significance]
+                  and paired_improvement_p(trial.errors, best.errors)
+                  >= settings.acceptance.significance]
         if others:
             groups.append(_confounded_group(best, others, readings, settings))
     return groups
@@ -185,7 +186,7 @@ def _confounded_group(best: Trial, others: list[Trial], readings, settings) -> d
         "causes": [best.cause] + [trial.cause for trial in others],
         "reason": _structural_reason(readings, names) or (
             "their held-out errors do not differ significantly (paired p >= "
-            f"{settings.significance:g})"),
+            f"{settings.acceptance.significance:g})"),
         "evidence": {trial.cause: {"held_out_error": trial.held_out_error,
                                    "gain": trial.evidence.gain,
                                    "p_value": trial.evidence.p_value, "params": trial.params}
@@ -295,7 +296,7 @@ def report_markdown(s: dict[str, Any]) -> str:
             lines.append(f"- {name}: held-out error {ev['held_out_error']:.3g}, gain "
                          f"{ev['gain']:.0%}, p {ev['p_value']:.1e}, params {_params(ev['params'])}")
     for entry in s["untestable"]:
-        lines.append(f"- {entry['name']}: {entry['message']}")
+        lines.append(f"- {entry['cause']}: {entry['untestable_reason']}")
     lines += ["", "## Baseline", "", f"{s['baseline']['model']}. Hold-out: {s['holdout']['why']}.",
               "", f"Criterion: {s['criterion']}.", ""]
     lines += ["## What the baseline gets wrong", "", "![fits](fits.png)", "",
@@ -303,15 +304,15 @@ def report_markdown(s: dict[str, Any]) -> str:
     lines += [f"- {sentence}." if not sentence.endswith(".") else f"- {sentence}"
               for sentence in s["residual_structure"]["sentences"]]
     lines += ["", "## Candidates", "", "![candidates](candidates.png)", "",
-              "| stage | step | cause (form) | params | held-out error | gain | p | AICc change | "
-              "verdict |", "|---|---|---|---|---|---|---|---|---|"]
+              "| stage | step | cause (form) | params | held-out error | gain | p | "
+              "AICc improvement | verdict |", "|---|---|---|---|---|---|---|---|---|"]
     for stage in s["stages"]:
         for number, step in enumerate(stage["steps"], start=1):
             for c in step:
                 lines.append(
-                    f"| {stage['name']} | {number} | {c['name']} ({c['form']}) | "
+                    f"| {stage['name']} | {number} | {c['cause']} ({c['form']}) | "
                     f"{_params(c['params'])} | {c['held_out_error']:.3g} | {c['gain']:+.0%} | "
-                    f"{c['p_value']:.1e} | {_number(c['aicc_change'], '+.1f')} | "
+                    f"{c['p_value']:.1e} | {_number(c['aicc_improvement'], '+.1f')} | "
                     f"{c['verdict']} |")
     p = s["prediction"]
     lines += ["", "## What the extension changes in a prediction", "",

@@ -7,17 +7,17 @@ from typing import Any
 
 import numpy as np
 
-from fewear.diagnose.tribometer.catalogue import Context, Form, ShapeLaw, forms_of
+from fewear.diagnose.tribometer.catalogue import (
+    CAUSES,
+    Context,
+    Form,
+    ShapeLaw,
+    forms_of,
+    missing_needs,
+)
 from fewear.diagnose.tribometer.fitting import Stage, StageFit, StageResult, scatter_weights
 from fewear.diagnose.tribometer.readings import Readings
 from fewear.diagnose.tribometer.settings import DiagnoseSettings
-
-NEEDS_TEXT = {"time": "time_s (or velocity_m_s, from which t = s / v)",
-              "friction": "friction_coefficient", "pressure": "pressure_Pa",
-              "load": "normal_load_N or pressure_Pa that varies between tests",
-              "power": "normal_load_N or pressure_Pa, and velocity_m_s, whose product varies "
-                       "between tests",
-              "distance": "tests or readings at different sliding distances under one material"}
 
 
 def data_form(readings: Readings, settings: DiagnoseSettings) -> str:
@@ -99,8 +99,7 @@ def _testable(kind: str | None, have: set[str], causes) -> tuple[Form, ...]:
     forms = []
     for cause in causes:
         for form in forms_of(cause):
-            needs = set(form.needs) | ({"distance"} if form.kind == "shape" else set())
-            if (kind is None or form.kind == kind) and needs <= have:
+            if (kind is None or form.kind == kind) and form.all_needs <= have:
                 forms.append(form)
     return tuple(forms)
 
@@ -146,18 +145,12 @@ def across_stage(readings: Readings, along: StageResult, settings: DiagnoseSetti
 
 
 def untestable_causes(readings: Readings, settings: DiagnoseSettings) -> list[dict[str, Any]]:
+    """The candidates the data cannot test, each with the needs it lacks and why (the summary's
+    ``untestable``)."""
     have = available_needs(readings)
-    out = []
-    for cause in settings.candidates:
-        missing_per_form = []
-        for form in forms_of(cause):
-            needs = set(form.needs) | ({"distance"} if form.kind == "shape" else set())
-            missing_per_form.append(sorted(needs - have))
-        if all(missing_per_form):
-            missing = min(missing_per_form, key=len)
-            out.append({"name": cause, "needs": missing, "message": "could not be tested: needs "
-                        + " and ".join(NEEDS_TEXT[need] for need in missing)})
-    return out
+    return [{"cause": cause, "needs": missing_needs(cause, have), "untestable_reason": reason}
+            for cause in settings.candidates
+            if (reason := CAUSES[cause].why_untestable(have)) is not None]
 
 
 def log_k_per_test(readings: Readings, stage: Stage, fit: StageFit) -> np.ndarray:

@@ -1,19 +1,6 @@
-"""The structure of a model's residuals, in numbers and in plain words.
-
-Each view is tested with Spearman's rank correlation (a monotone trend, robust to outliers;
-scipy.stats.spearmanr gives the two-sided p-value) and shown as binned means (quartiles of the
-variable, mean residual and its standard error):
-
-- *the readings*: the residual of each reading (within tests: its test's level removed) against
-  sliding distance and time. A falling trend means the apparent wear coefficient V / (F s) falls
-  with sliding (running-in or a time transient); a rising one that it rises (heating). In a table
-  of one reading per test also against load, speed and frictional power;
-- *across tests* (histories): each test's level against load or pressure, speed, frictional power,
-  temperature and test order (a trend with test order is a drift of the campaign: disc wear,
-  humidity, a changing counterface, none of which the catalogue models).
-
-A trend at p < UNEXPLAINED_P after the diagnosis's final model is reported as unexplained.
-"""
+"""The structure of a model's residuals, in numbers and plain words: trends against sliding
+distance, time and the test's conditions (Spearman's rank correlation, binned means), and the
+sentences of what stays unexplained. The views: docs/diagnosis-method-notes.md."""
 
 from __future__ import annotations
 
@@ -65,7 +52,7 @@ def _trend(name: str, unit: str, x: np.ndarray, y: np.ndarray, subject: str) -> 
 
 def residual_structure(readings, reading_residuals: np.ndarray,
                        test_residuals: np.ndarray | None) -> dict[str, Any]:
-    """The views of the module docstring for a model's residuals: per reading, and (histories)
+    """The views (the method notes) for a model's residuals: per reading, and (histories)
     per test. JSON-ready, with the sentences and the unexplained trends."""
     per_test = readings.n_tests == readings.test_index.size
     subject = "The residuals" if per_test else "Within tests, the residuals"
