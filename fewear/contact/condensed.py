@@ -41,10 +41,10 @@ pocket's flank), else it starts as the full path does. Both paths converge to
 the same solution; the tests and the benchmark check nodal pressures and pin centre to 1e-6
 (measured: ~2e-7 and below, on 200 load steps of a crank cycle).
 Per step this costs O(n |A|) per iteration for the update of U and a dense solve of size
-|A| + 2, |A| the nodes in contact. The arithmetic on these small arrays and the whole coupled
-Newton iteration on them are compiled (numba, :mod:`fewear.contact.condensed_newton`, with the
-shared kernels of :mod:`fewear.contact.newton`), in NumPy's order of operations (sums
-pairwise, dot products by BLAS), so that it gives the NumPy formulas' results to the bit.
+|A| + 2, |A| the nodes in contact. The arithmetic on these small arrays and the whole solve
+(start, coupled Newton, retry, fallback) are compiled (numba,
+:mod:`fewear.contact.condensed_newton`, with the shared kernels of
+:mod:`fewear.contact.newton_kernels`).
 Under MPI, G is built collectively and every rank solves the small problem redundantly, so all
 ranks hold the same result.
 

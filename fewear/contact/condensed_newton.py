@@ -1,8 +1,8 @@
 """The condensed path's arithmetic on the bore nodes, compiled (numba, :mod:`fewear.jit`): the
 nodal forces and their linearisation, the bordered Newton step of
 :mod:`fewear.contact.condensed` (whose module docstring gives the equations), and the path's
-:class:`fewear.contact.newton.NewtonOperations` on its state, with the coupled Newton compiled
-on them (:func:`coupled_newton`).
+:class:`fewear.contact.newton.NewtonOperations` on its state, with the whole solve of
+:mod:`fewear.contact.newton` compiled on them (:func:`run_newton_solve`).
 
 The state (:func:`new_state`) is a tuple of arrays: the bore compliance G (2n, 2n), the nodal
 forces g (2n,), the nodal displacements U = G g (2n,), the pin centre c (2,), the bore nodes
@@ -177,8 +177,9 @@ def newton_step(compliance: np.ndarray, g: np.ndarray, U: np.ndarray, f: np.ndar
             turn += slide[a, c] * solution[m + c]
         for i in range(2):
             dg[2 * active[a] + i] += solution[a] * traction[a, i] - turn * sliding[a, i]
-    support = np.flatnonzero(dg)
-    dU = np.dot(dg[support], compliance[support])  # G symmetric: its rows, contiguous
+    dU = np.zeros(dg.size)
+    for row in np.flatnonzero(dg):  # G symmetric: dU = sum of its rows on the support
+        dU += dg[row] * compliance[row]
     dc = np.zeros(2)
     for c in range(k):
         dc += basis[:, c] * solution[m + c]
