@@ -3,9 +3,9 @@ nogil=True)``.
 
 Compiled are the multibody dynamics (:mod:`fewear.mbd`, the whole step loop) and the contact
 Newton's kernels (:mod:`fewear.contact`: the free region's corners and vertices, gaps, the line
-search, and on the condensed path the whole solve and the wear step's pressure sensitivity).
-The machine code is cached on disk, so only the first process after a change of the sources
-pays the compile (see README, "Dynamics");
+search, and on the condensed path the whole coupled Newton iteration and the wear step's
+pressure sensitivity). The machine code is cached on disk, so only the
+first process after a change of the sources pays the compile (see README, "Dynamics");
 :func:`compile_kernels` compiles before worker processes start, so that they load the code
 instead of each compiling it. The kernels release Python's global interpreter lock
 (``nogil``): the wear loop runs the next block's dynamics in a thread while this block's mesh
