@@ -4,7 +4,8 @@
   ``contact_problem_from_config``, ``FlatContactProblem`` (no DOLFINx; the geometry is in
   :mod:`fewear.mesh.geometry`).
 - :mod:`fewear.contact.result`: ``ContactResult``, the plain-data output (no DOLFINx).
-- :mod:`fewear.contact.newton`: ``ContactNewton``, the active-set Newton both paths share.
+- :mod:`fewear.contact.newton`: ``ContactNewton``, the active-set Newton both paths share, and
+  :mod:`fewear.contact.newton_kernels`, its compiled kernels on the bore nodes.
 - :mod:`fewear.contact.admissible`: the forces the model can carry; ``ContactLoadError``.
 - :mod:`fewear.contact.solver`: ``BushingContactSolver``, the full Newton solve in DOLFINx.
 - :mod:`fewear.contact.flat`: ``FlatContactSolver``, the same solver for a rigid cylinder pressed

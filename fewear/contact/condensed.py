@@ -41,10 +41,10 @@ pocket's flank), else it starts as the full path does. Both paths converge to
 the same solution; the tests and the benchmark check nodal pressures and pin centre to 1e-6
 (measured: ~2e-7 and below, on 200 load steps of a crank cycle).
 Per step this costs O(n |A|) per iteration for the update of U and a dense solve of size
-|A| + 2, |A| the nodes in contact. The arithmetic on these small arrays and the whole coupled
-Newton iteration on them are compiled (numba, :mod:`fewear.contact.condensed_newton`, with the
-shared kernels of :mod:`fewear.contact.newton`), in NumPy's order of operations (sums
-pairwise, dot products by BLAS), so that it gives the NumPy formulas' results to the bit.
+|A| + 2, |A| the nodes in contact. The arithmetic on these small arrays and the whole solve
+(start, coupled Newton, retry, fallback) are compiled (numba,
+:mod:`fewear.contact.condensed_newton`, with the shared kernels of
+:mod:`fewear.contact.newton_kernels`).
 Under MPI, G is built collectively and every rank solves the small problem redundantly, so all
 ranks hold the same result.
 
@@ -55,7 +55,6 @@ multiplied by the width L for the result (N).
 from __future__ import annotations
 
 import ctypes
-import math
 
 import numpy as np
 from dolfinx import fem
@@ -70,12 +69,7 @@ from fewear.contact.admissible import (
     cosine_law_nodal_forces,
     displacement_limit_m,
 )
-from fewear.contact.condensed_newton import (
-    new_state,
-    nodal_forces,
-    place_pin,
-    turned_forces,
-)
+from fewear.contact.condensed_newton import new_state, nodal_forces
 from fewear.contact.newton import ContactNewton, ContactNotConverged, contact_direction
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
@@ -87,11 +81,6 @@ from fewear.contact.solver import (
 )
 from fewear.mesh.bore import bore_node_weights
 from fewear.mesh.bushing import BORE_TAG
-
-# The state is turned with the load only where the bore nodes that carry the turned forces lie
-# where the turned nodes did to this fraction of the last solution's penetration or largest
-# displacement (whichever is larger: an error of the start the Newton corrects in a few steps).
-TURN_TOLERANCE = 0.1
 
 
 def _state_array(index: int, doc: str) -> property:
@@ -282,8 +271,7 @@ class CondensedBushingContact:
 
     # -- the discretisation for ContactNewton --------------------------------------------------
     operations = condensed_newton  # functions of newton_state (compiled)
-    coupled_newton = staticmethod(condensed_newton.coupled_newton)  # compiled
-    can_turn_state = True
+    newton_algorithm = condensed_newton.newton_algorithm  # the solve compiled
 
     # the Newton state's arrays under their names (the state is their one holder: write into them)
     compliance = _state_array(0, "G (2n, 2n), m per N/m, rows/columns (node, direction)")
@@ -303,34 +291,8 @@ class CondensedBushingContact:
         self.newton_state[6][2] = value
 
     def turn_state(self, angle_rad: float) -> bool:
-        """Turn nodal forces and pin centre by the whole number of bore elements (2 nodes each,
-        at uniform angles, sorted by angle) nearest to ``angle_rad``, U = G g; on the circular
-        O-grid, whose compliance is invariant under such turns, the turned state is the turned
-        solution. On a worn bore it is not: the nodes carrying the turned forces sit elsewhere
-        than the turned nodes did, by as much as the wear depth changes over the turn, and the
-        turned pin can stand deep in a pocket's flank (hundreds of nodes in contact, a start the
-        Newton does not recover from). So the state is turned only where the bore is invariant on
-        the nodes that carry the turned forces, to ``TURN_TOLERANCE`` times the penetration or
-        the largest displacement of the last solution; else it is left as it is and False
-        returned."""
-        n = self.points.shape[0]
-        element_rad = 2.0 * math.pi / (n // 2)
-        elements = round(angle_rad / element_rad)
-        if elements % (n // 2) == 0:
-            return True
-        angle = elements * element_rad
-        invariant, g = turned_forces(self._g, self.points, self._U.reshape(-1, 2),
-                                     self.pin_centre_m, self.problem.geometry.pin_radius_m,
-                                     2 * elements, angle, TURN_TOLERANCE)
-        if not invariant:
-            return False
-        self._g[:] = g
-        support = np.flatnonzero(g)  # the nodes in contact
-        self._U[:] = g[support] @ self.compliance[support]  # G symmetric: its rows, contiguous
-        rotation = np.array([[math.cos(angle), -math.sin(angle)],
-                             [math.sin(angle), math.cos(angle)]])
-        place_pin(self.newton_state, rotation @ self.pin_centre_m)
-        return True
+        """:func:`fewear.contact.condensed_newton.turn_state` on this operator's state."""
+        return condensed_newton.turn_state(self.newton_state, angle_rad)
 
 
 def reference_basis_at_geometry_nodes(mesh, V) -> np.ndarray:

@@ -1,8 +1,8 @@
 """The condensed path's arithmetic on the bore nodes, compiled (numba, :mod:`fewear.jit`): the
 nodal forces and their linearisation, the bordered Newton step of
 :mod:`fewear.contact.condensed` (whose module docstring gives the equations), and the path's
-:class:`fewear.contact.newton.NewtonOperations` on its state, with the coupled Newton compiled
-on them (:func:`coupled_newton`).
+:class:`fewear.contact.newton.NewtonOperations` on its state, with the whole solve of
+:mod:`fewear.contact.newton` compiled on them (:func:`run_newton_solve`).
 
 The state (:func:`new_state`) is a tuple of arrays: the bore compliance G (2n, 2n), the nodal
 forces g (2n,), the nodal displacements U = G g (2n,), the pin centre c (2,), the bore nodes
@@ -16,21 +16,27 @@ from __future__ import annotations
 
 import math
 import sys
+import types
 
 import numpy as np
 from numba.extending import register_jitable
 
-from fewear.contact.newton import (
+from fewear.contact.newton import new_memory, specialised
+from fewear.contact.newton_kernels import (
     FREE_PIN,
     LineData,
     NewtonSettings,
     compile_shared_kernels,
     gaps,
     pairwise_sum,
-    specialised,
 )
 from fewear.contact.sensitivity import pressure_sensitivity
 from fewear.jit import compiled
+
+# The state is turned with the load only where the bore nodes that carry the turned forces lie
+# where the turned nodes did to this fraction of the last solution's penetration or largest
+# displacement (whichever is larger: an error of the start the Newton corrects in a few steps).
+TURN_TOLERANCE = 0.1
 
 
 @compiled
@@ -171,8 +177,9 @@ def newton_step(compliance: np.ndarray, g: np.ndarray, U: np.ndarray, f: np.ndar
             turn += slide[a, c] * solution[m + c]
         for i in range(2):
             dg[2 * active[a] + i] += solution[a] * traction[a, i] - turn * sliding[a, i]
-    support = np.flatnonzero(dg)
-    dU = np.dot(dg[support], compliance[support])  # G symmetric: its rows, contiguous
+    dU = np.zeros(dg.size)
+    for row in np.flatnonzero(dg):  # G symmetric: dU = sum of its rows on the support
+        dU += dg[row] * compliance[row]
     dc = np.zeros(2)
     for c in range(k):
         dc += basis[:, c] * solution[m + c]
@@ -191,7 +198,7 @@ def new_state(compliance: np.ndarray, points: np.ndarray, weights_m: np.ndarray,
 
 # -- the operations of the contact Newton (fewear.contact.newton.NewtonOperations) ---------------
 # register_jitable: NumPy code when ContactNewton calls them from Python (numba would type the
-# state tuple at every call, slowly: see run_coupled_newton), compiled into the coupled Newton.
+# state tuple at every call, slowly: see run_newton_solve), compiled into the solve.
 @register_jitable
 def linearise(state, load):
     """Nodal forces, normals and distances at the state (``linear``: f, n, r, A); the pin
@@ -272,25 +279,68 @@ def frictionless(state):
     return state[6][2] == 0.0
 
 
-coupled_newton_on_state = register_jitable(specialised(sys.modules[__name__]))
+@register_jitable
+def can_turn_state(state):
+    return True
+
+
+@register_jitable
+def turn_state(state, angle_rad):
+    """Turn nodal forces and pin centre by the whole number of bore elements (2 nodes each, at
+    uniform angles, sorted by angle) nearest to ``angle_rad``, U = G g; on the circular O-grid,
+    whose compliance is invariant under such turns, the turned state is the turned solution. On
+    a worn bore it is not: the nodes carrying the turned forces sit elsewhere than the turned
+    nodes did, by as much as the wear depth changes over the turn, and the turned pin can stand
+    deep in a pocket's flank (hundreds of nodes in contact, a start the Newton does not recover
+    from). So the state is turned only where the bore is invariant on the nodes that carry the
+    turned forces, to ``TURN_TOLERANCE`` times the penetration or the largest displacement of
+    the last solution; else it is left as it is and False returned."""
+    compliance, g, U, centre, points, weights, constants = state
+    elements_around = points.shape[0] // 2
+    element_rad = 2.0 * math.pi / elements_around
+    elements = round(angle_rad / element_rad)
+    if elements % elements_around == 0:
+        return True
+    angle = elements * element_rad
+    invariant, turned = turned_forces(g, points, U.reshape(-1, 2), centre, constants[1],
+                                      2 * elements, angle, TURN_TOLERANCE)
+    if not invariant:
+        return False
+    g[:] = turned
+    support = np.flatnonzero(turned)  # the nodes in contact
+    U[:] = np.dot(turned[support], compliance[support])  # G symmetric: its rows, contiguous
+    rotation = np.array([[math.cos(angle), -math.sin(angle)],
+                         [math.sin(angle), math.cos(angle)]])
+    centre[:] = np.dot(rotation, centre.copy())
+    return True
+
+
+# The algorithm of fewear.contact.newton on these operations, each function compiled into its
+# callers (register_jitable); Python's when called from Python.
+algorithm = specialised(sys.modules[__name__], register_jitable)
+newton_solve_on_state = algorithm.newton_solve
 
 
 @compiled
-def run_coupled_newton(compliance, g, U, centre, points, weights, constants, settings, load,
-                       direction, basis, max_iterations):
-    """The coupled Newton of :mod:`fewear.contact.newton` on this module's operations, compiled,
-    on the state of these arrays (``settings`` a plain tuple of :class:`NewtonSettings`' fields).
-    Called from Python with the arrays apart: numba 0.56 types a tuple of more than four arrays,
-    or a named tuple, in Python at every call (its type cache keys them on more bytes than it
-    keeps): 20-60 us, as much as a Newton iteration."""
-    return coupled_newton_on_state((compliance, g, U, centre, points, weights, constants),
-                                   NewtonSettings(*settings), load, direction, basis,
-                                   max_iterations)
+def run_newton_solve(compliance, g, U, centre, points, weights, constants, memory, settings,
+                     load, direction, max_iterations):
+    """The whole solve of :mod:`fewear.contact.newton` (:func:`fewear.contact.newton.
+    newton_solve`) on this module's operations, compiled, on the state of these arrays
+    (``settings`` a plain tuple of :class:`NewtonSettings`' fields). Called from Python with
+    the arrays apart: numba 0.56 types a tuple of more than four arrays, or a named tuple, in
+    Python at every call (its type cache keys them on more bytes than it keeps): 20-60 us, as
+    much as a Newton iteration."""
+    return newton_solve_on_state((compliance, g, U, centre, points, weights, constants), memory,
+                                 NewtonSettings(*settings), load, direction, max_iterations)
 
 
-def coupled_newton(state, settings, load, direction, basis, max_iterations) -> int:
-    """:func:`run_coupled_newton` on ``state``; ``settings`` a :class:`NewtonSettings`."""
-    return run_coupled_newton(*state, tuple(settings), load, direction, basis, max_iterations)
+def newton_solve(state, memory, settings, load, direction, max_iterations) -> int:
+    """:func:`run_newton_solve` on ``state``; ``settings`` a :class:`NewtonSettings`."""
+    return run_newton_solve(*state, memory, tuple(settings), load, direction, max_iterations)
+
+
+# the condensed path's algorithm: the whole solve compiled, the rest as Python on the operations
+newton_algorithm = types.SimpleNamespace(**{**vars(algorithm), "newton_solve": newton_solve})
 
 
 def compile_contact() -> None:
@@ -310,5 +360,5 @@ def compile_contact() -> None:
     turned_forces(g, points, U, centre, pin_radius, 2, 0.1, 0.1)
     state = new_state(np.eye(2 * size), points, weights, penalty, pin_radius)
     direction = load / math.sqrt(load @ load)
-    coupled_newton(state, settings, load, direction, FREE_PIN, 2)  # a ray's basis: same type
+    newton_solve(state, new_memory(), settings, load, direction, 2)
     pressure_sensitivity(np.eye(2 * size), weights, points, centre, np.arange(3), penalty)

@@ -311,7 +311,7 @@ class FlatContactSolver(BushingContactSolver):
         return FlatContactSolver
 
     @property
-    def coupled_newton(self):
+    def newton_algorithm(self):
         return FLAT_NEWTON
 
     # -- solving -------------------------------------------------------------------------------
@@ -546,4 +546,4 @@ class FlatContactSolver(BushingContactSolver):
 
 
 FLAT_NEWTON = specialised(FlatContactSolver)
-"""The coupled Newton of :mod:`fewear.contact.newton` on the flat solver's methods."""
+"""The algorithm of :mod:`fewear.contact.newton` on the flat solver's methods."""

@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from fewear.contact.newton import pairwise_sum
+from fewear.contact.newton_kernels import pairwise_sum
 from fewear.jit import compiled
 
 EPSILON = float(np.finfo(float).eps)  # machine epsilon: NumPy's rcond=None is eps max(M, N)

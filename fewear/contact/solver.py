@@ -78,10 +78,10 @@ from fewear.contact.admissible import (
 from fewear.contact.newton import (
     ContactNewton,
     ContactNotConverged,
-    LineData,
     contact_direction,
     specialised,
 )
+from fewear.contact.newton_kernels import LineData
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.errors import FewearInputError
@@ -356,8 +356,6 @@ class BushingContactSolver:
     # Its operations (fewear.contact.newton.NewtonOperations) are these methods, the state the
     # solver itself. The displacement field is not turned for a warm start (no interpolation
     # between rotated meshes in DOLFINx 0.5).
-    can_turn_state = False
-
     @property
     def operations(self) -> type:
         return BushingContactSolver
@@ -367,8 +365,14 @@ class BushingContactSolver:
         return self
 
     @property
-    def coupled_newton(self):
+    def newton_algorithm(self):
         return FULL_PATH_NEWTON
+
+    def can_turn_state(self) -> bool:
+        return False
+
+    def turn_state(self, angle_rad: float) -> bool:
+        return False
 
     def zero_displacement(self) -> None:
         self.displacement.x.array[:] = 0.0
@@ -542,4 +546,4 @@ class BushingContactSolver:
 
 
 FULL_PATH_NEWTON = specialised(BushingContactSolver)
-"""The coupled Newton of :mod:`fewear.contact.newton` on the solver's methods, run as Python."""
+"""The algorithm of :mod:`fewear.contact.newton` on the solver's methods, run as Python."""

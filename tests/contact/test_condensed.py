@@ -396,7 +396,7 @@ def test_the_corner_start_on_a_worn_bore_rests_on_the_pocket_rims(worn_paths):
     """The corner of two neighbouring nodes at the bottom of a pocket lies beyond its flanks;
     the start is the vertex of the contact-free region furthest along d instead: two nodes at
     R_p (not neighbours: the pin bridges the pocket), no node closer."""
-    from fewear.contact.newton import support_vertex
+    from fewear.contact.newton_kernels import support_vertex
 
     _, fast = worn_paths
     R_p = fast.problem.geometry.pin_radius_m
@@ -475,7 +475,7 @@ def test_the_start_in_a_wedge_presses_the_pin_onto_both_rims(deep_paths):
     presses the pin into both so that together they carry the load (not along the load, which
     leaves one rim), and a light load converges from there in a few coupled Newton iterations,
     without the fallback on the pin angle (before: 80 to 160 iterations, or refused)."""
-    from fewear.contact.newton import support_vertex
+    from fewear.contact.newton_kernels import support_vertex
 
     _, fast = deep_paths
     R_p = fast.problem.geometry.pin_radius_m

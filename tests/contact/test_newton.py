@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from fewear.contact.condensed_newton import zero_displacement
-from fewear.contact.newton import pin_update, unit
+from fewear.contact.newton_kernels import pin_update, unit
 
 from .test_solver import N_THETA, coarse_problem, rotate
 
@@ -72,27 +72,29 @@ def test_compile_contact_covers_the_argument_types_of_a_solve(fast):
     (a worker would compile that one itself)."""
     from numba.core.registry import CPUDispatcher
 
-    from fewear.contact import condensed_newton, newton
+    from fewear.contact import condensed_newton, newton_kernels
 
     condensed_newton.compile_contact()
     fast.newton.forget()
     fast.solve((300.0, -2000.0), 0.01, friction=True)
     fast.solve((350.0, -2100.0), 0.01, friction=False)
-    kernels = {name: kernel for module in (newton, condensed_newton)
+    kernels = {name: kernel for module in (newton_kernels, condensed_newton)
                for name, kernel in vars(module).items() if isinstance(kernel, CPUDispatcher)}
     assert len(kernels) >= 15
     assert {name: len(kernel.signatures) for name, kernel in kernels.items()
             if len(kernel.signatures) > 1} == {}
 
 
-def test_both_paths_run_the_one_coupled_newton():
-    """The coupled Newton is written once (fewear.contact.newton.coupled_newton): the full
-    path runs its code as Python on the solver's methods, the condensed path compiles the same
-    code on its own operations."""
+def test_both_paths_run_the_one_algorithm():
+    """The algorithm is written once (fewear.contact.newton's TEMPLATES): the full path runs
+    its code as Python on the solver's methods, the condensed path compiles the same code on its
+    own operations, each copy calling the others of its own set."""
     from fewear.contact import condensed_newton, newton, solver
 
-    assert solver.FULL_PATH_NEWTON.__code__ is newton.coupled_newton.__code__
-    assert condensed_newton.coupled_newton_on_state.__code__ is newton.coupled_newton.__code__
-    assert solver.FULL_PATH_NEWTON.__globals__["discretisation"] is solver.BushingContactSolver
-    assert (condensed_newton.coupled_newton_on_state.__globals__["discretisation"]
-            is condensed_newton)
+    for template in newton.TEMPLATES:
+        full = getattr(solver.FULL_PATH_NEWTON, template.__name__)
+        condensed = getattr(condensed_newton.algorithm, template.__name__)
+        assert full.__code__ is template.__code__ and condensed.__code__ is template.__code__
+        assert full.__globals__["discretisation"] is solver.BushingContactSolver
+        assert condensed.__globals__["discretisation"] is condensed_newton
+        assert full.__globals__["coupled_newton"] is solver.FULL_PATH_NEWTON.coupled_newton
