@@ -21,9 +21,9 @@ from fewear.errors import FewearInputError
 from fewear.io.config import load_config
 from fewear.io.joint_history import write_joint_history
 from fewear.io.limits import MAX_DYNAMICS_CYCLES
+from fewear.io.mechanism import dynamics_inputs
 from fewear.io.output import staged_output
 from fewear.mbd.history import MODES, JointHistory
-from fewear.mbd.mechanism import dynamics_inputs
 from fewear.mbd.mechanism import simulate as simulate_mechanism
 from fewear.mbd.slider_crank import SECTIONS, UNINTEGRABLE_HINT
 

@@ -1,5 +1,6 @@
 """Mechanism files (docs/mechanisms.md): TOML parsed once into :class:`fewear.mbd.description.
-Mechanism`, and each clearance joint's view of the run config.
+Mechanism`, each clearance joint's view of the run config, and the typed dynamics inputs of a
+case (:func:`dynamics_inputs`).
 
 ``[mechanism] file`` of the run config names the file: a path (relative to the working
 directory), or the name of an example shipped in ``fewear/mechanisms`` without ``.toml``
@@ -13,6 +14,7 @@ or key at fault, as :mod:`fewear.io.config` does for the run config.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -49,15 +51,10 @@ def mechanism_from_config(config: dict) -> Mechanism:
     """The run's mechanism: the file of ``[mechanism] file``, or the paper's slider-crank."""
     path = mechanism_path(config)
     if path is None:
-        from fewear.mbd.slider_crank import SliderCrank, describe
+        from fewear.mbd.slider_crank import SliderCrank, describe, template_keys
 
         return describe(SliderCrank(**template_keys(config["mechanism"])))
     return read_mechanism(path)[0]
-
-
-def template_keys(section: dict) -> dict:
-    """The [mechanism] keys of the slider-crank template (all but ``file``)."""
-    return {key: value for key, value in section.items() if key != "file"}
 
 
 def mechanism_path(config: dict) -> Path | None:
@@ -399,3 +396,29 @@ def _unit(value: Any, where: str) -> tuple[float, float]:
     if length == 0.0:
         raise FewearInputError(f"{where} = {value!r}: expected a nonzero vector")
     return x / length, y / length
+
+
+def dynamics_inputs(config: dict, case: str | None = None):
+    """The :class:`fewear.mbd.mechanism.MechanismInputs` of ``case`` (``[wear_loop] rod_models``:
+    the variable body rigid or flexible; None: ``[mechanism] rod``) from the config sections
+    [mechanism], [integrator], [dynamics_output] and each clearance joint's view
+    (:func:`joint_sections`)."""
+    from fewear.mbd.integrator import IntegratorSettings
+    from fewear.mbd.mechanism import MechanismInputs, joint_model_from_config
+
+    section = config["mechanism"]
+    if mechanism_path(config) is None:  # the paper's slider-crank, from its closed form
+        from fewear.mbd.slider_crank import dynamics_inputs_from_config, mechanism_inputs
+
+        slider_crank = dynamics_inputs_from_config(config)
+        crank = replace(slider_crank.crank, rod=case or slider_crank.crank.rod)
+        return mechanism_inputs(replace(slider_crank, crank=crank))
+    mechanism = mechanism_from_config(config).with_case(case or section["rod"])
+    if not mechanism.drivers:
+        raise FewearInputError(f"mechanism {mechanism.name!r} has no driver: the dynamics runs "
+                               "whole cycles of a driven body ([[drivers]])")
+    joints = {name: joint_model_from_config(view)
+              for name, view in joint_sections(config).items()}
+    return MechanismInputs(mechanism, joints, IntegratorSettings(**config["integrator"]),
+                           section["settling_cycles"], section["recorded_cycles"],
+                           section["joint"] == "ideal")

@@ -29,6 +29,7 @@ from pathlib import Path
 
 from fewear.errors import FewearInputError, Terminated, add_interrupt_note, set_interrupt_note
 from fewear.io.lock import FolderInUse, lock_folder
+from fewear.io.signals import signals_held
 
 STAGING_PREFIX = ".fewear-staging-"
 PREVIOUS_PREFIX = ".fewear-previous-"
@@ -192,8 +193,6 @@ def unfinished_run(out: Path) -> bool:
 def restore(aside: Path, out: Path) -> str:
     """Move the files of ``aside`` back into ``out`` (a name taken there stays aside); their
     names, shortened."""
-    from fewear.io.output import signals_held
-
     names = []
     with signals_held():
         for item in sorted(aside.iterdir()):
@@ -298,8 +297,6 @@ def run_replaced(out: str | Path, find_earlier: Callable[[Path], list[Path]], st
 
 def _set_aside(out: Path, find_earlier, store, resume: bool, overwrite: bool) -> Path | None:
     """The folder that keeps the earlier run while this one runs (None: no earlier run)."""
-    from fewear.io.output import signals_held
-
     if store.path.exists() and not store.path.is_dir():
         raise FewearInputError(f"{store.path} is a file, not the checkpoint folder of a run; "
                                "move it away, or choose another --out")
@@ -328,8 +325,6 @@ def _set_aside(out: Path, find_earlier, store, resume: bool, overwrite: bool) ->
 
 def _after_failure(exc: BaseException, out: Path, store, resume: bool, aside: Path | None,
                    start_again: str) -> None:
-    from fewear.io.output import signals_held
-
     # an interruption, or the OS refusing a write (a full disk), is no fault of the run: its
     # checkpoint stays, to be resumed
     interrupted = isinstance(exc, (KeyboardInterrupt, Terminated, OSError))

@@ -17,7 +17,7 @@ JOINT = "rod_slider"
 def dynamics_inputs(config: dict, case: str):
     """The typed dynamics inputs of one case (the variable body's model ``case``), its clearance
     joints as clearance joints (a wear run wears them, whatever ``[mechanism] joint`` says)."""
-    from fewear.mbd.mechanism import dynamics_inputs as mechanism_inputs
+    from fewear.io.mechanism import dynamics_inputs as mechanism_inputs
 
     return replace(mechanism_inputs(config, case), ideal_joints=False)
 

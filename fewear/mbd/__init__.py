@@ -14,6 +14,7 @@ and its cache): rigid bodies, ANCF beams, clearance joints.
 - ``slider_crank``, ``history``, ``command``: the paper's mechanism from the config (a
   description), the joint-load history for the wear stage and the ``fewear dynamics`` command.
 
-Entry points: ``fewear.mbd.mechanism.dynamics_inputs`` and ``fewear.mbd.mechanism.simulate``;
+Entry points: ``fewear.mbd.mechanism.simulate`` on the typed inputs of
+``fewear.io.mechanism.dynamics_inputs``;
 ``fewear.mbd.slider_crank.simulate_slider_crank`` for the paper's mechanism.
 """

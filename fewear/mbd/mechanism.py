@@ -113,30 +113,6 @@ class RunSummary:
     cycles: int
 
 
-def dynamics_inputs(config: dict, case: str | None = None) -> MechanismInputs:
-    """The :class:`MechanismInputs` of ``case`` (``[wear_loop] rod_models``: the variable body
-    rigid or flexible; None: ``[mechanism] rod``) from the config sections [mechanism],
-    [integrator], [dynamics_output] and each clearance joint's view (joint_sections)."""
-    from fewear.io.mechanism import joint_sections, mechanism_from_config, mechanism_path
-
-    section = config["mechanism"]
-    if mechanism_path(config) is None:  # the paper's slider-crank, from its closed form
-        from fewear.mbd.slider_crank import dynamics_inputs_from_config, mechanism_inputs
-
-        slider_crank = dynamics_inputs_from_config(config)
-        crank = replace(slider_crank.crank, rod=case or slider_crank.crank.rod)
-        return mechanism_inputs(replace(slider_crank, crank=crank))
-    mechanism = mechanism_from_config(config).with_case(case or section["rod"])
-    if not mechanism.drivers:
-        raise FewearInputError(f"mechanism {mechanism.name!r} has no driver: the dynamics runs "
-                               "whole cycles of a driven body ([[drivers]])")
-    joints = {name: joint_model_from_config(view)
-              for name, view in joint_sections(config).items()}
-    return MechanismInputs(mechanism, joints, IntegratorSettings(**config["integrator"]),
-                           section["settling_cycles"], section["recorded_cycles"],
-                           section["joint"] == "ideal")
-
-
 def joint_model_from_config(config: dict) -> JointModel:
     """A clearance joint's :class:`JointModel` from [bushing], [pin], [joint], [clearance_joint]
     and [dynamics_output] impact_max_duration_s."""

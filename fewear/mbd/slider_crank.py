@@ -28,7 +28,6 @@ import numpy as np
 
 from fewear.errors import FewearInputError
 from fewear.io.config import Config, load_config
-from fewear.io.mechanism import template_keys
 from fewear.mbd.description import GROUND, Bar, Body, Driver, Joint, Mechanism, PointRef
 from fewear.mbd.history import JointHistory
 from fewear.mbd.integrator import GeneralizedAlpha, IntegratorSettings
@@ -141,9 +140,14 @@ class DynamicsInputs:
     integrator: IntegratorSettings
 
 
+def template_keys(section: dict) -> dict:
+    """The [mechanism] keys of the slider-crank template (all but ``file``)."""
+    return {key: value for key, value in section.items() if key != "file"}
+
+
 def dynamics_inputs_from_config(config: Config) -> DynamicsInputs:
     """The :class:`DynamicsInputs` of the config sections of ``SECTIONS`` (the slider-crank of
-    the [mechanism] keys; a mechanism file needs :func:`fewear.mbd.mechanism.dynamics_inputs`)."""
+    the [mechanism] keys; a mechanism file needs :func:`fewear.io.mechanism.dynamics_inputs`)."""
     if config["mechanism"].get("file"):
         raise FewearInputError(
             f"[mechanism] file = {config['mechanism']['file']!r}: this command runs the paper's "

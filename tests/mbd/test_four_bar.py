@@ -9,9 +9,9 @@ import pytest
 
 from fewear.errors import FewearInputError
 from fewear.io.config import load_config
-from fewear.io.mechanism import EXAMPLES_DIR, parse_mechanism, read_mechanism
+from fewear.io.mechanism import EXAMPLES_DIR, dynamics_inputs, parse_mechanism, read_mechanism
 from fewear.mbd.integrator import GeneralizedAlpha
-from fewear.mbd.mechanism import MechanismModel, assemble, check_cycle, dynamics_inputs
+from fewear.mbd.mechanism import MechanismModel, assemble, check_cycle
 from fewear.mbd.slider_crank import SECTIONS
 
 GROUND_M, CRANK_M, COUPLER_M, ROCKER_M = 0.30, 0.10, 0.25, 0.25

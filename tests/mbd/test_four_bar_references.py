@@ -14,7 +14,8 @@ import numpy as np
 import pytest
 
 from fewear.io.config import load_config
-from fewear.mbd.mechanism import dynamics_inputs, simulate
+from fewear.io.mechanism import dynamics_inputs
+from fewear.mbd.mechanism import simulate
 from fewear.mbd.slider_crank import SECTIONS
 from tests.mbd.reference.freudenstein import FourBar, inverse_dynamics
 

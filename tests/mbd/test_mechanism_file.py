@@ -7,8 +7,13 @@ import pytest
 
 from fewear.errors import FewearInputError
 from fewear.io.config import load_config
-from fewear.io.mechanism import EXAMPLES_DIR, joint_sections, parse_mechanism, read_mechanism
-from fewear.mbd.mechanism import dynamics_inputs
+from fewear.io.mechanism import (
+    EXAMPLES_DIR,
+    dynamics_inputs,
+    joint_sections,
+    parse_mechanism,
+    read_mechanism,
+)
 from fewear.mbd.slider_crank import SECTIONS
 
 FOUR_BAR = (EXAMPLES_DIR / "four_bar.toml").read_text()

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from fewear.io.config import load_config
-from fewear.io.mechanism import joint_sections
-from fewear.mbd.mechanism import MechanismModel, assemble, dynamics_inputs, simulate
+from fewear.io.mechanism import dynamics_inputs, joint_sections
+from fewear.mbd.mechanism import MechanismModel, assemble, simulate
 from fewear.mbd.slider_crank import SECTIONS, closed_form_state, dynamics_inputs_from_config
 
 from .legacy_slider_crank import legacy_history
