@@ -1,24 +1,10 @@
 """The decorator of fewear's compiled kernels: ``@compiled`` = ``numba.njit(cache=True,
 nogil=True)``.
 
-Compiled are the multibody dynamics (:mod:`fewear.mbd`, the whole step loop) and the contact
-Newton's kernels (:mod:`fewear.contact`: the free region's corners and vertices, gaps, the line
-search, and on the condensed path the whole coupled Newton iteration and the wear step's
-pressure sensitivity). The machine code is cached on disk, so only the first process after a
-change of the sources pays the compile; :func:`fewear.kernels.compile_kernels` compiles before
-worker processes start, so that they load the code instead of each compiling it. The kernels
-release Python's global interpreter lock (``nogil``): the wear loop runs the next block's
-dynamics in a thread while this block's mesh stage and checkpoint run
-(:func:`fewear.loop.block.predict_case`).
-
-numba keys each function's cache on its own source file only, but a compiled caller inlines its
-callees from other files (the integrator's step loop holds the whole dynamics), so a change of
-``fewear/mbd/contact.py`` would leave a stale step loop in the cache. The cache therefore lives
-in a directory named after a digest of the sources of all packages that compile
-(``PACKAGES``) and of this module, ``__pycache__/fewear-jit-<digest>`` next to this module or,
-when that is read-only (an installed package), in numba's user-wide cache directory or else the
-temporary directory; ``NUMBA_CACHE_DIR``, if set, takes the place of ``__pycache__``. The
-directories of other digests in ``__pycache__`` (older versions of this source tree) are removed.
+The machine code is cached on disk in a directory named after a digest of the sources of all
+compiling packages (``PACKAGES``) and of this module, since numba keys its cache on each function's
+own file while callers inline callees from other files; directories of other digests are removed.
+``nogil`` lets the wear loop run dynamics in a thread. Method notes: docs/dynamics.md.
 """
 
 from __future__ import annotations

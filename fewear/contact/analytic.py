@@ -1,25 +1,10 @@
 """Analytic contact of a rigid pin in the bore of an elastic bushing (NumPy only).
 
-Two limits bracket the FE contact of :mod:`fewear.contact.solver`:
-
-- **small load** (contact half-width a << bore radius): Hertz line contact of a cylinder in a
-  cylindrical hole (Johnson, *Contact Mechanics*, Cambridge 1985, ch. 4, Hertz theory: the
-  two-dimensional contact of cylinders; the pin in a hole is the case of a concave hole, so that
-  1/R = 1/R_p - 1/R_b);
-- **conformal contact** (clearance -> 0 at fixed load, or large load): the contact spreads over the
-  whole loaded half of the bore and the pressure tends to the cosine law
-  p(theta) = 2F/(pi R_b L) cos(theta) (Persson, *On the stress distribution of cylindrical elastic
-  bodies in contact*, Chalmers 1964; Johnson 1985, ch. 5, conforming surfaces; Ciavarella &
-  Decuzzi, Int. J. Solids Struct. 38 (2001) 4507-4523, "The state of stress induced by the plane
-  frictionless cylindrical contact", parts I-II).
-
-The pin is rigid in the FE model, so the contact modulus is the bushing's alone:
-1/E* = (1 - nu_b^2)/E_b (the elastic pin's term (1 - nu_p^2)/E_p is dropped). Line loads are per
-unit joint width: P = F/L, with L the bushing width (plane strain, thickness L).
-
-Angles: theta is measured on the bore from the x axis, counter-clockwise, as in the FE results;
-the load angle is the direction of the force on the pin (the pin is pushed towards the bore point
-at that angle).
+Two limits that bracket the FE contact of :mod:`fewear.contact.solver`: Hertz line contact of a
+cylinder in a hole at small loads (Johnson, *Contact Mechanics*, 1985, ch. 4), and the cosine law
+p(theta) = 2F/(pi R_b L) cos(theta) of conformal contact (Persson 1964; Ciavarella & Decuzzi,
+Int. J. Solids Struct. 38 (2001) 4507-4523). The pin is rigid: 1/E* = (1 - nu_b^2)/E_b.
+Method notes: docs/contact.md.
 """
 
 from __future__ import annotations

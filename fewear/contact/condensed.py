@@ -1,55 +1,10 @@
 """The fast path: the elastic bushing condensed onto its bore nodes, once per mesh.
 
-The contact integral of :mod:`fewear.contact.solver` is a sum over the bore's Q8 nodes (the
-Gauss-Lobatto points of the facets): with nodal weights w_q (m) and nodal tractions
-T_q = p_q (n_q + mu s t_q), the bore carries the nodal forces f_q = w_q T_q (N/m, per unit
-thickness). Since the bushing is linear elastic, the nodal displacements are
-
-    U = G f,      G = N K^-1 N^T      (the bore's nodal compliance, m per N/m),
-
-with K the clamped elastic stiffness and N the evaluation of the S2 field at the bore nodes. N is
-zero off the bore dofs B, so G = N (K^-1)_BB N^T: G is computed once per mesh geometry from one LU
-factorisation of K (MUMPS) and the block (K^-1)_BB of selected entries of its inverse (MUMPS
-ICNTL(30)). N itself is the element's reference basis at the bore nodes' reference coordinates in
-their cells, tabulated once per mesh topology and kept when the mesh moves
-(:meth:`CondensedBushingContact.update_geometry`).
-
-What is left per load step is the small nonlinear problem
-
-    f_q = w_q T(X_q + U_q - c),  U = G f,  sum_q f_q = F / L,
-
-solved by the active-set (semi-smooth) Newton of :mod:`fewear.contact.newton`, the same algorithm
-as the full path's (start, step rules, stopping test, fallback), restricted to the nodes in contact
-(the other nodes carry no force; their displacement follows from U = G f). Written for the state
-g (a nodal force vector, U = G g) and the pin centre c, one Newton step solves for the new forces
-g' on the active set A and the pin update dc:
-
-    g'_A = f_A + W M (G_AA g'_A - U_A - dc),    sum_A g'_A = F / L,
-
-W M the 2x2 blocks w_q dT/dd. This is the full path's Newton step written on the bore (its
-displacement update is the elastic response to the linearised contact forces), taken on one
-unknown per node: the blocks' terms for the normal's turn as a node slides along the pin are
-1e-7 of the penalty's and are kept for the pin's motion only
-(:func:`fewear.contact.condensed_newton.newton_step`), which halves the step's dense solve at
-the price of a linear rate where the full blocks converge quadratically. With the
-potential Pi = 1/2 g.G g + sum w k/2 <-g>^2 - F/L . c for the line search. Unlike the full
-path, this one can turn its state with the load for a warm start (g rolled by whole elements
-along the angle-sorted bore nodes, U = G g), so a load step starts from the previous solution
-turned with the force, a handful of iterations away from the new one; only where the bore is
-invariant under the turn, though (circular: on a worn bore the turned pin would stand in a
-pocket's flank), else it starts as the full path does. Both paths converge to
-the same solution; the tests and the benchmark check nodal pressures and pin centre to 1e-6
-(measured: ~2e-7 and below, on 200 load steps of a crank cycle).
-Per step this costs O(n |A|) per iteration for the update of U and a dense solve of size
-|A| + 2, |A| the nodes in contact. The arithmetic on these small arrays and the whole solve
-(start, coupled Newton, retry, fallback) are compiled (numba,
-:mod:`fewear.contact.condensed_newton`, with the shared kernels of
-:mod:`fewear.contact.newton_kernels`).
-Under MPI, G is built collectively and every rank solves the small problem redundantly, so all
-ranks hold the same result.
-
-Displacements, pin centre and forces are per unit thickness as in the full path; forces are
-multiplied by the width L for the result (N).
+The bore's nodal displacements are U = G f with the nodal compliance G = N K^-1 N^T, computed
+once per mesh geometry from one LU of K and the selected entries of its inverse (MUMPS
+ICNTL(30)); each load step then solves the small nonlinear contact problem on the nodes with the
+Newton of :mod:`fewear.contact.newton`, compiled whole (:mod:`fewear.contact.condensed_newton`).
+Both paths converge to the same solution. Method notes: docs/contact.md.
 """
 
 from __future__ import annotations

@@ -1,60 +1,11 @@
 """A rigid cylinder pressed on an elastic flat, in the bushing's contact solver (DOLFINx, PETSc).
 
-Model (plane strain, per unit length; forces in N are line loads times the flat's out-of-plane
-length L = ``length_m``, as the bushing's are times its width):
-
-- Flat: the rectangle of :class:`fewear.mesh.geometry.FlatGeometry`, isotropic linear elastic,
-  small strain, serendipity degree 2 on the 9-node quadrilaterals of :mod:`fewear.mesh.flat`;
-  the bottom clamped, u = 0, the sides free.
-- Cylinder: a rigid circle of radius R whose centre c starts at the origin, above the flat's top
-  y = -(R + standoff).
-- Contact: :mod:`fewear.contact.solver` as it is. Its gap g = |X + u - c| - R serves a convex
-  indenter on a flat as it serves the pin in the bore (the body's points lie outside the circle
-  in both), with the same penalty law p = k <-g>_+, k = penalty_factor E/(1-nu^2)/h (h the
-  contact zone's element length), and the same node-based (Gauss-Lobatto) quadrature.
-- Load: the normal force P (N) on the cylinder along -y, its x held at 0: the solver's coupled
-  Newton with the centre on the ray c = e (0, -1) (:meth:`fewear.contact.newton.ContactNewton.
-  solve_on_ray`), force control of P/L; the first touch along the ray closes the standoff.
-  Frictionless. The x component of the contact resultant is what the flat returns (zero on the
-  symmetric mesh, to rounding): it is not balanced.
-
-Friction (fretting; issue 22): after a :meth:`FlatContactSolver.solve` of P, frictional steps
-move the cylinder tangentially, under force control of Q
-(:meth:`~FlatContactSolver.solve_tangential_force`, the centre free) or with its centre's x
-prescribed (:meth:`~FlatContactSolver.solve_tangential_shift`, Q the reaction). The shear is
-Coulomb's law by a return mapping per contact node with a tangential penalty k_t = k
-(:meth:`~FlatContactSolver.shear`), its history (the last step's shear, displacement and centre)
-kept between steps and released by the next plain solve. The same coupled Newton solves it
-(:meth:`fewear.contact.newton.ContactNewton.solve_from_here`): the shear is part of the UFL
-traction, so the residual and its Jacobian come from the same forms. Prescribing the centre's
-x moves the cylinder inside the Newton's step (:meth:`~FlatContactSolver.newton_direction`),
-not before it; a step the Newton does not settle is split in halves
-(:meth:`~FlatContactSolver._in_halves`). Verified against Cattaneo-Mindlin partial slip
-(tests/contact/test_flat_mindlin.py) with the pressure frozen (``uncoupled=True``, a
-PROTOTYPE: the rigid cylinder on the elastic flat is not elastically similar, Dundurs
-beta != 0, so coupled, Q shifts the pressure and the stick zone).
-
-A worn cylinder (fretting: both bodies wear): its worn depth h_c(s), s along its bottom from
-below its centre, set by :meth:`FlatContactSolver.set_cylinder_wear` and placed at the centre's
-x of each solve. The gap to the worn cylinder is |x + u - c| - (R - h_c(x - c_x)) to first order
-in h_c/R and in the cylinder's slope (h_c is microns over a contact of tenths of a millimetre):
-the gap of the flat's point lowered by h_c to the circle. So the forms see the deformed point
-lowered by the Function :attr:`cylinder_wear` (h_c at the top's points,
-:meth:`_against_worn_cylinder`), and the Newton's nodal gaps the nodes lowered alike
-(:meth:`contact_points`). h_c is taken at the point's undeformed x (the error: the flat's
-tangential displacement, below a micron, times h_c's slope, about 0.01), and the Jacobian leaves
-h_c's dependence on u out.
-
-Wear: an implicit (backward Euler) Archard step of slide ds wears every node by k p ds with p at
-the step's end, so the flat recedes by c p (c = k ds, m/Pa) while the contact is solved; this is
-the penalty law with c in series, p = <-g>_+ / (1/k + c), g the gap to the flat at the step's
-start (``solve(..., wear_compliance_m_per_Pa=c)``; :mod:`fewear.loop.flat_wear`).
-
-Admissible loads: the contact strip must lie inside the contact zone |x| < x_c that the mesh
-resolves with its contact elements. By Hertz line contact (Johnson, *Contact Mechanics*, 1985,
-sec. 4.3), a = sqrt(4 P' R / (pi E*)) with E* = E/(1-nu^2) against a rigid cylinder, a reaches
-x_c at P = L pi E* x_c^2 / (4 R) (:meth:`FlatContactSolver.admissible_force_N`); a solution whose
-loaded nodes reach x_c is refused (:class:`FlatLoadError`).
+The flat's rectangle (plane strain, Q8, bottom clamped) under a rigid cylinder with the penalty
+contact of :mod:`fewear.contact.solver`: normal load by force control along a ray, frictional
+(fretting) steps under tangential force or shift with Coulomb's law by return mapping, a worn
+cylinder seen through the gap, and the implicit Archard step as a wear compliance in series.
+Admissible loads by Hertz line contact (Johnson, *Contact Mechanics*, 1985, sec. 4.3).
+Method notes: docs/contact.md.
 """
 
 from __future__ import annotations

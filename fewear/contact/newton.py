@@ -1,78 +1,11 @@
 """The contact Newton: one algorithm for both discretisations of the pin-in-bushing problem.
 
-The unknowns are the bore displacement (the DOLFINx field u in :mod:`fewear.contact.solver`, the
-nodal forces g with U = G g in :mod:`fewear.contact.condensed`) and the pin centre c (m, per unit
-thickness); the equations are the elastic equilibrium of the bushing under the penalty tractions
-and the pin's force balance sum_q f_q = F / L. Each discretisation provides the linear algebra
-as its operations (:class:`NewtonOperations`, on its state; :class:`ContactDiscretisation`);
-this module holds the algorithm:
-
-- **Start.** The *corner start* for the first solve: on a convex (circular) bore the region of
-  pin centres free of contact with the bore nodes is a polygon whose corners c_j touch two
-  neighbouring nodes; a light load presses the pin into the corner furthest along the contact
-  direction, which is taken with no displacement and the penetration |F/L| / (k (w_j + w_j+1))
-  of two nodes carrying the load. On a worn bore with pockets that corner can lie beyond other
-  nodes (the bottom of a pocket narrower than the pin's curvature: the pin rests on its flanks);
-  then the vertex of the free region furthest along the direction is found by a walk along its
-  boundary (:func:`support_vertex`; two nodes, not necessarily neighbours). Where these two
-  nodes' normals are far apart (the pin bridging a pocket rests on both rims: a wedge), the pin
-  is pressed in so that both carry the load together (the load split onto the two normals);
-  pressed along the direction alone it would leave one rim, and the Newton would slide it along
-  the other (a single contact on a convex rim is no stable equilibrium) instead of into the
-  wedge: on a bore worn 1 mm deep it did not settle within the iterations allowed.
-  Afterwards the *warm start*: the last solution, turned with the load by whole bore elements
-  where the discretisation can turn its state (the condensed path on a bore invariant under the
-  turn, i.e. not worn; pin and indentation together), with the pin moved to the corner of the
-  turned bore at a light load (the last solution had at most ``LIGHT_CONTACT_NODES`` nodes in
-  contact and the load grew by at most ``LIGHT_LOAD_GROWTH``). Where it cannot (the full path,
-  a worn bore), the last solution as it is if the load is not light and the direction turned by
-  at most ``WARM_START_MAX_ANGLE_RAD``, else the corner start.
-- **Step.** Semi-smooth (active-set) Newton: the active set is the set of bore nodes in contact
-  at the current iterate; each step solves the bordered system of that active set for the
-  displacement update and the pin update dc.
-- **Step rules.** The pin moves by :func:`pin_update` (a move along the bore by more than one
-  node spacing as a turn about the bushing centre, a smaller one straight) plus a second-order
-  correction that keeps the nodes in contact as deep as the linearisation predicts (gaps curve
-  with 1/R_p); by at most one bore element per step (:func:`slide_limit`) and not past the
-  step at which the next node entering contact could carry the load alone (the pin's sliding
-  mode is soft against the active set); a step never loses all contact; without friction, Armijo
-  backtracking on the penalty potential, which with friction is no potential of the equations;
-  a step cap that halves when the active set alternates (:func:`step_cap`).
-- **Stopping test** (:func:`converged`), on the state returned: last updates at the Newton
-  tolerance or rounding level, and the pin in force balance to ``FORCE_TOLERANCE`` or, at light
-  loads, to the rounding level of the penalty forces.
-- **Retry and contact-angle fallback.** Should the coupled iteration not settle within
-  ``COUPLED_ITERATIONS`` (or alternate persistently) from the last solution that a
-  discretisation able to turn its state left as it is (a worn bore), it starts once more from
-  the corner start (the untouched last solution can send the pin sliding along a pocket's
-  flank, held by one node; from the corner it converges in a handful of iterations; on the full
-  path and from a turned state the retry does not pay: measured on the crank cycle). Should
-  that not settle either, :func:`solve_by_contact_angle` takes over:
-  the pin angle becomes an outer unknown found by bracketing, each inner problem (pin on a fixed
-  ray) being a well-posed Newton problem. On a deeply worn bore the pin's angle can lie 60
-  degrees and more from the load's (the pin at the end of a pocket); the bracketing stays on
-  rays along which the load presses the pin into the bore. It starts on the ray where the last
-  fallback since the bore last moved left the pin: at a pocket's end the pin stays put over
-  several load steps while the load turns, and the tangential residual is steep there, so the
-  search from the load's ray walks tens of degrees (a late block of the default rigid run: 28 %
-  fewer Newton iterations).
-
-At light loads the discrete problem can have more than one stable equilibrium (the pin resting
-in either corner next to a node whose normal is nearly along the load). Both discretisations
-start in the corner furthest along the contact direction; only where two corners tie to within
-the bore displacement could they settle in different ones (not seen in the tests and benchmark).
-
-A load the Newton cannot balance gives a negative count (:data:`FAILURES` names why), which
-:class:`ContactNewton` raises as :class:`ContactNotConverged`.
-
-The algorithm (the coupled iteration :func:`coupled_newton`: linearise, step, line search,
-stopping test, step cap; and around it the start, retry and fallback, :func:`newton_solve`) is
-written once, in the subset of Python that numba compiles, on a discretisation's *operations*
-(:class:`NewtonOperations`: functions of the discretisation's state), bound into the algorithm
-by :func:`specialised`. The condensed path compiles the whole solve (its state a tuple of arrays,
-its operations compiled kernels: a solve runs without the interpreter); the full path and the
-flat run the same code as Python on their DOLFINx linear algebra. The kernels on the bore nodes
-(corners, gaps, line search, stopping test) are :mod:`fewear.contact.newton_kernels`.
+The unknowns are the bore's displacement and the pin centre c; the equations the bushing's elastic
+equilibrium under the penalty tractions and the pin's force balance sum_q f_q = F / L. Each
+discretisation (:mod:`fewear.contact.solver`, :mod:`fewear.contact.condensed`) provides its linear
+algebra as :class:`NewtonOperations`; this module holds the algorithm, written once in numba's
+subset of Python: start, semi-smooth (active-set) Newton steps, step rules, stopping test, retry
+and the contact-angle fallback. Method notes: docs/contact.md.
 """
 
 from __future__ import annotations

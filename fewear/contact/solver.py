@@ -1,62 +1,10 @@
 """The bushing contact model: a rigid pin pressed into a linear elastic bushing (DOLFINx, PETSc).
 
-Model (plane strain, per unit thickness; forces are reported in N by multiplying by the joint width
-L = ``width_m``, i.e. the bushing is a plane-strain slab of thickness L):
-
-- Bushing: the annulus R_b <= |X| <= R_o, isotropic linear elastic, small strain, displacement u in
-  serendipity degree 2 on quadrilaterals (the paper's 8-node element) over a second-order
-  (9-node) geometry; the outer surface is clamped, u = 0.
-- Pin: a rigid circle of radius R_p whose centre c (the pilot point) is the second unknown; the
-  joint force F (N) acts on the pin (force control, as in the seed paper).
-- Contact: penalty law on the bore Gamma_b (facets ``CONTACT_TAG``). At a bore point X the
-  deformed position is X + u(X), the gap g = |X + u - c| - R_p (m) and the normal
-  n = (X + u - c)/|X + u - c|; the pressure is p = k <-g>_+ (Pa) with
-  k = penalty_factor * E/(1-nu^2) / h_bore (Pa/m, see ContactProblem).
-  With friction, the pin also drags the bore with the Coulomb traction mu p t, t = (-n_y, n_x), in
-  the direction of the pin's rotation increment (opposing the bore's sliding relative to the pin);
-  without a rotation increment there is no sliding and no friction traction.
-
-Equations (the stationarity of the penalty potential plus the friction term):
-
-    a(u, v) - int_Gamma_b T . v ds = 0         for all v vanishing on the outer surface,
-    L int_Gamma_b T ds = F,                     T = p (n + mu s t),  s = sign(rotation),
-
-a(u, v) = int sigma(u) : eps(v) dx (plane strain). The second line is the pin's equilibrium: the
-resultant of the contact tractions on the bore equals the joint force. DOLFINx 0.5 has no Real
-space, so the two pin unknowns border the displacement system; each Newton step solves
-
-    [K   B] [du]   [-r_u]      K = K_el + J,  B = -J E,  C^T = -E^T J,  D = E^T J E,
-    [C^T D] [dc] = [-r_c]      E = the two uniform unit displacement fields,
-
-by one LU factorisation of K (MUMPS) and a 2x2 Schur complement (J is the contact Jacobian; since
-the contact terms depend on u - c only, its derivatives in c follow from J applied to E). The
-contact integral uses the 3-point Gauss-Lobatto (Simpson) rule on each bore facet, whose points are
-the Q8 nodes of the facet (vertices and edge midpoint): a node-based penalty. (Gauss points, in
-contrast, over-constrain the quadratic edge under a stiff penalty and make the nodal gaps oscillate
-at the scale of the penetration.)
-
-Nodal pressures: at each bore node of the Q8 elements (vertices and edge midpoints) the penalty law
-is evaluated with the displacement evaluated at the node, p_a = k <R_p - |X_a + u(X_a) - c|>_+.
-Since the nodes are the quadrature points, these are exactly the pressures whose weighted sum
-(weights |dx/ds| (1/6, 2/3, 1/6) per facet) is the resultant that balances the force.
-
-F = 0 exactly: no contact; the pin is returned centred (c = 0), u = 0, zero pressure.
-
-Newton: :class:`fewear.contact.newton.ContactNewton` (start, active-set steps, step rules,
-stopping test and the contact-angle fallback, shared with the condensed path); this class provides
-its linear algebra (assembly of r and J, the bordered step above, the bore nodes' displacement
-and the elastic energy along a line search).
-``newton_iterations`` counts all iterations.
-
-The bushing is one body the solver takes: any mesh with its contact surface tagged ``CONTACT_TAG``
-and its clamped surface ``CLAMPED_TAG`` (:mod:`fewear.mesh.tags`) and a problem that answers the
-indenter's radius, the out-of-plane length, the penalty stiffness and the contact surface's
-step sizes (:mod:`fewear.contact.params`) is solved the same way (a rigid cylinder on an elastic
-flat: :mod:`fewear.contact.flat`).
-
-Forms are compiled once per mesh; load, pin centre, penalty and friction are ``fem.Constant``s.
-After the bore has been moved (``mesh.geometry.x`` written, ALE), call :meth:`update_geometry`.
-Under MPI every rank gets the same gathered bore-node arrays (duplicates removed, sorted by angle).
+Plane strain, serendipity degree 2 (the paper's Q8) on the bushing, outer surface clamped; the
+rigid pin's centre is the second unknown under force control. Penalty contact on the bore,
+p = k <-g>_+, with node-based (Gauss-Lobatto) quadrature and optional Coulomb friction; each
+Newton step of :mod:`fewear.contact.newton` solves the displacement system bordered by the two pin
+unknowns (one LU of K and a 2x2 Schur complement). Method notes: docs/contact.md.
 """
 
 from __future__ import annotations

@@ -1,41 +1,10 @@
 """A flat worn by a rigid cylinder sliding over it: block on ring with the ring unworn (DOLFINx).
 
-The flat of :mod:`fewear.contact.flat` under the normal force P, the cylinder (the ring) sliding
-over every node in contact by the same imposed distance (frictionless contact, the slip given:
-Cruzado et al., Rev. Metal. 46 (2010) 106-114, as LevelSetWear models it). The sliding distance
-S is cut into N wear steps of ds = S/N; each step:
-
-1. **Contact and wear**, implicitly (backward Euler): Archard per node (J. Appl. Phys. 24 (1953)
-   981), dh_a = k p_a ds, with p_a the nodal pressure at the step's END, on the flat worn by
-   dh. Since the node recedes by k ds p_a, this is the contact on the flat as it is with the
-   compliance k ds in series with the penalty law
-   (:meth:`fewear.contact.flat.FlatContactSolver.solve`, ``wear_compliance_m_per_Pa``); the
-   depth increment follows by :func:`fewear.wear.archard.cycle_wear_depth_m`.
-2. **Geometry**: the :class:`fewear.wear.state.FlatWearState` deepened by dh, every node moved
-   to the worn flat by the linear map of :func:`fewear.mesh.flat.worn_node_y_m` (top nodes on
-   y0 - h(x) exactly, bottom fixed), the solver's stiffness re-assembled. No re-mesh: the scar
-   (tens of um) is a small fraction of the elements below it and its slope (b/R, 0.07 on the
-   block on ring) shears them little (:class:`fewear.mesh.quality.QualityMeter` in the run).
-   Measured on the default 20 um elements, the 132 top-row cells under the 44 um scar: smallest
-   angle sine 0.971 as made (the middle patch's slanted columns), 0.984 worn; scaled Jacobian
-   0.9963 and 0.9959.
-
-Why implicit: the wear of a conformal contact is stiff. A node that stands out by e over a node
-spacing l carries an extra pressure of about E* e / l, so an explicit step (p at the step's start)
-is stable only for k ds E* / l < 2, ds < 0.1 m at l = 25 um on steel; larger steps wear the
-nodes that carry the load into pits, and the contact breaks up onto a few nodes. Measured on the
-block on ring (elements of 100 um), each step's largest increment bounded to a share f of the
-strip's sag b^2/(2R): explicit steps at f = 0.2 (480 steps) ended at p_max 100-300 MPa against
-a mean of 4 MPa and 5.4 % too deep; the exponential Euler of the bushing's loop (the pressures
-linearised on the active set) 4.3 % too deep at f = 0.2 (465 steps) and 0.9 % at f = 0.05 (940
-steps), the contact still broken up: the roughness is in the active set. The backward
-Euler step is stable at any ds and keeps the active set in its contact solve. It is also
-accurate at large steps here: on a rigid foundation it gives p = (penetration)/(k ds), a uniform
-lowering of the ring's arc, the exact scar; the flat's elasticity departs from that by the
-contact's deflections (0.02 um against the 44 um scar).
-
-The worn area is k P' S whatever the steps (the nodal pressures carry P' = P/L), the check of the
-loop's bookkeeping; the scar is the ring's arc sunk by its depth (:mod:`fewear.wear.scar`).
+The flat of :mod:`fewear.contact.flat` under the normal force P, the ring sliding over every node
+in contact by an imposed distance (Cruzado et al., Rev. Metal. 46 (2010) 106-114), in wear steps:
+Archard's law (J. Appl. Phys. 24 (1953) 981) taken implicitly (backward Euler, stable at any step
+because conformal wear is stiff), then the top moved to the worn flat without re-meshing.
+Method notes: docs/scar.md.
 """
 
 from __future__ import annotations

@@ -1,71 +1,9 @@
 """Fretting of a flat under a rigid cylinder: the stroke cycle and the wear blocks (DOLFINx).
 
-**The stroke cycle.** The cylinder of :mod:`fewear.contact.flat`, pressed by the normal force
-P, is moved back and forth under displacement control: its centre's x follows the triangular
-stroke 0 -> +d -> 0 -> -d -> 0 in n equal increments (McColl, Ding & Leen, Wear 256 (2004)
-1114-1127, as LevelSetWear models it: d = 25 um, n = 40). Each increment is one frictional step
-(:meth:`fewear.contact.flat.FlatContactSolver.solve_tangential_shift`, P by force control, Q the
-reaction), the shear history carried from step to step; the cycle starts from the state the
-solver is in (after a plain ``solve(P)``: no shear).
-
-Per top node the cycle accumulates the Coulomb slip sum_j s_j (each step's slip is the relative
-tangential motion less the tangential penalty's elastic part), the Archard integral
-sum_j p_j s_j (the flat's wear depth of the cycle is k times it: Archard, J. Appl. Phys. 24 (1953)
-981, per node and step) and the friction work sum_j |tau_j| s_j (J/m^2, the energy the cycle
-dissipates per unit area). The energy dissipated per cycle, L sum_i w_i sum_j |tau_ij| s_ij (w_i
-the nodes' quadrature weights, L the out-of-plane length), is the area of the hysteresis loop
-Q(x) once the loop is steady; in gross slip it is 4 mu P (d - d_stick) to the normals' tilt
-(tests/loop/test_fretting_cycle.py).
-
-**The wear blocks** (:func:`run_fretting_wear`). One solved cycle stands for N cycles
-(LevelSetWear: 180 blocks of N = 100). The cylinder is pressed once (``solve(P)``), then the
-cycles follow one another, the shear history carried over (every cycle after the first is the
-steady loop). In each increment j the flat wears by N times Archard's depth of the increment,
-dh_i = k N p_ij s_ij, IMPLICITLY: the increment's contact is solved with the wear compliance
-c_j = k N |dx_j| (dx_j the centre's move; in gross slip every node in contact slides by it, less
-the change of its elastic shear) in series with the penalty law, as the block on ring's step
-(:mod:`fewear.loop.flat_wear`), and the top is then moved by dh (the
-:class:`fewear.wear.state.FlatWearState` deepened, the nodes by
-:func:`fewear.mesh.flat.worn_node_y_m`, the stiffness re-assembled). The cycle's increments thus
-wear in turn, as LevelSetWear's increments do with their cycle jump (there explicitly). The
-side worn first carries less afterwards, so a block is lopsided towards the stroke's first
-sense by O(N) (one block of 1000 cycles on the unworn flat: 28 % of the depth between the
-mirrored flanks, the scar shifted by half a node spacing); the blocks alternate the sense
-(even blocks towards +x first, odd ones towards -x) so that the lopsidedness cancels pairwise.
-
-Why implicit, per increment: the wear of the contact's middle is stiff (the block on ring's
-module docstring: a node standing out by e over a node spacing l carries E* e / l more; an
-explicit block is stable for k N 4 d E* / l < 2, i.e. N < 65 cycles at l = 10 um). Measured on
-the McColl case (contact elements of 20 um, 20 increments): explicit blocks (the cycle's
-sum p s times k N, the top moved after the cycle) of N = 100 cycles grew a node-to-node
-roughness within 1000 cycles, the largest pressure jumping between 254 and 645 MPa from block to
-block; adding the implicit response of the centred contact (one solve with c = k N sum s) to the
-explicit block damped it at N = 100 but not at N = 500 (the edges, swept by the stroke, stay
-explicit). Implicit per increment, N = 100 and N = 1000 give the same scar after 2000 cycles
-(depth 0.733 and 0.745 um, width 0.214 and 0.209 mm, worn area to 0.2 %), smooth profiles.
-
-**The indenter.** McColl's cylinder and flat are both steel (E = 200 GPa, nu = 0.3): elastically
-similar, Dundurs beta = 0, so the shear does not move the pressure. The model's rigid cylinder
-on a flat of E' = E/2 (the same E* = E/(2 (1 - nu^2)), hence Hertz's a and p0 of the pair: the
-research note, section 3.1) has beta = (1 - 2 nu)/(2 (1 - nu)) = 0.29: the shear moves the
-pressure by 0.1-0.2 a against Q (tests/contact/test_flat_mindlin.py). In gross slip with a
-stroke of the contact's size that hardly shows in the wear: one block of 1000 cycles on the
-unworn flat, nu = 0.3 (beta 0.29) against nu = 0.45 with the same E* (beta 0.09), gives worn
-profiles 0.7 % RMS apart (1.6 % at most) of the depth, depths 0.463 and 0.465 um, widths 0.171
-and 0.169 mm, worn areas to 0.1 %. The rigid cylinder with the pair's E* on nu = 0.3 is kept:
-no locking of the quadratic elements near nu = 0.5, and the pressure moves with the cylinder
-(a frozen pressure could not).
-
-**The cylinder's wear.** LevelSetWear wears the cylinder too (k_c = 1.9e-14 m^2/N, two thirds
-of the flat's). Flat and cylinder recede under the same pressure and slip: in each increment the
-compliance in series is (k + k_c) N |dx|, the flat's top moves by k N p s and the cylinder's
-profile, kept in its own frame at the positions s = x - c_x of the top's nodes in the contact
-zone, deepens by k_c N p s there (a :class:`fewear.wear.state.FlatWearState` of s and the depth
-into the cylinder). The contact sees it through the gap
-(:meth:`fewear.contact.flat.FlatContactSolver.set_cylinder_wear`). With k_c = 0 the cylinder
-stays a circle. On the McColl case the cylinder's wear widens the flat's scar (18,000 cycles:
-0.413 mm with the flat wearing alone, 0.494 mm with both) and makes it shallower (3.30 and
-2.72 um), the flat's worn area unchanged (the same p s).
+The cylinder of :mod:`fewear.contact.flat`, pressed by P, follows a triangular stroke under
+displacement control (McColl, Ding & Leen, Wear 256 (2004) 1114-1127); one solved cycle stands
+for a block of N cycles, each increment wearing flat (and optionally cylinder) implicitly by
+Archard's law, the blocks alternating the stroke's sense. Method notes: docs/scar.md.
 """
 
 from __future__ import annotations

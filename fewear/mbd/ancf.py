@@ -1,60 +1,10 @@
 """Planar shear-deformable ANCF beam: 3-node elements with r and r_,y per node (seed eq. 1-3).
 
-Kinematics (seed eq. 2-3). An element of length l has nodes at xi = 0, 1/2, 1 (xi = x/l) with
-the quadratic Lagrange functions N1 = 1 - 3 xi + 2 xi^2, N2 = 4 xi - 4 xi^2, N3 = 2 xi^2 - xi; the
-seed's s2, s4, s6 = l eta N_a = y N_a, so a material point (x, y) of the straight reference beam is
-at
-
-    r(x, y) = r0(x) + y d(x),   r0 = sum_a N_a r_a,   d = sum_a N_a r_,y^a,
-
-with 12 coordinates per element, stored per node as [r_1, r_2, r_,y1, r_,y2]. The beam of n equal
-elements has 2n + 1 nodes; element e uses nodes 2e, 2e + 1, 2e + 2 (coordinates 8e ... 8e + 11).
-
-Mass and gravity. M = int rho S^T S dV with S the (2, 12) shape matrix, integrated exactly over the
-b x h rectangle (int y dA = 0, int y^2 dA = b h^3 / 12) and along the element (int N_a N_b dxi =
-[[4, 2, -1], [2, 16, 2], [-1, 2, 4]] / 30): constant, the r and r_,y blocks are uncoupled.
-
-Elastic forces: Green-Lagrange strain of the continuum, made locking-free with the means of
-Nachbagauer, Pechstein, Irschik, Gerstmayr, Multibody Syst. Dyn. 26 (2011) 245-263 for this element
-(strain energy split into axial/bending, shear and transverse-normal parts; uncoupled normal strains
-instead of the Poisson coupling; Cowper's shear correction; reduced integration of the parts that
-lock). The integration rules listed below are this module's choices, each justified here. With
-J = [r_,x, r_,y] and a straight reference (J0 a rotation, so the strain components below are those
-of the beam frame):
-
-    eps_xx = 1/2 (r_,x . r_,x - 1) = a + y c + y^2 e / 2,  a = (t.t - 1)/2,  c = t.k,  e = k.k,
-    gamma_xy = r_,x . r_,y        = g + y s,                g = t.d,          s = d.k,
-    eps_yy = 1/2 (r_,y . r_,y - 1) = n = (d.d - 1)/2,
-
-with t = r0_,x, k = d_,x. The energy per element, integrated exactly over the height h and width b,
-
-    U = int_0^l b E/2 [h a^2 + h^3/12 (c^2 + a e) + h^5/320 e^2]   (axial, bending)
-        + b kappa G/2 [h g^2 + h^3/12 s^2]                         (shear)
-        + b E/2 h n^2 dx                                           (transverse normal)
-
-uses E for both normal strains with no Poisson coupling (the constant-in-y thickness strain of
-this element would otherwise stiffen bending by 1/(1 - nu^2): Poisson/thickness locking),
-G = E/(2(1 + nu)) and Cowper's kappa = 10 (1 + nu)/(12 + 11 nu) for a rectangle. Integration along
-x:
-
-- axial, bending and shear parts: 2-point Gauss (reduced). For a straight element the linearised
-  parts (u'^2, theta'^2, (w' - theta)^2, all of degree 2) are integrated exactly, yet the shear
-  strain only has to vanish at 2 points (no shear locking: the quadratic Timoshenko element with
-  reduced shear integration) and so does the stretch of the curved centre line (no membrane
-  locking);
-- transverse normal part: 3-point Lobatto (Simpson, at the nodes). Quadratic interpolation of the
-  nodal slopes cannot keep |d| = 1 between nodes under large rotation; at the nodes it can exactly.
-
-The element stiffness has rank 9: its only zero-energy modes are the 3 rigid motions (tested).
-In the linear limit this is the Timoshenko beam with EA, EI = E b h^3/12 and kappa G A: a cantilever
-under a tip load has w = F L^3/(3 E I) + F L/(kappa G A) for thin and thick beams alike (the nodal
-values of this element are even exact there, with any number of elements).
-
-The energy is written as U = sum_points 1/2 s^T H s over six strain invariants s_i = z^T S_i z / 2 +
-s0_i of z = (t, d, k), which is linear in q (z = B q). Hence the internal forces F = dU/dq =
-B^T sum_i (H s)_i S_i z and the exact tangent K = dF/dq = B^T [sum_i (H s)_i S_i + sum_ij H_ij
-(S_i z)(S_j z)^T] B, compiled with numba (:func:`add_beam_forces`, point by point, with the
-Kelvin-Voigt and stiffness-proportional damping terms).
+Constant mass matrix; elastic forces from the Green-Lagrange strain made locking-free after
+Nachbagauer, Pechstein, Irschik & Gerstmayr, Multibody Syst. Dyn. 26 (2011) 245-263 (split
+energy, no Poisson coupling, Cowper's shear correction, reduced integration), with the exact
+tangent, compiled (numba). In the linear limit it is the Timoshenko beam.
+Method notes: docs/dynamics.md.
 """
 
 from __future__ import annotations

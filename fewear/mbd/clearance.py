@@ -1,32 +1,10 @@
 """The revolute clearance joint as a force element between a pin and a bushing (seed eq. 5-6).
 
-Geometry (Flores & Ambrosio, Comput. Struct. 82, 2004): e = r_pin - r_bushing (centres, global),
-d = |e|, n = e/d (from the bushing centre towards the pin centre), t = k x n. The direction of n in
-the bushing frame, theta = atan2(n) - phi_bushing, gives the clearance c(theta)
-(:class:`fewear.mbd.contact.ClearanceProfile`); the penetration is delta = d - c(theta) and its rate
-delta_dot = e'.n - c'(theta) theta_dot.
-
-Forces: the bushing pushes the pin with f = -F_n m + F_t m_perp at the contact point (pin surface
-point r_pin + R_pin n, bore point r_bushing + R_bushing n); the bushing gets -f. m is the normal
-of the clearance curve, the unit gradient of delta (:func:`contact_normal`): n on a circular bore,
-tilted against the slope c'(theta) of a worn one. The slip velocity
-of the pin relative to the bushing at the contact point is v_t = e'.t + R_pin omega_pin
-- R_bushing omega_bushing; friction F_t = -mu c_d F_n sign(v_t). Moments: R_pin F_t on the pin,
--R_bushing F_t on the bushing.
-
-Newton Jacobian: dQ/dq and dQ/dq' are analytic in the joint's kinematic variables
-z = (e, e', omega_pin, omega_bushing, phi_bushing) (tested against finite differences), chained with
-dz/dq, dz/dq' and the points' geometric stiffness d(G^T f)/dq. Left out (second order in the
-Newton step, the iteration still converges, only not quadratically in contact): the dependence of
-e' and the angular velocities on q through the points' Jacobians.
-
-Impact velocity: v_imp = delta_dot at the start of the step in which the contact begins (the
-step controller makes that step end at a penetration below its gap tolerance, so this is the
-approach velocity at impact); it is kept for the whole contact episode.
-
-Compiled (numba): the functions below take the joints of a system as one :class:`JointData`
-(arrays with a leading joint index j), so the integrator's compiled step runs them; the
-:class:`ClearanceJoint` methods call the same functions on the joint's own data.
+Geometry after Flores & Ambrosio (Comput. Struct. 82, 2004): penetration delta = |e| - c(theta)
+on a clearance profile that may be worn, the contact force along the clearance curve's normal
+with the laws of :mod:`fewear.mbd.contact`, its analytic Newton Jacobian, and the impact velocity
+kept per contact episode. Compiled (numba) on all joints of a system at once (:class:`JointData`).
+Method notes: docs/dynamics.md.
 """
 
 from __future__ import annotations

@@ -1,25 +1,10 @@
 """Holonomic constraints Phi(q, t) = 0 of planar mechanisms, evaluated all at once.
 
-The constraint classes describe rows; :class:`ConstraintSet` holds every row of a system as a few
-arrays that the compiled functions below evaluate (the Newton iteration calls them once per
-iteration). Every constraint here has the form
-
-    Phi(q, t) = D q + c0 + c1 t + R w(q),   w = the rotated offsets A(phi_p) u_p of rigid points,
-
-with constant D, c0, c1 and a constant 0/1 matrix R that adds each rotated offset to the two rows of
-its joint: a revolute joint's rows are r_a - r_b with r = r0 + G0 q_b + A(phi) u (see
-:mod:`fewear.mbd.points`), a linear constraint's rows are C q_b - (d0 + d1 t). With the offset
-written as the complex number w_p = (u_p0 + i u_p1) exp(i phi_p):
-
-- Jacobian Phi_q = D plus, in the column of phi_p, dw_p/dphi_p = i w_p (rows of its joint);
-- d(Phi_q^T lambda)/dq is diagonal, -lambda_j . w_p in the column of phi_p (lambda_j: the joint's
-  two multipliers);
-- (dPhi_q/dt) q' = -phi_p'^2 w_p in the joint's rows (convective term of the acceleration
-  constraint Phi_q q'' = -(dPhi_q/dt) q' - Phi_tt).
-
-A tabulated driver (:class:`PrescribedAngle`) adds -f(t) to its row, f a periodic cubic spline
-of the time, so Phi_t = c1 - f'(t) and Phi_tt = -f''(t) (:func:`prescribed_terms`; without one,
-Phi_t = c1 is constant and Phi_tt = 0).
+Every constraint has the form Phi(q, t) = D q + c0 + c1 t + R w(q), w the rotated offsets of rigid
+points, so :class:`ConstraintSet` holds all rows of a system as a few arrays that compiled
+functions evaluate, with Phi_q, d(Phi_q^T lambda)/dq and the convective term in closed form; a
+tabulated driver (:class:`PrescribedAngle`) adds a periodic spline of time.
+Method notes: docs/dynamics.md.
 """
 
 from __future__ import annotations

@@ -1,30 +1,9 @@
 """Contact laws of the revolute clearance joint: normal force, friction, clearance profile.
 
-Normal force (penetration delta >= 0, rate delta_dot, impact velocity v_imp = delta_dot at the
-start of the contact episode):  F_n = F_el(delta) [1 + chi delta_dot / v_imp],  clipped at 0
-(the damping term would otherwise pull the surfaces together at the end of the restitution phase).
-
-==========================  =================  =====================================
-law                         F_el(delta)        hysteresis factor chi(c_e)
-==========================  =================  =====================================
-``lankarani-nikravesh``     K delta^1.5        3 (1 - c_e^2) / 4   (seed eq. 6;
-                                               Lankarani & Nikravesh, J. Mech. Des. 112, 1990)
-``hunt-crossley``           K delta^1.5        3 (1 - c_e) / 2     (Hunt & Crossley,
-                                               J. Appl. Mech. 42, 1975)
-``flores``                  K delta^1.5        8 (1 - c_e) / (5 c_e)  (Flores, Machado, Silva,
-                                               Martins, Multibody Syst. Dyn. 25, 2011)
-``tabulated``               table(delta)       3 (1 - c_e^2) / 4   (an FE-computed elastic law,
-                                               linear interpolation, linear extrapolation beyond
-                                               the table's last point; LN damping)
-==========================  =================  =====================================
-
-K = 4 / (3 pi (h_i + h_j)) sqrt(R_i R_j / (R_j - R_i)),  h_k = (1 - nu_k^2) / (pi E_k)
-(seed eq. 6).
-
-Friction: Coulomb with the dynamic correction coefficient of Ambrosio (Virtual Nonlinear
-Multibody Systems, NATO ASI 2003) that regularises it near zero slip:
-F_t = -mu c_d(|v_t|) F_n sign(v_t),  c_d = 0 for |v| <= v0, (|v| - v0)/(v1 - v0) for
-v0 < |v| < v1, 1 for |v| >= v1 (continuous in v_t; no sticking force below v0).
+Normal force F_n = F_el(delta) [1 + chi delta_dot / v_imp], clipped at 0, with the hysteresis
+factors of Lankarani & Nikravesh (seed eq. 6), Hunt & Crossley or Flores et al., or a tabulated
+elastic law; Coulomb friction with Ambrosio's dynamic correction near zero slip.
+The table of laws: docs/dynamics.md (Method notes).
 """
 
 from __future__ import annotations

@@ -1,50 +1,10 @@
 """Generalized-alpha for the index-3 DAE  M q'' + Phi_q^T lambda = Q(q, q', t), Phi(q, t) = 0.
 
-Chung & Hulbert (J. Appl. Mech. 60, 1993) parameters from the spectral radius at infinity:
-alpha_m = (2 rho - 1)/(rho + 1), alpha_f = rho/(rho + 1), gamma = 1/2 + alpha_f - alpha_m,
-beta = (gamma + 1/2)^2 / 4. Constrained form of Arnold & Brüls (Multibody Syst. Dyn. 18, 2007):
-the equations hold at t_{n+1}; the acceleration-like variable ``a`` obeys
-(1 - alpha_m) a_{n+1} + alpha_m a_n = (1 - alpha_f) q''_{n+1} + alpha_f q''_n,
-q_{n+1} = q_n + h q'_n + h^2 (1/2 - beta) a_n + h^2 beta a_{n+1},
-q'_{n+1} = q'_n + h (1 - gamma) a_n + h gamma a_{n+1}.
-Newton on (q_{n+1}, lambda_{n+1}) with q' and q'' following from q: dq' = gamma/(beta h) dq,
-dq'' = (1 - alpha_m)/((1 - alpha_f) beta h^2) dq. The iteration matrix is
-[[beta h^2 S_t, Phi_q^T], [Phi_q, 0]] on (dq, beta h^2 dlambda): the equations of motion are
-multiplied by beta h^2, which is the same as scaling the constraint rows by 1/(beta h^2) (Arnold &
-Brüls sec. 3.3) and makes the matrix's condition independent of h. S_t = M beta' - dQ/dq' gamma'
-- dQ/dq + d(Phi_q^T lambda)/dq, all analytic.
-
-Optional velocity projection (on by default): after each step q' is projected M-orthogonally
-onto Phi_q q' + Phi_t = 0. Index-3 generalized-alpha leaves an O(h^2) drift in the velocity
-constraint; the projection removes it (a driven mechanism then has exact velocities) and keeps the
-scheme second order.
-
-Newton variants (``modified_newton``). Full Newton builds and factorises the iteration matrix in
-every iteration. Modified Newton (the default, as in Exudyn) keeps the LU factors of the last
-matrix, across iterations and across steps, and only re-evaluates the residual: what is reused
-is the whole matrix, i.e. M, the force elements' dQ/dq and dQ/dq', Phi_q and the constraint
-Hessian (at the q, q', lambda where it was built), and h through beta h^2 (so a change of step size
-forces a rebuild). It is rebuilt at the first iteration of a step when there is none, h changed
-or the previous step needed more than two iterations (the matrix has aged: one correction after
-the predictor's no longer meets the tolerance); and when a correction shrinks by less than the
-factor ``REUSE_CONTRACTION`` against the previous one, the rest of the step runs as full Newton.
-The residual and the constraints are always evaluated exactly at the current iterate, so the
-converged state solves the same equations; the test max |dq| < newton_tolerance stays meaningful
-because a reused matrix is only kept while the iteration contracts by at least 1/4 per
-iteration, so the error left after the last correction is below |dq| / 3. Full Newton rejects the
-step when its corrections stop contracting (the step is retried shorter).
-
-Step-size control (adaptive mode): each clearance joint estimates the local error of its contact
-gap (m) and tells whether the step entered contact too deep (:func:`fewear.mbd.clearance.
-step_error`); the step is rejected and retried shorter when the estimate exceeds the tolerance.
-The joints' memory follows the steps: :func:`fewear.mbd.clearance.begin_step` at the initial
-state, :func:`fewear.mbd.clearance.end_step` after each accepted step (which is where the next
-step begins).
-
-Compiled (numba): :func:`advance` runs the step loop (predictor, Newton with the system's compiled
-forces and constraints, LU with partial pivoting, velocity projection, step-size control) on the
-system's :data:`fewear.mbd.system.SystemData` until t_end, or until its buffer of recorded steps
-is full; :class:`GeneralizedAlpha` is the Python face (states, statistics, observers).
+Chung & Hulbert (J. Appl. Mech. 60, 1993) parameters, in the constrained form of Arnold & Brüls
+(Multibody Syst. Dyn. 18, 2007) with scaled constraint rows, optional velocity projection,
+modified Newton (the factorised iteration matrix reused while it contracts) and step-size control
+by the clearance joints' gap error. :func:`advance` runs the step loop compiled (numba);
+:class:`GeneralizedAlpha` is its Python face. Method notes: docs/dynamics.md.
 """
 
 from __future__ import annotations

@@ -1,23 +1,10 @@
 """Material points of planar bodies: where joints and contacts attach.
 
-A point maps the coordinates of its body, ``q_b`` (a slice of the system vector given by
-``indices``; an array or a list of floats), to a position ``r`` (m) and an angle ``theta`` (rad) of
-the material line through it, with the derivatives the constraints and the Newton Jacobian need:
-
-- compiled (numba), for the clearance joint's kernels, from the point's ``kind`` and ``offset``:
-  ``point_motion`` (position, velocity G q'_b, angle, angular velocity g . q'_b),
-  ``point_derivatives`` (G = dr/dq_b (2, k), g = dtheta/dq_b (k,)), ``add_point_force`` (the
-  generalised force G^T f + moment g) and ``add_point_hessian`` (the diagonal of d(G^T f)/dq_b for
-  a fixed force f: geometric stiffness, diagonal for every planar point here);
-- ``affine = (G0, r0)`` and ``rotating_offset``: the split r = r0 + G0 q_b + A(phi) u with a
-  constant G0, used by :class:`fewear.mbd.constraints.ConstraintSet` to evaluate all revolute
-  joints at once; ``rotating_offset`` is ``(local index of phi, u)`` for a rigid-body point, else
-  None.
-
-Rigid body coordinates are ``(x, y, phi)`` of the centre of mass; a point sits at the body-fixed
-offset ``u`` so ``r = R + A(phi) u`` (Nikravesh, Computer-Aided Analysis of Mechanical Systems,
-1988, ch. 6). An ANCF node carries ``(r1, r2, r_y1, r_y2)``: its position is the node's ``r`` and
-the cross-section's angle is that of ``r_y`` minus 90 degrees (zero for an unrotated beam).
+A point maps its body's coordinates to a position (m) and an angle (rad), with the derivatives
+the constraints and the Newton Jacobian need, compiled (numba) for the clearance joint's kernels
+and split as r = r0 + G0 q_b + A(phi) u for :class:`fewear.mbd.constraints.ConstraintSet`.
+Rigid bodies after Nikravesh (Computer-Aided Analysis of Mechanical Systems, 1988, ch. 6); ANCF
+nodes carry (r1, r2, r_y1, r_y2). Method notes: docs/dynamics.md.
 """
 
 from __future__ import annotations

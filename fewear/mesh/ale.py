@@ -1,41 +1,10 @@
 """ALE motion of the bushing mesh: the bore moves radially by the wear, the outer surface stays
 fixed, the interior follows a linear-elastic extension (DOLFINx).
 
-The motion is total-Lagrangian: each move solves, on the mesh as made (Omega_0, the mesh when the
-:class:`BoreMotion` was built), for the node displacement d from Omega_0 in the geometry's own
-vector Lagrange space (degree 2 on quadrilaterals: its dofs are the 9-node geometry's nodes)::
-
-    int_Omega_0 2 eps(d) : eps(v) + lambda div(d) div(v) dx = 0   for all v vanishing on the bore
-                                                                   and the outer surface,
-    d = D_b on the bore,   d = 0 on the outer surface,
-
-with shear modulus 1 and lambda = 2 nu / (1 - 2 nu) (``poisson_ratio`` nu, default 0.3), and puts
-every node, owned and ghost, at X_0 + d. D_b is the bore's total displacement: where it is now
-plus this move's ``dr(theta) (cos theta, sin theta)`` at each bore node's angle theta (from the
-bushing centre), minus where it was made; its values are set, not solved, so a bore node lands on
-radius r + dr(theta) at the same angle, to rounding; outer nodes do not move. The operator lives
-on Omega_0, so it is assembled and LU-factorised once per mesh and a move costs two triangular
-solves; the interior of a moved mesh depends on the bore's position only, not on the path of
-moves that led there (an updated-Lagrangian extension, re-assembled on the moved mesh at every
-move, is not linear in the bore motion). Measured against that on the reference mesh (144 x 13),
-a Gaussian lobe (sigma 0.3 rad) grown to 0.45 of the bore element's height in 5 or 15 moves: the
-interior nodes differ by 1.2e-7 m at most (the bore nodes not at all), the quality figures by 3e-6,
-and the pressures of a G rebuilt on the moved mesh by 2e-6 of the peak (the loop's G, kept from
-the mesh as made, sees the bore nodes only); one move gives the same mesh in both.
-
-For a uniform bore increment delta the extension is the Lame field of a thick-walled cylinder,
-d_r(r) = A r + B / r with A = delta R_b / (R_b^2 - R_o^2), B = -A R_o^2, for any nu (Timoshenko &
-Goodier, Theory of Elasticity, sec. 28).
-
-Why elastic rather than harmonic (each component solving Laplace's equation): a harmonic extension
-moves x and y independently, so the slope of a wear lobe along the bore shears the flat bore-row
-cells; the elastic one resists shear. Measured on the reference mesh (144 x 13) under two wear
-lobes (Gaussian, 1/e^2 at +-30 deg, at 0 and 180 deg) 2 mm deep, moved in ten steps: smallest
-angle sine 0.98 (elastic, nu = 0.3) against 0.93 (harmonic), scaled Jacobian 0.93 against 0.91,
-thinnest bore-row cell at 0.61 of its height against 0.54; same cost (figures of
-:mod:`fewear.mesh.quality`, measured with the updated-Lagrangian extension). At the realistic
-0.5 mm (five moves) the elastic extension keeps the scaled Jacobian at 0.946 (0.948 as meshed) and
-the angle sine at 0.997 (total-Lagrangian 0.94560 and 0.99693, updated 0.94569 and 0.99701).
+Total-Lagrangian: each move solves on the mesh as made, whose operator is factorised once, so the
+interior depends on the bore's position only. A uniform increment gives the Lame field of a
+thick-walled cylinder (Timoshenko & Goodier, Theory of Elasticity, sec. 28); elastic rather
+than harmonic because it resists the shear of the bore-row cells. Method notes: docs/run.md.
 """
 
 from __future__ import annotations

@@ -1,25 +1,9 @@
 """The bushing mesh: a structured O-grid of the annulus R_b <= r <= R_o, built with gmsh.
 
-Four quarter-annulus patches, each transfinite (n_theta/4 elements along the arcs, n_r across the
-wall, a geometric progression of radial sizes so the elements get finer toward the bore) and
-recombined into quadrilaterals. The geometry is second order (9-node quadrilaterals, gmsh type 10:
-DOLFINx 0.5.2 cannot use gmsh's 8-node type 16 as geometry), so every bore node, vertex or edge
-midpoint, lies on the circle to rounding. The displacement field on top is serendipity degree 2
-(the paper's 8-node quadrilateral), see :mod:`fewear.contact.solver`.
-
-gmsh runs on rank 0 only; ``dolfinx.io.gmshio.model_to_mesh`` distributes the mesh. Facet tags:
-``BORE_TAG`` on the bore, ``OUTER_TAG`` on the outer surface; the cells carry ``BUSHING_TAG``.
-
-The bore nodes (2 n_theta of them, vertices and edge midpoints) sit at the uniform angles
-k pi / n_theta, k = 0 .. 2 n_theta - 1, exactly (gmsh's arc nodes are snapped to them), in every
-mesh, circular or worn. A worn bore (``bore_profile``, a periodic table of radius against angle,
-see :mod:`fewear.mesh.profile`) is meshed as the circular O-grid with every node moved along its
-ray (angle kept): a node at radius r goes to
-
-    r' = r_b(theta) + (r - R_b) (R_o - r_b(theta)) / (R_o - R_b),
-
-so bore nodes land on r_b(theta) exactly, the outer circle stays, and the radial grading is kept
-from the worn bore to the outer circle (every radial size scaled by (R_o - r_b) / (R_o - R_b)).
+Four transfinite quarter-annulus patches graded towards the bore, 9-node quadrilaterals (DOLFINx
+0.5.2 cannot use gmsh's 8-node type as geometry) with the bore nodes at the uniform angles
+k pi / n_theta; a worn bore is the circular grid with every node moved along its ray.
+Facet tags ``BORE_TAG`` and ``OUTER_TAG``; gmsh runs on rank 0. Method notes: docs/run.md.
 """
 
 from __future__ import annotations

@@ -1,26 +1,9 @@
 """The flat's mesh: a structured quadrilateral mesh of a rectangle under a rigid cylinder (gmsh).
 
-The flat |x| <= W/2, y_top - H <= y <= y_top, y_top = -(R + standoff) (:class:`FlatGeometry`:
-the cylinder's centre starts at the origin), is meshed as three transfinite patches side by
-side, recombined into quadrilaterals:
-
-- the middle patch, a trapezoid: its top is the contact zone |x| <= x_c, in equal elements of
-  the contact element size h; its bottom spans |x| <= (x_c + W/2)/2, so that its elements widen
-  with depth instead of staying h wide down to the bottom;
-- the two side patches: along the top, ``side_element_count`` elements graded geometrically from
-  h at the zone to the flat's sides; along the bottom, as many equal ones.
-
-Through the height, ``depth_element_count`` elements graded geometrically from h at the top.
-The geometry is second order (9-node quadrilaterals, as in :mod:`fewear.mesh.bushing`); every top
-node, vertex or edge midpoint, lies on y = y_top to rounding.
-
-A worn flat (wear depth h(x) along -y, :class:`fewear.wear.state.FlatWearState`) is this mesh with
-its nodes moved by :func:`worn_node_y_m`, the counterpart of the bushing's radial map: x kept, every
-column shrunk by (H - h(x))/H, top nodes on y_top - h(x) exactly.
-
-gmsh runs on rank 0 only; ``dolfinx.io.gmshio.model_to_mesh`` distributes the mesh. Facet tags:
-``CONTACT_TAG`` on the whole top, ``CLAMPED_TAG`` on the bottom (u = 0); the sides are free; the
-cells carry ``FLAT_TAG``.
+Three transfinite patches (a trapezoid under the contact zone, graded sides), 9-node quadrilaterals
+with every top node on the flat's top; :func:`worn_node_y_m` moves the nodes onto a worn top.
+Facet tags ``CONTACT_TAG`` on the top, ``CLAMPED_TAG`` on the bottom; gmsh runs on rank 0.
+Method notes: docs/scar.md.
 """
 
 from __future__ import annotations

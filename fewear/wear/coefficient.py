@@ -1,37 +1,10 @@
 """The wear coefficient k(p, v) of Archard's law (seed eq. 10), in m^2/N (= 1/Pa).
 
-Two models, both callable as ``k(pressure_Pa, velocity_m_s) -> k_m2_N`` with NumPy broadcasting:
-
-- :class:`ConstantWearCoefficient`: one k for every contact condition.
-- :class:`RbfWearCoefficient`: the radial-basis-function network of the seed (eq. 9),
-
-  .. math::  \\ln k(x) = c_0 + c_1 z_p + c_2 z_v
-             + \\sum_{i=1}^{m} w_i \\exp\\left(-\\frac{|z - z_i|^2}{2 \\sigma_i^2}\\right),
-
-  with inputs :math:`z = ((\\ln p - \\mu_p)/s_p, (\\ln v - \\mu_v)/s_v)`, the logarithms of pressure
-  and velocity standardised over the training tests. Choices, each documented where it is made:
-
-  * output ln k, so k > 0 everywhere (a network in k itself can turn negative between tests);
-  * a bias and a linear tail :math:`c_0 + c_1 z_p + c_2 z_v` beside the Gaussian units: in log
-    space a power law :math:`k \\propto p^a v^b` is linear, so the tail carries the Archard-type
-    trend and the Gaussians only the curvature; the ridge penalty then shrinks the curvature
-    towards that power law (the paper's bias-free form would shrink ln k towards 0, i.e. k towards
-    1 m^2/N);
-  * centres by k-means (k-means++ seeding, Lloyd iterations) on the distinct standardised inputs;
-  * widths by the p-nearest-neighbour rule (Moody & Darken 1989) with p = 2:
-    :math:`\\sigma_i` = width scale x mean distance from centre i to its two nearest centres;
-  * output weights by ridge least squares (penalty on the Gaussian weights only);
-  * number of centres, width scale and ridge parameter by k-fold cross-validation with the
-    one-standard-error rule (Hastie, Tibshirani & Friedman, *Elements of Statistical Learning*,
-    2nd ed., sec. 7.10): the simplest model (fewest centres, then largest ridge, then widest units)
-    whose CV error is within one standard error of the best;
-  * no extrapolation: inputs are clamped to the training box (the range of ln p and ln v over the
-    tests), so outside the tested range k stays at its value on the nearest edge of the box. A
-    pressure of zero (no contact) therefore gives k at the lowest tested pressure (and wear
-    k p s = 0).
-
-A model is saved as part of the ``[wear]`` config section (:meth:`to_config`, :func:`wear_section`,
-:func:`wear_section_toml`) and rebuilt with :func:`wear_coefficient_from_config`.
+Two models callable as ``k(pressure_Pa, velocity_m_s)``: a constant, and the seed's
+radial-basis-function network (eq. 9) fitted in ln k on standardised ln p, ln v, with a linear
+tail, k-means centres, ridge weights and cross-validated size (Hastie, Tibshirani & Friedman,
+sec. 7.10), clamped to the tested range. Saved in and rebuilt from the ``[wear]`` section.
+Method notes: docs/run.md.
 """
 
 from __future__ import annotations

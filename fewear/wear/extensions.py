@@ -1,52 +1,10 @@
 """Physical extensions of Archard's law: a multiplier on the wear coefficient k(p, v).
 
-The seed's wear law (eq. 10) takes k from the RBF network k(p, v) at each contact condition. Real
-sliding pairs depart from it in ways that depend on the *history* of the contact, not only on the
-current (p, v). An extension writes the local wear coefficient as
-
-.. math::  k = k(p, v)\\, m(\\text{state}),
-
-with ``m`` a dimensionless multiplier and the state the history of one contact point: its
-accumulated sliding distance ``s`` [m], time in contact ``t`` [s], a first-order-lagged
-frictional power ``theta`` [W/m^2] and the crank cycles ``N`` the joint has run. The catalogue:
-
-- ``none``: m = 1 (plain Archard, the seed).
-- ``running_in``: m(s) = 1 + (r - 1) exp(-s / s0). k falls from an initial value r k_ss to the
-  steady value k_ss over a sliding distance s0 while asperities conform (P. J. Blau, "On the nature
-  of running-in", Tribology International 38 (2005) 1007-1012; the exponential decay of the wear
-  rate is the simplest of the break-in curve shapes classified there).
-- ``running_in_power_law``: m(s) = 1 + (r - 1) / (1 + s / s0). The same fall with a power-law
-  (hyperbolic) tail, the other break-in curve shape of Blau (2005): the wear rate approaches its
-  steady value as 1/s instead of exponentially, so the extra wear (r - 1) s0 ln(1 + s / s0) keeps
-  growing slowly.
-- ``running_in_cycles``: m(N) = 1 + (r - 1) exp(-N / N0). The same fall driven by the crank
-  cycles the joint has run, the same at every point of the bore: the running-in of the *pin*
-  (its asperities are flattened every cycle, whichever bore point they meet) or of the lubricant
-  film, the break-in curve plotted against time or cycles as tribometer and bench tests record it
-  (Blau 2005). Only a mechanism has cycles: a pin-on-disc test has no closed form for it.
-- ``running_in_cycles_power_law``: m(N) = 1 + (r - 1) / (1 + N / N0), the power-law tail over
-  the crank cycles.
-- ``time_transient``: m(t) = 1 + (r - 1) exp(-t / tau). The same fall driven by time, as when a
-  protective oxide or tribofilm grows at a rate set by time at temperature rather than by distance
-  (T. F. J. Quinn, "Review of oxidational wear", Tribology International 16 (1983) 257-271 and
-  305-315). At one constant speed v it equals ``running_in`` with s0 = v tau; only tests at
-  different speeds tell the two apart.
-- ``thermal``: m = 1 + beta theta, with theta the frictional power mu p v seen through a first-order
-  lag of time constant tau: d theta / dt = (mu p v - theta) / tau. The bulk temperature rise of a
-  sliding pin is proportional to the frictional power (J. F. Archard, "The temperature of rubbing
-  surfaces", Wear 2 (1959) 438-455) and reaches it with the thermal time constant of the pin; an
-  Arrhenius-type wear rate k ~ exp(-Q / (R T)) (Quinn's oxidational wear) linearised about the
-  ambient temperature gives k = k_b (1 + beta theta). Wear rising with normalised pv is the
-  temperature-controlled regime of the wear-mechanism maps of S. C. Lim and M. F. Ashby, Acta
-  Metallurgica 35 (1987) 1-24.
-
-For constant speed and power (a pin-on-disc test) the wear volume is closed-form:
-V = F k(p, v) S_eff(s, t), with the *effective distance* S_eff = integral of m ds
-(:meth:`effective_distance_m`). A simulation steps the state with :meth:`advance` and multiplies
-k(p, v) by :meth:`multiplier`.
-
-Config: the ``[wear]`` keys ``extension`` (a name above) and ``extension_params`` (an inline table,
-keys below with units in their names); :func:`wear_extension_from_config` builds the extension.
+k = k(p, v) m(state), the state being one contact point's history (sliding distance, time in
+contact, lagged frictional power, crank cycles): running-in by distance, cycles or time (Blau,
+Tribol. Int. 38 (2005) 1007-1012; Quinn 1983) and a thermal law (Archard 1959; Lim & Ashby 1987).
+Configured by the ``[wear]`` keys ``extension`` and ``extension_params``.
+Method notes: docs/run.md.
 """
 
 from __future__ import annotations

@@ -1,56 +1,10 @@
-"""Impact wear: bore material removed by the impacts of the clearance joint, in three forms that
-may act together: by the energy the contact law's hysteresis dissipates, by the impacts' normal
-impulse (optionally only of impacts whose peak force passes a threshold), and by a power of the
-impact speed.
+"""Impact wear: bore material removed by the impacts of the clearance joint.
 
-Energy wear (Fouvry, Liskiewicz, Kapsa & Hannel, Wear 255 (2003) 287-298: the worn volume is
-proportional to the dissipated energy) applied to the impacts of the clearance joint:
-
-    V_imp = k_imp W_hyst,   W_hyst = integral of (F_n - F_el(delta)) d(delta)/dt dt,
-
-k_imp (m^3/J): the ``[wear]`` key ``impact_wear_coefficient_m3_J`` (0 = no impact wear);
-F_n: the normal force of the clearance joint's contact law, F_el(delta) its elastic part, so
-F_n - F_el is the hysteresis damping force of Lankarani & Nikravesh (J. Mech. Des. 112 (1990)
-369-376), F_el chi delta_dot / v_imp, or -F_el where the law clips F_n at 0 while delta > 0
-(the surfaces separate faster than the damping allows: the elastic energy left is not given
-back). Both parts dissipate: the power (F_n - F_el) delta_dot is >= 0 at every instant, and over
-a contact episode (delta from 0 back to 0) W_hyst = integral of F_n d(delta), the kinetic energy
-the impact takes away.
-
-Each impact episode k of a cycle is spread over the bore in proportion to its own footprint
-p_{k,a}, the FE contact pressure under its peak normal force F_k (directed along the pin
-centre's eccentricity there, frictionless: where it strikes), and the hysteresis work the
-continuous contact dissipates over load step i under that step's pressure p_{i,a}:
-
-    dh_imp,a = sum_k V_k p_{k,a} / |F_k| + sum_i k_imp W_i p_{i,a} / |F_i|,
-
-since the integral of p over the bore is about |F| (exactly the integral of p n is F for a
-frictionless contact; the scalar integral exceeds |F| by the mean 1/cos over the contact arc,
-the same factor that Archard's k p s carries), an impact removes a volume of about V_k and a
-step about k_imp W_i. A load step's force is the slip-weighted mean of the joint force over it
-(:func:`fewear.loop.stages.load_steps`), which points where the pin slides under load, not where
-an impact within the step struck: the impacts' wear is put under their own footprints.
-
-Impulse form: V_imp = c_J J, J = integral of F_n dt over the impact episodes (``mode`` impact of
-:class:`fewear.mbd.history.JointHistory`: contact episodes shorter than the impact duration,
-a collision and rebound; the continuous contact's impulse is left out). c_J (m^3/(N s)): the
-``[wear]`` key ``impact_impulse_wear_coefficient_m3_Ns``. The momentum an impact reverses, rather
-than the energy it takes away, sets the damage when the restitution is high and little is
-dissipated (impact wear grows with the number and the severity of the blows, Engel, Impact Wear
-of Materials, Elsevier 1976). An impact's impulse is spread under its footprint. With
-``[wear] impact_impulse_force_threshold_N`` F_th > 0 only the impacts whose peak normal force
-exceeds F_th count: light taps below the material's damage threshold remove nothing.
-
-Speed form: V_imp = c_v sum_k v_k^n over the impacts k, v_k the normal approach speed at the
-impact's onset (the rate of |e| over the step into contact), n = ``impact_speed_exponent``
-(3 by default: the kinetic energy per unit contact area of a Hertzian impact grows with v^(6/5)
-and erosion-type impact wear with v^2-v^3, Engel 1976), c_v =
-``impact_speed_wear_coefficient`` in m^3 / (m/s)^n. Each impact's v_k^n is spread under its
-footprint.
-
-The three coefficients and their options form an :class:`ImpactWearLaw`, parsed once from the
-``[wear]`` section (:meth:`ImpactWearLaw.from_config`); its
-:meth:`ImpactWearLaw.volume_m3` gives the impacts' volumes from their measures.
+Three forms that may act together: by the hysteresis energy of the contact law (Fouvry et al.,
+Wear 255 (2003) 287-298; Lankarani & Nikravesh damping), by the impacts' normal impulse
+(optionally above a force threshold), and by a power of the impact speed (Engel 1976). Each
+impact is spread under its own FE footprint. :class:`ImpactWearLaw` holds the coefficients
+parsed from ``[wear]``. Method notes: docs/run.md.
 """
 
 from __future__ import annotations

@@ -1,26 +1,9 @@
 """The worn bore: one frozen state from which the dynamics' clearance and the mesh's bore follow.
 
-The wear depth h >= 0 (m) is kept at the bore nodes, identified by their angle theta in [0, 2 pi)
-from the bushing centre (measured from the slide axis x). The bore wears radially outward: the
-worn bore is the periodic curve
-
-    r(theta) = R_b + h(theta),
-
-h interpolated linearly in theta between the nodes (periodic). A re-meshed bushing puts its bore
-nodes at the same angles (k pi / n) exactly on r(theta), so the state carries over unchanged.
-From it:
-
-- the dynamics' clearance c(theta): how far the rigid pin's centre can move in the direction
-  theta before the pin touches the bore; c0 + h(theta) where the worn bore conforms to the pin
-  (:meth:`WearState.clearance_profile`, a :class:`fewear.mbd.contact.ClearanceProfile`; the
-  dynamics see h through a periodic cubic spline of the nodes, :meth:`smooth_depth_at`);
-- the mesh's bore: every bore node at angle theta sits at radius r(theta) (:meth:`bore_radius_m`).
-
-The flat worn by a cylinder (:class:`FlatWearState`) is the same bookkeeping along x instead of
-theta, not periodic: h at the flat's top nodes, the worn top y0 - h(x).
-
-Each node also carries its sliding history (accumulated sliding distance, time in sliding contact,
-lagged frictional power) for the history-dependent wear laws of :mod:`fewear.wear.extensions`.
+The wear depth h (m) at the bore nodes' angles gives the worn bore r(theta) = R_b + h(theta), the
+dynamics' clearance c0 + h(theta) and every bore node's radius, plus each node's sliding history
+for :mod:`fewear.wear.extensions`. :class:`FlatWearState` is the same bookkeeping along a flat.
+Method notes: docs/run.md.
 """
 
 from __future__ import annotations
