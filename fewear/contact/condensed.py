@@ -45,7 +45,7 @@ def _state_array(index: int, doc: str) -> property:
 
 class CondensedBushingContact:
     """Same ``solve(force_N, rotation_increment_rad=0.0, friction=False) -> ContactResult`` as
-    :class:`BushingContactSolver`, from the bore compliance G (see the module docstring).
+    :class:`BushingContactSolver`, from the bore compliance G (see the method notes).
 
     Build it from a full solver (``CondensedBushingContact(solver)``), which provides the mesh,
     the LU-factorised stiffness and the bore nodes; call :meth:`update_geometry` after the mesh

@@ -66,7 +66,7 @@ class FrictionalStep(NamedTuple):
 
 
 class FlatLoadError(FewearInputError):
-    """A normal force the flat's contact model cannot carry (see the module docstring)."""
+    """A normal force the flat's contact model cannot carry (see the method notes)."""
 
     def __init__(self, normal_force_N: float, reason: str, admissible_N: float,
                  zone_half_width_m: float):
@@ -92,9 +92,9 @@ def checked_normal_force(normal_force_N) -> float:
 
 
 class FlatContactSolver(BushingContactSolver):
-    """The rigid cylinder on the elastic flat (module docstring): the bushing's solver on the
+    """The rigid cylinder on the elastic flat (method notes): the bushing's solver on the
     flat's mesh and problem, solved with the cylinder on its ray; frictional steps after it
-    (module docstring).
+    (method notes).
 
     ``problem``: the :class:`FlatContactProblem`; ``comm``: MPI communicator; ``mesh_data``: an
     existing ``(mesh, cell_tags, facet_tags)`` from :func:`fewear.mesh.flat.flat_mesh` (built
@@ -489,7 +489,7 @@ class FlatContactSolver(BushingContactSolver):
     def admissible_force_N(self, force_N=PRESS_DIRECTION) -> float:
         """The largest admissible normal force (N; the flat takes forces along -y only): the
         Hertz force at which the half-width a reaches the contact zone's x_c,
-        L pi E* x_c^2 / (4 R) (module docstring)."""
+        L pi E* x_c^2 / (4 R) (method notes)."""
         problem = self.problem
         x_c = problem.mesh.contact_zone_half_width_m
         return (problem.out_of_plane_length_m * math.pi * problem.material.plane_strain_modulus_Pa

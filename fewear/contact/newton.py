@@ -173,7 +173,7 @@ def free_pin() -> np.ndarray:
 def coupled_newton(state, settings: NewtonSettings, load: np.ndarray, direction: np.ndarray,
                    basis: np.ndarray, max_iterations: int) -> int:
     """Semi-smooth Newton on (displacement, c) from the present state, c moving in the span of
-    ``basis`` (2, k), with the step rules and the stopping test of the module docstring, on the
+    ``basis`` (2, k), with the step rules and the stopping test of the method notes, on the
     ``discretisation`` bound by :func:`specialised` (its :class:`NewtonOperations`, ``state``
     theirs). Returns the number of steps taken to the state that passes the stopping test, or
     ``NOT_CONVERGED`` when not converged within ``max_iterations`` steps or, for the free pin
@@ -232,7 +232,7 @@ def newton_solve(state, memory: np.ndarray, settings: NewtonSettings, load: np.n
                  direction: np.ndarray, max_iterations: int) -> int:
     """One solve for the load F/L (N/m) with the expected contact direction: the start
     (:func:`start`), the coupled Newton, the retry from the corner start and the fallback on the
-    contact angle of the module docstring. ``memory`` (:func:`new_memory`) holds what the solves
+    contact angle of the method notes. ``memory`` (:func:`new_memory`) holds what the solves
     before left: the last contact direction (NaN: none, a cold start), the last solution's nodes
     in contact, |F/L| and the pin angle after the last fallback (NaN: none); updated after a
     solve that converged. Returns the Newton iterations (all inner ones of the fallback
@@ -456,7 +456,7 @@ def new_memory() -> np.ndarray:
 
 
 class ContactNewton:
-    """The algorithm of the module docstring on a :class:`ContactDiscretisation`, with the
+    """The algorithm of the method notes on a :class:`ContactDiscretisation`, with the
     memory the solves leave (:func:`new_memory`).
 
     ``solve(load, direction)`` with the load F/L (N/m) and the expected contact direction

@@ -76,7 +76,7 @@ def nodal_result(problem: ContactProblem, points: np.ndarray, angles: np.ndarray
 
 
 class BushingContactSolver:
-    """Full Newton solve of the pin-in-bushing penalty contact (see the module docstring).
+    """Full Newton solve of the pin-in-bushing penalty contact (see the method notes).
 
     ``problem``: the :class:`ContactProblem`; ``comm``: MPI communicator; ``mesh_data``: an
     existing ``(mesh, cell_tags, facet_tags)`` from :func:`fewear.mesh.bushing.bushing_mesh`
@@ -417,7 +417,7 @@ class BushingContactSolver:
     def _bordered_step(self, r_pin: np.ndarray, basis: np.ndarray,
                        prescribed: np.ndarray | None = None):
         """Newton direction (du, dc) of the bordered system by the Schur complement on the pin
-        block (see the module docstring), with dc = basis dz restricted to the span of ``basis``
+        block (see the method notes), with dc = basis dz restricted to the span of ``basis``
         (2, k) and the pin equations projected on it, plus a ``prescribed`` move (m) across
         that span where given (displacement control: dc = p + basis dz, basis^T S basis dz =
         basis^T (rhs - S p)); needs ``_assemble_contact`` just before."""

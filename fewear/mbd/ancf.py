@@ -289,7 +289,7 @@ class AncfBeam:
         return s_z, invariants, stress
 
     def strain_energy(self, q: np.ndarray) -> float:
-        """U(q) (J): the sum over points of s^T H s / 2 (module docstring)."""
+        """U(q) (J): the sum over points of s^T H s / 2 (method notes)."""
         _, invariants, stress = self._strain_state(q)
         return 0.5 * float(np.einsum("epi,epi->", invariants, stress))
 

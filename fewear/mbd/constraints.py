@@ -103,7 +103,7 @@ class PrescribedAngle(_LinearConstraint):
 
 
 class ConstraintSet:
-    """All constraints of a system (n coordinates) in the form of the module docstring."""
+    """All constraints of a system (n coordinates) in the form of the method notes."""
 
     def __init__(self, constraints, n_coordinates: int):
         self.rows = []

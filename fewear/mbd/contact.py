@@ -35,7 +35,7 @@ def lankarani_nikravesh_stiffness(pin_radius_m: float, bushing_radius_m: float,
 
 
 def hysteresis_factor(law: str, restitution: float) -> float:
-    """chi(c_e) of the table in the module docstring."""
+    """chi(c_e) of the table in the method notes."""
     if law in ("lankarani-nikravesh", "tabulated"):
         return 0.75 * (1.0 - restitution**2)
     if law == "hunt-crossley":
@@ -47,7 +47,7 @@ def hysteresis_factor(law: str, restitution: float) -> float:
 
 @dataclass(frozen=True)
 class ContactLaw:
-    """A normal contact law (see module docstring).
+    """A normal contact law (see method notes).
 
     stiffness_N_m1_5: K of the power laws; penetration_m / force_N: the table of the tabulated
     law (increasing penetrations from 0, forces from 0, non-decreasing); restitution: c_e in (0, 1];
@@ -141,7 +141,7 @@ def normal_force(power_law, parameters, table, size, delta_m, rate_m_s, impact_v
 
 @dataclass(frozen=True)
 class Friction:
-    """Regularised Coulomb friction (module docstring): mu, v0 < v1 (m/s)."""
+    """Regularised Coulomb friction (method notes): mu, v0 < v1 (m/s)."""
 
     coefficient: float = 0.1
     v0_m_s: float = 1.0e-4
@@ -163,7 +163,7 @@ class Friction:
 
 @compiled
 def friction_factor(v0_m_s, v1_m_s, slip_m_s):
-    """(psi, dpsi/dv) of Ambrosio's regularisation (module docstring): psi = c_d(|v|) sign(v)."""
+    """(psi, dpsi/dv) of Ambrosio's regularisation (method notes): psi = c_d(|v|) sign(v)."""
     speed = abs(slip_m_s)
     if speed <= v0_m_s:
         return 0.0, 0.0

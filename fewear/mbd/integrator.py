@@ -52,7 +52,7 @@ class IntegratorSettings:
     adaptive: step-size control around impacts (else fixed steps of step_s);
     gap_tolerance_m: allowed local error of a contact gap and the deepest allowed first penetration;
     newton_tolerance: convergence when max |dq| < it (m or rad or dimensionless slopes);
-    modified_newton: reuse the factorised iteration matrix (module docstring).
+    modified_newton: reuse the factorised iteration matrix (method notes).
     """
 
     rho_inf: float = 0.9
@@ -152,7 +152,7 @@ class GeneralizedAlpha:
         self.stats = RunStats()
         size = system.n_coordinates + system.n_constraints
         # the LU factors of the last iteration matrix, the h they were built for and whether
-        # they have aged (module docstring); the counters of RunStats
+        # they have aged (method notes); the counters of RunStats
         self._lu, self._pivots = np.zeros((size, size)), np.zeros(size, dtype=np.int64)
         self._newton = np.array([math.nan, 1.0])
         self._counts = np.array([0.0, 0.0, 0.0, 0.0, math.inf])
@@ -299,7 +299,7 @@ def _predictor_and_update(settings, h):
 
 @compiled
 def _factorize(data, settings, q, lam, jac, K, C, h, lu, pivots):
-    """LU of [[beta h^2 S_t, Phi_q^T], [Phi_q, 0]] (module docstring) into ``lu``; False if
+    """LU of [[beta h^2 S_t, Phi_q^T], [Phi_q, 0]] (method notes) into ``lu``; False if
     singular."""
     alpha_m, alpha_f, gamma, beta = settings[0], settings[1], settings[2], settings[3]
     n, m = q.size, jac.shape[0]
@@ -369,7 +369,7 @@ def _correct(Y1, lam1, update, bh2, x):
 @compiled
 def _newton(data, settings, t1, Y1, lam1, update, h, lu, pivots, newton, counts):
     """Newton on (q, lambda) at t1 from the predicted Y1 (4, n), lam1 (in place): (converged,
-    the last Phi_q) (module docstring: modified Newton)."""
+    the last Phi_q) (method notes: modified Newton)."""
     beta, tolerance = settings[3], settings[7]
     max_iterations, modified = settings[8], settings[11]
     n, m = Y1.shape[1], lam1.size

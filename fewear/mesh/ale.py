@@ -44,7 +44,7 @@ class BoreMotion:
     """Moves the bore of ``mesh`` (9-node quadrilateral geometry, bore facets tagged ``BORE_TAG``,
     outer ``OUTER_TAG`` in ``facet_tags``) and the interior with it. Build once per mesh, on the
     mesh as made: the extension operator is assembled and LU-factorised here, on that mesh, and
-    every :meth:`move` solves with it for the displacement from it (module docstring)."""
+    every :meth:`move` solves with it for the displacement from it (method notes)."""
 
     def __init__(self, mesh, facet_tags, poisson_ratio: float = 0.3):
         if mesh.geometry.dofmap.links(0).size != Q9_NODES_PER_CELL:

@@ -106,7 +106,7 @@ def _fit_nodes_to_bore(geometry: BushingGeometry, mesh_settings: MeshSettings,
                        bore_radius_m: Callable[[np.ndarray], np.ndarray]) -> None:
     """Snap the bore nodes of the generated O-grid to the angles k pi / n_theta and move every
     node of the bushing's elements along its ray to the bore ``bore_radius_m`` (the map in the
-    module docstring)."""
+    method notes)."""
     r_in, r_out = geometry.inner_radius_m, geometry.outer_radius_m
     bore_node_count = 2 * mesh_settings.circumferential_element_count(r_in)
     node_spacing_rad = 2.0 * math.pi / bore_node_count

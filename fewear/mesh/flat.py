@@ -35,7 +35,7 @@ def progression_ratio(first_size_m: float, length_m: float, count: int) -> float
 
 
 def flat_mesh(geometry: FlatGeometry, mesh_settings: FlatMeshSettings, comm=MPI.COMM_WORLD):
-    """Mesh the flat (module docstring); returns ``(mesh, cell_tags, facet_tags)`` on ``comm``."""
+    """Mesh the flat (method notes); returns ``(mesh, cell_tags, facet_tags)`` on ``comm``."""
     mesh_settings.require_fits(geometry)
     return distributed_mesh(comm, "flat", lambda: _build_patches(geometry, mesh_settings))
 
@@ -74,7 +74,7 @@ def _build_patches(geometry: FlatGeometry, mesh_settings: FlatMeshSettings) -> N
 
 def _set_grading(geometry: FlatGeometry, mesh_settings: FlatMeshSettings, top_lines,
                  bottom_lines, downs, surfaces) -> None:
-    """Transfinite node counts and gradings of the patches' curves (module docstring)."""
+    """Transfinite node counts and gradings of the patches' curves (method notes)."""
     mesh = gmsh.model.mesh
     size = mesh_settings.contact_element_length_m()
     n_contact, n_side = mesh_settings.contact_element_count(), mesh_settings.side_element_count

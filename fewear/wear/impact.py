@@ -32,7 +32,7 @@ MAX_SPEED_EXPONENT = 6.0
 
 @dataclass(frozen=True)
 class ImpactWearLaw:
-    """The impact wear of a run (module docstring): k_imp (m^3/J) on the hysteresis work, c_J
+    """The impact wear of a run (method notes): k_imp (m^3/J) on the hysteresis work, c_J
     (m^3/(N s)) on the impulse of the impacts whose peak normal force exceeds
     ``impulse_threshold_N``, c_v (m^3/(m/s)^n) on the n-th power of the impact speeds. All zero:
     sliding wear only (the default)."""
