@@ -46,6 +46,7 @@ PIN_RADIUS_M = 0.0095
 CRANK_PERIOD_S = 60.0 / 1200.0
 SETTLING_CYCLES = 2               # of the dynamics before the recorded ones
 SECTOR_DEG = 15.0                 # the sectors of the bore the load-slip is gathered in
+LOADED_SHARE = 0.8                # the fullest sectors holding this share of it: the loaded arc
 RECORDED_CYCLES = 2 if COARSE else 5
 
 OUT.mkdir(parents=True, exist_ok=True)
@@ -80,12 +81,16 @@ def mechanics(history) -> dict:
     by_sector, edges = np.histogram(direction_deg, bins=round(360.0 / SECTOR_DEG),
                                     range=(0.0, 360.0), weights=load_slip)
     fullest = int(np.argmax(by_sector))
+    loaded = np.argsort(by_sector)[::-1]
+    held = np.cumsum(by_sector[loaded]) / by_sector.sum()
+    loaded = loaded[:int(np.searchsorted(held, LOADED_SHARE)) + 1]
     return {"peak_force_N": float(np.linalg.norm(history.reaction_force_N, axis=1).max()),
             "contact_share": float(dt[history.normal_force_N > 0.0].sum()
                                    / (RECORDED_CYCLES * CRANK_PERIOD_S)),
             "impacts_per_cycle": history.impacts / RECORDED_CYCLES,
             "load_slip_J_per_cycle": float(load_slip.sum() / RECORDED_CYCLES),
-            "most_load_slip_angle_deg": float(0.5 * (edges[fullest] + edges[fullest + 1]))}
+            "most_load_slip_angle_deg": float(0.5 * (edges[fullest] + edges[fullest + 1])),
+            "loaded_sectors": sorted(int(sector) for sector in loaded)}
 
 
 dynamics = {case: mechanics(fewear.dynamics(config(), rod=case, cycles=RECORDED_CYCLES)
@@ -109,7 +114,10 @@ for case in CASES:
     figures = result.summary["cases"][case]["joints"][JOINT]
     state = result.wear[case][JOINT]
     deepest = int(np.argmax(state.depth_m))
+    sector = (np.degrees(state.angle_rad) % 360.0 // SECTOR_DEG).astype(int)
+    on_arc = np.isin(sector, dynamics[case]["loaded_sectors"])
     wear[case] = {"max_depth_m": figures["max_wear_depth_m"],
+                  "loaded_arc_share": float(state.depth_m[on_arc].sum() / state.depth_m.sum()),
                   "max_depth_angle_deg": float(np.degrees(state.angle_rad[deepest]) % 360.0),
                   "worn_volume_m3": figures["worn_volume_m3"], "cycles": figures["cycles"],
                   "blocks": figures["blocks"], "wall_time_s": figures["wall_time_s"]}
@@ -117,7 +125,8 @@ for case in CASES:
           f"worn {1e6 * figures['max_wear_depth_m']:.2f} um deep at "
           f"{wear[case]['max_depth_angle_deg']:.0f} deg in the rocker's frame (the most load-slip "
           f"at {dynamics[case]['most_load_slip_angle_deg']:.0f} deg), worn volume "
-          f"{figures['worn_volume_m3']:.3e} m^3")
+          f"{figures['worn_volume_m3']:.3e} m^3, {100 * wear[case]['loaded_arc_share']:.0f} % of "
+          f"the worn depth on the loaded arc")
 
 (OUT / "results.json").write_text(json.dumps(
     {"total_cycles": TOTAL_CYCLES, "dynamics": dynamics, "wear": wear,
