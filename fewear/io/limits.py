@@ -93,19 +93,33 @@ def _mechanism(config: dict) -> str:
     return ""
 
 
-def crank_period_s(config: dict) -> float | None:
-    """One crank cycle (s) of the config's [mechanism], None without one (or a speed <= 0, which
-    the mechanism's own check refuses)."""
+def driver_period(config: dict) -> tuple[float, str] | None:
+    """(one cycle of the mechanism in s, where it is set, in words): the first driver's period
+    of the ``[mechanism] file``, else the template's ``crank_speed_rpm``; None without a
+    mechanism, a driver or a positive finite period (the mechanism's own checks name those)."""
     mechanism = config.get("mechanism")
-    if mechanism is None or not mechanism["crank_speed_rpm"] > 0.0:
+    if mechanism is None:
         return None
-    return 60.0 / mechanism["crank_speed_rpm"]
+    if mechanism.get("file", ""):
+        from fewear.io.mechanism import mechanism_path, read_mechanism
+
+        path = mechanism_path(config)
+        drivers = read_mechanism(path)[0].drivers
+        if not drivers or not 0.0 < drivers[0].period_s < math.inf:
+            return None
+        return drivers[0].period_s, f"the driver of body {drivers[0].body!r} in {path}"
+    if not mechanism["crank_speed_rpm"] > 0.0:
+        return None
+    return (60.0 / mechanism["crank_speed_rpm"],
+            f"[mechanism] crank_speed_rpm = {mechanism['crank_speed_rpm']!r}")
 
 
 def _integrator(config: dict) -> str:
-    integrator, period = config.get("integrator"), crank_period_s(config)
+    integrator = config.get("integrator")
     if integrator is None:
         return ""
+    found = driver_period(config)
+    period, source = (None, "") if found is None else found
     step, smallest = integrator["step_s"], integrator["min_step_s"]
     if 0.0 < smallest < MIN_STEP_S:
         return (f"[integrator] min_step_s = {smallest!r} s: expected at least {MIN_STEP_S:g} s "
@@ -113,7 +127,7 @@ def _integrator(config: dict) -> str:
     if period is None or not step > 0.0:
         return ""
     where = (f"[integrator] step_s = {step!r} s against a crank cycle of {period:.3g} s "
-             f"([mechanism] crank_speed_rpm = {config['mechanism']['crank_speed_rpm']!r})")
+             f"({source})")
     if step > period / MIN_STEPS_PER_CRANK_CYCLE:
         return (f"{where}: {period / step:.3g} steps per cycle; expected at most "
                 f"{period / MIN_STEPS_PER_CRANK_CYCLE:.3g} s (at least "

@@ -5,6 +5,7 @@ limit is stated in the default config's comments."""
 import pytest
 
 from fewear.cli import main
+from fewear.errors import FewearInputError
 from fewear.io import limits
 from fewear.io.config import default_config_text
 
@@ -129,3 +130,37 @@ def test_measured_cycles_that_would_make_endless_forward_runs_are_refused(tmp_pa
     err = capsys.readouterr().err.strip().splitlines()[-1]
     assert err.startswith(f"fewear: error: {path}: the last measured cycle count "
                           "100,000,000,000,000") and "at most 10,000" in err, err
+
+
+def _mechanism_file(tmp_path, speed_rpm):
+    """The example four-bar with its crank driven at ``speed_rpm``."""
+    from fewear.io.mechanism import EXAMPLES_DIR
+
+    text = (EXAMPLES_DIR / "four_bar.toml").read_text().replace(
+        "speed_rpm = 1200.0", f"speed_rpm = {speed_rpm!r}")
+    path = tmp_path / "four_bar_fast.toml"
+    path.write_text(text)
+    return path
+
+
+@pytest.mark.parametrize("speed_rpm, step_s, refused", [
+    (12.0, 0.004, False),    # 5 s cycle: 1,250 steps (the template's 1200 rpm would refuse it)
+    (12000.0, 0.0005, True),  # 5 ms cycle: 10 steps (the template's 1200 rpm would allow it)
+])
+def test_the_time_step_is_checked_against_the_mechanism_files_driver(tmp_path, speed_rpm, step_s,
+                                                                     refused):
+    from fewear.io.config import load_config
+    from fewear.mbd.slider_crank import SECTIONS
+
+    config = tmp_path / "config.toml"
+    config.write_text(f'[mechanism]\nfile = "{_mechanism_file(tmp_path, speed_rpm)}"\n'
+                      f"[integrator]\nstep_s = {step_s!r}\n")
+    if not refused:
+        load_config(config, SECTIONS)
+        return
+    with pytest.raises(FewearInputError) as raised:
+        load_config(config, SECTIONS)
+    period = 60.0 / speed_rpm
+    for needle in (f"step_s = {step_s!r}", f"{period:.3g} s", "driver of body 'crank'",
+                   "at least 100 steps"):
+        assert needle in str(raised.value)
