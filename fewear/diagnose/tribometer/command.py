@@ -12,6 +12,7 @@ import sys
 from fewear.diagnose.core.report import print_verdict
 from fewear.diagnose.tribometer.diagnose import diagnose
 from fewear.diagnose.tribometer.measured import read_measured_wear
+from fewear.diagnose.tribometer.plausibility import check_plausible
 from fewear.diagnose.tribometer.readings import readings_from_measured
 from fewear.diagnose.tribometer.report import summarise, write_outputs
 from fewear.diagnose.tribometer.settings import DiagnoseSettings
@@ -30,6 +31,8 @@ def run(args: argparse.Namespace) -> int:
     config = load_config(args.config, sections=["diagnose"])
     settings = DiagnoseSettings.from_config(config["diagnose"])
     data = read_measured_wear(path)
+    for warning in check_plausible(data):
+        print(f"fewear diagnose: warning: {warning}", file=sys.stderr, flush=True)
     readings = readings_from_measured(data)
     print(f"fewear diagnose: {len(data.test_names())} tests, {data.test_id.size} readings from "
           f"{path}: fitting plain Archard and the causes "

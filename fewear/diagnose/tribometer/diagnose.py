@@ -57,8 +57,15 @@ def diagnose(readings: Readings, settings: DiagnoseSettings | None = None) -> Di
     """The diagnosis of ``readings`` (docs/diagnosis-method-notes.md)."""
     settings = settings or DiagnoseSettings.default()
     if readings.n_tests < 3:
-        raise FewearInputError(f"{readings.source}: {readings.n_tests} test(s) with wear; the "
-                               "diagnosis holds whole tests out and needs at least 3")
+        raise FewearInputError(
+            f"{readings.source}: {readings.n_tests} test(s) with a usable reading "
+            f"{readings.why_left_out()}; the diagnosis holds whole tests out and needs at least 3")
+    test_group, labels = readings.test_groups()
+    if np.bincount(test_group).max() < 2:
+        raise FewearInputError(
+            f"{readings.source}: every test is its own material group ({len(labels)} groups of "
+            "the material and factor_* columns): a held-out test's level cannot be learnt "
+            "from the other tests; the diagnosis needs a group of at least 2 tests")
     form = data_form(readings, settings)
     stages = [select_causes(reading_stage(readings, settings), settings.candidates, settings)]
     if form == "histories":

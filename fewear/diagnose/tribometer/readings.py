@@ -37,6 +37,16 @@ class Readings:
     group_labels: np.ndarray
     measured: tuple[str, ...]
     notes: tuple[str, ...]
+    left_out: tuple[int, int, int] = (0, 0, 0)
+    """Readings left out: (with zero sliding distance, with zero or negative wear, all)."""
+
+    def why_left_out(self) -> str:
+        """Why readings were left out, for a message ("" when none were)."""
+        no_distance, no_wear, total = self.left_out
+        if not total:
+            return ""
+        return (f"({total} reading(s) left out: {no_distance} with zero sliding distance, "
+                f"{no_wear} with zero or negative wear volume; both are needed for a rate)")
 
     @property
     def n_tests(self) -> int:
@@ -134,6 +144,7 @@ def readings_from_columns(
         time_s=select(time), load_N=select(get["normal_load_N"]),
         friction=select(get["friction_coefficient"]), temperature_C=select(get["temperature_C"]),
         group_labels=group[keep], measured=measured, notes=tuple(notes),
+        left_out=(int(np.sum(~(s > 0.0))), int(np.sum(~(volume > 0.0))), int(np.sum(~keep))),
     )
 
 
