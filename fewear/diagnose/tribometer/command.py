@@ -37,7 +37,7 @@ def run(args: argparse.Namespace) -> int:
     print(f"fewear diagnose: {len(data.test_names())} tests, {data.test_id.size} readings from "
           f"{path}: fitting plain Archard and the causes "
           f"({', '.join(settings.candidates)})", file=sys.stderr, flush=True)
-    diagnosis = diagnose(readings, settings)
+    diagnosis = diagnose(readings, settings, progress=_progress(readings.n_tests))
     summary = summarise(diagnosis)
     with staged_output(args.out) as stage:
         write_outputs(diagnosis, summary, stage)
@@ -45,3 +45,13 @@ def run(args: argparse.Namespace) -> int:
         f"confounded {' / '.join(group['causes'])}: {group['reason']}"
         for group in summary["confounded"]])
     return 0
+
+
+LARGE_TABLE_TESTS = 500
+"""From this many tests on, the diagnosis takes minutes: each cause tried is reported."""
+
+
+def _progress(n_tests: int):
+    if n_tests < LARGE_TABLE_TESTS:
+        return None
+    return lambda text: print(f"fewear diagnose: {text}", file=sys.stderr, flush=True)

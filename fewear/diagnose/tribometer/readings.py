@@ -88,8 +88,9 @@ class Readings:
 
     def test_groups(self) -> tuple[np.ndarray, tuple[str, ...]]:
         """Each test's material group (index) and the groups' labels, in order of appearance."""
-        labels_per_test = [str(self.group_labels[np.flatnonzero(self.test_index == j)[0]])
-                           for j in range(self.n_tests)]
+        first = np.full(self.n_tests, self.test_index.size)
+        np.minimum.at(first, self.test_index, np.arange(self.test_index.size))
+        labels_per_test = [str(label) for label in self.group_labels[first]]
         names = tuple(dict.fromkeys(labels_per_test))
         return np.array([names.index(label) for label in labels_per_test]), names
 
@@ -104,8 +105,8 @@ def readings_from_columns(
 ) -> Readings:
     """Readings from columns of the CSV schema (absent optional columns: missing or None);
     ``factors``: categorical columns (name -> one text per reading), e.g. ``material``."""
-    labels, index = np.unique(np.asarray(columns["test_id"]).astype(str), return_inverse=True)
-    first_row = [int(np.flatnonzero(index == j)[0]) for j in range(len(labels))]
+    labels, first_row, index = np.unique(np.asarray(columns["test_id"]).astype(str),
+                                         return_index=True, return_inverse=True)
     order = np.argsort(first_row)
     rank = np.empty_like(order)
     rank[order] = np.arange(len(order))

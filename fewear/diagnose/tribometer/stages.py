@@ -23,9 +23,9 @@ from fewear.diagnose.tribometer.settings import DiagnoseSettings
 def data_form(readings: Readings, settings: DiagnoseSettings) -> str:
     """"histories" when every test has ``min_readings_along_test`` readings at distinct sliding
     distances, else "table" (a design of experiments)."""
-    distinct = [np.unique(readings.distance_m[readings.test_index == j]).size
-                for j in range(readings.n_tests)]
-    return "histories" if min(distinct) >= settings.min_readings_along_test else "table"
+    pairs = np.unique(np.column_stack([readings.test_index, readings.distance_m]), axis=0)
+    distinct = np.bincount(pairs[:, 0].astype(int), minlength=readings.n_tests)
+    return "histories" if distinct.min() >= settings.min_readings_along_test else "table"
 
 
 def available_needs(readings: Readings) -> set[str]:
