@@ -201,6 +201,7 @@ def read_joint_measurements(paths: list[str | Path] | str | Path) -> JointMeasur
             f"joint wear data need a bore profile or a maximum-depth growth file; read only {read}"
             f" (a bore profile has the columns {', '.join(KIND_COLUMNS['profiles'])}; a "
             f"maximum-depth growth file {', '.join(KIND_COLUMNS['max_wear'])})")
+    _require_measurable_wear(profiles, max_wear, paths)
     if profiles:
         _require_growth([profile.cycles for profile in profiles],
                         [float(np.max(profile.depth_m)) for profile in profiles],
@@ -500,6 +501,20 @@ def _merge_max_wear(found: list[tuple[str, tuple]]) -> tuple[np.ndarray, np.ndar
     depth = np.concatenate([items[1] for _, items in found])
     order = np.argsort(cycles)
     return cycles[order], depth[order]
+
+
+def _require_measurable_wear(profiles, max_wear, paths) -> None:
+    """The deepest wear of the data must exceed a profilometer's resolution
+    (:data:`NOISE_FLOOR_m`): below it no wear was measured, or the depths are in the wrong unit
+    (1000x too shallow read as a bushing worn through by the fit)."""
+    depths = [profile.depth_m for profile in profiles] + (
+        [max_wear[1]] if max_wear is not None else [])
+    deepest = max(float(np.max(depth)) for depth in depths)
+    if deepest <= NOISE_FLOOR_m:
+        raise FewearInputError(
+            f"{', '.join(map(str, paths))}: the deepest wear is {deepest:.3g} m, within a "
+            f"profilometer's resolution ({NOISE_FLOOR_m:g} m): no wear measured, or depths in "
+            "the wrong unit (wear_depth_m and max_wear_depth_m are metres: 1 um = 1e-6 m)")
 
 
 def _require_growth(cycles, depth_m, what: str) -> None:

@@ -67,3 +67,12 @@ def test_a_dip_within_scatter_is_kept(tmp_path, fall):
     data = read_joint_measurements([path])
     assert data.max_wear[1][-1] == pytest.approx(8e-6 / fall)
     assert any("dips below" in note for note in data.notes)
+
+
+def test_depths_1000x_too_shallow_are_refused(tmp_path, capsys):
+    """A 20 um deep wear written 1000x too small (20 nm): below a profilometer's resolution."""
+    path = tmp_path / "bore.csv"
+    write_joint_profiles(path, [bump(0, 0.0), bump(50000, 20.0e-3)])
+    line = one_error_line(capsys, [path], tmp_path)
+    assert "the deepest wear is 2e-08 m, within a profilometer's resolution (1e-07 m)" in line
+    assert "depths in the wrong unit" in line
