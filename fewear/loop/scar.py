@@ -97,13 +97,19 @@ def fretting_from_config(config: dict) -> tuple[FlatContactProblem, FrettingWear
     return problem, settings
 
 
+def hertz_half_width_m(problem: FlatContactProblem, normal_force_N: float) -> float:
+    """The unworn line contact's half-width a = sqrt(4 P R / (pi L E*)) (m; Johnson, Contact
+    Mechanics, eq. 4.43, a rigid cylinder on the elastic flat)."""
+    return math.sqrt(4.0 * normal_force_N * problem.indenter_radius_m / (
+        math.pi * problem.out_of_plane_length_m * problem.material.plane_strain_modulus_Pa))
+
+
 def require_zone_holds_the_stroke(problem: FlatContactProblem,
                                   settings: FrettingWearSettings) -> None:
     """The contact swept by the stroke, |x| <= d + a (a the Hertz line contact's half-width,
     sqrt(4 P R / (pi L E*))), must stay inside the mesh's contact zone: beyond it the solver
     refused the normal force, a misleading culprit for a stroke too long."""
-    half_width = math.sqrt(4.0 * settings.normal_force_N * problem.indenter_radius_m / (
-        math.pi * problem.out_of_plane_length_m * problem.material.plane_strain_modulus_Pa))
+    half_width = hertz_half_width_m(problem, settings.normal_force_N)
     zone = problem.mesh.contact_zone_half_width_m
     reach = settings.stroke_amplitude_m + half_width
     if reach >= zone:

@@ -160,6 +160,11 @@ BAD_FILES = [
     ("x_mm,test1_m\n" + "\n".join(f"{x!r},{-3.0 * (1 - (x / 0.5) ** 2)!r}"
                                     for x in np.linspace(-0.5, 0.5, 41)) + "\n",
      "far wider than deep (depth <= 0.5 x width): heights in um under test1_m"),
+    # a scar 10 nm deep and 10 um wide against the default block-on-ring contact, 2a = 2 x
+    # sqrt(4 x 65 N x 0.02 m / (pi 0.006 m 210e9 / 0.91 Pa)) = 69.2 um
+    ("x_mm,test1_um\n" + "\n".join(f"{x!r},{-0.01 * (1 - (x / 0.005) ** 2)!r}"
+                                     for x in np.linspace(-0.01, 0.01, 41)) + "\n",
+     "narrower than half the block_on_ring contact that wore it (2a = 6.9"),
 ]
 
 
