@@ -19,7 +19,7 @@ USUAL_K_M2_N = (1e-17, 1e-11)
 """k beyond this range is rare (warned)."""
 
 
-def test_wear_coefficients(data: MeasuredWear) -> np.ndarray | None:
+def wear_coefficients_per_test(data: MeasuredWear) -> np.ndarray | None:
     """Each test's k = sum(F s V) / sum((F s)^2) [m^2/N] over its readings with F s > 0 (tests
     without such a reading left out); None without ``normal_load_N`` (k needs the force)."""
     if data.normal_load_N is None:
@@ -50,7 +50,7 @@ def check_plausible(data: MeasuredWear) -> list[str]:
     error); return warnings (one line each): a median k beyond :data:`USUAL_K_M2_N`, rows that
     repeat an earlier row exactly (a pasted row counts as a second reading)."""
     warnings = []
-    k = test_wear_coefficients(data)
+    k = wear_coefficients_per_test(data)
     positive = k[k > 0.0] if k is not None else np.zeros(0)
     if positive.size:
         median = float(np.median(positive))

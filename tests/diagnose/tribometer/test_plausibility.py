@@ -98,3 +98,17 @@ def test_every_test_its_own_material_is_one_line(tmp_path, capsys):
     status, err, _ = diagnose(capsys, path, tmp_path)
     assert status == 2 and "Traceback" not in err
     assert "every test is its own material group (9 groups" in err
+
+
+def test_a_large_table_reports_each_cause_tried(tmp_path, capsys, monkeypatch):
+    """From LARGE_TABLE_TESTS tests on (here lowered to 9) each cause tried is a line on screen:
+    a table of thousands of tests is minutes of fitting, no longer silent."""
+    from fewear.diagnose.tribometer import command
+    from fewear.diagnose.tribometer.settings import DiagnoseSettings
+
+    monkeypatch.setattr(command, "LARGE_TABLE_TESTS", 9)
+    status, err, _ = diagnose(capsys, write_table(tmp_path / "ok.csv", 1.6e-13), tmp_path)
+    assert status == 0
+    tried = [line for line in err.splitlines() if ": step " in line and "trying" in line]
+    names = {line.rsplit("trying ", 1)[1] for line in tried}
+    assert tried and names <= set(DiagnoseSettings.default().candidates)
