@@ -79,6 +79,18 @@ class Readings:
         mu = self.per_test(self.friction)[self.test_index]
         return mu * self.pressure_Pa * self.velocity_m_s
 
+    @cached_property
+    def campaign_scales(self) -> dict[str, float | None]:
+        """The laws' scales: the median final distance [m] and time [s], the largest mu p v
+        [W/m^2] (None without it); computed once (a prediction per test reads them)."""
+        power = self.power_W_m2
+        return {
+            "scale_distance_m": float(np.median(self.final_per_test(self.distance_m))),
+            "scale_time_s": None if self.time_s is None
+            else float(np.median(self.final_per_test(self.time_s))),
+            "scale_power_W_m2": None if power is None else float(np.max(power)),
+        }
+
     @property
     def load_variable(self) -> tuple[np.ndarray | None, str]:
         """What the level laws read: the pressure [Pa] when measured, else the normal load [N]."""
