@@ -114,3 +114,10 @@ def test_underscores_between_digits_are_read_as_toml_says():
     """Issue 57 reported ``1_0e-9`` read as 1e-8: TOML joins digits across an underscore, so
     1_0e-9 is 10e-9 = 1e-8 exactly as written (not a misreading; nothing to refuse)."""
     assert tomllib.loads("k = 1_0e-9")["k"] == 10e-9 == 1e-8
+
+
+def test_a_section_name_given_a_value_is_named_as_a_section(tmp_path):
+    path = tmp_path / "section.toml"
+    path.write_text("wear_loop = 5\n")
+    with pytest.raises(FewearInputError, match=r"\[wear_loop\] must be a table of keys"):
+        load_config(path, ["wear_loop"])
