@@ -205,9 +205,9 @@ def read_joint_measurements(paths: list[str | Path] | str | Path) -> JointMeasur
     if profiles:
         _require_growth([profile.cycles for profile in profiles],
                         [float(np.max(profile.depth_m)) for profile in profiles],
-                        "the deepest wear of the bore profile")
+                        f"{_sources(found['profiles'])}: the deepest wear of the bore profile")
     if max_wear is not None:
-        _require_growth(*max_wear, "the maximum wear depth")
+        _require_growth(*max_wear, f"{_sources(found['max_wear'])}: the maximum wear depth")
     traces = {kind: _merge_by_cycles(found[kind], kind) if found[kind] else None
               for kind in ("force", "acceleration")}
     return JointMeasurements(profiles=profiles, max_wear=max_wear, **traces,
@@ -517,6 +517,10 @@ def _require_measurable_wear(profiles, max_wear, paths) -> None:
             "the wrong unit (wear_depth_m and max_wear_depth_m are metres: 1 um = 1e-6 m)")
 
 
+def _sources(found: list[tuple[str, object]]) -> str:
+    return ", ".join(source for source, _ in found)
+
+
 def _require_growth(cycles, depth_m, what: str) -> None:
     """Wear only grows: a depth may dip below an earlier one by the scatter of a measurement,
     not fall to less than 1 / :data:`MAX_FALL` of it (and by more than :data:`NOISE_FLOOR_m`):
@@ -528,7 +532,8 @@ def _require_growth(cycles, depth_m, what: str) -> None:
             raise FewearInputError(
                 f"{what} falls from {deepest * 1e6:.3g} um at {at} cycles to {depth * 1e6:.3g} "
                 f"um at {count} cycles ({deepest / max(depth, NOISE_FLOOR_m / 10):.3g}x less); "
-                f"wear only grows (a dip to 1/{MAX_FALL:g} is beyond measurement scatter): "
+                f"wear only grows (a fall below 1/{MAX_FALL:g} of an earlier depth is beyond "
+                "measurement scatter): "
                 "check the cycles column (swapped or mislabelled counts, another joint's data)")
         if depth > deepest:
             deepest, at = depth, count
