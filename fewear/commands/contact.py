@@ -42,11 +42,19 @@ def checked_force_N(force: list[float] | tuple[float, float]) -> tuple[float, fl
     return force_x, force_y
 
 
+MAX_ROTATION_RAD = 4.0 * math.pi
+"""A rotation increment beyond two turns is no step of a joint's motion (1e300 rad wrote a slip
+of 9.5e297 m)."""
+
+
 def checked_rotation_rad(rotation: float, friction: bool) -> float:
     """The pin's rotation increment (rad): finite, and non-zero when friction is asked for."""
     rotation = float(rotation)
-    if not math.isfinite(rotation):
-        raise FewearInputError(f"--rotation = {rotation!r} rad: expected a finite number")
+    if not (math.isfinite(rotation) and abs(rotation) <= MAX_ROTATION_RAD):
+        raise FewearInputError(
+            f"--rotation = {rotation!r} rad: expected a finite increment of at most "
+            f"{MAX_ROTATION_RAD:.3g} rad (two turns) either way: one step's rotation of the pin "
+            "in the bushing")
     if friction and rotation == 0.0:
         raise FewearInputError(
             "--friction needs a non-zero --rotation: the Coulomb traction opposes the slip")

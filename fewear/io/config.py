@@ -90,6 +90,12 @@ def check_config(user: dict[str, Any], defaults: Config, source: str) -> Config:
     where floats are expected."""
     checked: Config = {}
     for section, table in user.items():
+        if not isinstance(table, dict) and section not in defaults:
+            owners = [name for name, keys in defaults.items() if section in keys]
+            raise FewearInputError(
+                f"config {source}: a top-level key {section}; keys belong in a section such as "
+                f"[{(owners or list(defaults))[0]}] (a line [section] above them)"
+                + (f": {section} is a key of [{'], ['.join(owners)}]" if owners else ""))
         if section not in defaults:
             raise FewearInputError(
                 f"config {source}: unknown section [{section}]; allowed sections: "

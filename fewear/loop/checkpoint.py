@@ -22,6 +22,7 @@ cause: resuming it would silently mix two different runs.
 
 from __future__ import annotations
 
+import io
 import json
 import os
 import tokenize
@@ -81,10 +82,7 @@ class Checkpoint:
                 "cycles": int(first.state.cycles), "blocks": int(first.state.blocks),
                 "time_s": None if mechanism is None else float(mechanism.time_s),
                 "joints": meta}}))
-        temporary = self.path / f".{case}.{os.getpid()}.tmp"
-        with open(temporary, "wb") as handle:
-            np.savez(handle, **arrays)
-        os.replace(temporary, self.case_path(case))
+        write_npz(self.case_path(case), arrays)
 
     def saved_cycles(self) -> dict:
         """case -> crank cycles of each case saved in the folder (read from the cases' metadata
@@ -241,3 +239,20 @@ def _first_difference(stored, current, where: str = "") -> str:
                 return found
         return ""
     return "" if stored == current else f"{where}: {stored!r} in the checkpoint, {current!r} now"
+
+
+def write_npz(path: Path, arrays: dict) -> None:
+    """``arrays`` as an .npz at ``path``, whole or not at all: zipped in memory, then written to
+    a temporary file beside it and renamed. A full disk raises the plain OSError of the write
+    (zipping straight into the file left a half-closed ZipFile whose ``__del__`` printed
+    "Exception ignored ... ValueError" after the command's message)."""
+    buffer = io.BytesIO()
+    np.savez(buffer, **arrays)
+    temporary = path.parent / f".{path.stem}.{os.getpid()}.tmp"
+    try:
+        with open(temporary, "wb") as handle:
+            handle.write(buffer.getbuffer())
+        os.replace(temporary, path)
+    except BaseException:
+        temporary.unlink(missing_ok=True)
+        raise

@@ -14,6 +14,7 @@ removed), so it carries the digitised profile's offset.
 """
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -92,7 +93,31 @@ def fretting_from_config(config: dict) -> tuple[FlatContactProblem, FrettingWear
             contact["newton_tolerance"], contact["newton_max_iterations"]))
     except FewearInputError as exc:
         raise FewearInputError(f"[fretting] or [fretting_mesh]: {exc}") from None
+    require_zone_holds_the_stroke(problem, settings)
     return problem, settings
+
+
+def hertz_half_width_m(problem: FlatContactProblem, normal_force_N: float) -> float:
+    """The unworn line contact's half-width a = sqrt(4 P R / (pi L E*)) (m; Johnson, Contact
+    Mechanics, eq. 4.43, a rigid cylinder on the elastic flat)."""
+    return math.sqrt(4.0 * normal_force_N * problem.indenter_radius_m / (
+        math.pi * problem.out_of_plane_length_m * problem.material.plane_strain_modulus_Pa))
+
+
+def require_zone_holds_the_stroke(problem: FlatContactProblem,
+                                  settings: FrettingWearSettings) -> None:
+    """The contact swept by the stroke, |x| <= d + a (a the Hertz line contact's half-width,
+    sqrt(4 P R / (pi L E*))), must stay inside the mesh's contact zone: beyond it the solver
+    refused the normal force, a misleading culprit for a stroke too long."""
+    half_width = hertz_half_width_m(problem, settings.normal_force_N)
+    zone = problem.mesh.contact_zone_half_width_m
+    reach = settings.stroke_amplitude_m + half_width
+    if reach >= zone:
+        raise FewearInputError(
+            f"[fretting] stroke_amplitude_m = {settings.stroke_amplitude_m!r}: the contact "
+            f"(Hertz half-width {half_width:.3g} m) swept by the stroke reaches |x| = "
+            f"{reach:.3g} m, beyond [fretting_mesh] contact_zone_half_width_m = {zone!r}: a "
+            f"stroke below {max(zone - half_width, 0.0):.3g} m, or a wider contact zone")
 
 
 def fretting_archard_area_m2(problem: FlatContactProblem,
@@ -122,13 +147,12 @@ def closed_form_depth_m(problem: FlatContactProblem, settings: SlidingWearSettin
 def require_zone_holds_the_scar(problem: FlatContactProblem,
                                 settings: SlidingWearSettings) -> None:
     radius = problem.geometry.cylinder_radius_m
-    depth = closed_form_depth_m(problem, settings)
-    if depth >= radius:
+    if archard_area_m2(problem, settings) >= 0.5 * math.pi * radius**2:
         raise FewearInputError(
             f"[block_on_ring] wear_coefficient_m2_N, normal_force_N, sliding_distance_m: the "
             f"worn area k P' S exceeds half the ring's cross-section (radius {radius:g} m): "
             "lower them")
-    half_width = 0.5 * ring_arc_width_m(radius, depth)
+    half_width = 0.5 * ring_arc_width_m(radius, closed_form_depth_m(problem, settings))
     zone = problem.mesh.contact_zone_half_width_m
     if half_width >= zone:
         raise FewearInputError(

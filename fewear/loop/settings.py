@@ -12,6 +12,8 @@ from fewear.wear.impact import NO_IMPACT_WEAR, ImpactWearLaw
 
 RUN_SECTIONS = ["wear_loop", "wear"]
 MAX_WEAR_STEPS_PER_BLOCK = 64
+MAX_SMOOTHING_WIDTH_DEG = 90.0
+"""A Gaussian of this standard deviation spreads a contact's wear over the whole bore."""
 """Each wear step solves the contact of every load step of the recorded cycles once more."""
 
 
@@ -52,6 +54,10 @@ class WearLoopSettings:
             raise FewearInputError(
                 f"[wear_loop] wear_steps_per_block = {self.wear_steps_per_block}: expected 1 to "
                 f"{MAX_WEAR_STEPS_PER_BLOCK} wear steps on each block's recorded cycles")
+        if not 0.0 <= self.wear_smoothing_width_deg <= MAX_SMOOTHING_WIDTH_DEG:
+            raise FewearInputError(
+                f"[wear_loop] wear_smoothing_width_deg = {self.wear_smoothing_width_deg!r}: "
+                f"expected 0 (no smoothing) to {MAX_SMOOTHING_WIDTH_DEG:g} degrees of the bore")
         if not 0.0 < self.max_wall_fraction < 1.0:
             raise FewearInputError(
                 f"[wear_loop] max_wall_fraction = {self.max_wall_fraction}: expected a fraction "

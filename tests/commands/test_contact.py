@@ -189,6 +189,9 @@ def test_bad_config_exits_2_naming_the_value(tmp_path, capsys, case):
 @pytest.mark.parametrize("arguments, named", [
     (["--force", "0", "-100", "--rotation", "nan"], "--rotation = nan"),
     (["--force", "0", "-100", "--friction"], "--friction needs a non-zero --rotation"),
+    (["--force", "0", "-100", "--rotation", "1e300"],
+     "--rotation = 1e+300 rad: expected a finite increment of at most 12.6 rad (two turns)"),
+    (["--force", "0", "-100", "--rotation", "-13"], "--rotation = -13.0 rad"),
 ])
 def test_bad_rotation_exits_2(tmp_path, capsys, arguments, named):
     out = tmp_path / "out"

@@ -99,6 +99,14 @@ def test_measured_figures_are_the_research_notes(coarse_run):
      "contact_zone_half_width_m = 0.001: must exceed the scar's half-width"),
     ("[block_on_ring]\nring_radius_m = 0.02\n", "unknown key.* ring_radius_m"),
     ("[block_on_ring]\nnormal_force_N = -65.0\n", "normal_force_N = -65.0: must be a finite"),
+    # k P' S = 2e-15 x 65 / 0.006 x 3.6e10 = 0.78 m^2 > pi R^2 / 2 = 6.3e-4 m^2 (scipy's
+    # "f(a) and f(b) must have different signs" before)
+    ("[block_on_ring]\nsliding_distance_m = 3.6e10\n",
+     r"the worn area k P' S exceeds half the ring's cross-section \(radius 0.02 m\)"),
+    ("[scar]\ncase = \"fretting\"\n[fretting]\nstroke_amplitude_m = 0.01\n",
+     r"\[fretting\] stroke_amplitude_m = 0.01: the contact \(Hertz half-width .* m\) swept by "
+     r"the stroke reaches \|x\| = 0.01 m, beyond \[fretting_mesh\] "
+     r"contact_zone_half_width_m = 0.0004"),
 ])
 def test_bad_input_is_one_line_naming_the_value(tmp_path, capsys, config, message):
     path = tmp_path / "bad.toml"

@@ -94,3 +94,30 @@ def test_wrong_type_and_nan_are_rejected(tmp_path, value, message):
 def test_missing_file_is_an_input_error(tmp_path):
     with pytest.raises(FewearInputError, match="cannot read config file"):
         load_config(tmp_path / "absent.toml", SECTIONS)
+
+
+@pytest.mark.parametrize("text, message", [
+    ("total_cycles = 5\n[wear_loop]\n",
+     "a top-level key total_cycles; keys belong in a section such as [wear_loop] (a line "
+     "[section] above them): total_cycles is a key of [wear_loop]"),
+    ("colour = 5\n", "a top-level key colour; keys belong in a section such as [mesh]"),
+])
+def test_a_top_level_key_is_named_as_a_key(tmp_path, text, message):
+    path = tmp_path / "top.toml"
+    path.write_text(text)
+    with pytest.raises(FewearInputError) as error:
+        load_config(path, ["wear_loop"])
+    assert message in str(error.value)
+
+
+def test_underscores_between_digits_are_read_as_toml_says():
+    """Issue 57 reported ``1_0e-9`` read as 1e-8: TOML joins digits across an underscore, so
+    1_0e-9 is 10e-9 = 1e-8 exactly as written (not a misreading; nothing to refuse)."""
+    assert tomllib.loads("k = 1_0e-9")["k"] == 10e-9 == 1e-8
+
+
+def test_a_section_name_given_a_value_is_named_as_a_section(tmp_path):
+    path = tmp_path / "section.toml"
+    path.write_text("wear_loop = 5\n")
+    with pytest.raises(FewearInputError, match=r"\[wear_loop\] must be a table of keys"):
+        load_config(path, ["wear_loop"])

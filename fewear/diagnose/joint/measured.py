@@ -43,6 +43,8 @@ IMPLAUSIBLE_DEPTH_m = 1e-2
 """A wear depth of this size (1 cm, the whole bore radius of a 10 mm bushing) is a unit mistake."""
 NOISE_FLOOR_m = 1e-7
 """Depths down to -0.1 um are noise even in a file without wear (a profilometer's resolution)."""
+MAX_FALL = 2.0
+"""A later wear depth below 1/MAX_FALL of an earlier one is no scatter (wear only grows)."""
 
 UNIT_HINTS = {
     "max_wear_depth": "max_wear_depth_m (1 um = 1e-6 m, 1 mm = 1e-3 m)",
@@ -199,6 +201,13 @@ def read_joint_measurements(paths: list[str | Path] | str | Path) -> JointMeasur
             f"joint wear data need a bore profile or a maximum-depth growth file; read only {read}"
             f" (a bore profile has the columns {', '.join(KIND_COLUMNS['profiles'])}; a "
             f"maximum-depth growth file {', '.join(KIND_COLUMNS['max_wear'])})")
+    _require_measurable_wear(profiles, max_wear, paths)
+    if profiles:
+        _require_growth([profile.cycles for profile in profiles],
+                        [float(np.max(profile.depth_m)) for profile in profiles],
+                        f"{_sources(found['profiles'])}: the deepest wear of the bore profile")
+    if max_wear is not None:
+        _require_growth(*max_wear, f"{_sources(found['max_wear'])}: the maximum wear depth")
     traces = {kind: _merge_by_cycles(found[kind], kind) if found[kind] else None
               for kind in ("force", "acceleration")}
     return JointMeasurements(profiles=profiles, max_wear=max_wear, **traces,
@@ -375,8 +384,10 @@ def _profiles_from(source, kind, columns, where) -> tuple[list[MeasuredProfile],
     notes += _negative_note(source, "wear_depth_m", depth)
     notes += _beyond_a_turn_note(source, angle_deg)
     if np.all(np.abs(angle_deg) <= 2.0 * math.pi):
-        notes.append(f"{source}: all angles lie within +-6.3 degrees; if they are radians, "
-                     "convert them to degrees (angle_deg = angle_rad * 180 / pi)")
+        raise FewearInputError(
+            f"{source}, column angle_deg: every angle lies within +-{2.0 * math.pi:.3g} deg "
+            f"({angle_deg.min():.3g} to {angle_deg.max():.3g}): radians under angle_deg? "
+            "convert to degrees (angle_deg = angle_rad * 180 / pi); a bore profile spans more")
     return profiles, notes
 
 
@@ -490,6 +501,42 @@ def _merge_max_wear(found: list[tuple[str, tuple]]) -> tuple[np.ndarray, np.ndar
     depth = np.concatenate([items[1] for _, items in found])
     order = np.argsort(cycles)
     return cycles[order], depth[order]
+
+
+def _require_measurable_wear(profiles, max_wear, paths) -> None:
+    """The deepest wear of the data must exceed a profilometer's resolution
+    (:data:`NOISE_FLOOR_m`): below it no wear was measured, or the depths are in the wrong unit
+    (1000x too shallow read as a bushing worn through by the fit)."""
+    depths = [profile.depth_m for profile in profiles] + (
+        [max_wear[1]] if max_wear is not None else [])
+    deepest = max(float(np.max(depth)) for depth in depths)
+    if deepest <= NOISE_FLOOR_m:
+        raise FewearInputError(
+            f"{', '.join(map(str, paths))}: the deepest wear is {deepest:.3g} m, within a "
+            f"profilometer's resolution ({NOISE_FLOOR_m:g} m): no wear measured, or depths in "
+            "the wrong unit (wear_depth_m and max_wear_depth_m are metres: 1 um = 1e-6 m)")
+
+
+def _sources(found: list[tuple[str, object]]) -> str:
+    return ", ".join(source for source, _ in found)
+
+
+def _require_growth(cycles, depth_m, what: str) -> None:
+    """Wear only grows: a depth may dip below an earlier one by the scatter of a measurement,
+    not fall to less than 1 / :data:`MAX_FALL` of it (and by more than :data:`NOISE_FLOOR_m`):
+    such data are profiles of another joint, cycle counts swapped or mislabelled."""
+    deepest, at = -math.inf, 0
+    for count, depth in zip(cycles, depth_m):
+        fall = deepest - depth
+        if deepest > NOISE_FLOOR_m and depth * MAX_FALL < deepest and fall > NOISE_FLOOR_m:
+            raise FewearInputError(
+                f"{what} falls from {deepest * 1e6:.3g} um at {at} cycles to {depth * 1e6:.3g} "
+                f"um at {count} cycles ({deepest / max(depth, NOISE_FLOOR_m / 10):.3g}x less); "
+                f"wear only grows (a fall below 1/{MAX_FALL:g} of an earlier depth is beyond "
+                "measurement scatter): "
+                "check the cycles column (swapped or mislabelled counts, another joint's data)")
+        if depth > deepest:
+            deepest, at = depth, count
 
 
 def _cycle_count(value, name: str) -> int:

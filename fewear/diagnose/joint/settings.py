@@ -13,6 +13,11 @@ from fewear.io.config import load_config
 
 MAX_HALVINGS = 10
 """Halving the wear blocks more often than this makes runs 2^10 times dearer: beyond any use."""
+MAX_K_SCALE = 100.0
+"""The level of k is fitted within this factor of the believed one (the believed run goes this
+many times the last measured cycle count: 1e9 made runs of 1e9 times the data's cycles)."""
+MAX_OFFSET_DEG = 180.0
+"""An angular origin offset beyond half a turn either way is the same offset again."""
 
 
 def _listed(value):
@@ -80,9 +85,16 @@ class JointDiagnoseSettings:
                 f"[joint_diagnose] max_wear_step_halvings = {self.max_wear_step_halvings!r}: "
                 f"expected a whole number from 0 (the config's wear blocks as they are) to "
                 f"{MAX_HALVINGS}")
-        if not self.max_k_scale > 1.0:
+        if not 1.0 < self.max_k_scale <= MAX_K_SCALE:
             raise FewearInputError(
-                f"[joint_diagnose] max_k_scale = {self.max_k_scale!r}: expected > 1")
+                f"[joint_diagnose] max_k_scale = {self.max_k_scale!r}: expected > 1 and <= "
+                f"{MAX_K_SCALE:g} (the believed run goes max_k_scale times the last measured "
+                "cycle count: a wear coefficient further off is another model, not its level)")
+        if not 0.0 <= self.max_offset_deg <= MAX_OFFSET_DEG:
+            raise FewearInputError(
+                f"[joint_diagnose] max_offset_deg = {self.max_offset_deg!r}: expected 0 to "
+                f"{MAX_OFFSET_DEG:g} degrees (the instrument's angular origin within half a turn "
+                "either way of the bushing frame's)")
 
     @classmethod
     def from_config(cls, section: dict) -> JointDiagnoseSettings:

@@ -33,6 +33,7 @@ def run(args: argparse.Namespace) -> int:
     settings = ScarDiagnoseSettings.from_config(config["scar_diagnose"])
     measured = read_measured_scar(args.measured[0])
     model = ScarModel.from_config(config)
+    require_as_wide_as_the_contact(measured, model)
     print(f"fewear diagnose: {len(measured.names)} profile(s) of {measured.x_m.size} points "
           f"from {measured.source} against the believed {model.case} scar model; forward runs "
           "follow", file=sys.stderr, flush=True)
@@ -54,3 +55,21 @@ def run(args: argparse.Namespace) -> int:
     print_verdict(summary, args.out, unit=" m", confounded=[
         f"also accepted: {cause}" for cause in summary["confounded"]])
     return 0
+
+
+def require_as_wide_as_the_contact(measured, model) -> None:
+    """A worn scar is at least as wide as the unworn contact that wore it (2a, the believed
+    model's Hertz line contact): a measured scar narrower than half of it has its positions in
+    the wrong unit (x in m under x_mm), or is the scar of another contact."""
+    from fewear.loop.scar import hertz_half_width_m
+    from fewear.wear.scar import scar_depth_and_width_m
+
+    contact_m = 2.0 * hertz_half_width_m(model.problem, model.settings.normal_force_N)
+    for name, depth in zip(measured.names, measured.depth_m):
+        _, width = scar_depth_and_width_m(measured.x_m, depth)
+        if width < 0.5 * contact_m:
+            raise FewearInputError(
+                f"{measured.source}, profile {name}: the scar is {width:.3g} m wide, narrower "
+                f"than half the {model.case} contact that wore it (2a = {contact_m:.3g} m, "
+                "Hertz): positions in m under x_mm (1 mm = 1e-3 m)? or a config of another "
+                "contact")

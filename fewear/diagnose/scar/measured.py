@@ -23,6 +23,8 @@ POSITION_UNITS = {"x_mm": 1e-3, "x_m": 1.0}
 HEIGHT_UNITS = {"_um": 1e-6, "_m": 1.0}
 """A height column's unit suffixes and their scale to m."""
 MIN_POINTS = 10
+MAX_DEPTH_OVER_WIDTH = 0.5
+"""A scar deeper than this times its width (at half depth) is in the wrong units."""
 """A profile of fewer positions is no profile of a scar (the shipped ones have 171 and 391)."""
 
 
@@ -48,9 +50,10 @@ class MeasuredScar:
 
 
 def is_scar_file(path: str | Path) -> bool:
-    """Whether the header of ``path`` marks a measured scar (first column ``x_mm`` or ``x_m``)."""
+    """Whether the header of ``path`` marks a measured scar: a first column ``x_mm`` or ``x_m``,
+    or a position in another unit (``x_in``, ``x``: refused by the reader naming the units)."""
     _, header = read_header(Path(path))
-    return bool(header) and header[0] in POSITION_UNITS
+    return bool(header) and (header[0] == "x" or header[0].startswith("x_"))
 
 
 def read_measured_scar(path: str | Path) -> MeasuredScar:
@@ -79,15 +82,37 @@ def read_measured_scar(path: str | Path) -> MeasuredScar:
         if not depth.max() > 0.0:
             raise FewearInputError(f"{source}, column {name}: no point below the surface (the "
                                    "heights are negative where worn); no scar to diagnose")
+    for name, depth in zip(header[1:], depth_m):
+        _require_wider_than_deep(source, header[0], name, x_m, depth)
     return MeasuredScar(source, x_m, depth_m, names)
+
+
+def _require_wider_than_deep(source, x_name, name, x_m, depth_m) -> None:
+    """A wear scar is far wider than deep: a flat worn by a cylinder of radius R to depth d is
+    w = 2 sqrt(2 R d) wide, d / w = w / (8 R) (at most about 1/8 for a scar as wide as R).
+    A profile deeper than :data:`MAX_DEPTH_OVER_WIDTH` times its width at half its depth has
+    its position or its heights in the wrong unit."""
+    deepest = float(depth_m.max())
+    worn = x_m[depth_m >= 0.5 * deepest]
+    width = float(worn.max() - worn.min()) if worn.size > 1 else float(np.min(np.diff(x_m)))
+    if deepest <= MAX_DEPTH_OVER_WIDTH * width:
+        return
+    likely = (f"heights in um under {name} (1 um = 1e-6 m)" if name.endswith("_m") else
+              f"positions in m under {x_name} (1 mm = 1e-3 m)" if x_name == "x_mm" else
+              f"positions in mm under {x_name}")
+    raise FewearInputError(
+        f"{source}, column {name}: the scar is {deepest:.3g} m deep and {width:.3g} m wide at "
+        f"half its depth; a wear scar is far wider than deep (depth <= {MAX_DEPTH_OVER_WIDTH:g} "
+        f"x width): {likely}?")
 
 
 def _height_scales(source: str, line: int, header: list[str]) -> list[float]:
     """Each height column's scale to m, every column name checked."""
     if header[0] not in POSITION_UNITS:
         raise FewearInputError(
-            f"{source} line {line}, column {header[0]!r}: no measured scar; a scar file starts "
-            "with the position x_mm (heights <profile>_um) or x_m (heights <profile>_m)")
+            f"{source} line {line}, column {header[0]!r}: a scar's position is in mm or m "
+            "(SI units: 1 in = 25.4 mm): a scar file starts with the position x_mm (heights "
+            "<profile>_um) or x_m (heights <profile>_m)")
     if len(header) < 2:
         raise FewearInputError(f"{source} line {line}: no height column after {header[0]}; a "
                                "scar file has x_mm, <profile>_um [, ...] or x_m, <profile>_m")

@@ -53,17 +53,27 @@ class Diagnosis:
         return laws[0] if laws else None
 
 
-def diagnose(readings: Readings, settings: DiagnoseSettings | None = None) -> Diagnosis:
-    """The diagnosis of ``readings`` (docs/diagnosis-method-notes.md)."""
+def diagnose(readings: Readings, settings: DiagnoseSettings | None = None,
+             progress=None) -> Diagnosis:
+    """The diagnosis of ``readings`` (docs/diagnosis-method-notes.md); ``progress(text)`` hears
+    of each cause tried."""
     settings = settings or DiagnoseSettings.default()
     if readings.n_tests < 3:
-        raise FewearInputError(f"{readings.source}: {readings.n_tests} test(s) with wear; the "
-                               "diagnosis holds whole tests out and needs at least 3")
+        raise FewearInputError(
+            f"{readings.source}: {readings.n_tests} test(s) with a usable reading "
+            f"{readings.why_left_out()}; the diagnosis holds whole tests out and needs at least 3")
+    test_group, labels = readings.test_groups()
+    if np.bincount(test_group).max() < 2:
+        raise FewearInputError(
+            f"{readings.source}: every test is its own material group ({len(labels)} groups of "
+            "the material and factor_* columns): a held-out test's level cannot be learnt "
+            "from the other tests; the diagnosis needs a group of at least 2 tests")
     form = data_form(readings, settings)
-    stages = [select_causes(reading_stage(readings, settings), settings.candidates, settings)]
+    stages = [select_causes(reading_stage(readings, settings), settings.candidates, settings,
+                            progress)]
     if form == "histories":
         stages.append(select_causes(across_stage(readings, stages[0], settings),
-                                    settings.candidates, settings))
+                                    settings.candidates, settings, progress))
     gains = {name: gain for stage in stages for name, gain in stage.gains.items()}
     causes = tuple(sorted(gains, key=lambda name: -gains[name]))
     extended = extended_wear_section(readings, stages[0], settings)

@@ -4,6 +4,7 @@ readings without information on the rate left out, and what was derived from wha
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -37,6 +38,16 @@ class Readings:
     group_labels: np.ndarray
     measured: tuple[str, ...]
     notes: tuple[str, ...]
+    left_out: tuple[int, int, int] = (0, 0, 0)
+    """Readings left out: (with zero sliding distance, with zero or negative wear, all)."""
+
+    def why_left_out(self) -> str:
+        """Why readings were left out, for a message ("" when none were)."""
+        no_distance, no_wear, total = self.left_out
+        if not total:
+            return ""
+        return (f"({total} reading(s) left out: {no_distance} with zero sliding distance, "
+                f"{no_wear} with zero or negative wear volume; both are needed for a rate)")
 
     @property
     def n_tests(self) -> int:
@@ -49,11 +60,16 @@ class Readings:
 
     def final_per_test(self, values: np.ndarray) -> np.ndarray:
         """The value at each test's longest sliding distance."""
-        out = np.empty(self.n_tests)
-        for j in range(self.n_tests):
-            rows = np.flatnonzero(self.test_index == j)
-            out[j] = values[rows[np.argmax(self.distance_m[rows])]]
-        return out
+        return np.asarray(values)[self.final_rows]
+
+    @cached_property
+    def final_rows(self) -> np.ndarray:
+        """Each test's reading at its longest sliding distance (the first of equal ones): one
+        sort, not a scan of the readings per test (a table of thousands of tests)."""
+        rows = np.arange(self.test_index.size)
+        order = np.lexsort((-rows, self.distance_m, self.test_index))
+        last = np.flatnonzero(np.diff(np.append(self.test_index[order], self.n_tests)) != 0)
+        return order[last]
 
     @property
     def power_W_m2(self) -> np.ndarray | None:
@@ -62,6 +78,18 @@ class Readings:
             return None
         mu = self.per_test(self.friction)[self.test_index]
         return mu * self.pressure_Pa * self.velocity_m_s
+
+    @cached_property
+    def campaign_scales(self) -> dict[str, float | None]:
+        """The laws' scales: the median final distance [m] and time [s], the largest mu p v
+        [W/m^2] (None without it); computed once (a prediction per test reads them)."""
+        power = self.power_W_m2
+        return {
+            "scale_distance_m": float(np.median(self.final_per_test(self.distance_m))),
+            "scale_time_s": None if self.time_s is None
+            else float(np.median(self.final_per_test(self.time_s))),
+            "scale_power_W_m2": None if power is None else float(np.max(power)),
+        }
 
     @property
     def load_variable(self) -> tuple[np.ndarray | None, str]:
@@ -72,8 +100,9 @@ class Readings:
 
     def test_groups(self) -> tuple[np.ndarray, tuple[str, ...]]:
         """Each test's material group (index) and the groups' labels, in order of appearance."""
-        labels_per_test = [str(self.group_labels[np.flatnonzero(self.test_index == j)[0]])
-                           for j in range(self.n_tests)]
+        first = np.full(self.n_tests, self.test_index.size)
+        np.minimum.at(first, self.test_index, np.arange(self.test_index.size))
+        labels_per_test = [str(label) for label in self.group_labels[first]]
         names = tuple(dict.fromkeys(labels_per_test))
         return np.array([names.index(label) for label in labels_per_test]), names
 
@@ -88,8 +117,8 @@ def readings_from_columns(
 ) -> Readings:
     """Readings from columns of the CSV schema (absent optional columns: missing or None);
     ``factors``: categorical columns (name -> one text per reading), e.g. ``material``."""
-    labels, index = np.unique(np.asarray(columns["test_id"]).astype(str), return_inverse=True)
-    first_row = [int(np.flatnonzero(index == j)[0]) for j in range(len(labels))]
+    labels, first_row, index = np.unique(np.asarray(columns["test_id"]).astype(str),
+                                         return_index=True, return_inverse=True)
     order = np.argsort(first_row)
     rank = np.empty_like(order)
     rank[order] = np.arange(len(order))
@@ -134,6 +163,7 @@ def readings_from_columns(
         time_s=select(time), load_N=select(get["normal_load_N"]),
         friction=select(get["friction_coefficient"]), temperature_C=select(get["temperature_C"]),
         group_labels=group[keep], measured=measured, notes=tuple(notes),
+        left_out=(int(np.sum(~(s > 0.0))), int(np.sum(~(volume > 0.0))), int(np.sum(~keep))),
     )
 
 

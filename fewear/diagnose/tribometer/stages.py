@@ -23,9 +23,9 @@ from fewear.diagnose.tribometer.settings import DiagnoseSettings
 def data_form(readings: Readings, settings: DiagnoseSettings) -> str:
     """"histories" when every test has ``min_readings_along_test`` readings at distinct sliding
     distances, else "table" (a design of experiments)."""
-    distinct = [np.unique(readings.distance_m[readings.test_index == j]).size
-                for j in range(readings.n_tests)]
-    return "histories" if min(distinct) >= settings.min_readings_along_test else "table"
+    pairs = np.unique(np.column_stack([readings.test_index, readings.distance_m]), axis=0)
+    distinct = np.bincount(pairs[:, 0].astype(int), minlength=readings.n_tests)
+    return "histories" if distinct.min() >= settings.min_readings_along_test else "table"
 
 
 def available_needs(readings: Readings) -> set[str]:
@@ -50,16 +50,6 @@ def available_needs(readings: Readings) -> set[str]:
     return have
 
 
-def _scales(readings: Readings) -> dict[str, float | None]:
-    power = readings.power_W_m2
-    return {
-        "scale_distance_m": float(np.median(readings.final_per_test(readings.distance_m))),
-        "scale_time_s": None if readings.time_s is None
-        else float(np.median(readings.final_per_test(readings.time_s))),
-        "scale_power_W_m2": None if power is None else float(np.max(power)),
-    }
-
-
 def reading_context(readings: Readings, distance_m=None, time_s=None, rows=None) -> Context:
     """The laws' view of the readings (or of the readings ``rows`` at other distances/times)."""
     rows = np.arange(readings.test_index.size) if rows is None else rows
@@ -75,7 +65,7 @@ def reading_context(readings: Readings, distance_m=None, time_s=None, rows=None)
         time_s=pick(readings.time_s) if time_s is None else time_s,
         power_W_m2=pick(power), load=pick(load), load_name=name,
         load_speed=None if load is None or speed is None else (load * speed)[rows],
-        **_scales(readings))
+        **readings.campaign_scales)
 
 
 def _test_context(readings: Readings) -> Context:
@@ -83,7 +73,7 @@ def _test_context(readings: Readings) -> Context:
     speed = readings.velocity_m_s
     per_test = None if load is None else readings.per_test(load)
     load_speed = None if load is None or speed is None else readings.per_test(load * speed)
-    return Context(None, None, None, per_test, name, load_speed, **_scales(readings))
+    return Context(None, None, None, per_test, name, load_speed, **readings.campaign_scales)
 
 
 def _log_force(readings: Readings) -> np.ndarray:

@@ -144,6 +144,27 @@ BAD_FILES = [
     ("x_mm,test1_um\n" + "\n".join(f"{i},1" for i in range(12)) + "\n",
      "column test1_um: no point below the surface"),
     ("x_mm,test1_um\n0,-1\n1,-2\n", "2 positions; a scar's profile has at least 10"),
+    ("x_in,test1_um\n" + "\n".join(f"{i},-1" for i in range(12)) + "\n",
+     "column 'x_in': a scar's position is in mm or m (SI units: 1 in = 25.4 mm)"),
+    # a 3 um deep scar 0.5 mm wide (half depth), its x in metres under x_mm: 0.5 um wide
+    ("x_mm,test1_um\n" + "\n".join(f"{x * 1e-3!r},{-3.0 * (1 - (x / 0.5) ** 2)!r}"
+                                     for x in np.linspace(-0.5, 0.5, 41)) + "\n",
+     "column test1_um: the scar is 3e-06 m deep and 7"),
+    ("x_mm,test1_um\n" + "\n".join(f"{x * 1e-3!r},{-3.0 * (1 - (x / 0.5) ** 2)!r}"
+                                     for x in np.linspace(-0.5, 0.5, 41)) + "\n",
+     "a wear scar is far wider than deep (depth <= 0.5 x width): positions in m under x_mm"),
+    # the same scar's heights in um under test1_m
+    ("x_mm,test1_m\n" + "\n".join(f"{x!r},{-3.0 * (1 - (x / 0.5) ** 2)!r}"
+                                    for x in np.linspace(-0.5, 0.5, 41)) + "\n",
+     "column test1_m: the scar is 3 m deep and 0.0007"),
+    ("x_mm,test1_m\n" + "\n".join(f"{x!r},{-3.0 * (1 - (x / 0.5) ** 2)!r}"
+                                    for x in np.linspace(-0.5, 0.5, 41)) + "\n",
+     "far wider than deep (depth <= 0.5 x width): heights in um under test1_m"),
+    # a scar 10 nm deep and 10 um wide against the default block-on-ring contact, 2a = 2 x
+    # sqrt(4 x 65 N x 0.02 m / (pi 0.006 m 210e9 / 0.91 Pa)) = 69.2 um
+    ("x_mm,test1_um\n" + "\n".join(f"{x!r},{-0.01 * (1 - (x / 0.005) ** 2)!r}"
+                                     for x in np.linspace(-0.01, 0.01, 41)) + "\n",
+     "narrower than half the block_on_ring contact that wore it (2a = 6.9"),
 ]
 
 
@@ -161,7 +182,7 @@ def test_bad_scar_files_are_refused_in_one_line(text, message, tmp_path, capsys)
 def test_a_file_of_another_kind_is_no_scar(tmp_path):
     from fewear.errors import FewearInputError
 
-    with pytest.raises(FewearInputError, match="column 'test_id': no measured scar"):
+    with pytest.raises(FewearInputError, match="column .test_id.: a scar.s position is in mm or m"):
         read_measured_scar(STANDIN_PIN_ON_DISC_CSV)
 
 
