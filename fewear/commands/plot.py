@@ -55,13 +55,15 @@ def main(args) -> int:
             plotter.add_text(f"{case}, joint {joint}, {cycles:,.0f} cycles, motion x{scale:g}",
                              font_size=10)
             plotter.view_xy()
-    if off_screen:
-        target = folder / FIGURE
-        try:
-            plotter.screenshot(str(target))
-        except OSError as exc:
-            raise FewearInputError(f"cannot write {target}: {exc.strerror or exc}") from None
-        print(f"fewear plot: wrote {target}")
-    else:
+    if not off_screen:
         plotter.show()
+        return 0
+    target = folder / FIGURE
+    try:
+        plotter.screenshot(str(target))
+    except OSError as exc:
+        raise FewearInputError(f"cannot write {target}: {exc.strerror or exc}") from None
+    finally:
+        plotter.close()  # its render window and OpenGL context, at once (a notebook plots again)
+    print(f"fewear plot: wrote {target}")
     return 0

@@ -38,10 +38,16 @@ def last_block(path: Path):
     return checked_block(path, points, cells, point_data, cycles)
 
 
+MAX_EXTENT_M = 100.0
+"""Coordinates and displacements beyond this are no bushing's (a damaged file): VTK's rendering
+aborts the process on some absurd magnitudes."""
+
+
 def checked_block(path: Path, points, cells, point_data: dict, cycles):
     """The block of :func:`last_block` if its arrays are what the run writes: finite points
-    (n, 2 or 3), quad9 cells whose node numbers lie in [0, n), finite fields of n rows, a
-    finite cycle count; else :class:`FewearInputError` naming the file and what is wrong."""
+    (n, 2 or 3) within ``MAX_EXTENT_M`` of the origin, quad9 cells whose node numbers lie in
+    [0, n), fields of n rows within ``MAX_EXTENT_M``, a finite cycle count; else
+    :class:`FewearInputError` naming the file and what is wrong."""
     def refuse(what: str):
         raise FewearInputError(f"{path}: {what}; the file is damaged or is no worn bushing of a "
                                "`fewear run` (rerun the run, or --resume it, to write it again)")
@@ -52,6 +58,9 @@ def checked_block(path: Path, points, cells, point_data: dict, cycles):
     points = np.asarray(points, dtype=float)
     if points.ndim != 2 or points.shape[1] not in (2, 3) or not np.all(np.isfinite(points)):
         refuse(f"its points (shape {points.shape}) are not finite 2D or 3D coordinates")
+    if np.abs(points).max(initial=0.0) > MAX_EXTENT_M:
+        refuse(f"its points reach {np.abs(points).max():.3g} m from the origin (a bushing's lie "
+               f"within {MAX_EXTENT_M:g} m)")
     if points.shape[1] == 2:
         points = np.column_stack([points, np.zeros(len(points))])
     quads = next((np.asarray(block.data) for block in cells if block.type == "quad9"), None)
@@ -65,9 +74,9 @@ def checked_block(path: Path, points, cells, point_data: dict, cycles):
         if values.ndim == 2 and columns == 3 and values.shape[1] == 2:
             values = np.column_stack([values, np.zeros(len(values))])
         shape_ok = values.shape == ((len(points), 3) if columns else (len(points),))
-        if not shape_ok or not np.all(np.isfinite(values)):
+        if not shape_ok or not np.all(np.abs(values) <= MAX_EXTENT_M):
             refuse(f"its {name} (shape {values.shape}) is not a finite field on its "
-                   f"{len(points)} nodes")
+                   f"{len(points)} nodes within {MAX_EXTENT_M:g} m")
         fields.append(values)
     if cycles is None or not np.isfinite(float(cycles)):
         refuse(f"its time (cycles) {cycles!r} is not a finite number")
