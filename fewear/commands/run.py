@@ -306,7 +306,8 @@ def resume_command(args) -> str:
 def interrupt_note(args, store: Checkpoint, rods, total_cycles: int) -> str:
     """What an interrupted run kept (the cycles of its members, by their keys ``rods``, in the
     checkpoint) and how to go on."""
-    saved = {rod: cycles for rod, cycles in store.saved_cycles().items() if rod in rods}
+    found = store.saved_cycles()
+    saved = {rod: found[rod] for rod in rods if rod in found}
     if not saved:
         return ("no wear block had finished, nothing was kept (the output folder is as it was); "
                 "start again with: " + resume_command(args).replace(" --resume", ""))

@@ -94,14 +94,14 @@ def run_plan(config: dict) -> RunPlan:
     history_file = config["wear_loop"].get("joint_history", "")
     if history_file:
         inputs: RunInputs = joint_inputs_from_config(config)
-        history = read_joint_history(Path(history_file), inputs.loop.recorded_cycles_per_block,
-                                     impacts=inputs.impact_law.wears_by_impacts)
-        digest = hashlib.sha256(Path(history_file).read_bytes()).hexdigest()
         if inputs.loop.members > 1:
             raise FewearInputError(
                 f"[wear_loop] members = {inputs.loop.members}: the members of an ensemble differ "
                 "in the start of the dynamics, and an imported joint history has none; "
                 "members = 1")
+        history = read_joint_history(Path(history_file), inputs.loop.recorded_cycles_per_block,
+                                     impacts=inputs.impact_law.wears_by_impacts)
+        digest = hashlib.sha256(Path(history_file).read_bytes()).hexdigest()
         return RunPlan((IMPORTED_CASE,), {IMPORTED_JOINT: inputs}, history, history_file,
                        digest)
     joints = {name: joint_inputs_from_config(view)
