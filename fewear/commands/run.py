@@ -204,8 +204,9 @@ def main(args) -> int:
 def predict_and_write(config: dict, args) -> dict:
     """The prediction of ``config`` (loaded) for every case, written into ``args.out`` as
     :func:`main` says (``args``: ``out``, ``resume``, ``overwrite``, ``jobs``, and ``config``, the
-    file named in messages); case -> joint -> progress on rank 0 ({} on the others).
-    :func:`fewear.api.run` calls it too."""
+    file named in messages; ``members``, optional: ``[wear_loop] members`` set already); case ->
+    joint -> progress (member 0's) on rank 0 ({} on the others). :func:`fewear.api.run` calls it
+    too."""
     from mpi4py import MPI
 
     from fewear.io.output import staged_output
@@ -274,7 +275,9 @@ def write_run_figures(folder: Path, cases: dict, total_cycles: int,
 
 
 def _write_ensemble_figures(folder: Path, ensemble: dict, total_cycles: int) -> None:
-    from fewear.loop.ensemble import max_depth_statistics, profile_statistics
+    """The figures of :func:`write_run_figures` of an ensemble: the final profile's and the
+    maximum depth's statistics over the members (:mod:`fewear.loop.ensemble`)."""
+    from fewear.loop.ensemble import max_depth_statistics, statistics
     from fewear.loop.outputs import MAX_WEAR_PNG, PROFILES_PNG
     from fewear.plot.wear import plot_max_wear_bands, plot_wear_profile_bands
 
@@ -285,9 +288,8 @@ def _write_ensemble_figures(folder: Path, ensemble: dict, total_cycles: int) -> 
     profiles, maxima = {}, {}
     for (case, joint), label in labels.items():
         runs = [member[joint] for member in ensemble[case]]
-        angle, cycles, depth = profile_statistics(runs)
-        last = {name: values[-1] for name, values in depth.items()}
-        profiles[label] = (angle, last)
+        profiles[label] = (runs[0].state.angle_rad,
+                           statistics([run.state.depth_m for run in runs]))
         maxima[label] = max_depth_statistics(runs)
     plot_wear_profile_bands(profiles, folder / PROFILES_PNG, total_cycles)
     plot_max_wear_bands(maxima, folder / MAX_WEAR_PNG)
