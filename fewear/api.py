@@ -60,7 +60,10 @@ class RunResult:
     summary : dict
         What ``summary.json`` holds: per case and joint
         (``summary["cases"][case]["joints"][joint]``) the maximum depth and its angle, the worn
-        volume, cycles, blocks, wall times; the config used.
+        volume, cycles, blocks, wall times; the config used. An ensemble (``[wear_loop] members``
+        > 1): ``wear`` and ``cases`` are member 0's (the configured start), and
+        ``summary["ensemble"]`` holds the members' statistics and each member's figures
+        (:mod:`fewear.loop.outputs`).
     out : Path or None
         The output folder, or None when the outputs were not kept.
 

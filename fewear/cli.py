@@ -102,7 +102,13 @@ def build_parser() -> argparse.ArgumentParser:
                      help="rod models run side by side in worker processes (default: one per "
                           "rod model, at most the CPU cores; 1: one after the other in this "
                           "process). Under mpirun the ranks are split among the rod models "
-                          "instead, and a rod model's ranks among its clearance joints")
+                          "instead, and a rod model's ranks among its clearance joints. With "
+                          "--members, among the members of every rod model")
+    run.add_argument("--members", type=int, default=None, metavar="N",
+                     help="an ensemble: N runs of every rod model, member m with the crank (a "
+                          "mechanism file's drivers) started m degrees further on; the run "
+                          "writes the members' mean, standard deviation and range beside each "
+                          "member's result (default: [wear_loop] members, 1)")
     run.add_argument("--joint-history", metavar="FILE.csv", default=None,
                      help="wear one bushing (the config's joint sections) with a joint history "
                           "made elsewhere instead of the dynamics, the same history every block, "

@@ -39,6 +39,7 @@ The modules: :mod:`~fewear.loop.settings` (the typed inputs), :mod:`~fewear.loop
 cases, joints and history source of a run), :mod:`~fewear.loop.stages` (stages
 2-4 on one recorded history), :mod:`~fewear.loop.bushing` (the FE bushing on the worn bore),
 :mod:`~fewear.loop.block` (one block, stages 1-5), :mod:`~fewear.loop.progress` (a case's run so
-far), :mod:`~fewear.loop.checkpoint`, :mod:`~fewear.loop.outputs`; the command is
+far), :mod:`~fewear.loop.checkpoint`, :mod:`~fewear.loop.outputs`, :mod:`~fewear.loop.ensemble`
+(an ensemble's statistics: the members of a case, runs whose starts differ); the command is
 :mod:`fewear.commands.run` (``fewear run``).
 """

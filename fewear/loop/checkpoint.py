@@ -1,7 +1,8 @@
 """The checkpoint of ``fewear run``: everything needed to continue after any wear block.
 
 One folder, ``OUT/fewear-checkpoint/``, with per case (each case is saved by the ranks or the
-process that runs it, so cases run side by side):
+process that runs it, so cases run side by side; an ensemble's member m > 0 of a case is saved
+as the case ``<case>-member<m>``, :class:`fewear.loop.plan.Member`):
 
 - ``<case>.npz``: the complete config the run used, the mechanism's final state (the next
   block's warm start; none for an imported joint history) and, per clearance joint

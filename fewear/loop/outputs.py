@@ -11,6 +11,23 @@
   depth), for ParaView (Warp By Vector with ``mesh_displacement_m`` shows the worn bushing).
 - ``wear_profiles.png`` (seed Fig. 7a) and ``max_wear.png`` (seed Fig. 7b), drawn by the command
   (:func:`fewear.commands.run.write_run_figures`).
+
+An ensemble (``[wear_loop] members`` > 1, :mod:`fewear.loop.ensemble`): the files above hold
+member 0 (the run from the configured start, as a single run writes it; the XDMF files are
+member 0's only), the figures the members' mean with bands of one standard deviation and of the
+range, and beside them:
+
+- ``summary.json`` ``ensemble``: ``members``, ``start_offsets_deg`` and per case and joint
+  (``cases.<case>.joints.<joint>``) ``max_wear_depth_m``, ``max_wear_angle_deg`` (circular) and
+  ``worn_volume_m3``, each as ``mean``, ``sd`` (ddof = 1), ``min``, ``max``, and ``members``:
+  each member's summary as ``cases`` gives member 0's;
+- ``wear_profile_members.csv`` ``case, joint, member, cycles, angle_deg, wear_depth_m`` and
+  ``max_wear_members.csv`` ``case, joint, member, cycles, max_wear_depth_m``: each member's
+  rows as the single run's files;
+- ``wear_profile_ensemble.csv`` ``case, joint, cycles, angle_deg, mean_wear_depth_m,
+  sd_wear_depth_m, min_wear_depth_m, max_wear_depth_m`` and ``max_wear_ensemble.csv`` ``case,
+  joint, cycles, mean_max_wear_depth_m, sd_..., min_..., max_max_wear_depth_m``: the statistics
+  at the union of the members' block ends, each member linear between its own.
 """
 
 from __future__ import annotations
@@ -26,17 +43,24 @@ from fewear.loop.progress import CaseProgress
 
 SUMMARY, PROFILES_CSV, MAX_WEAR_CSV = "summary.json", "wear_profile.csv", "max_wear.csv"
 PROFILES_PNG, MAX_WEAR_PNG = "wear_profiles.png", "max_wear.png"
-RUN_FILES = (SUMMARY, PROFILES_CSV, MAX_WEAR_CSV, PROFILES_PNG, MAX_WEAR_PNG)
-"""The files of a run with fixed names (besides ``<case>.xdmf`` and ``.h5``)."""
+PROFILES_MEMBERS_CSV, MAX_WEAR_MEMBERS_CSV = "wear_profile_members.csv", "max_wear_members.csv"
+PROFILES_ENSEMBLE_CSV, MAX_WEAR_ENSEMBLE_CSV = ("wear_profile_ensemble.csv",
+                                                "max_wear_ensemble.csv")
+RUN_FILES = (SUMMARY, PROFILES_CSV, MAX_WEAR_CSV, PROFILES_PNG, MAX_WEAR_PNG,
+             PROFILES_MEMBERS_CSV, MAX_WEAR_MEMBERS_CSV, PROFILES_ENSEMBLE_CSV,
+             MAX_WEAR_ENSEMBLE_CSV)
+"""The files of a run with fixed names (besides ``<case>.xdmf`` and ``.h5``); the last four
+an ensemble's only."""
 
 
 def write_run_outputs(folder: Path, cases: dict, joints: dict, config: dict,
-                      history_source: str) -> None:
+                      history_source: str, ensemble: dict | None = None) -> None:
     """The run's files from ``cases`` (case -> joint name -> :class:`CaseProgress`) of the
     joints' typed inputs ``joints`` (joint name -> :class:`fewear.loop.settings.RunInputs`);
-    ``history_source``: where the joint histories came from, in words."""
+    ``history_source``: where the joint histories came from, in words; ``ensemble``: case ->
+    its members' (member 0 first, ``cases``' own) joint name -> progress, None for one member."""
     loop = next(iter(joints.values())).loop
-    write_json(folder / SUMMARY, {
+    summary = {
         "what": "seed section 5: wear at the clearance joints, block by block with the worn "
                 "geometry fed back (ALE / re-meshing, worn clearance in the dynamics)",
         "load_steps_per_cycle": loop.load_steps_per_cycle,
@@ -48,7 +72,12 @@ def write_run_outputs(folder: Path, cases: dict, joints: dict, config: dict,
                                     for joint, progress in progress_of.items()}}
                   for case, progress_of in cases.items()},
         "config": config,
-    })
+    }
+    if ensemble is not None:
+        summary = {**{key: value for key, value in summary.items() if key != "config"},
+                   "ensemble": ensemble_summary(ensemble, joints), "config": config}
+        write_ensemble_csvs(folder, ensemble)
+    write_json(folder / SUMMARY, summary)
     write_profiles_csv(folder / PROFILES_CSV, cases)
     write_max_wear_csv(folder / MAX_WEAR_CSV, cases)
     for case, progress_of in cases.items():
@@ -88,6 +117,73 @@ def case_summary(case: CaseProgress, inputs) -> dict:
         "wall_time_s": case.wall_time_s,
         "stage_wall_time_s": dict(case.stage_wall_time_s),
     }
+
+
+def ensemble_summary(ensemble: dict, joints: dict) -> dict:
+    """The ``ensemble`` table of ``summary.json`` (the module's docstring)."""
+    from fewear.loop.ensemble import joint_summary
+    from fewear.loop.plan import Member
+
+    members = len(next(iter(ensemble.values())))
+    return {
+        "members": members,
+        "start_offsets_deg": [Member("", index).start_offset_deg for index in range(members)],
+        "start": "member m: the driver started m degrees further on ([mechanism] "
+                 "initial_crank_angle_deg + m, or a mechanism file's drivers' angle_deg + m)",
+        "cases": {case: {"joints": {joint: joint_summary([case_summary(run[joint], inputs)
+                                                          for run in runs])
+                                    for joint, inputs in joints.items()}}
+                  for case, runs in ensemble.items()},
+    }
+
+
+def write_ensemble_csvs(folder: Path, ensemble: dict) -> None:
+    """The members' and the statistics' CSV files of an ensemble (the module's docstring)."""
+    from fewear.loop.ensemble import STATISTICS, max_depth_statistics, profile_statistics
+
+    joints = list(next(iter(ensemble.values()))[0])
+    with open(folder / PROFILES_MEMBERS_CSV, "w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(["case", "joint", "member", "cycles", "angle_deg", "wear_depth_m"])
+        for case, runs in ensemble.items():
+            for joint in joints:
+                for member, run in enumerate(runs):
+                    angle = np.degrees(run[joint].state.angle_rad)
+                    for record in run[joint].records:
+                        writer.writerows((case, joint, member, record.cycles, f"{a:.6f}",
+                                          f"{h:.9e}") for a, h in zip(angle, record.depth_m))
+    with open(folder / MAX_WEAR_MEMBERS_CSV, "w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(["case", "joint", "member", "cycles", "max_wear_depth_m"])
+        for case, runs in ensemble.items():
+            for joint in joints:
+                for member, run in enumerate(runs):
+                    writer.writerow((case, joint, member, 0, f"{0.0:.9e}"))
+                    writer.writerows((case, joint, member, r.cycles, f"{r.depth_m.max():.9e}")
+                                     for r in run[joint].records)
+    with open(folder / PROFILES_ENSEMBLE_CSV, "w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(["case", "joint", "cycles", "angle_deg",
+                         *(f"{name}_wear_depth_m" for name in STATISTICS)])
+        for case, runs in ensemble.items():
+            for joint in joints:
+                angle_rad, cycles, depth = profile_statistics([run[joint] for run in runs])
+                for row, cycle in enumerate(cycles):
+                    writer.writerows(
+                        (case, joint, int(cycle), f"{np.degrees(a):.6f}",
+                         *(f"{depth[name][row, node]:.9e}" for name in STATISTICS))
+                        for node, a in enumerate(angle_rad))
+    with open(folder / MAX_WEAR_ENSEMBLE_CSV, "w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(["case", "joint", "cycles",
+                         *(f"{name}_max_wear_depth_m" for name in STATISTICS)])
+        for case, runs in ensemble.items():
+            for joint in joints:
+                cycles, depth = max_depth_statistics([run[joint] for run in runs])
+                writer.writerow((case, joint, 0, *(f"{0.0:.9e}" for _ in STATISTICS)))
+                writer.writerows((case, joint, int(cycle),
+                                  *(f"{depth[name][row]:.9e}" for name in STATISTICS))
+                                 for row, cycle in enumerate(cycles))
 
 
 def write_profiles_csv(path: Path, cases: dict) -> None:

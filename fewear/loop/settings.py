@@ -12,9 +12,11 @@ from fewear.wear.impact import NO_IMPACT_WEAR, ImpactWearLaw
 
 RUN_SECTIONS = ["wear_loop", "wear"]
 MAX_WEAR_STEPS_PER_BLOCK = 64
+"""Each wear step solves the contact of every load step of the recorded cycles once more."""
 MAX_SMOOTHING_WIDTH_DEG = 90.0
 """A Gaussian of this standard deviation spreads a contact's wear over the whole bore."""
-"""Each wear step solves the contact of every load step of the recorded cycles once more."""
+MAX_MEMBERS = 360
+"""Members start 1 degree of the driver's cycle apart: 360 of them cover the cycle."""
 
 
 @dataclass(frozen=True)
@@ -34,6 +36,7 @@ class WearLoopSettings:
     wear_smoothing_width_deg: float
     compliance_update: str
     joint_history: str = ""  # a joint-history CSV worn with, no dynamics ("": none)
+    members: int = 1  # runs per case, their starts 1 deg apart (fewear.loop.plan.Member)
 
     def __post_init__(self):
         unknown = [rod for rod in self.rod_models if rod not in ("rigid", "flexible")]
@@ -58,6 +61,11 @@ class WearLoopSettings:
             raise FewearInputError(
                 f"[wear_loop] wear_smoothing_width_deg = {self.wear_smoothing_width_deg!r}: "
                 f"expected 0 (no smoothing) to {MAX_SMOOTHING_WIDTH_DEG:g} degrees of the bore")
+        if isinstance(self.members, bool) or not isinstance(self.members, int) \
+                or not 1 <= self.members <= MAX_MEMBERS:
+            raise FewearInputError(
+                f"[wear_loop] members = {self.members!r}: expected a whole number of ensemble "
+                f"members from 1 to {MAX_MEMBERS} (runs of each case, their starts 1 deg apart)")
         if not 0.0 < self.max_wall_fraction < 1.0:
             raise FewearInputError(
                 f"[wear_loop] max_wall_fraction = {self.max_wall_fraction}: expected a fraction "

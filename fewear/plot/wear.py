@@ -63,9 +63,11 @@ def plot_max_wear(series: dict, path) -> None:
 
 def plot_max_wear_bands(series: dict, path) -> None:
     """Maximum wear depth (um) against crank cycles as the mean of several runs with a band of
-    one standard deviation either side, one line per label.
+    one standard deviation either side (and a lighter one of their range, if given), one line
+    per label.
 
-    ``series``: label -> (cycles, {"mean": [m], "sd": [m]}) at the listed cycle counts.
+    ``series``: label -> (cycles, {"mean": [m], "sd": [m], optional "min", "max": [m]}) at the
+    listed cycle counts.
     """
     import matplotlib
 
@@ -79,10 +81,57 @@ def plot_max_wear_bands(series: dict, path) -> None:
         sd = 1e6 * np.append(0.0, depth["sd"])
         line, = axes.plot(cycles, mean, "o-", ms=3, label=label)
         axes.fill_between(cycles, mean - sd, mean + sd, color=line.get_color(), alpha=0.25)
+        if "min" in depth:
+            axes.fill_between(cycles, 1e6 * np.append(0.0, depth["min"]),
+                              1e6 * np.append(0.0, depth["max"]), color=line.get_color(),
+                              alpha=0.1)
+    ranged = any("min" in depth for _, depth in series.values())
     axes.set(xlabel="crank cycles", ylabel="maximum wear depth (um)",
-             title="maximum wear depth: mean of the runs, +- one standard deviation")
+             title="maximum wear depth: mean of the runs, +- one standard deviation"
+             + (",\nlighter: their range" if ranged else ""))
     axes.grid(alpha=0.3)
     axes.legend(fontsize=8)
+    figure.tight_layout()
+    figure.savefig(path, dpi=120)
+    plt.close(figure)
+
+
+def plot_wear_profile_bands(profiles: dict, path, cycles: float) -> None:
+    """Wear depth (um) against bore angle as the mean of several runs, with bands of one
+    standard deviation either side and (lighter) of their range, one line per label; beside
+    it the bore outline of the mean, the wear exaggerated.
+
+    ``profiles``: label -> (angle_rad, {"mean", "sd", "min", "max": depth_m}) of nodes sorted
+    by angle.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure = plt.figure(figsize=(11, 4.5))
+    unrolled = figure.add_subplot(1, 2, 1)
+    polar = figure.add_subplot(1, 2, 2, projection="polar")
+    peak = max(float(np.max(depth["mean"])) for _, depth in profiles.values()) or 1.0
+    for label, (angle, depth) in profiles.items():
+        degrees, mean, sd = np.degrees(angle), 1e6 * depth["mean"], 1e6 * depth["sd"]
+        line, = unrolled.plot(degrees, mean, label=label)
+        unrolled.fill_between(degrees, mean - sd, mean + sd, color=line.get_color(), alpha=0.25)
+        unrolled.fill_between(degrees, 1e6 * depth["min"], 1e6 * depth["max"],
+                              color=line.get_color(), alpha=0.1)
+        closed = np.append(angle, angle[0] + 2 * np.pi)
+        polar.plot(closed, 1.0 + 0.3 * np.append(depth["mean"], depth["mean"][0]) / peak,
+                   label=label)
+    polar.plot(np.linspace(0, 2 * np.pi, 361), np.ones(361), "k:", lw=0.8, label="unworn bore")
+    polar.set_yticklabels([])
+    polar.set_title("bore outline of the mean, wear exaggerated", fontsize=10)
+    unrolled.set(xlabel="angle on the bore from the slide axis x (deg)",
+                 ylabel="wear depth (um)", xlim=(0, 360),
+                 title=f"wear depth after {cycles:.0f} crank cycles: mean of the members,\n"
+                       "+- one standard deviation, lighter: their range")
+    unrolled.set_xticks(range(0, 361, 45))
+    unrolled.grid(alpha=0.3)
+    unrolled.legend()
     figure.tight_layout()
     figure.savefig(path, dpi=120)
     plt.close(figure)
