@@ -66,18 +66,33 @@ def test_a_contact_folder_is_no_run_to_plot(tmp_path, capsys):
     assert "bushing.xdmf is a `fewear contact` output" in line
 
 
-def test_flipped_bytes_in_the_h5_end_in_a_message_or_a_figure(tmp_path, capsys):
-    """Every single byte of the topology's and the fields' data flipped in turn (the header
-    intact): a message naming the file or the plot, never a crash (pytest would die with it)."""
-    import pyvista  # noqa: F401 (the plot draws when the block is sound)
+def test_flipped_bytes_in_the_h5_end_in_a_message_or_a_figure(tmp_path):
+    """Every 7th byte of the topology's and the fields' data flipped in turn (the header
+    intact): the reader gives a sound block or a message naming the file; and `fewear plot` on
+    a sample of the flips that read as sound draws or refuses in one line, never a crash (each
+    in its own process, as a user's would be)."""
+    import subprocess
+    import sys
 
-    write_bushing(tmp_path / "rigid-a.xdmf", displacement=np.full((9, 3), 1e-6))
+    from fewear.errors import FewearInputError
+    from fewear.plot.worn_bushing import last_block
+
+    path = write_bushing(tmp_path / "rigid-a.xdmf", displacement=np.full((9, 3), 1e-6))
     h5 = next(tmp_path.glob("*.h5"))
     intact = h5.read_bytes()
+    sound = []
     for position in range(len(intact) - 800, len(intact), 7):
         changed = bytearray(intact)
         changed[position] ^= 0xFF
         h5.write_bytes(bytes(changed))
-        status = main(["plot", str(tmp_path)])
-        err = capsys.readouterr().err
-        assert status in (0, 2) and "Traceback" not in err
+        try:
+            last_block(path)
+            sound.append(bytes(changed))
+        except FewearInputError as exc:
+            assert str(path) in str(exc)
+    assert sound  # flips in the fields' low bits read as (slightly other) sound bushings
+    for changed in sound[:: max(1, len(sound) // 4)]:
+        h5.write_bytes(changed)
+        done = subprocess.run([sys.executable, "-m", "fewear.cli", "plot", str(tmp_path)],
+                              capture_output=True, text=True, timeout=120)
+        assert done.returncode in (0, 2) and "Traceback" not in done.stderr, done.stderr
