@@ -208,7 +208,8 @@ class CondensedBushingContact:
         fields, force_sum, normal_sum, largest = equilibrium_fields(
             self.points, self._U.reshape(n, 2), self.pin_centre_m,
             self.problem.geometry.pin_radius_m, self._k, friction_value, self.weights_m,
-            self.problem.indenter_radius_m * abs(rotation), order)
+            self.problem.indenter_radius_m * abs(rotation), order,
+            displacement_limit_m(self.problem))
         reason = beyond_small_displacements(self.problem, largest)
         if reason is not None:
             self._refuse(force, reason)

@@ -63,25 +63,34 @@ def nodal_forces(points: np.ndarray, U: np.ndarray, centre: np.ndarray, pin_radi
 @compiled
 def equilibrium_fields(points: np.ndarray, U: np.ndarray, centre: np.ndarray, pin_radius: float,
                        penalty: float, friction_value: float, weights_m: np.ndarray,
-                       slip_m: float, order: np.ndarray):
+                       slip_m: float, order: np.ndarray, limit_m: float):
     """What a solved load step reports, in one pass over the bore nodes: the nodal fields
     (5, n) x, y (m), pressure p = k <-g>_+ (Pa), gap g = |X + U - c| - R_p (m) and slip
     (``slip_m`` where p > 0, else 0), node i of them the node ``order[i]`` of the state; the
     sums of the nodal forces f and of their pressure part w p n (:func:`nodal_forces`, N/m);
-    the largest |U_q| (m). Each value is the one of the NumPy formulas of
-    :func:`fewear.contact.solver.nodal_result` to the bit: the sums over the nodes in turn (as
-    NumPy's sum over an array's first axis), p = 0 (not -0) where g = 0 (as ``np.maximum``)."""
+    the largest |U_q| (m) where it may reach ``limit_m``, else 0 (the components' largest
+    bounds it by a factor sqrt 2: the C library's hypot, the dearest part, is then spared).
+    Each value is the one of the NumPy formulas of :func:`fewear.contact.solver.nodal_result`
+    to the bit: the sums over the nodes in turn (as NumPy's sum over an array's first axis),
+    p = 0 (not -0) where g = 0 (as ``np.maximum``)."""
     f, p, normal, r = nodal_forces(points, U, centre, pin_radius, penalty, friction_value,
                                    weights_m)
     size = points.shape[0]
     force_sum, normal_sum = np.zeros(2), np.zeros(2)
-    largest = -math.inf
+    component = 0.0
     for q in range(size):
         wp = weights_m[q] * p[q]
         for i in range(2):
             force_sum[i] += f[q, i]
             normal_sum[i] += wp * normal[q, i]
-        largest = max(largest, math.hypot(U[q, 0], U[q, 1]))
+            component = max(component, abs(U[q, i]))
+            if math.isnan(U[q, i]):
+                component = math.inf  # then the largest |U_q| is NaN, as NumPy's
+    largest = 0.0
+    if not 1.5 * component < limit_m:
+        largest = -math.inf
+        for q in range(size):
+            largest = max(largest, math.hypot(U[q, 0], U[q, 1]))
     fields = np.empty((5, size))
     for i in range(size):
         q = order[i]
@@ -141,7 +150,8 @@ def linearised_forces(points: np.ndarray, U: np.ndarray, centre: np.ndarray, pin
     active = np.flatnonzero(p > 0.0)
     residual = np.zeros(2)
     for q in range(f.shape[0]):
-        residual += f[q]
+        residual[0] += f[q, 0]
+        residual[1] += f[q, 1]
     return f, normal, r, active, residual - load, pairwise_sum(weights_m[active])
 
 
@@ -274,8 +284,9 @@ def try_step(state, base, update, step, pin_centre):
     g, U, centre = state[1], state[2], state[3]
     g0, U0 = base
     dg, dU = update
-    g[:] = g0 + step * dg
-    U[:] = U0 + step * dU
+    for i in range(g.size):
+        g[i] = g0[i] + step * dg[i]
+        U[i] = U0[i] + step * dU[i]
     centre[:] = pin_centre
 
 
@@ -395,7 +406,7 @@ def compile_contact() -> None:
                 FREE_PIN, load)
     nodal_forces(points, U, centre, pin_radius, penalty, 0.0, weights)
     equilibrium_fields(points, U, centre, pin_radius, penalty, 0.0, weights, 0.0,
-                       np.arange(size))
+                       np.arange(size), 1.0)
     turned_forces(g, points, U, centre, pin_radius, 2, 0.1, 0.1)
     state = new_state(np.eye(2 * size), points, weights, penalty, pin_radius)
     direction = load / math.sqrt(load @ load)

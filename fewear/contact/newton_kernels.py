@@ -563,7 +563,10 @@ def _trial(step, points, displacement, update, centre0, dc, contact, base_points
     base move off the pin by more than their linearised gaps predict: gaps curve with 1/R_p,
     which at light loads is more than the penetrations)."""
     centre = pin_update(centre0, step * dc, node_spacing_rad)
-    deformed = points + (displacement + step * update)
+    deformed = np.empty_like(points)
+    for q in range(points.shape[0]):
+        for i in range(2):
+            deformed[q, i] = points[q, i] + (displacement[q, i] + step * update[q, i])
     if contact.size:
         centre = following_centre(deformed, centre, contact, base_points, normals, base_gaps,
                                   centre0, pin_radius)

@@ -44,7 +44,7 @@ CONTACT_QUADRATURE = {"quadrature_degree": 3, "quadrature_rule": "GLL"}
 def checked_force(force_N) -> np.ndarray:
     """The joint force as a finite (2,) array (N), else FewearInputError."""
     force = np.asarray(force_N, dtype=float).reshape(-1)
-    if force.shape != (2,) or not np.all(np.isfinite(force)):
+    if force.shape != (2,) or not (math.isfinite(force[0]) and math.isfinite(force[1])):
         raise FewearInputError(f"force = {force_N!r} N: expected two finite numbers FX FY")
     return force
 
