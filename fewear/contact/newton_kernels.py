@@ -113,6 +113,8 @@ def _halving_sum(values: np.ndarray, begin: int, count: int) -> float:
     (:func:`_block_sum`), larger ones split at the multiple of 8 nearest below half and the
     halves' sums added; the halving walked with a stack (numba's cache does not load recursive
     functions reliably)."""
+    if count <= 128:
+        return _block_sum(values, begin, count)
     starts, sizes = np.full(64, begin), np.full(64, count)
     split = np.zeros(64, np.bool_)
     sums = np.empty(64)
