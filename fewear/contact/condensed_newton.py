@@ -275,7 +275,9 @@ def begin_line_search(state, linear, update, dc, pin_residual):
     dg, dU = update
     slope = np.dot(g - linear[0].reshape(-1), dU) + np.dot(pin_residual, dc)
     elastic = np.array([0.5 * np.dot(g, U), np.dot(g, dU), 0.5 * np.dot(dg, dU)])
-    line = LineData(slope, points, U.reshape(-1, 2), dU.reshape(-1, 2), elastic)
+    distance = linear[2]  # |X + U - c| at this state
+    line = LineData(slope, points, U.reshape(-1, 2), dU.reshape(-1, 2), elastic,
+                    distance - constants[1])
     return line, (g.copy(), U.copy())
 
 
