@@ -10,6 +10,7 @@ Both paths converge to the same solution. Method notes: docs/contact.md.
 from __future__ import annotations
 
 import ctypes
+from dataclasses import replace
 
 import numpy as np
 from dolfinx import fem
@@ -24,7 +25,7 @@ from fewear.contact.admissible import (
     cosine_law_nodal_forces,
     displacement_limit_m,
 )
-from fewear.contact.condensed_newton import new_state, nodal_forces
+from fewear.contact.condensed_newton import equilibrium_fields, new_state, nodal_forces
 from fewear.contact.newton import ContactNewton, ContactNotConverged, contact_direction
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
@@ -175,33 +176,53 @@ class CondensedBushingContact:
         return np.ascontiguousarray((N @ (N @ inverse).T).T)  # C order: the kernels' signature
 
     # -- the per-step problem ----------------------------------------------------------------
-    def solve(self, force_N, rotation_increment_rad: float = 0.0,
-              friction: bool = False) -> ContactResult:
-        """Solve for the joint force (N) as :meth:`BushingContactSolver.solve` does."""
+    def solve(self, force_N, rotation_increment_rad: float = 0.0, friction: bool = False,
+              node_order: np.ndarray | None = None,
+              node_angles_rad: np.ndarray | None = None) -> ContactResult:
+        """Solve for the joint force (N) as :meth:`BushingContactSolver.solve` does; the nodal
+        arrays of the result in ``node_order`` (indices of the bore nodes, default their order
+        here: by angle), its ``angle_rad`` a copy of ``node_angles_rad`` (default the nodes'
+        angles in that order)."""
         force = checked_force(force_N)
         rotation = checked_rotation(rotation_increment_rad)
         friction_value = (self.problem.contact.friction_coefficient * np.sign(rotation)
                           if friction else 0.0)
         self._friction_value = friction_value
         n = self.points.shape[0]
-        if not np.any(force):
+        order = np.arange(n) if node_order is None else node_order
+        if force[0] == 0.0 and force[1] == 0.0:
             self.newton.reset()
-            return nodal_result(self.problem, self.points, self.angles, np.zeros((n, 2)),
-                                self.pin_centre_m, force, np.zeros(2), np.zeros(2), rotation, 0)
+            result = nodal_result(self.problem, self.points, self.angles, np.zeros((n, 2)),
+                                  self.pin_centre_m, force, np.zeros(2), np.zeros(2), rotation,
+                                  0)
+            return replace(result, angle_rad=self._angles_in(order, node_angles_rad),
+                           x_m=result.x_m[order], y_m=result.y_m[order],
+                           pressure_Pa=result.pressure_Pa[order], gap_m=result.gap_m[order],
+                           slip_m=result.slip_m[order])
         L = self.problem.geometry.width_m
         direction = contact_direction(force, friction_value)
         try:
             iterations = self.newton.solve(force / L, direction)
         except ContactNotConverged:
             self._refuse(force, "the contact Newton found no equilibrium")
-        U = self._U.reshape(n, 2)
-        f, p, normal, _ = self._nodal_forces(U, self.pin_centre_m)
-        reason = beyond_small_displacements(self.problem, float(np.hypot(*U.T).max()))
+        fields, force_sum, normal_sum, largest = equilibrium_fields(
+            self.points, self._U.reshape(n, 2), self.pin_centre_m,
+            self.problem.geometry.pin_radius_m, self._k, friction_value, self.weights_m,
+            self.problem.indenter_radius_m * abs(rotation), order,
+            displacement_limit_m(self.problem))
+        reason = beyond_small_displacements(self.problem, largest)
         if reason is not None:
             self._refuse(force, reason)
-        return nodal_result(self.problem, self.points, self.angles, U, self.pin_centre_m, force,
-                            L * f.sum(axis=0), L * (self.weights_m[:, None] * p[:, None]
-                                                    * normal).sum(axis=0), rotation, iterations)
+        x, y, pressure, gap, slip = fields
+        return ContactResult(
+            angle_rad=self._angles_in(order, node_angles_rad), x_m=x, y_m=y,
+            pressure_Pa=pressure, gap_m=gap, slip_m=slip, pin_centre_m=self.pin_centre_m.copy(),
+            applied_force_N=force.copy(), resultant_force_N=L * force_sum,
+            newton_iterations=int(iterations), normal_force_N=L * normal_sum)
+
+    def _angles_in(self, order: np.ndarray, angles_rad: np.ndarray | None) -> np.ndarray:
+        """The result's ``angle_rad``: a copy of ``angles_rad``, else the nodes' in ``order``."""
+        return self.angles[order] if angles_rad is None else angles_rad.copy()
 
     def _refuse(self, force: np.ndarray, reason: str) -> None:
         """Raise :class:`ContactLoadError` for ``force`` (N); the next solve starts afresh."""

@@ -30,7 +30,7 @@ from fewear.contact.newton_kernels import (
     gaps,
     pairwise_sum,
 )
-from fewear.contact.sensitivity import pressure_sensitivity
+from fewear.contact.sensitivity import pressure_sensitivity, summed_sensitivity
 from fewear.jit import compiled
 
 # The state is turned with the load only where the bore nodes that carry the turned forces lie
@@ -58,6 +58,51 @@ def nodal_forces(points: np.ndarray, U: np.ndarray, centre: np.ndarray, pin_radi
         f[q, 0] = wp * (normal[q, 0] + friction_value * -normal[q, 1])
         f[q, 1] = wp * (normal[q, 1] + friction_value * normal[q, 0])
     return f, p, normal, r
+
+
+@compiled
+def equilibrium_fields(points: np.ndarray, U: np.ndarray, centre: np.ndarray, pin_radius: float,
+                       penalty: float, friction_value: float, weights_m: np.ndarray,
+                       slip_m: float, order: np.ndarray, limit_m: float):
+    """What a solved load step reports, in one pass over the bore nodes: the nodal fields
+    (5, n) x, y (m), pressure p = k <-g>_+ (Pa), gap g = |X + U - c| - R_p (m) and slip
+    (``slip_m`` where p > 0, else 0), node i of them the node ``order[i]`` of the state; the
+    sums of the nodal forces f and of their pressure part w p n (:func:`nodal_forces`, N/m);
+    the largest |U_q| (m) where it may reach ``limit_m``, else 0 (the components' largest
+    bounds it by a factor sqrt 2: the C library's hypot, the dearest part, is then spared).
+    Each value is the one of the NumPy formulas of :func:`fewear.contact.solver.nodal_result`
+    to the bit: the sums over the nodes in turn (as NumPy's sum over an array's first axis),
+    p = 0 (not -0) where g = 0 (as ``np.maximum``)."""
+    f, p, normal, r = nodal_forces(points, U, centre, pin_radius, penalty, friction_value,
+                                   weights_m)
+    size = points.shape[0]
+    force_sum, normal_sum = np.zeros(2), np.zeros(2)
+    component = 0.0
+    for q in range(size):
+        wp = weights_m[q] * p[q]
+        for i in range(2):
+            force_sum[i] += f[q, i]
+            normal_sum[i] += wp * normal[q, i]
+            component = max(component, abs(U[q, i]))
+            if math.isnan(U[q, i]):
+                component = math.inf  # then the largest |U_q| is NaN, as NumPy's
+    largest = 0.0
+    if not 1.5 * component < limit_m:
+        largest = -math.inf
+        for q in range(size):
+            largest = max(largest, math.hypot(U[q, 0], U[q, 1]))
+    fields = np.empty((5, size))
+    for i in range(size):
+        q = order[i]
+        gap = r[q] - pin_radius
+        penetration = -gap
+        if not (penetration > 0.0 or math.isnan(penetration)):
+            penetration = 0.0
+        fields[0, i], fields[1, i] = points[q, 0], points[q, 1]
+        fields[2, i] = penalty * penetration
+        fields[3, i] = gap
+        fields[4, i] = slip_m if fields[2, i] > 0.0 else 0.0
+    return fields, force_sum, normal_sum, largest
 
 
 @compiled
@@ -105,7 +150,8 @@ def linearised_forces(points: np.ndarray, U: np.ndarray, centre: np.ndarray, pin
     active = np.flatnonzero(p > 0.0)
     residual = np.zeros(2)
     for q in range(f.shape[0]):
-        residual += f[q]
+        residual[0] += f[q, 0]
+        residual[1] += f[q, 1]
     return f, normal, r, active, residual - load, pairwise_sum(weights_m[active])
 
 
@@ -229,7 +275,9 @@ def begin_line_search(state, linear, update, dc, pin_residual):
     dg, dU = update
     slope = np.dot(g - linear[0].reshape(-1), dU) + np.dot(pin_residual, dc)
     elastic = np.array([0.5 * np.dot(g, U), np.dot(g, dU), 0.5 * np.dot(dg, dU)])
-    line = LineData(slope, points, U.reshape(-1, 2), dU.reshape(-1, 2), elastic)
+    distance = linear[2]  # |X + U - c| at this state
+    line = LineData(slope, points, U.reshape(-1, 2), dU.reshape(-1, 2), elastic,
+                    distance - constants[1])
     return line, (g.copy(), U.copy())
 
 
@@ -238,8 +286,9 @@ def try_step(state, base, update, step, pin_centre):
     g, U, centre = state[1], state[2], state[3]
     g0, U0 = base
     dg, dU = update
-    g[:] = g0 + step * dg
-    U[:] = U0 + step * dU
+    for i in range(g.size):
+        g[i] = g0[i] + step * dg[i]
+        U[i] = U0[i] + step * dU[i]
     centre[:] = pin_centre
 
 
@@ -348,7 +397,8 @@ def compile_contact() -> None:
     each called once on a small bore (16 nodes on a circle, the pin pressed into two) with the
     argument types of a solve, so that worker processes started afterwards load them instead
     of each compiling them (tests/contact/test_newton.py checks that a solve adds no
-    signature); and :func:`fewear.contact.sensitivity.pressure_sensitivity`."""
+    signature); and :func:`fewear.contact.sensitivity.pressure_sensitivity` and
+    :func:`~fewear.contact.sensitivity.summed_sensitivity`."""
     points, weights, pin_radius, penalty, load, centre, settings = compile_shared_kernels()
     size = points.shape[0]
     U, g = np.zeros((size, 2)), np.zeros(2 * size)
@@ -357,8 +407,13 @@ def compile_contact() -> None:
     newton_step(np.eye(2 * size), g, U, f, normal, distance, active, weights, penalty, 0.1,
                 FREE_PIN, load)
     nodal_forces(points, U, centre, pin_radius, penalty, 0.0, weights)
+    equilibrium_fields(points, U, centre, pin_radius, penalty, 0.0, weights, 0.0,
+                       np.arange(size), 1.0)
     turned_forces(g, points, U, centre, pin_radius, 2, 0.1, 0.1)
     state = new_state(np.eye(2 * size), points, weights, penalty, pin_radius)
     direction = load / math.sqrt(load @ load)
     newton_solve(state, new_memory(), settings, load, direction, 2)
     pressure_sensitivity(np.eye(2 * size), weights, points, centre, np.arange(3), penalty)
+    steps = np.ones((2, size))
+    summed_sensitivity(np.eye(2 * size), weights, points, penalty, np.arange(size), steps, steps,
+                       steps, np.zeros((2, 2)))

@@ -217,7 +217,7 @@ def coupled_newton(state, settings: NewtonSettings, load: np.ndarray, direction:
         descent = operations.frictionless(state) and -line.slope > ENERGY_ROUNDING * (
             load_size * norm(centre))
         step, trial_centre, trial_gaps = line_search(
-            line.points, line.displacement, line.update, centre, dc,
+            line.points, line.displacement, line.update, line.gaps, centre, dc,
             operations.node_weights(state), load, load_size, settings.penalty,
             settings.pin_radius_m, settings.node_spacing_rad, settings.element_size_m,
             settings.bore_radius_m, cap, line.slope, descent, line.elastic)

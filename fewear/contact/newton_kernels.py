@@ -113,6 +113,8 @@ def _halving_sum(values: np.ndarray, begin: int, count: int) -> float:
     (:func:`_block_sum`), larger ones split at the multiple of 8 nearest below half and the
     halves' sums added; the halving walked with a stack (numba's cache does not load recursive
     functions reliably)."""
+    if count <= 128:
+        return _block_sum(values, begin, count)
     starts, sizes = np.full(64, begin), np.full(64, count)
     split = np.zeros(64, np.bool_)
     sums = np.empty(64)
@@ -433,8 +435,8 @@ def compile_shared_kernels():
     entering_limit(base_gaps, gaps(points, trial, pin_radius), 1.0, weights, 10.0, penalty)
     following_centre(points, trial, contact, at, normals, base_gaps[contact], centre,
                      pin_radius)
-    line_search(points, np.zeros((16, 2)), np.zeros((16, 2)), centre, dc, weights, load, 10.0,
-                penalty, pin_radius, 0.2, 0.4, 1.0, 1.0, -1.0, True, np.zeros(3))
+    line_search(points, np.zeros((16, 2)), np.zeros((16, 2)), base_gaps, centre, dc, weights,
+                load, 10.0, penalty, pin_radius, 0.2, 0.4, 1.0, 1.0, -1.0, True, np.zeros(3))
     load_penetration(10.0, penalty, weights[pair[0]] + weights[pair[1]])
     corner_centre(points, weights, direction, 10.0, penalty, pin_radius)
     ray_centre(points, centre, weights, direction, 10.0, penalty, pin_radius)
@@ -545,14 +547,16 @@ class LineData(NamedTuple):
     """What :func:`line_search` needs of a discretisation at the start of a line search along
     (displacement update, dc): the slope dPi/dstep at step 0 (J/m); the bore nodes' reference
     positions X, displacements U and displacement updates dU (n, 2), m (the trial step s puts
-    the nodes at X + (U + s dU)); and the elastic energy along the line as the coefficients
-    (e0, e1, e2) of e0 + e1 s + e2 s^2 (J/m)."""
+    the nodes at X + (U + s dU)); the elastic energy along the line as the coefficients
+    (e0, e1, e2) of e0 + e1 s + e2 s^2 (J/m); and the nodes' gaps at step 0 (n,), m
+    (:func:`gaps` of X + U: the condensed path has them from its linearisation)."""
 
     slope: float
     points: np.ndarray
     displacement: np.ndarray
     update: np.ndarray
     elastic: np.ndarray
+    gaps: np.ndarray
 
 
 @compiled
@@ -563,7 +567,10 @@ def _trial(step, points, displacement, update, centre0, dc, contact, base_points
     base move off the pin by more than their linearised gaps predict: gaps curve with 1/R_p,
     which at light loads is more than the penetrations)."""
     centre = pin_update(centre0, step * dc, node_spacing_rad)
-    deformed = points + (displacement + step * update)
+    deformed = np.empty_like(points)
+    for q in range(points.shape[0]):
+        for i in range(2):
+            deformed[q, i] = points[q, i] + (displacement[q, i] + step * update[q, i])
     if contact.size:
         centre = following_centre(deformed, centre, contact, base_points, normals, base_gaps,
                                   centre0, pin_radius)
@@ -580,11 +587,11 @@ def _line_energy(step, elastic, trial_gaps, centre, weights_m, load, penalty):
 
 
 @compiled
-def line_search(points, displacement, update, centre0, dc, weights_m, load, load_size, penalty,
-                pin_radius, node_spacing_rad, element_size_m, bore_radius_m, cap, slope, descent,
-                elastic):
-    """The step length along a Newton direction, on the bore nodes (:class:`LineData`): the
-    step, the pin centre there and the nodes' gaps there.
+def line_search(points, displacement, update, gaps0, centre0, dc, weights_m, load, load_size,
+                penalty, pin_radius, node_spacing_rad, element_size_m, bore_radius_m, cap, slope,
+                descent, elastic):
+    """The step length along a Newton direction, on the bore nodes (:class:`LineData`; ``gaps0``
+    its gaps at step 0): the step, the pin centre there and the nodes' gaps there.
 
     Starts from the smaller of ``cap``, :func:`slide_limit` and the step at which the first
     node entering contact could carry the load alone (:func:`entering_limit`). Then halves the
@@ -593,7 +600,6 @@ def line_search(points, displacement, update, centre0, dc, weights_m, load, load
     potential (:func:`_line_energy`); else the first contact-keeping step is taken. Should every
     trial lose contact, a step below the smallest tried."""
     base = points + displacement
-    gaps0 = gaps(base, centre0, pin_radius)
     contact, base_points, normals = contact_normals(base, centre0, gaps0)
     base_gaps = gaps0[contact]
     energy0 = _line_energy(0.0, elastic, gaps0, centre0, weights_m, load, penalty) if descent \

@@ -71,3 +71,29 @@ def pressure_sensitivity(compliance: np.ndarray, weights_m: np.ndarray, points_m
     else:
         force_change = np.linalg.lstsq(system, rhs, rcond=(m + 2) * EPSILON)[0][:m]
     return force_change / weights_m[active].reshape(-1, 1)
+
+
+@compiled
+def summed_sensitivity(compliance: np.ndarray, weights_m: np.ndarray, points_m: np.ndarray,
+                       penalty_Pa_per_m: float, node_order: np.ndarray, pressure_Pa: np.ndarray,
+                       slip_m: np.ndarray, k_m2_N: np.ndarray,
+                       pin_centre_m: np.ndarray) -> np.ndarray:
+    """sum_s k_s s_s dp_s/dh (m/m per cycle's steps, (n, n)) over the load steps s of
+    ``pressure_Pa``, ``slip_m``, ``k_m2_N`` (steps, n) and ``pin_centre_m`` (steps, 2) that
+    slide in contact: row a, column b the change of node a's Archard depth with node b's wear,
+    J (:func:`pressure_sensitivity`) on each step's active nodes. The step arrays' nodes are the
+    bore nodes ``node_order`` of ``compliance``, ``weights_m`` and ``points_m``. One call for
+    all the steps of a block (the per-step NumPy indexing cost more than J)."""
+    n = pressure_Pa.shape[1]
+    total = np.zeros((n, n))
+    for s in range(pressure_Pa.shape[0]):
+        if not (np.any(slip_m[s] > 0.0) and np.any(pressure_Pa[s] > 0.0)):
+            continue
+        active = np.flatnonzero(pressure_Pa[s] > 0.0)
+        J = pressure_sensitivity(compliance, weights_m, points_m, pin_centre_m[s],
+                                 node_order[active], penalty_Pa_per_m)
+        for a in range(active.size):
+            scale = k_m2_N[s, active[a]] * slip_m[s, active[a]]
+            for b in range(active.size):
+                total[active[a], active[b]] += scale * J[a, b]
+    return total

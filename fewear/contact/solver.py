@@ -29,7 +29,7 @@ from fewear.contact.newton import (
     contact_direction,
     specialised,
 )
-from fewear.contact.newton_kernels import LineData
+from fewear.contact.newton_kernels import LineData, gaps
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.errors import FewearInputError
@@ -44,7 +44,7 @@ CONTACT_QUADRATURE = {"quadrature_degree": 3, "quadrature_rule": "GLL"}
 def checked_force(force_N) -> np.ndarray:
     """The joint force as a finite (2,) array (N), else FewearInputError."""
     force = np.asarray(force_N, dtype=float).reshape(-1)
-    if force.shape != (2,) or not np.all(np.isfinite(force)):
+    if force.shape != (2,) or not (math.isfinite(force[0]) and math.isfinite(force[1])):
         raise FewearInputError(f"force = {force_N!r} N: expected two finite numbers FX FY")
     return force
 
@@ -350,9 +350,12 @@ class BushingContactSolver:
         if du is not self._du.vector:  # the nodal update is evaluated from the function _du
             du.copy(self._du.vector)
         self._du.x.scatter_forward()
-        return LineData(slope, self.contact_points(),
-                        np.ascontiguousarray(self.nodal_displacement()),
-                        np.ascontiguousarray(self._at_bore_nodes(self._du)), elastic), None
+        points, displacement = self.contact_points(), np.ascontiguousarray(
+            self.nodal_displacement())
+        return LineData(slope, points, displacement,
+                        np.ascontiguousarray(self._at_bore_nodes(self._du)), elastic,
+                        gaps(points + displacement, self.pin_centre_m,
+                             self.problem.indenter_radius_m)), None
 
     def try_step(self, base, du, step: float, pin_centre: np.ndarray) -> None:
         """Move u along the line search's update to the step (the steps taken so far kept)."""

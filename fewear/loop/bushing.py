@@ -10,15 +10,13 @@ in the case's :class:`fewear.loop.progress.LoopCounts`.
 
 from __future__ import annotations
 
-from dataclasses import replace
-
 import numpy as np
 
 from fewear.contact.admissible import ContactLoadError
 from fewear.contact.condensed import CondensedBushingContact
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
-from fewear.contact.sensitivity import pressure_sensitivity
+from fewear.contact.sensitivity import summed_sensitivity
 from fewear.contact.solver import BushingContactSolver
 from fewear.errors import FewearInputError
 from fewear.loop.progress import LoopCounts
@@ -117,31 +115,31 @@ class WornBushing:
         traction still finds no equilibrium, it is solved without it (the traction tilts the
         pressure field by atan(mu), 5.7 deg for mu = 0.1), counted in ``frictionless_steps``
         and reported; a step that fails without friction too is an error."""
+        order, angles = self._order, self.angles
         try:
-            result = self.contact.solve(force_N, rotation_increment_rad, friction)
+            return self.contact.solve(force_N, rotation_increment_rad, friction, order, angles)
         except ContactLoadError:
             self.counts.contact_retries += 1
             try:
-                result = self.contact.solve(force_N, rotation_increment_rad, friction)
+                return self.contact.solve(force_N, rotation_increment_rad, friction, order,
+                                          angles)
             except ContactLoadError:
                 if not friction:
                     raise
                 self.counts.frictionless_steps += 1
-                result = self.contact.solve(force_N, rotation_increment_rad, False)
-        order = self._order
-        return replace(result, angle_rad=self.angles.copy(), x_m=result.x_m[order],
-                       y_m=result.y_m[order], pressure_Pa=result.pressure_Pa[order],
-                       gap_m=result.gap_m[order], slip_m=result.slip_m[order])
+                return self.contact.solve(force_N, rotation_increment_rad, False, order,
+                                          angles)
 
-    def pressure_sensitivity(self, result: ContactResult) -> tuple[np.ndarray, np.ndarray]:
-        """(active nodes, J = dp/dh on them in Pa/m) of a result of :meth:`solve`, node indices in
-        the order of ``angles`` (:func:`fewear.contact.sensitivity.pressure_sensitivity`)."""
-        active = np.flatnonzero(result.pressure_Pa > 0.0)
+    def depth_sensitivity(self, pressure_Pa: np.ndarray, slip_m: np.ndarray, k_m2_N: np.ndarray,
+                          pin_centre_m: np.ndarray) -> np.ndarray:
+        """sum_s k_s s_s dp_s/dh (n, n) over the load steps of results of :meth:`solve`
+        (their pressures, slips, wear coefficients (steps, n) and pin centres (steps, 2)), the
+        nodes in the order of ``angles``
+        (:func:`fewear.contact.sensitivity.summed_sensitivity`)."""
         contact = self.contact
-        J = pressure_sensitivity(contact.compliance, contact.weights_m, contact.points,
-                                 result.pin_centre_m, self._order[active],
-                                 self.problem.penalty_stiffness_Pa_per_m())
-        return active, J
+        return summed_sensitivity(contact.compliance, contact.weights_m, contact.points,
+                                  self.problem.penalty_stiffness_Pa_per_m(), self._order,
+                                  pressure_Pa, slip_m, k_m2_N, pin_centre_m)
 
     def move_to(self, state: WearState) -> None:
         """Move the bore to the worn bore r(theta) = R_b + h(theta) of ``state`` (ALE,

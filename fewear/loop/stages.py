@@ -184,7 +184,8 @@ def cycle_wear(contact_model, steps: LoadSteps, wear_coefficient, friction: bool
     """Stages 3 and 4: contact at every load step, then Archard's law summed over the steps.
 
     ``implicit``: also sum the steps' sensitivities k s dp/dh (``contact_model`` must offer
-    ``pressure_sensitivity(result)``, as :class:`fewear.loop.bushing.WornBushing` does)
+    ``depth_sensitivity(pressure, slip, k, pin_centres)``, as
+    :class:`fewear.loop.bushing.WornBushing` does)
     for the linearised block step of :func:`fewear.wear.archard.block_wear`. ``footprints``:
     also the contact at each impact's force (``impact_pressure_Pa``; for impact wear).
     """
@@ -201,11 +202,8 @@ def cycle_wear(contact_model, steps: LoadSteps, wear_coefficient, friction: bool
     k[sliding] = wear_coefficient(pressure[sliding], slip[sliding] / steps.duration_s)
     sensitivity = None
     if implicit:
-        sensitivity = np.zeros((pressure.shape[1], pressure.shape[1]))
-        for result, k_step, slip_step in zip(results, k, slip):
-            if np.any(slip_step > 0.0) and np.any(result.pressure_Pa > 0.0):
-                active, J = contact_model.pressure_sensitivity(result)
-                sensitivity[np.ix_(active, active)] += (k_step * slip_step)[active, None] * J
+        sensitivity = contact_model.depth_sensitivity(
+            pressure, slip, k, np.array([r.pin_centre_m for r in results]))
     struck = None
     if footprints:
         struck = np.array([contact_model.solve(force, 0.0, friction=False).pressure_Pa
