@@ -91,7 +91,7 @@ def test_flipped_bytes_in_the_h5_end_in_a_message_or_a_figure(tmp_path):
         except FewearInputError as exc:
             assert str(path) in str(exc)
     assert sound  # flips in the fields' low bits read as (slightly other) sound bushings
-    for changed in sound[:: max(1, len(sound) // 4)]:
+    for changed in (sound[0], sound[-1]):
         h5.write_bytes(changed)
         done = subprocess.run([sys.executable, "-m", "fewear.cli", "plot", str(tmp_path)],
                               capture_output=True, text=True, timeout=120)

@@ -186,6 +186,7 @@ def test_members_in_worker_processes_give_the_serial_files(tmp_path, ensemble):
 
 
 @pytest.mark.mpi
+@pytest.mark.slow  # the ranks' split of work items is tested on cases in tests/loop
 def test_members_on_two_ranks_give_the_serial_files(tmp_path, ensemble):
     process = mpirun_fewear("run", "--config", str(write_config(tmp_path)), "--out",
                             str(tmp_path / "mpi"), "--members", str(MEMBERS))

@@ -47,7 +47,8 @@ def paired_improvement_p(before: np.ndarray, after: np.ndarray) -> float:
     held-out errors, a comparison of predictive accuracy in the manner of Diebold & Mariano,
     J. Bus. Econ. Stat. 13 (1995) 253-263, on the log scale where a ratio of two error variances
     is near-symmetric. 1 with fewer than two units."""
-    d = np.log(before / after)
+    with np.errstate(divide="ignore", invalid="ignore"):  # units without error are left out
+        d = np.log(before / after)
     d = d[np.isfinite(d)]
     if d.size < 2:
         return 1.0
