@@ -11,6 +11,14 @@ def plot_wear_profiles(profiles: dict, path, cycles: float) -> None:
 
     ``profiles``: label -> (angle_rad, depth_m) of nodes sorted by angle.
     """
+    _profile_figure(profiles, {}, path, f"wear depth after {cycles:.0f} crank cycles",
+                    "bore outline, wear exaggerated")
+
+
+def _profile_figure(profiles: dict, bands: dict, path, title: str, outline_title: str) -> None:
+    """The unrolled depth (um) of ``profiles`` (label -> (angle_rad, depth_m)), each with the
+    bands of ``bands`` (label -> {"sd", "min", "max": depth_m}: +- sd and, lighter, the range)
+    if it has one, and beside it the bore outline, the wear exaggerated."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -21,15 +29,21 @@ def plot_wear_profiles(profiles: dict, path, cycles: float) -> None:
     polar = figure.add_subplot(1, 2, 2, projection="polar")
     peak = max(float(np.max(depth)) for _, depth in profiles.values()) or 1.0
     for label, (angle, depth) in profiles.items():
-        unrolled.plot(np.degrees(angle), 1e6 * depth, label=label)
+        degrees, depth_um = np.degrees(angle), 1e6 * depth
+        line, = unrolled.plot(degrees, depth_um, label=label)
+        if label in bands:
+            sd = 1e6 * bands[label]["sd"]
+            unrolled.fill_between(degrees, depth_um - sd, depth_um + sd, color=line.get_color(),
+                                  alpha=0.25)
+            unrolled.fill_between(degrees, 1e6 * bands[label]["min"], 1e6 * bands[label]["max"],
+                                  color=line.get_color(), alpha=0.1)
         closed = np.append(angle, angle[0] + 2 * np.pi)
         polar.plot(closed, 1.0 + 0.3 * np.append(depth, depth[0]) / peak, label=label)
     polar.plot(np.linspace(0, 2 * np.pi, 361), np.ones(361), "k:", lw=0.8, label="unworn bore")
     polar.set_yticklabels([])
-    polar.set_title("bore outline, wear exaggerated", fontsize=10)
+    polar.set_title(outline_title, fontsize=10)
     unrolled.set(xlabel="angle on the bore from the slide axis x (deg)",
-                 ylabel="wear depth (um)", xlim=(0, 360),
-                 title=f"wear depth after {cycles:.0f} crank cycles")
+                 ylabel="wear depth (um)", xlim=(0, 360), title=title)
     unrolled.set_xticks(range(0, 361, 45))
     unrolled.grid(alpha=0.3)
     unrolled.legend()
@@ -104,34 +118,8 @@ def plot_wear_profile_bands(profiles: dict, path, cycles: float) -> None:
     ``profiles``: label -> (angle_rad, {"mean", "sd", "min", "max": depth_m}) of nodes sorted
     by angle.
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    figure = plt.figure(figsize=(11, 4.5))
-    unrolled = figure.add_subplot(1, 2, 1)
-    polar = figure.add_subplot(1, 2, 2, projection="polar")
-    peak = max(float(np.max(depth["mean"])) for _, depth in profiles.values()) or 1.0
-    for label, (angle, depth) in profiles.items():
-        degrees, mean, sd = np.degrees(angle), 1e6 * depth["mean"], 1e6 * depth["sd"]
-        line, = unrolled.plot(degrees, mean, label=label)
-        unrolled.fill_between(degrees, mean - sd, mean + sd, color=line.get_color(), alpha=0.25)
-        unrolled.fill_between(degrees, 1e6 * depth["min"], 1e6 * depth["max"],
-                              color=line.get_color(), alpha=0.1)
-        closed = np.append(angle, angle[0] + 2 * np.pi)
-        polar.plot(closed, 1.0 + 0.3 * np.append(depth["mean"], depth["mean"][0]) / peak,
-                   label=label)
-    polar.plot(np.linspace(0, 2 * np.pi, 361), np.ones(361), "k:", lw=0.8, label="unworn bore")
-    polar.set_yticklabels([])
-    polar.set_title("bore outline of the mean, wear exaggerated", fontsize=10)
-    unrolled.set(xlabel="angle on the bore from the slide axis x (deg)",
-                 ylabel="wear depth (um)", xlim=(0, 360),
-                 title=f"wear depth after {cycles:.0f} crank cycles: mean of the members,\n"
-                       "+- one standard deviation, lighter: their range")
-    unrolled.set_xticks(range(0, 361, 45))
-    unrolled.grid(alpha=0.3)
-    unrolled.legend()
-    figure.tight_layout()
-    figure.savefig(path, dpi=120)
-    plt.close(figure)
+    _profile_figure({label: (angle, depth["mean"]) for label, (angle, depth) in profiles.items()},
+                    {label: depth for label, (_, depth) in profiles.items()}, path,
+                    f"wear depth after {cycles:.0f} crank cycles: mean of the members,\n"
+                    "+- one standard deviation, lighter: their range",
+                    "bore outline of the mean, wear exaggerated")
