@@ -171,9 +171,10 @@ def test_two_ranks_split_the_joints_and_give_the_serial_result(tmp_path, two_joi
 
 def test_adaptive_steps_cover_the_fewest_cycles_any_joint_chose(tmp_path, monkeypatch,
                                                                 histories):
-    """Adaptive A_j (each step's largest depth increment bounded): joint b, loaded 0.7 times as
-    hard, would take longer steps alone, but the joints step together, over the cycles joint a
-    (worn faster) chooses; so a wears as it would alone, and b at a's cycles."""
+    """Adaptive A_j (each step's largest depth increment bounded): the joints step together,
+    over the fewest cycles either chooses. Joint b, loaded 0.7 times as hard, takes longer steps
+    alone, so a sets the first steps and a wears as it would alone; should b's wear jump at a
+    dwell point later (no smoothing here), b sets that step: a shorter one than a alone took."""
     config = write_config(tmp_path, implicit=False, smoothing=0.0)
     config.write_text(config.read_text().replace('extrapolation = "fixed"',
                                                  'extrapolation = "adaptive"'))
@@ -188,11 +189,18 @@ def test_adaptive_steps_cover_the_fewest_cycles_any_joint_chose(tmp_path, monkey
                               encoding=None)
         return list(table["cycles"][table["joint"] == name])
 
-    together = cycles(tmp_path / "both", "a")
-    assert cycles(tmp_path / "both", "b") == together == cycles(tmp_path / "a", "a")
-    assert len(cycles(tmp_path / "b", "b")) < len(together)  # alone, b steps longer
-    np.testing.assert_array_equal(depth_by_node(tmp_path / "both", "rigid", "a")[1],
-                                  depth_by_node(tmp_path / "a", "rigid", "a")[1])
+    together, a_alone, b_alone = (cycles(tmp_path / "both", "a"), cycles(tmp_path / "a", "a"),
+                                  cycles(tmp_path / "b", "b"))
+    assert cycles(tmp_path / "both", "b") == together
+    assert together[1] == a_alone[1] < b_alone[1]  # a sets the first step
+    assert len(b_alone) < len(together)  # alone, b steps longer
+    same = next((i for i, (x, y) in enumerate(zip(together, a_alone)) if x != y), None)
+    if same is not None:  # b set block ``same``: shorter than a alone's
+        assert together[same] - together[same - 1] < a_alone[same] - a_alone[same - 1]
+    nodes = 96 * ((same or len(together)) - 1)  # the depth records of the blocks before it
+    np.testing.assert_array_equal(depth_by_node(tmp_path / "both", "rigid", "a")[1][:nodes],
+                                  depth_by_node(tmp_path / "a", "rigid", "a")[1][:nodes])
+    assert nodes >= 96 * 3  # the comparison covers a few blocks at least
 
 
 @pytest.mark.mpi
