@@ -179,6 +179,7 @@ def test_an_interrupted_ensemble_resumes_every_member(tmp_path, monkeypatch, cap
     assert texts(out) == texts(ensemble)
 
 
+@pytest.mark.slow  # the rods side by side in tests/loop keep the worker processes by default
 def test_members_in_worker_processes_give_the_serial_files(tmp_path, ensemble):
     assert run(write_config(tmp_path), tmp_path / "out", "--members", str(MEMBERS),
                "--jobs", "2") == 0

@@ -227,6 +227,7 @@ if MPI.COMM_WORLD.rank == 0:
 """
 
 
+@pytest.mark.slow  # the wear loop's two-rank test runs the condensed path on two ranks by default
 @pytest.mark.mpi
 def test_two_ranks_give_the_serial_result(tmp_path):
     """Both paths under mpirun -n 2 (every rank holding the same gathered result) equal the
@@ -312,6 +313,7 @@ def test_only_small_displacements_are_admissible():
     assert beyond_small_displacements(problem, float("nan")) is not None
 
 
+@pytest.mark.slow  # the worn bore with friction below keeps a worn crank cycle by default
 def test_on_a_worn_bore_a_crank_cycle_as_the_full_solve():
     """Pockets 20 um deep worn left and right (the paper's wear), the interior moved along:
     at light loads the pin bridges a pocket, resting on its rims (nodes far apart); every

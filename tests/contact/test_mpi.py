@@ -75,9 +75,9 @@ def read_table(path):
     return {key: np.array([float(row[key]) for row in rows]) for key in rows[0]}
 
 
+@pytest.mark.slow  # the demo on two ranks; test_two_ranks_equal_serial keeps the contact's MPI path
 @pytest.mark.mpi
-@pytest.mark.parametrize("coarse", ["1", pytest.param("0", marks=pytest.mark.slow)],
-                         ids=["coarse", "full"])
+@pytest.mark.parametrize("coarse", ["1", "0"], ids=["coarse", "full"])
 def test_hertz_demo_two_ranks_equal_serial(tmp_path, coarse):
     mpirun = mpirun_or_skip()
     serial = run([sys.executable, str(DEMO)], FEWEAR_DEMO_OUT=str(tmp_path / "serial"),

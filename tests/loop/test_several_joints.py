@@ -146,6 +146,7 @@ def test_fewear_plot_draws_a_row_per_joint_or_the_one_asked_for(two_joints, tmp_
     assert (out / "worn_bushing.png").stat().st_size > 10_000
 
 
+@pytest.mark.slow  # the worn-through joint below splits the joints over two ranks by default
 @pytest.mark.mpi
 def test_two_ranks_split_the_joints_and_give_the_serial_result(tmp_path, two_joints):
     """`mpirun -n 2 fewear run` with one case and two joints: a joint per rank, each wearing

@@ -242,6 +242,7 @@ def test_rods_side_by_side_in_processes_give_the_serial_result(tmp_path,
     assert {line.split(",")[0] for line in profile.splitlines()[1:]} == {"rigid", "flexible"}
 
 
+@pytest.mark.slow  # test_two_ranks_give_the_serial_wear keeps the loop's MPI path by default
 @pytest.mark.mpi
 def test_ranks_split_among_the_rods_give_the_serial_result(tmp_path,
                                                           two_rods_one_after_the_other):

@@ -387,6 +387,7 @@ def _young_bore_world(angle: np.ndarray):
     return run_at
 
 
+@pytest.mark.slow  # the grid-fit refinements above keep the refinement by default
 def test_running_in_refined_on_runs_at_its_fitted_parameters_fits_better_when_run():
     """Data of a young-bore world whose running-in wears a narrow pocket: the map of the believed
     run fits it with almost no running-in (r about 1.1); refined on runs at its own parameters, the

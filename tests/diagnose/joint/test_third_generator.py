@@ -495,7 +495,9 @@ def test_truth_causes_are_checked():
             gen.truth_causes(bad)
 
 
-@pytest.mark.parametrize("cause", gen.CAUSES)
+@pytest.mark.parametrize("cause", [
+    pytest.param(cause, marks=pytest.mark.slow) if cause == "flexible_link" else cause
+    for cause in gen.CAUSES])  # the flexible rod's truth runs its own dynamics: slow
 def test_single_cause_truth_and_files_are_unchanged_by_the_cause_sets(cause, synthetic,
                                                                      tmp_path):
     """Against the single-cause code as it was (on the synthetic runs): the same truth, the
