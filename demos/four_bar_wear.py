@@ -34,6 +34,7 @@ from pathlib import Path
 import numpy as np
 
 import fewear
+from fewear.mbd.history import loaded_sectors
 
 OUT = Path(os.environ.get("FEWEAR_DEMO_OUT", "out/demos/four_bar_wear"))
 TOTAL_CYCLES = int(os.environ.get("FEWEAR_DEMO_TOTAL_CYCLES", "400000"))
@@ -74,23 +75,16 @@ def config(**sections) -> dict:
 
 # +
 def mechanics(history) -> dict:
-    dt = np.diff(history.time_s, prepend=history.time_s[0])
-    load_slip = history.normal_force_N * PIN_RADIUS_M * np.abs(history.rel_omega_rad_s) * dt
-    direction_deg = np.degrees(np.arctan2(history.eccentricity_m[:, 1],
-                                          history.eccentricity_m[:, 0])) % 360.0
-    by_sector, edges = np.histogram(direction_deg, bins=round(360.0 / SECTOR_DEG),
-                                    range=(0.0, 360.0), weights=load_slip)
+    by_sector, edges = history.load_slip_by_direction(PIN_RADIUS_M, SECTOR_DEG)
     fullest = int(np.argmax(by_sector))
-    loaded = np.argsort(by_sector)[::-1]
-    held = np.cumsum(by_sector[loaded]) / by_sector.sum()
-    loaded = loaded[:int(np.searchsorted(held, LOADED_SHARE)) + 1]
+    dt = np.diff(history.time_s, prepend=history.time_s[0])
     return {"peak_force_N": float(np.linalg.norm(history.reaction_force_N, axis=1).max()),
             "contact_share": float(dt[history.normal_force_N > 0.0].sum()
                                    / (RECORDED_CYCLES * CRANK_PERIOD_S)),
             "impacts_per_cycle": history.impacts / RECORDED_CYCLES,
-            "load_slip_J_per_cycle": float(load_slip.sum() / RECORDED_CYCLES),
+            "load_slip_J_per_cycle": float(by_sector.sum() / RECORDED_CYCLES),
             "most_load_slip_angle_deg": float(0.5 * (edges[fullest] + edges[fullest + 1])),
-            "loaded_sectors": sorted(int(sector) for sector in loaded)}
+            "loaded_sectors": loaded_sectors(by_sector, LOADED_SHARE)}
 
 
 dynamics = {case: mechanics(fewear.dynamics(config(), rod=case, cycles=RECORDED_CYCLES)

@@ -34,6 +34,7 @@ from pathlib import Path
 import numpy as np
 
 import fewear
+from fewear.mbd.history import loaded_sectors
 
 OUT = Path(os.environ.get("FEWEAR_DEMO_OUT", "out/demos/slider_crank_two_joints_wear"))
 TOTAL_CYCLES = int(os.environ.get("FEWEAR_DEMO_TOTAL_CYCLES", "20000"))
@@ -69,20 +70,12 @@ def config() -> dict:
 def mechanics(history) -> dict:
     """The peak joint force, and the centre of the sector of the bore (bushing frame) where the
     pin slides most under load."""
-    dt = np.diff(history.time_s, prepend=history.time_s[0])
-    load_slip = history.normal_force_N * PIN_RADIUS_M * np.abs(history.rel_omega_rad_s) * dt
-    direction_deg = np.degrees(np.arctan2(history.eccentricity_m[:, 1],
-                                          history.eccentricity_m[:, 0])) % 360.0
-    by_sector, edges = np.histogram(direction_deg, bins=round(360.0 / SECTOR_DEG),
-                                    range=(0.0, 360.0), weights=load_slip)
+    by_sector, edges = history.load_slip_by_direction(PIN_RADIUS_M, SECTOR_DEG)
     fullest = int(np.argmax(by_sector))
-    loaded = np.argsort(by_sector)[::-1]
-    held = np.cumsum(by_sector[loaded]) / by_sector.sum()
-    loaded = loaded[:int(np.searchsorted(held, LOADED_SHARE)) + 1]
     return {"peak_force_N": float(np.linalg.norm(history.reaction_force_N, axis=1).max()),
             "impacts_per_cycle": history.impacts / RECORDED_CYCLES,
             "most_load_slip_angle_deg": float(0.5 * (edges[fullest] + edges[fullest + 1])),
-            "loaded_sectors": sorted(int(sector) for sector in loaded)}
+            "loaded_sectors": loaded_sectors(by_sector, LOADED_SHARE)}
 
 
 dynamics = {}

@@ -11,9 +11,6 @@ from dataclasses import replace
 from fewear.io.mechanism import joint_sections  # noqa: F401 (the loop's door to it)
 from fewear.mbd.mechanism import MechanismState, simulate  # noqa: F401 (the checkpoint's state)
 
-JOINT = "rod_slider"
-"""The paper's slider-crank's one clearance joint (between the connecting rod and the slider)."""
-
 
 def dynamics_inputs(config: dict, case: str, start_offset_deg: float = 0.0):
     """The typed dynamics inputs of one case (the variable body's model ``case``), its clearance

@@ -68,6 +68,19 @@ class JointHistory:
     def peak_contact_force_N(self) -> float:
         return float(np.max(np.linalg.norm(self.reaction_force_N, axis=1), initial=0.0))
 
+    def load_slip_by_direction(self, pin_radius_m: float,
+                               sector_deg: float) -> tuple[np.ndarray, np.ndarray]:
+        """Where the pin slides under load: the load-slip F_n R_pin |omega_rel| dt (J, the
+        product Archard's worn volume grows with) of the history, gathered by the direction of
+        the pin's eccentricity (bushing frame) into sectors of ``sector_deg`` from 0 deg.
+        Returns (the load-slip per sector (J), the sectors' edges (deg, 0 to 360))."""
+        dt = np.diff(self.time_s, prepend=self.time_s[0])
+        load_slip = self.normal_force_N * pin_radius_m * np.abs(self.rel_omega_rad_s) * dt
+        direction_deg = np.degrees(np.arctan2(self.eccentricity_m[:, 1],
+                                              self.eccentricity_m[:, 0])) % 360.0
+        return np.histogram(direction_deg, bins=round(360.0 / sector_deg), range=(0.0, 360.0),
+                            weights=load_slip)
+
 
 def impact_episodes(mode: np.ndarray) -> list[tuple[int, int]]:
     """(first, last) rows of each impact episode (a maximal run of impact-mode rows, ``mode`` 1)
@@ -93,3 +106,11 @@ def classify_modes(time_s: np.ndarray, normal_force_N: np.ndarray,
         duration = time_s[end - 1] - begin_time
         mode[start:end] = 1 if duration <= impact_max_duration_s else 2
     return mode
+
+
+def loaded_sectors(load_slip_J: np.ndarray, share: float) -> list[int]:
+    """The loaded arc: the indices (ascending) of the fullest sectors of ``load_slip_J``
+    (:meth:`JointHistory.load_slip_by_direction`) that together hold ``share`` of it."""
+    fullest = np.argsort(load_slip_J)[::-1]
+    held = np.cumsum(load_slip_J[fullest]) / load_slip_J.sum()
+    return sorted(int(sector) for sector in fullest[:int(np.searchsorted(held, share)) + 1])

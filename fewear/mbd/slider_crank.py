@@ -41,6 +41,9 @@ from fewear.mbd.mechanism import (
 )
 from fewear.mbd.mechanism import simulate as simulate_mechanism
 
+CLEARANCE_JOINT = "rod_slider"
+"""The name of the joint between the connecting rod and the slider (the paper's clearance joint)."""
+
 UNINTEGRABLE_HINT = ("a value of [mechanism], [clearance_joint] or [integrator] makes the "
                      "mechanism too stiff, too light or too fast to integrate (compare with "
                      "`fewear config`)")
@@ -184,7 +187,7 @@ def describe(crank: SliderCrank) -> Mechanism:
         Joint("crank_ground", "revolute", PointRef("crank", "O"), PointRef(GROUND, "O")),
         Joint("crank_rod", "revolute", PointRef("crank", "A"), PointRef("rod", "A")),
         Joint("slider_ground", "prismatic", PointRef(GROUND, "O"), PointRef("slider", "B")),
-        Joint("rod_slider", "revolute", PointRef("rod", "B"), PointRef("slider", "B"),
+        Joint(CLEARANCE_JOINT, "revolute", PointRef("rod", "B"), PointRef("slider", "B"),
               clearance=True),
     )
     return Mechanism("slider_crank", bodies, (("O", (0.0, 0.0)),), joints,
@@ -195,7 +198,7 @@ def mechanism_inputs(inputs: DynamicsInputs) -> MechanismInputs:
     """The general inputs of the slider-crank's (joint "rod_slider"), starting from the ideal
     mechanism's closed form (:func:`closed_form_state`)."""
     crank = inputs.crank
-    mechanism, joints = describe(crank), {"rod_slider": inputs.joint}
+    mechanism, joints = describe(crank), {CLEARANCE_JOINT: inputs.joint}
     return MechanismInputs(mechanism, joints, inputs.integrator, crank.settling_cycles,
                            crank.recorded_cycles, crank.joint == "ideal",
                            closed_form_state(crank, MechanismModel(mechanism, joints)))
@@ -278,7 +281,7 @@ def compile_dynamics() -> None:
     inputs = dynamics_inputs_from_config(load_config(None, SECTIONS))
     crank = replace(inputs.crank, joint="clearance", settling_cycles=0)
     settings = inputs.integrator
-    model = MechanismModel(describe(crank), {"rod_slider": inputs.joint})
+    model = MechanismModel(describe(crank), {CLEARANCE_JOINT: inputs.joint})
     integrator = GeneralizedAlpha(model.system, settings)
     state = integrator.initial_state(*model.initial_conditions())
     _, trajectory = integrator.run_recorded(state, state.t + 3 * settings.step_s)
@@ -291,4 +294,4 @@ def simulate(inputs: DynamicsInputs, start: MechanismState | None = None,
     joint, the run's counts and timings, and the final state (``start``: a warm start)."""
     histories, summary, state = simulate_mechanism(mechanism_inputs(inputs), start,
                                                    progress=progress)
-    return histories["rod_slider"], summary, state
+    return histories[CLEARANCE_JOINT], summary, state

@@ -12,6 +12,7 @@ from fewear.io.config import load_config
 from fewear.io.joint_history import write_joint_history
 from fewear.loop import mechanism_adapter as adapter
 from fewear.loop.settings import run_sections
+from fewear.mbd.slider_crank import CLEARANCE_JOINT
 from fewear.wear.state import WearState
 from tests.loop.test_wear_loop import run, write_config
 
@@ -33,8 +34,8 @@ def first_block_history(config_path):
     unworn = WearState.unworn(np.linspace(0.0, 6.0, 7))
     profile = unworn.clearance_profile(config["bushing"]["inner_radius_m"],
                                        config["pin"]["radius_m"])
-    histories, _, _ = adapter.simulate(inputs, profiles={adapter.JOINT: profile})
-    return histories[adapter.JOINT]
+    histories, _, _ = adapter.simulate(inputs, profiles={CLEARANCE_JOINT: profile})
+    return histories[CLEARANCE_JOINT]
 
 
 def depth_by_node(out, case, joint):
