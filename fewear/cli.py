@@ -229,12 +229,28 @@ def _report(kind: str, message: str, status: int) -> int:
 def os_error_message(exc: OSError) -> str:
     """An OS error (permission, full disk, missing file, ...) as a sentence naming the path."""
     reason = exc.strerror or str(exc) or type(exc).__name__
-    if exc.errno == errno.ENOSPC:
-        reason += " (free some space, or write to another --out)"
-    elif exc.errno in (errno.EACCES, errno.EPERM, errno.EROFS):
-        reason += " (choose a folder you may write to, or change its permissions)"
     paths = [str(path) for path in (exc.filename, exc.filename2) if path]
+    if exc.errno == errno.ENOSPC:
+        return disk_full_message(paths[0] if paths else None, getattr(exc, "needed_bytes", None))
+    if exc.errno in (errno.EACCES, errno.EPERM, errno.EROFS):
+        reason += " (choose a folder you may write to, or change its permissions)"
     return f"{' -> '.join(paths)}: {reason}" if paths else reason
+
+
+def disk_full_message(path: str | None, needed_bytes: int | None) -> str:
+    """No space left: on the disk holding the folder of ``path`` (its command's staging folder
+    left out: the user knows the output folder), writing which file, how many bytes it needed."""
+    if path is None:
+        return ("No space left on device: the disk is full; free some space, or write to "
+                "another --out")
+    from pathlib import Path
+
+    folder = Path(path).parent
+    while folder.name.startswith(".fewear-") and folder.parent != folder:
+        folder = folder.parent
+    needed = f" needed {needed_bytes:,} bytes" if needed_bytes is not None else ""
+    return (f"No space left on device: the disk holding {folder} is full (writing "
+            f"{Path(path).name}{needed}); free some space, or write to another --out")
 
 
 def _signal_status(name: str) -> int:

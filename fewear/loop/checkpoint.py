@@ -30,7 +30,6 @@ import hashlib
 import io
 import json
 import math
-import os
 import tokenize
 import zipfile
 from dataclasses import asdict, fields
@@ -39,6 +38,7 @@ from pathlib import Path
 import numpy as np
 
 from fewear.errors import FewearInputError
+from fewear.io.output import write_file_whole
 from fewear.io.text import not_a_regular_file
 from fewear.loop.progress import BlockRecord, CaseProgress, LoopCounts
 from fewear.wear.extensions import SlidingState
@@ -113,7 +113,7 @@ class Checkpoint:
         return found
 
     def remove_temporary_files(self) -> None:
-        """Drop the half-written ``.<case>.<pid>.tmp`` files of a process that was killed while
+        """Drop the half-written ``.<case>.npz.<pid>.tmp`` files of a process that was killed while
         it saved (the case files themselves are replaced atomically)."""
         for path in self.path.glob(".*.tmp") if self.path.is_dir() else []:
             path.unlink(missing_ok=True)
@@ -315,17 +315,10 @@ def _first_difference(stored, current, where: str = "") -> str:
 
 
 def write_npz(path: Path, arrays: dict) -> None:
-    """``arrays`` as an .npz at ``path``, whole or not at all: zipped in memory, then written to
-    a temporary file beside it and renamed. A full disk raises the plain OSError of the write
-    (zipping straight into the file left a half-closed ZipFile whose ``__del__`` printed
-    "Exception ignored ... ValueError" after the command's message)."""
+    """``arrays`` as an .npz at ``path``, whole or not at all: zipped in memory, then written by
+    :func:`fewear.io.output.write_file_whole` (zipping straight into the file left, on a full
+    disk, a half-closed ZipFile whose ``__del__`` printed "Exception ignored ... ValueError"
+    after the command's message)."""
     buffer = io.BytesIO()
     np.savez(buffer, **arrays)
-    temporary = path.parent / f".{path.stem}.{os.getpid()}.tmp"
-    try:
-        with open(temporary, "wb") as handle:
-            handle.write(buffer.getbuffer())
-        os.replace(temporary, path)
-    except BaseException:
-        temporary.unlink(missing_ok=True)
-        raise
+    write_file_whole(path, buffer.getbuffer())

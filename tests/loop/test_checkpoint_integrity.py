@@ -15,7 +15,7 @@ from fewear.wear.extensions import SlidingState
 from fewear.wear.state import WearState
 
 CONFIG = {"wear_loop": {"total_cycles": 4000}}
-NODES = 8
+NODES = 9
 
 
 def progress() -> CaseProgress:
@@ -29,7 +29,7 @@ def progress() -> CaseProgress:
     mesh = np.column_stack([np.cos(angle), np.sin(angle)]) * 0.01
     return CaseProgress(state=state, mechanism=MechanismState(0.3, np.arange(3.0), np.ones(3)),
                         records=records, snapshots=[mesh, mesh * 1.001, mesh * 1.002],
-                        node_ids=np.arange(NODES), cells=np.array([[0, 1, 2]]),
+                        node_ids=np.arange(NODES), cells=np.arange(NODES)[None, :],
                         meshed_xy_m=mesh)
 
 
