@@ -232,9 +232,31 @@ def os_error_message(exc: OSError) -> str:
     paths = [str(path) for path in (exc.filename, exc.filename2) if path]
     if exc.errno == errno.ENOSPC:
         return disk_full_message(paths[0] if paths else None, getattr(exc, "needed_bytes", None))
+    unwritable = (errno.EACCES, errno.EPERM, errno.EROFS, errno.ENOTDIR)
+    cache = jit_cache_holding(paths[0]) if paths and exc.errno in unwritable else None
+    if cache is not None:
+        return (f"DOLFINx's JIT cache folder {cache}, where it compiles the finite-element "
+                f"forms, cannot be written ({paths[0]}: {reason}); make it writable, or set "
+                "XDG_CACHE_HOME to a writable folder (the cache is $XDG_CACHE_HOME/fenics)")
     if exc.errno in (errno.EACCES, errno.EPERM, errno.EROFS):
         reason += " (choose a folder you may write to, or change its permissions)"
     return f"{' -> '.join(paths)}: {reason}" if paths else reason
+
+
+def jit_cache_holding(path: str):
+    """DOLFINx's JIT cache folder (``$XDG_CACHE_HOME/fenics`` unless its parameters say
+    otherwise) when ``path`` is in it or on the way to it, else None. (DOLFINx is imported here
+    if it is not yet: the error may come from a worker process.)"""
+    from pathlib import Path
+
+    try:
+        from dolfinx.jit import get_parameters
+
+        cache = Path(get_parameters()["cache_dir"]).absolute()
+    except Exception:  # noqa: BLE001 (no DOLFINx, or a broken parameters file: no cache to name)
+        return None
+    path = Path(path).absolute()
+    return cache if path == cache or cache in path.parents or path in cache.parents else None
 
 
 def disk_full_message(path: str | None, needed_bytes: int | None) -> str:
