@@ -196,8 +196,7 @@ def main(argv: list[str] | None = None) -> int:
         return _report("error", f"config {args.config}: a value is beyond what the computation "
                        f"can carry ({exc}); compare your values with `fewear config`", 2)
     except (KeyboardInterrupt, Terminated) as exc:
-        what = "Ctrl-C" if isinstance(exc, KeyboardInterrupt) else str(exc) or "SIGTERM"
-        return _report("interrupted", f"{what}: {interrupt_note()}",
+        return _report("interrupted", f"{interruption_name(exc)}: {interrupt_note()}",
                        130 if isinstance(exc, KeyboardInterrupt) else _signal_status(str(exc)))
     finally:
         set_interrupt_note(None)
@@ -273,6 +272,19 @@ def disk_full_message(path: str | None, needed_bytes: int | None) -> str:
     needed = f" needed {needed_bytes:,} bytes" if needed_bytes is not None else ""
     return (f"No space left on device: the disk holding {folder} is full (writing "
             f"{Path(path).name}{needed}); free some space, or write to another --out")
+
+
+def interruption_name(exc: BaseException) -> str:
+    """What stopped the command, in words: Ctrl-C, or the signal's name. Under ``mpirun`` the
+    ranks never see Ctrl-C: Open MPI's mpirun (4.1) answers SIGINT and SIGTERM alike by sending
+    SIGTERM to every rank (each rank runs in its own process group, out of the terminal's
+    reach), so a rank's SIGTERM is named as either (the ranks exit with 143, mpirun with 1)."""
+    if isinstance(exc, KeyboardInterrupt):
+        return "Ctrl-C"
+    name = str(exc) or "SIGTERM"
+    if name == "SIGTERM" and launcher_rank_and_size()[1] > 1:
+        return "SIGTERM (which mpirun also sends on Ctrl-C)"
+    return name
 
 
 def _signal_status(name: str) -> int:
