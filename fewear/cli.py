@@ -196,8 +196,7 @@ def main(argv: list[str] | None = None) -> int:
         return _report("error", f"config {args.config}: a value is beyond what the computation "
                        f"can carry ({exc}); compare your values with `fewear config`", 2)
     except (KeyboardInterrupt, Terminated) as exc:
-        what = "Ctrl-C" if isinstance(exc, KeyboardInterrupt) else str(exc) or "SIGTERM"
-        return _report("interrupted", f"{what}: {interrupt_note()}",
+        return _report("interrupted", f"{interruption_name(exc)}: {interrupt_note()}",
                        130 if isinstance(exc, KeyboardInterrupt) else _signal_status(str(exc)))
     finally:
         set_interrupt_note(None)
@@ -229,12 +228,63 @@ def _report(kind: str, message: str, status: int) -> int:
 def os_error_message(exc: OSError) -> str:
     """An OS error (permission, full disk, missing file, ...) as a sentence naming the path."""
     reason = exc.strerror or str(exc) or type(exc).__name__
-    if exc.errno == errno.ENOSPC:
-        reason += " (free some space, or write to another --out)"
-    elif exc.errno in (errno.EACCES, errno.EPERM, errno.EROFS):
-        reason += " (choose a folder you may write to, or change its permissions)"
     paths = [str(path) for path in (exc.filename, exc.filename2) if path]
+    if exc.errno == errno.ENOSPC:
+        return disk_full_message(paths[0] if paths else None, getattr(exc, "needed_bytes", None))
+    unwritable = (errno.EACCES, errno.EPERM, errno.EROFS, errno.ENOTDIR)
+    cache = jit_cache_holding(paths[0]) if paths and exc.errno in unwritable else None
+    if cache is not None:
+        return (f"DOLFINx's JIT cache folder {cache}, where it compiles the finite-element "
+                f"forms, cannot be written ({paths[0]}: {reason}); make it writable, or set "
+                "XDG_CACHE_HOME to a writable folder (the cache is $XDG_CACHE_HOME/fenics)")
+    if exc.errno in (errno.EACCES, errno.EPERM, errno.EROFS):
+        reason += " (choose a folder you may write to, or change its permissions)"
     return f"{' -> '.join(paths)}: {reason}" if paths else reason
+
+
+def jit_cache_holding(path: str):
+    """DOLFINx's JIT cache folder (``$XDG_CACHE_HOME/fenics`` unless its parameters say
+    otherwise) when ``path`` is in it or on the way to it, else None. (DOLFINx is imported here
+    if it is not yet: the error may come from a worker process.)"""
+    from pathlib import Path
+
+    try:
+        from dolfinx.jit import get_parameters
+
+        cache = Path(get_parameters()["cache_dir"]).absolute()
+    except Exception:  # noqa: BLE001 (no DOLFINx, or a broken parameters file: no cache to name)
+        return None
+    path = Path(path).absolute()
+    return cache if path == cache or cache in path.parents or path in cache.parents else None
+
+
+def disk_full_message(path: str | None, needed_bytes: int | None) -> str:
+    """No space left: on the disk holding the folder of ``path`` (its command's staging folder
+    left out: the user knows the output folder), writing which file, how many bytes it needed."""
+    if path is None:
+        return ("No space left on device: the disk is full; free some space, or write to "
+                "another --out")
+    from pathlib import Path
+
+    folder = Path(path).parent
+    while folder.name.startswith(".fewear-") and folder.parent != folder:
+        folder = folder.parent
+    needed = f" needed {needed_bytes:,} bytes" if needed_bytes is not None else ""
+    return (f"No space left on device: the disk holding {folder} is full (writing "
+            f"{Path(path).name}{needed}); free some space, or write to another --out")
+
+
+def interruption_name(exc: BaseException) -> str:
+    """What stopped the command, in words: Ctrl-C, or the signal's name. Under ``mpirun`` the
+    ranks never see Ctrl-C: Open MPI's mpirun (4.1) answers SIGINT and SIGTERM alike by sending
+    SIGTERM to every rank (each rank runs in its own process group, out of the terminal's
+    reach), so a rank's SIGTERM is named as either (the ranks exit with 143, mpirun with 1)."""
+    if isinstance(exc, KeyboardInterrupt):
+        return "Ctrl-C"
+    name = str(exc) or "SIGTERM"
+    if name == "SIGTERM" and launcher_rank_and_size()[1] > 1:
+        return "SIGTERM (which mpirun also sends on Ctrl-C)"
+    return name
 
 
 def _signal_status(name: str) -> int:

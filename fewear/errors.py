@@ -1,6 +1,8 @@
 """Errors that the command line reports as a message (no traceback, exit status 2)."""
 
+import errno
 import math
+import os
 
 
 class FewearInputError(ValueError):
@@ -77,6 +79,15 @@ def _shortened_run(match) -> str:
     run = match.group(0)
     body = run.rstrip(":;,.'\")]")
     return shorten(body) + run[len(body):]
+
+
+class DiskFull(OSError):
+    """No space left on the disk while writing ``filename``, which needed ``needed_bytes``
+    (None: unknown); reported at the command line's edge naming the folder and the size."""
+
+    def __init__(self, filename, needed_bytes: int | None = None):
+        super().__init__(errno.ENOSPC, os.strerror(errno.ENOSPC), str(filename))
+        self.needed_bytes = needed_bytes
 
 
 class Terminated(BaseException):

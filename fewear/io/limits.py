@@ -36,6 +36,14 @@ MAX_MESH_CELLS = 50_000
 condense, :func:`condensation_estimate_s`)."""
 DEFAULT_MESH_CELLS, DEFAULT_CONDENSATION_S = 1872, 1.0
 """The default mesh and the wall time of its condensation (the cost estimate's reference)."""
+MAX_FLAT_MESH_CELLS = 100_000
+"""Quadrilaterals of a scar's flat mesh (block-on-ring, fretting; the defaults: 3,680 and
+1,728). Measured on the block-on-ring, two wear steps: 3,680 cells 0.38 GB and 12 s, 32,480
+cells 1.1 GB and 60 s, 64,480 cells 1.9 GB and 125 s; a 1e-8 m element size (6.4 million
+cells) was killed by a 4 GB memory bound after 50 s of meshing, without a word."""
+FLAT_MESH_BASE_BYTES, FLAT_MESH_BYTES_PER_CELL = 0.35e9, 25e3
+"""The memory of a scar run: the interpreter with DOLFINx, plus this much per quadrilateral
+(the measurements above, fitted)."""
 MAX_LOAD_STEPS_PER_CYCLE = 10_000
 """[wear_loop] load_steps_per_cycle: contact solves per simulated cycle (the seed: 200)."""
 MAX_WEAR_STEPS = 10_000
@@ -159,6 +167,20 @@ def mesh_size(config: dict) -> tuple[int, int] | None:
         return int(1e12), int(1e12) * settings.radial_element_count
     around = settings.elements_around(radius)
     return around, settings.circumferential_element_count(radius) * settings.radial_element_count
+
+
+def flat_mesh_memory_bytes(cells: float) -> float:
+    """About the peak memory of a scar run on a flat mesh of ``cells`` quadrilaterals."""
+    return FLAT_MESH_BASE_BYTES + FLAT_MESH_BYTES_PER_CELL * cells
+
+
+def memory(size_bytes: float) -> str:
+    """A memory size in words: MB, GB or TB."""
+    if size_bytes < 1e9:
+        return f"{size_bytes / 1e6:.0f} MB"
+    if size_bytes < 1e12:
+        return f"{size_bytes / 1e9:.1f} GB"
+    return f"{size_bytes / 1e12:,.0f} TB"
 
 
 def condensation_estimate_s(cells: int) -> float:

@@ -7,8 +7,10 @@ folders are removed again), so a user never finds a half-written result.
 
 from __future__ import annotations
 
+import errno
 import json
 import math
+import os
 import shutil
 import tempfile
 from collections.abc import Iterator
@@ -18,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from fewear.errors import FewearInputError
+from fewear.errors import DiskFull, FewearInputError
 from fewear.io.signals import signals_held
 
 
@@ -111,3 +113,21 @@ def jsonable(value: Any) -> Any:
 def write_json(path: str | Path, data: Any) -> None:
     """Strict JSON (indented, NumPy values converted, non-finite numbers as null)."""
     Path(path).write_text(json.dumps(jsonable(data), indent=2, allow_nan=False) + "\n")
+
+
+def write_file_whole(path: str | Path, data: bytes) -> None:
+    """``data`` into ``path``, whole or not at all: written to a temporary file beside it, then
+    renamed. A full disk raises ENOSPC naming ``path`` and the bytes it needed (a library writing
+    straight into the file, HDF5 or zip, left half-closed objects that printed tracebacks or
+    crashed at exit after the command's message)."""
+    path = Path(path)
+    temporary = path.parent / f".{path.name}.{os.getpid()}.tmp"
+    try:
+        with open(temporary, "wb") as handle:
+            handle.write(data)
+        os.replace(temporary, path)
+    except BaseException as exc:
+        temporary.unlink(missing_ok=True)
+        if isinstance(exc, OSError) and exc.errno == errno.ENOSPC:
+            raise DiskFull(path, len(data)) from None
+        raise

@@ -16,16 +16,20 @@ as the case ``<case>-member<m>``, :class:`fewear.loop.plan.Member`):
 
 ``fewear run --resume`` rebuilds the same objects and continues; since every block starts from
 exactly these arrays, the resumed run ends with the result of an uninterrupted one. A checkpoint
-made with another config, another imported joint history (its SHA-256) or another version (the
-single-joint format before this one), or one that cannot be read, is an input error naming the
-cause: resuming it would silently mix two different runs.
+made with another config, another imported joint history (its SHA-256) or another version, or one
+that cannot be read, is an input error naming the cause: resuming it would silently mix two
+different runs. So is one altered or damaged since it was written: the ``.npz`` carries the
+SHA-256 of its other arrays (``sha256``), its metadata the SHA-256 of every mesh snapshot, both
+checked on load; and a non-finite value (NaN, inf), which no run saves, is refused whatever the
+digest says (it would surface blocks later as a failed dynamics or contact, blaming a setting).
 """
 
 from __future__ import annotations
 
+import hashlib
 import io
 import json
-import os
+import math
 import tokenize
 import zipfile
 from dataclasses import asdict, fields
@@ -34,16 +38,23 @@ from pathlib import Path
 import numpy as np
 
 from fewear.errors import FewearInputError
+from fewear.io.output import write_file_whole
 from fewear.io.text import not_a_regular_file
 from fewear.loop.progress import BlockRecord, CaseProgress, LoopCounts
 from fewear.wear.extensions import SlidingState
 from fewear.wear.state import WearState
 
 FOLDER = "fewear-checkpoint"
-FORMAT = "fewear-run-checkpoint-4"
+FORMAT = "fewear-run-checkpoint-5"  # 5: with the SHA-256 digests (4: without)
+DIGEST = "sha256"  # the .npz entry holding the SHA-256 of the other entries
 LOOP_COUNT_NAMES = [count.name for count in fields(LoopCounts)]
 UNREADABLE = (OSError, ValueError, KeyError, zipfile.BadZipFile, json.JSONDecodeError, EOFError,
               SyntaxError, tokenize.TokenError)  # the last: numpy parsing a corrupt array header
+
+
+class CheckpointDamaged(FewearInputError):
+    """A checkpoint altered or damaged since it was written (its SHA-256 does not match, or it
+    holds values no run saves)."""
 
 
 class Checkpoint:
@@ -72,7 +83,8 @@ class Checkpoint:
                     np.save(self.mesh_path(case, joint, block), progress.snapshots[block])
             arrays.update({f"{joint}/{key}": value
                            for key, value in _case_arrays(progress).items()})
-            meta[joint] = _case_meta(progress)
+            meta[joint] = {**_case_meta(progress),
+                           "mesh_sha256": [array_sha256(mesh) for mesh in progress.snapshots]}
         first = next(iter(joints.values()))
         mechanism = first.mechanism
         if mechanism is not None:
@@ -83,6 +95,7 @@ class Checkpoint:
                 "cycles": int(first.state.cycles), "blocks": int(first.state.blocks),
                 "time_s": None if mechanism is None else float(mechanism.time_s),
                 "joints": meta}}))
+        arrays[DIGEST] = np.array(payload_sha256(arrays))
         write_npz(self.case_path(case), arrays)
 
     def saved_cycles(self) -> dict:
@@ -100,7 +113,7 @@ class Checkpoint:
         return found
 
     def remove_temporary_files(self) -> None:
-        """Drop the half-written ``.<case>.<pid>.tmp`` files of a process that was killed while
+        """Drop the half-written ``.<case>.npz.<pid>.tmp`` files of a process that was killed while
         it saved (the case files themselves are replaced atomically)."""
         for path in self.path.glob(".*.tmp") if self.path.is_dir() else []:
             path.unlink(missing_ok=True)
@@ -139,6 +152,9 @@ class Checkpoint:
                 f"--resume: checkpoint {path} has format {meta.get('format')!r}, this fewear "
                 f"reads {FORMAT!r} (it was written by another version); run without --resume "
                 f"into another --out, or delete {self.path} to start again")
+        if str(data.get(DIGEST, "")) != payload_sha256(data):
+            raise CheckpointDamaged(_damaged(path, "its contents do not match the SHA-256 saved "
+                                                  "with them", self.path))
         difference = _first_difference(meta.get("config"), self.config)
         if difference:
             raise FewearInputError(
@@ -155,6 +171,7 @@ class Checkpoint:
                 f"--resume: checkpoint {path} holds the clearance joints {saved}, the run has "
                 f"{joints}; run without --resume into another --out")
         try:
+            _require_finite(path, data, meta["case"]["time_s"], self.path)
             mechanism = None
             if meta["case"]["time_s"] is not None:
                 from fewear.loop.mechanism_adapter import MechanismState
@@ -162,17 +179,72 @@ class Checkpoint:
                 mechanism = MechanismState(meta["case"]["time_s"], data["q"], data["qd"])
             progress = {}
             for joint in joints:
-                snapshots = [np.load(self.mesh_path(case, joint, block), allow_pickle=False)
-                             for block in range(meta["case"]["blocks"] + 1)]
+                snapshots = self._snapshots(case, joint, meta["case"])
                 arrays = {key.split("/", 1)[1]: value for key, value in data.items()
                           if key.startswith(f"{joint}/")}
                 progress[joint] = _case_from(meta["case"], meta["case"]["joints"][joint],
                                              arrays, snapshots, mechanism)
             return progress
+        except CheckpointDamaged:
+            raise
         except (*UNREADABLE, TypeError) as exc:
             raise FewearInputError(
                 f"--resume: checkpoint {path} is incomplete ({exc}); delete {self.path} to "
                 "start again") from None
+
+    def _snapshots(self, case: str, joint: str, case_meta: dict) -> list[np.ndarray]:
+        """A joint's mesh snapshots, each checked against the SHA-256 and for finite values."""
+        digests = case_meta["joints"][joint]["mesh_sha256"]
+        snapshots = []
+        for block in range(case_meta["blocks"] + 1):
+            path = self.mesh_path(case, joint, block)
+            mesh = np.load(path, allow_pickle=False)
+            if array_sha256(mesh) != digests[block]:
+                raise CheckpointDamaged(_damaged(
+                    path, "its contents do not match the SHA-256 saved in the case file",
+                    self.path))
+            _require_finite(path, {"coordinates": mesh}, 0.0, self.path)
+            snapshots.append(mesh)
+        return snapshots
+
+
+def payload_sha256(arrays: dict) -> str:
+    """The SHA-256 of a case file's entries (names, dtypes, shapes and bytes, in name order),
+    its own entry :data:`DIGEST` left out."""
+    digest = hashlib.sha256()
+    for name in sorted(set(arrays) - {DIGEST}):
+        _add_array(digest, name, arrays[name])
+    return digest.hexdigest()
+
+
+def array_sha256(array: np.ndarray) -> str:
+    """The SHA-256 of one array (dtype, shape and bytes): a mesh snapshot's."""
+    digest = hashlib.sha256()
+    _add_array(digest, "", array)
+    return digest.hexdigest()
+
+
+def _add_array(digest, name: str, value) -> None:
+    value = np.asarray(value)
+    digest.update(f"{name}\0{value.dtype.str}\0{value.shape}\0".encode())
+    digest.update(value.tobytes())
+
+
+def _require_finite(path: Path, arrays: dict, time_s, folder: Path) -> None:
+    """Refuse a checkpoint with a NaN or inf in an array of ``arrays`` or in its time."""
+    for name, value in arrays.items():
+        if value.dtype.kind in "fc" and not np.all(np.isfinite(value)):
+            raise CheckpointDamaged(_damaged(
+                path, f"{name} holds non-finite values (NaN or inf), which no run saves", folder))
+    if time_s is not None and not (isinstance(time_s, (int, float)) and math.isfinite(time_s)):
+        raise CheckpointDamaged(_damaged(path, f"its time {time_s!r} s is not a finite number",
+                                        folder))
+
+
+def _damaged(path: Path, why: str, folder: Path) -> str:
+    return (f"--resume: checkpoint {path} was altered or damaged since it was written ({why}); "
+            f"start afresh with --overwrite instead of --resume, or run into another --out "
+            f"(or delete {folder})")
 
 
 def _case_meta(case: CaseProgress) -> dict:
@@ -243,17 +315,10 @@ def _first_difference(stored, current, where: str = "") -> str:
 
 
 def write_npz(path: Path, arrays: dict) -> None:
-    """``arrays`` as an .npz at ``path``, whole or not at all: zipped in memory, then written to
-    a temporary file beside it and renamed. A full disk raises the plain OSError of the write
-    (zipping straight into the file left a half-closed ZipFile whose ``__del__`` printed
-    "Exception ignored ... ValueError" after the command's message)."""
+    """``arrays`` as an .npz at ``path``, whole or not at all: zipped in memory, then written by
+    :func:`fewear.io.output.write_file_whole` (zipping straight into the file left, on a full
+    disk, a half-closed ZipFile whose ``__del__`` printed "Exception ignored ... ValueError"
+    after the command's message)."""
     buffer = io.BytesIO()
     np.savez(buffer, **arrays)
-    temporary = path.parent / f".{path.stem}.{os.getpid()}.tmp"
-    try:
-        with open(temporary, "wb") as handle:
-            handle.write(buffer.getbuffer())
-        os.replace(temporary, path)
-    except BaseException:
-        temporary.unlink(missing_ok=True)
-        raise
+    write_file_whole(path, buffer.getbuffer())

@@ -32,13 +32,12 @@ range, and beside them:
 
 from __future__ import annotations
 
-import contextlib
 import csv
 from pathlib import Path
 
 import numpy as np
 
-from fewear.io.output import write_json
+from fewear.io.output import write_file_whole, write_json
 from fewear.loop.progress import CaseProgress
 
 SUMMARY, PROFILES_CSV, MAX_WEAR_CSV = "summary.json", "wear_profile.csv", "max_wear.csv"
@@ -210,15 +209,25 @@ def write_max_wear_csv(path: Path, cases: dict) -> None:
 
 
 def write_xdmf(path: Path, case) -> None:
-    """The bushing through the run: the unworn mesh and, per block, the node displacement."""
+    """The bushing through the run: the unworn mesh and, per block, the node displacement.
+
+    meshio's writer fills an HDF5 file held in memory, and both files are then written whole
+    (:func:`write_file_whole`): HDF5 writing straight onto a full disk printed a traceback per
+    dataset and crashed the process at exit (signal 11), and its message named no file."""
+    from xml.etree import ElementTree
+
+    import h5py
     import meshio
 
     reference = case.snapshots[0]
     points = np.column_stack([reference, np.zeros(len(reference))])
     cells = np.searchsorted(case.node_ids, case.cells)
     radial = reference / np.linalg.norm(reference, axis=1)[:, None]
-    # meshio puts the .h5 beside the working directory, not beside the .xdmf: write from there
-    with contextlib.chdir(path.parent), meshio.xdmf.TimeSeriesWriter(path.name) as writer:
+    h5_path = path.with_suffix(".h5")
+    writer = meshio.xdmf.TimeSeriesWriter(path)  # its XML names the .h5 by h5_filename
+    writer.h5_filename = h5_path.name
+    writer.h5_file = h5py.File(h5_path.name, "w", driver="core", backing_store=False)
+    try:
         writer.write_points_cells(points, [("quad9", cells)])
         cycles = [0] + [record.cycles for record in case.records]
         for cycle, xy in zip(cycles, case.snapshots):
@@ -226,3 +235,9 @@ def write_xdmf(path: Path, case) -> None:
             writer.write_data(float(cycle), point_data={
                 "mesh_displacement_m": np.column_stack([displacement, np.zeros(len(xy))]),
                 "radial_displacement_m": np.einsum("ij,ij->i", displacement, radial)})
+        writer.h5_file.flush()
+        h5_image = writer.h5_file.id.get_file_image()
+    finally:
+        writer.h5_file.close()
+    write_file_whole(h5_path, h5_image)
+    write_file_whole(path, ElementTree.tostring(writer.xdmf_file))

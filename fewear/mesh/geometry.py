@@ -143,6 +143,28 @@ class FlatMeshSettings:
                 isinstance(count, int) and smallest <= count <= 1000,
                 f"flat mesh {name} = {count!r}: must be a whole number in [{smallest}, 1000]",
             )
+        self._require_bounded_size()
+
+    def _require_bounded_size(self) -> None:
+        """At most :data:`fewear.io.limits.MAX_FLAT_MESH_CELLS` quadrilaterals, checked before
+        any meshing: the message gives the estimated cells and memory, and the bound."""
+        from fewear.io.limits import MAX_FLAT_MESH_CELLS, flat_mesh_memory_bytes, memory
+
+        along = 2.0 * self.contact_zone_half_width_m / self.contact_element_size_m
+        cells = (along + 2 * self.side_element_count) * self.depth_element_count
+        largest_along = MAX_FLAT_MESH_CELLS / self.depth_element_count - 2 * self.side_element_count
+        smallest_size = (f"contact_element_size_m >= "
+                         f"{2.0 * self.contact_zone_half_width_m / largest_along * 1.001:.3g} m"
+                         if largest_along >= 2 else "fewer side or depth elements")
+        require(
+            cells <= MAX_FLAT_MESH_CELLS,
+            f"flat mesh contact_element_size_m = {self.contact_element_size_m!r} m over "
+            f"contact_zone_half_width_m = {self.contact_zone_half_width_m!r} m, with "
+            f"side_element_count = {self.side_element_count} and depth_element_count = "
+            f"{self.depth_element_count}, makes a mesh of about {cells:,.0f} quadrilaterals "
+            f"(about {memory(flat_mesh_memory_bytes(cells))} of memory to solve); expected at "
+            f"most {MAX_FLAT_MESH_CELLS:,} quadrilaterals (here: {smallest_size})",
+        )
 
     def contact_element_count(self) -> int:
         """Elements over the zone, 2 x_c / size rounded up to an even number (x = 0 a node)."""

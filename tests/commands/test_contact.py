@@ -120,6 +120,29 @@ def test_xdmf_parses_and_holds_both_fields(default_run):
     assert np.all(np.isfinite(displacement)) and np.abs(displacement).max() > 0.0
 
 
+def test_a_disk_without_room_for_the_xdmf_is_refused_before_hdf5_writes(default_run, tmp_path,
+                                                                       monkeypatch, capsys):
+    """Room for less than the fields' HDF5 file (its size estimated from the mesh, at least the
+    default run's real one): one line naming the folder, the file and the bytes; no HDF5
+    diagnostics, no traceback, no folder (issue 57; HDF5 writing onto the full disk printed
+    pages of diagnostics and a RuntimeError traceback)."""
+    import re
+
+    import fewear.contact.output
+
+    real_bytes = (default_run[1] / "bushing.h5").stat().st_size
+    monkeypatch.setattr(fewear.contact.output, "_free_bytes", lambda path: real_bytes - 1)
+    capsys.readouterr()
+    out = tmp_path / "out"
+    assert main(["contact", "--force", *map(str, FORCE_N), "--out", str(out)]) == 2
+    last = capsys.readouterr().err.splitlines()[-1]
+    assert last.startswith(f"fewear: error: No space left on device: the disk holding {out} is "
+                           "full (writing bushing.h5 needed ")
+    needed = int(re.search(r"needed ([\d,]+) bytes", last).group(1).replace(",", ""))
+    assert real_bytes <= needed <= 1.05 * real_bytes
+    assert not out.exists()
+
+
 def test_rotation_gives_slip_and_friction_turns_the_contact(tmp_path):
     """--rotation 0.02 --friction: every node in contact slips R_p * 0.02 (the others 0), and the
     Coulomb traction p (n + mu t) turns the resultant of each loaded node by atan(mu), so the

@@ -155,3 +155,31 @@ def test_a_full_disk_keeps_the_checkpoint_and_says_how_to_resume(tmp_path, monke
 def test_resume_and_overwrite_together_are_refused(tmp_path, capsys):
     assert run(write_config(tmp_path), tmp_path / "out", "--resume", "--overwrite") == 2
     assert "choose one" in capsys.readouterr().err
+
+
+@pytest.mark.slow
+@pytest.mark.mpi
+def test_ctrl_c_to_mpirun_is_named_as_the_sigterm_the_ranks_get(tmp_path):
+    """Ctrl-C to `mpirun -n 2 fewear run` (SIGINT to mpirun; the ranks sit in their own
+    process groups): mpirun sends the ranks SIGTERM, named as what mpirun sends on Ctrl-C too;
+    the checkpoint is kept and said (mpirun itself exits with 1)."""
+    from tests.mpi import MPI_ENV, mpirun_or_skip
+
+    config = write_config(tmp_path)
+    config.write_text(config.read_text().replace("total_cycles = 4000", "total_cycles = 40000"))
+    process = subprocess.Popen(
+        [mpirun_or_skip(), "-n", "2", sys.executable, "-m", "fewear.cli", "run", "--config",
+         str(config), "--out", str(tmp_path / "out")],
+        stderr=subprocess.PIPE, text=True, start_new_session=True, env={**os.environ, **MPI_ENV})
+    err = ""
+    for line in process.stderr:
+        err += line
+        if "block 1," in line:
+            process.send_signal(signal.SIGINT)
+            break
+    err += process.stderr.read()
+    assert process.wait(timeout=120) == 1, err
+    last = err.strip().splitlines()[-1]
+    assert last.startswith("fewear: interrupted: SIGTERM (which mpirun also sends on Ctrl-C): "
+                           "the checkpoint "), err
+    assert "fewear run --resume" in last

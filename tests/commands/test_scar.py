@@ -107,6 +107,12 @@ def test_measured_figures_are_the_research_notes(coarse_run):
      r"\[fretting\] stroke_amplitude_m = 0.01: the contact \(Hertz half-width .* m\) swept by "
      r"the stroke reaches \|x\| = 0.01 m, beyond \[fretting_mesh\] "
      r"contact_zone_half_width_m = 0.0004"),
+    # meshed for 50 s until a 4 GB memory bound killed it, no message (issue 57)
+    ("[block_on_ring_mesh]\ncontact_element_size_m = 1e-8\n",
+     r"\[block_on_ring_mesh\]: .* makes a mesh of about 6,400,480 quadrilaterals \(about 160.4 GB "
+     r"of memory to solve\); expected at most 100,000 quadrilaterals"),
+    ("[scar]\ncase = \"fretting\"\n[fretting_mesh]\ncontact_element_size_m = 1e-9\n",
+     r"\[fretting_mesh\]: .* about 19,200,768 quadrilaterals .* at most 100,000"),
 ])
 def test_bad_input_is_one_line_naming_the_value(tmp_path, capsys, config, message):
     path = tmp_path / "bad.toml"

@@ -226,3 +226,23 @@ def test_an_interruption_while_outputs_move_in_waits_until_all_are_in(tmp_path, 
         signal.signal(signal.SIGINT, inherited)
     assert sorted(path.name for path in (tmp_path / "out").iterdir()) == ["a.csv", "b.csv",
                                                                           "c.csv"]
+
+
+@pytest.mark.parametrize("size, name", [("1", "SIGTERM"),
+                                        ("2", "SIGTERM (which mpirun also sends on Ctrl-C)")],
+                         ids=["serial", "mpirun"])
+def test_sigterm_is_named_as_mpirun_sends_it(monkeypatch, capsys, size, name):
+    """Open MPI's mpirun answers Ctrl-C with SIGTERM to every rank: under it a SIGTERM is named
+    as either; the exit status is SIGTERM's, 143, as in a serial run (issue 57)."""
+    import fewear.commands.config
+    from fewear.errors import Terminated
+
+    def stop(args):
+        raise Terminated("SIGTERM")
+
+    monkeypatch.setattr(fewear.commands.config, "main", stop)
+    monkeypatch.setenv("OMPI_COMM_WORLD_RANK", "0")
+    monkeypatch.setenv("OMPI_COMM_WORLD_SIZE", size)
+    assert main(["config"]) == 143
+    assert capsys.readouterr().err == (f"fewear: interrupted: {name}: nothing was written: the "
+                                       "output folder is as it was\n")

@@ -182,7 +182,7 @@ def test_a_checkpoint_of_another_format_is_refused_by_name(tmp_path, capsys, exp
         np.savez(handle, **arrays)
     assert run(write_config(tmp_path, implicit=False, smoothing=0.0), old, "--resume") == 2
     error = capsys.readouterr().err
-    assert "'fewear-run-checkpoint-3', this fewear reads 'fewear-run-checkpoint-4'" in error
+    assert "'fewear-run-checkpoint-3', this fewear reads 'fewear-run-checkpoint-5'" in error
     assert "run without --resume into another --out" in error
 
 

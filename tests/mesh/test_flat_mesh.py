@@ -1,6 +1,7 @@
 """The flat's mesh (fewear.mesh.flat): top on y_top, graded sizes, tags; its settings' checks."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -109,6 +110,22 @@ def test_mesh_settings_refuse_bad_values(settings, message):
     values = dict(contact_element_size_m=5e-6, contact_zone_half_width_m=6e-5)
     with pytest.raises(FewearInputError, match=message):
         FlatMeshSettings(**{**values, **settings})
+
+
+def test_the_mesh_size_is_bounded_before_meshing_with_the_estimate_in_the_message():
+    """(2 x_c / h + 2 side) depth quadrilaterals: (2 x 1.6e-3 / 1e-8 + 24) x 20 = 6,400,480,
+    refused with their memory; the size the message suggests is taken, a smaller one not."""
+    from fewear.io.limits import MAX_FLAT_MESH_CELLS
+
+    with pytest.raises(FewearInputError) as error:
+        FlatMeshSettings(1e-8, 1.6e-3, side_element_count=12, depth_element_count=20)
+    message = str(error.value)
+    assert "about 6,400,480 quadrilaterals (about 160.4 GB of memory" in message
+    assert f"expected at most {MAX_FLAT_MESH_CELLS:,} quadrilaterals" in message
+    suggested = float(re.search(r"contact_element_size_m >= (\S+) m", message).group(1))
+    FlatMeshSettings(suggested, 1.6e-3, side_element_count=12, depth_element_count=20)
+    with pytest.raises(FewearInputError):
+        FlatMeshSettings(suggested * 0.99, 1.6e-3, side_element_count=12, depth_element_count=20)
 
 
 @pytest.mark.parametrize("settings, message", [

@@ -252,7 +252,9 @@ def wear_coefficient_samples(
     through the origin of V against F s, k = sum(F s V) / sum((F s)^2) (for a single reading
     k = V / (F s)). The normal force F is ``normal_load_N`` when the data hold it, else
     ``pressure_Pa x contact_area_m2`` (the apparent contact area, e.g. the pin's face, given by the
-    caller); without either the coefficient is not computed (error). The pressure is
+    caller); without either the coefficient is not computed (error); a median k beyond what
+    wear gives is refused (:func:`fewear.diagnose.tribometer.plausibility.check_wear_coefficients`,
+    naming the likely unit error). The pressure is
     ``pressure_Pa``, else ``normal_load_N / contact_area_m2``. ``velocity`` is ``None`` when the
     data lack it. Pressure and velocity must be constant within a test.
     """
@@ -273,6 +275,9 @@ def wear_coefficient_samples(
             )
         samples_k.append(np.sum(product[index] * data.wear_volume_m3[index]) / denominator)
     velocity = np.array(samples_v) if data.velocity_m_s is not None else None
+    from fewear.diagnose.tribometer.plausibility import check_wear_coefficients
+
+    check_wear_coefficients(data, np.array(samples_k))  # refuses a k no wear gives
     return np.array(samples_p), velocity, np.array(samples_k)
 
 

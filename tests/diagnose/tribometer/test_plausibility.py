@@ -11,14 +11,16 @@ from fewear.diagnose.tribometer.plausibility import POSSIBLE_K_M2_N, USUAL_K_M2_
 LOAD_N = (20.0, 40.0, 80.0)
 DISTANCES_m = (100.0, 200.0, 300.0, 400.0)
 DENSITY_kg_m3 = 8000.0
+PIN_AREA_m2 = 2.8e-5
 
 
 def write_table(path, k_m2_N, *, wear_column="wear_volume_m3", scale=1.0, distance=None,
-                material=False, repeat_first=False):
+                material=False, repeat_first=False, force_column="normal_load_N"):
     """Nine tests of V = k F s exactly (k varied by a few percent per test), the wear column
-    times ``scale`` (a unit error); a mass loss with a density column."""
+    times ``scale`` (a unit error); a mass loss with a density column; the force as
+    ``normal_load_N`` or as ``pressure_Pa`` on a pin of :data:`PIN_AREA_m2`."""
     rng = np.random.default_rng(5)
-    header = ["test_id", "normal_load_N", "velocity_m_s", "sliding_distance_m", wear_column]
+    header = ["test_id", force_column, "velocity_m_s", "sliding_distance_m", wear_column]
     header += ["density_kg_m3"] if wear_column == "mass_loss_kg" else []
     header += ["material"] if material else []
     lines = [",".join(header)]
@@ -27,7 +29,8 @@ def write_table(path, k_m2_N, *, wear_column="wear_volume_m3", scale=1.0, distan
         for s in DISTANCES_m:
             volume = k * load * s
             wear = volume * (DENSITY_kg_m3 if wear_column == "mass_loss_kg" else 1.0) * scale
-            row = [f"T{test}", repr(load), repr(0.5 + test // 3), repr(s if distance is None
+            force = load if force_column == "normal_load_N" else load / PIN_AREA_m2
+            row = [f"T{test}", repr(force), repr(0.5 + test // 3), repr(s if distance is None
                                                                        else distance),
                    repr(wear)]
             row += [repr(DENSITY_kg_m3)] if wear_column == "mass_loss_kg" else []
@@ -112,3 +115,31 @@ def test_a_large_table_reports_each_cause_tried(tmp_path, capsys, monkeypatch):
     tried = [line for line in err.splitlines() if ": step " in line and "trying" in line]
     names = {line.rsplit("trying ", 1)[1] for line in tried}
     assert tried and names <= set(DiagnoseSettings.default().candidates)
+
+
+def test_a_table_without_normal_load_says_its_k_is_not_checked_nor_k(tmp_path, capsys):
+    """Pressures, no loads: k = V / (F s) cannot be computed (the fitted level is k A, here
+    volumes 1e9 too small passed without a word and k A was written as k)."""
+    path = write_table(tmp_path / "pressures.csv", 2e-13, scale=1e-9, force_column="pressure_Pa")
+    status, err, _ = diagnose(capsys, path, tmp_path)
+    assert status == 0
+    (warning,) = [line for line in err.splitlines() if "warning:" in line]
+    assert ("no normal_load_N column: the wear coefficient k = V / (F s) cannot be computed"
+            in warning)
+    assert "k times the pins' apparent contact area A (F = p A), not k in m^2/N" in warning
+
+
+def test_k_from_pressures_and_a_contact_area_is_checked(tmp_path):
+    """Where k can be computed without normal_load_N (pressure x the caller's contact area), a k
+    no wear gives is refused there too."""
+    from fewear.diagnose.tribometer.measured import read_measured_wear, wear_coefficient_samples
+    from fewear.errors import FewearInputError
+
+    good = read_measured_wear(write_table(tmp_path / "good.csv", 2e-13,
+                                          force_column="pressure_Pa"))
+    _, _, k = wear_coefficient_samples(good, contact_area_m2=PIN_AREA_m2)
+    assert np.median(k) == pytest.approx(2e-13, rel=0.1)
+    bad = read_measured_wear(write_table(tmp_path / "bad.csv", 2e-13, scale=1e-9,
+                                         force_column="pressure_Pa"))
+    with pytest.raises(FewearInputError, match="outside what wear can give .* converted to m"):
+        wear_coefficient_samples(bad, contact_area_m2=PIN_AREA_m2)
