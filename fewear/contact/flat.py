@@ -20,7 +20,9 @@ import ufl
 from dolfinx import fem
 from mpi4py import MPI
 from petsc4py import PETSc
+from scipy import linalg
 
+from fewear.contact.condensed import inverse_block
 from fewear.contact.newton import ContactNotConverged, newton_settings, specialised
 from fewear.contact.params import FlatContactProblem
 from fewear.contact.result import ContactResult
@@ -129,7 +131,11 @@ class FlatContactSolver(BushingContactSolver):
         self.cylinder_wear = fem.Function(shear_space, name="cylinder_wear_m")
         self._cylinder_profile: tuple[np.ndarray, np.ndarray] | None = None
         self._cylinder_wear_at_nodes: np.ndarray | None = None
+        self._top_compliance: np.ndarray | None = None  # (K_el^-1)_TT of this geometry
         super()._build_forms()
+        top = fem.locate_dofs_topological(self.V, msh.topology.dim - 1,
+                                          self.facet_tags.find(CONTACT_TAG))
+        self._top_dofs = np.sort(np.concatenate([2 * top, 2 * top + 1])).astype(PETSc.IntType)
         deformed = ufl.SpatialCoordinate(msh) + self.displacement
         points = shear_space.element.interpolation_points()
         self._shear_expression = fem.Expression(self.shear(deformed), points)
@@ -253,6 +259,76 @@ class FlatContactSolver(BushingContactSolver):
             return self._bordered_step(pin_residual, basis)
         move = np.array([self._centre_x_target_m - self.pin_centre_m[0], 0.0])
         return self._bordered_step(pin_residual, basis, prescribed=move)
+
+    # -- the Newton direction: the elastic stiffness factorised once per geometry -------------
+    def update_geometry(self) -> None:
+        """The bushing's update after the mesh moved; the elastic factorisation and the top's
+        compliance (:meth:`_bordered_step`) made afresh at the next Newton step."""
+        self._top_compliance = None
+        super().update_geometry()
+
+    def _bordered_step(self, r_pin: np.ndarray, basis: np.ndarray,
+                       prescribed: np.ndarray | None = None):
+        """The bushing's Newton direction (:meth:`BushingContactSolver._bordered_step`, the same
+        to rounding), its solves with K = K_el + J by the Woodbury identity on the top's dofs T,
+        where alone the contact's J is nonzero: K_el factorised once per geometry with
+        G = (K_el^-1)_TT (MUMPS selected inverse, :func:`fewear.contact.condensed.inverse_block`)
+        instead of K at every Newton step. With A the dofs J couples, and t = (K_el^-1 b)_T,
+
+            K^-1 b = K_el^-1 (b - P_A z),   z = (I + J_AA G_AA)^-1 J_AA t_A,
+
+        and, K_el u known, the step du = -u - K_el^-1 P_T v for a v on T: one sparse solve per
+        Newton step and a dense system of the contact's dofs. A fretting cycle's steps take
+        about 7 Newton steps each on a geometry (docs/performance.md). On one process; on
+        several ranks the bushing's."""
+        if self.comm.size > 1:
+            return BushingContactSolver._bordered_step(self, r_pin, basis, prescribed)
+        G, top = self._elastic_compliance(), self._top_dofs
+        J = self._J.getValues(top, top)
+        active = np.flatnonzero(np.any(J != 0.0, axis=0) | np.any(J != 0.0, axis=1))
+        J_active, G_active = J[np.ix_(active, active)], G[:, active]
+        factors = linalg.lu_factor(np.eye(active.size) + J_active @ G_active[active])
+
+        def through_contact(t):
+            """(K^-1 b)_T and z from t = (K_el^-1 b)_T."""
+            z = linalg.lu_solve(factors, J_active @ t[active])
+            return t - G_active @ z, z
+
+        u = self.displacement.x.array[:self._r.getLocalSize()]
+        uniform = [field.array[top] for field in self.uniform]
+        moved = [-(J @ e) for e in uniform]  # the right-hand sides -J E_i on T
+        pulled = [J.T @ e for e in uniform]  # J^T E_i on T
+        r_top = self._r.array[top]
+        y0, z0 = through_contact(-u[top] - G @ r_top)  # K_el^-1 (K_el u + r) = u + K_el^-1 r
+        Y, Z = zip(*(through_contact(G @ rhs) for rhs in moved))
+        S = -np.array([[uniform[i] @ moved[j] for j in range(2)] for i in range(2)]) + np.array(
+            [[pulled[i] @ Y[j] for j in range(2)] for i in range(2)])
+        rhs_c = -r_pin + np.array([pulled[i] @ y0 for i in range(2)])
+        if prescribed is None:
+            dc = basis @ np.linalg.solve(basis.T @ S @ basis, basis.T @ rhs_c)
+        else:
+            dc = prescribed + basis @ np.linalg.solve(basis.T @ S @ basis,
+                                                      basis.T @ (rhs_c - S @ prescribed))
+        load = r_top + dc[0] * moved[0] + dc[1] * moved[1]
+        load[active] += z0 - dc[0] * Z[0] - dc[1] * Z[1]
+        rhs, solution = self._rhs[0], self._sol[0]
+        rhs.set(0.0)
+        rhs.array_w[top] = load
+        self._ksp.solve(rhs, solution)
+        du = self._du.vector
+        du.array_w[:] = -u - solution.array
+        return du, dc
+
+    def _elastic_compliance(self) -> np.ndarray:
+        """G = (K_el^-1)_TT of this geometry: K_el factorised (its pattern's analysis kept from
+        the geometry before) and the block of its inverse."""
+        if self._top_compliance is None:
+            self._ksp.setOperators(self._K_elastic)
+            self._ksp.setUp()
+            factor = self._ksp.getPC().getFactorMatrix()
+            self._top_compliance = inverse_block(factor, self._top_dofs, self.comm)
+            factor.setMumpsIcntl(30, 0)  # the selected inverse's mode off: solves again
+        return self._top_compliance
 
     @property
     def operations(self) -> type:
