@@ -18,9 +18,12 @@ from typing import NamedTuple
 import numpy as np
 import ufl
 from dolfinx import fem
+from dolfinx.mesh import compute_midpoints
 from mpi4py import MPI
 from petsc4py import PETSc
+from scipy import linalg
 
+from fewear.contact.condensed import inverse_block
 from fewear.contact.newton import ContactNotConverged, newton_settings, specialised
 from fewear.contact.params import FlatContactProblem
 from fewear.contact.result import ContactResult
@@ -129,7 +132,12 @@ class FlatContactSolver(BushingContactSolver):
         self.cylinder_wear = fem.Function(shear_space, name="cylinder_wear_m")
         self._cylinder_profile: tuple[np.ndarray, np.ndarray] | None = None
         self._cylinder_wear_at_nodes: np.ndarray | None = None
+        self._elastic_factorised = False  # K_el of this geometry factorised in _ksp
+        self._covered = np.zeros(0, dtype=int)  # the top dofs (positions in _top_dofs) and
+        self._covered_compliance = np.zeros((0, 0))  # their (K_el^-1) block, this geometry's
+        self._reach_m = 0.0  # the largest |x| of a dof the contact coupled so far
         super()._build_forms()
+        self._top_dofs, self._top_dof_abs_x_m = self._top_dofs_and_x()
         deformed = ufl.SpatialCoordinate(msh) + self.displacement
         points = shear_space.element.interpolation_points()
         self._shear_expression = fem.Expression(self.shear(deformed), points)
@@ -139,6 +147,22 @@ class FlatContactSolver(BushingContactSolver):
         sticking = ufl.And(ufl.gt(bound, 0.0), ufl.le(abs(trial), bound * (1.0 + STICK_TOLERANCE)))
         self._stick_length = fem.form(ufl.conditional(sticking, 1.0, 0.0)
                                       * self._ds(CONTACT_TAG))
+
+    def _top_dofs_and_x(self) -> tuple[np.ndarray, np.ndarray]:
+        """The displacement's dofs on the top (sorted, unrolled) and each one's |x| (m): the
+        least of its facets' midpoints' (an S2 edge dof is no point value)."""
+        facets = self.facet_tags.find(CONTACT_TAG)
+        midpoints = np.abs(compute_midpoints(self.mesh, self.mesh.topology.dim - 1, facets)[:, 0])
+        reach = {}
+        for facet, x in zip(facets, midpoints):
+            for block in fem.locate_dofs_topological(self.V, self.mesh.topology.dim - 1,
+                                                     np.array([facet], dtype=np.int32)):
+                reach[block] = min(reach.get(block, np.inf), x)
+        blocks = np.array(sorted(reach))
+        dofs = np.concatenate([2 * blocks, 2 * blocks + 1])
+        order = np.argsort(dofs)
+        x = np.concatenate([[reach[b] for b in blocks]] * 2)
+        return dofs[order].astype(PETSc.IntType), x[order]
 
     def contact_traction(self, deformed):
         """UFL: T = p n + tau t, the cylinder's traction on the flat (Pa): the penalty pressure
@@ -253,6 +277,87 @@ class FlatContactSolver(BushingContactSolver):
             return self._bordered_step(pin_residual, basis)
         move = np.array([self._centre_x_target_m - self.pin_centre_m[0], 0.0])
         return self._bordered_step(pin_residual, basis, prescribed=move)
+
+    # -- the Newton direction: the elastic stiffness factorised once per geometry -------------
+    def update_geometry(self) -> None:
+        """The bushing's update after the mesh moved; the elastic factorisation and the top's
+        compliance (:meth:`_bordered_step`) made afresh at the next Newton step."""
+        self._elastic_factorised = False
+        self._covered = np.zeros(0, dtype=int)
+        super().update_geometry()
+
+    def _bordered_step(self, r_pin: np.ndarray, basis: np.ndarray,
+                       prescribed: np.ndarray | None = None):
+        """The bushing's Newton direction (:meth:`BushingContactSolver._bordered_step`, the same
+        to rounding), its solves with K = K_el + J by the Woodbury identity on the dofs A of the
+        top that the contact couples (J and the contact residual r vanish elsewhere): K_el
+        factorised once per geometry, with G = (K_el^-1)_AA (MUMPS selected inverse,
+        :meth:`_compliance_of`), instead of K at every Newton step. With t = (K_el^-1 b)_A,
+
+            K^-1 b = K_el^-1 (b - P_A z),   z = (I + J_AA G)^-1 J_AA t,
+
+        and, K_el u known, the step du = -u - K_el^-1 P_A v for a v on A: one sparse solve per
+        Newton step and a dense system of the contact's dofs (a fretting cycle's steps take
+        about 7 Newton steps on each geometry: docs/performance.md). On one process; on several
+        ranks the bushing's."""
+        if self.comm.size > 1:
+            return BushingContactSolver._bordered_step(self, r_pin, basis, prescribed)
+        top = self._top_dofs
+        J, r = self._J.getValues(top, top), self._r.array[top]
+        active = np.flatnonzero(np.any(J != 0.0, axis=0) | np.any(J != 0.0, axis=1) | (r != 0.0))
+        J, r, dofs = J[np.ix_(active, active)], r[active], top[active]
+        G = self._compliance_of(active)
+        factors = linalg.lu_factor(np.eye(active.size) + J @ G)
+
+        def through_contact(t):
+            """(K^-1 b)_A and z from t = (K_el^-1 b)_A."""
+            z = linalg.lu_solve(factors, J @ t)
+            return t - G @ z, z
+
+        u = self.displacement.x.array[:self._r.getLocalSize()]
+        uniform = [field.array[dofs] for field in self.uniform]
+        moved = [-(J @ e) for e in uniform]  # the right-hand sides -J E_i
+        pulled = [J.T @ e for e in uniform]  # J^T E_i
+        y0, z0 = through_contact(-u[dofs] - G @ r)  # K_el^-1 (K_el u + r) = u + K_el^-1 r
+        Y, Z = zip(*(through_contact(G @ rhs) for rhs in moved))
+        S = np.array([[pulled[i] @ Y[j] - uniform[i] @ moved[j] for j in range(2)]
+                      for i in range(2)])
+        rhs_c = -r_pin + np.array([pulled[i] @ y0 for i in range(2)])
+        if prescribed is None:
+            dc = basis @ np.linalg.solve(basis.T @ S @ basis, basis.T @ rhs_c)
+        else:
+            dc = prescribed + basis @ np.linalg.solve(basis.T @ S @ basis,
+                                                      basis.T @ (rhs_c - S @ prescribed))
+        rhs, solution = self._rhs[0], self._sol[0]
+        rhs.set(0.0)
+        rhs.array_w[dofs] = (r + z0 + dc[0] * (moved[0] - Z[0]) + dc[1] * (moved[1] - Z[1]))
+        self._ksp.solve(rhs, solution)
+        du = self._du.vector
+        du.array_w[:] = -u - solution.array
+        return du, dc
+
+    def _compliance_of(self, active: np.ndarray) -> np.ndarray:
+        """(K_el^-1)_AA for the top dofs at positions ``active`` of the top's, on this geometry:
+        K_el factorised at the first call (its pattern's analysis kept from the geometry
+        before), the block of its inverse computed for the top dofs within 1.2 times the
+        contact's reach in x (and two elements), again whenever the contact outgrows them: the
+        selected inverse grows with the dofs it covers (0.3 s for the whole top of the default
+        block on ring, whose scar reaches 83 % of its contact zone at the end)."""
+        if not self._elastic_factorised:
+            self._ksp.setOperators(self._K_elastic)
+            self._ksp.setUp()
+            self._elastic_factorised = True
+        self._reach_m = max(self._reach_m,
+                           float(self._top_dof_abs_x_m[active].max(initial=0.0)))
+        if not np.all(np.isin(active, self._covered)):
+            reach = 1.2 * self._reach_m + 2.0 * self.problem.mesh.contact_element_size_m
+            self._covered = np.flatnonzero(self._top_dof_abs_x_m <= reach)
+            factor = self._ksp.getPC().getFactorMatrix()
+            self._covered_compliance = inverse_block(factor, self._top_dofs[self._covered],
+                                                     self.comm)
+            factor.setMumpsIcntl(30, 0)  # the selected inverse's mode off: solves again
+        where = np.searchsorted(self._covered, active)
+        return self._covered_compliance[np.ix_(where, where)]
 
     @property
     def operations(self) -> type:

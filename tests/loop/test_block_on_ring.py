@@ -135,6 +135,29 @@ def test_pressure_falls_from_hertz_to_the_conformal_scars(coarse_runs):
     assert 0.9 * mean < last.max_pressure_Pa < 2.0 * mean
 
 
+def test_newton_steps_by_the_elastic_factorisation_are_the_stiffness_factorisations(
+        coarse_runs, monkeypatch):
+    """The coarse 15-step run, its Newton directions by K_el factorised once per wear step and
+    the Woodbury identity on the contact's dofs (fewear.contact.flat), against the same run with
+    K = K_el + J factorised at every Newton step (the bushing's): the same scar to 1e-9 of its
+    depth, the same contact in every step."""
+    import fewear.loop.flat_wear
+    from fewear.contact.flat import FlatContactSolver
+    from fewear.contact.solver import BushingContactSolver
+
+    class StiffnessFactorised(FlatContactSolver):
+        _bordered_step = BushingContactSolver._bordered_step
+
+    monkeypatch.setattr(fewear.loop.flat_wear, "FlatContactSolver", StiffnessFactorised)
+    reference, fast = run(COARSE_ELEMENT_M, 15), coarse_runs[15]
+    depth = reference.state.depth_m
+    assert np.abs(fast.state.depth_m - depth).max() < 1e-9 * depth.max()
+    assert [step.contact_half_width_m for step in fast.steps] == [
+        step.contact_half_width_m for step in reference.steps]
+    assert [step.max_pressure_Pa for step in fast.steps] == pytest.approx(
+        [step.max_pressure_Pa for step in reference.steps], rel=1e-9)
+
+
 def test_series_compliance_is_a_softer_penalty_and_is_undone():
     """solve with the wear compliance c: p = <-g>_+ / (1/k + c) at the nodes; afterwards the
     solver's problem and penalty are as given and the plain solve repeats."""

@@ -74,6 +74,41 @@ def test_the_scar_is_a_symmetric_u(run):
     assert 2 * STROKE_M < width < 0.4e-3
 
 
+def test_newton_steps_by_the_elastic_factorisation_are_the_stiffness_factorisations(
+        monkeypatch):
+    """The flat's Newton directions by K_el factorised once per geometry and the Woodbury
+    identity on the top (fewear.contact.flat) against the bushing's, K = K_el + J factorised at
+    every Newton step: one block of 1000 cycles (8 frictional increments, each wearing flat
+    and cylinder and moving the mesh) ends in the same scar to 1e-9 of its depth, by the same
+    Newton iterations and tangential forces."""
+    import fewear.loop.fretting
+    from fewear.contact.flat import FlatContactSolver
+    from fewear.contact.solver import BushingContactSolver
+
+    class StiffnessFactorised(FlatContactSolver):
+        _bordered_step = BushingContactSolver._bordered_step
+
+    geometry = FlatGeometry(0.006, 2e-3, 1e-3, LENGTH_M, 6e-6)
+    problem = FlatContactProblem(geometry, BushingMaterial(100e9, 0.3),
+                                 FlatMeshSettings(20e-6, 0.2e-3, 12, 16),
+                                 ContactSettings(friction_coefficient=FRICTION))
+    settings = FrettingWearSettings(FORCE_N, STROKE_M, 8, 1000, 1000, K_M2_N, K_CYLINDER_M2_N)
+    runs = []
+    for solver in (FlatContactSolver, StiffnessFactorised):
+        monkeypatch.setattr(fewear.loop.fretting, "FlatContactSolver", solver)
+        runs.append(fewear.loop.fretting.run_fretting_wear(problem, settings))
+    fast, reference = runs
+    depth = reference.state.depth_m
+    assert depth.max() > 0.0
+    assert np.abs(fast.state.depth_m - depth).max() < 1e-9 * depth.max()
+    assert np.abs(fast.cylinder.depth_m - reference.cylinder.depth_m).max() < (
+        1e-9 * reference.cylinder.depth_m.max())
+    assert np.array_equal(fast.first_cycle.newton_iterations,
+                          reference.first_cycle.newton_iterations)
+    assert fast.first_cycle.tangential_force_N == pytest.approx(
+        reference.first_cycle.tangential_force_N, rel=1e-9)
+
+
 @pytest.mark.parametrize("changes, message", [
     ({"increments_per_cycle": 10}, "multiple of 4"),
     ({"cycles_per_block": 7}, "must divide cycles"),

@@ -1,5 +1,5 @@
 """The fretting scar of `fewear scar` (case "fretting", the embedded config) pinned at what it
-predicted, beside McColl, Ding & Leen 2004's measured scar (slow: about 50 s).
+predicted, beside McColl, Ding & Leen 2004's measured scar (slow: about 20 s).
 
 Why these figures are right to pin: they are converged in the three discretisation parameters.
 18,000 cycles, flat and cylinder wearing (k = 2.9e-14, k_c = 1.9e-14 m^2/N; the flat's figures;

@@ -1,8 +1,9 @@
 """``fewear diagnose SCAR.csv [--config FILE.toml] [--out DIR]`` on a measured wear scar: is the
 believed scar model (``fewear scar``'s ``[scar] case`` with the source's wear coefficients)
 wrong, by which cause, and its held-out gain (:mod:`fewear.diagnose.scar.diagnose`). Writes
-DIR/diagnosis.json and DIR/profiles.png, all or nothing. The forward runs are serial (one
-process); ``[scar_diagnose]`` holds the settings.
+DIR/diagnosis.json and DIR/profiles.png, all or nothing. The believed model runs here, the
+causes' fits side by side in worker processes (one per core); ``[scar_diagnose]`` holds the
+settings.
 """
 
 from __future__ import annotations

@@ -19,6 +19,7 @@ from fewear.diagnose.scar.fitting import FactorFit, ForwardRuns, fit_log_factor
 from fewear.diagnose.scar.measured import MeasuredScar
 from fewear.diagnose.scar.settings import ScarDiagnoseSettings
 from fewear.errors import FewearInputError
+from fewear.parallel import side_by_side
 
 
 @dataclass(frozen=True, eq=False)
@@ -135,10 +136,13 @@ def try_cause(cause: str, measured: MeasuredScar, believed_m: np.ndarray, predic
 
 
 def diagnose_scar(measured: MeasuredScar, model, settings: ScarDiagnoseSettings,
-                  progress=sys.stderr) -> ScarDiagnosis:
+                  progress: bool = True) -> ScarDiagnosis:
     """The diagnosis of ``measured`` against ``model`` (a
     :class:`fewear.diagnose.scar.forward.ScarModel`, or anything with its ``depth_on`` and
-    ``untestable_reason``), progress lines to ``progress`` (None: silent)."""
+    ``untestable_reason``), a progress line per forward run on stderr when ``progress``. The
+    believed model is run here; the causes' fits, independent of one another, side by side in
+    worker processes (:func:`fewear.parallel.side_by_side`; a picklable ``model`` then), each
+    the same runs as alone."""
     start = time.perf_counter()
     untestable = {cause: reason for cause in settings.candidates
                   if (reason := model.untestable_reason(cause)) is not None}
@@ -148,31 +152,40 @@ def diagnose_scar(measured: MeasuredScar, model, settings: ScarDiagnoseSettings,
             f"[scar_diagnose] candidates = {list(settings.candidates)!r}: none can be fitted in "
             "this case (" + "; ".join(f"{cause}: {why}" for cause, why in untestable.items())
             + ")")
-    x_grid, profiles = measured.x_m, len(measured.names)
-
-    def predict_for(cause):
-        return lambda factor: np.tile(model.depth_on(x_grid, cause, factor), profiles)
-
-    def report_for(cause):
-        def report(factor, seconds):
-            if progress is not None:
-                print(f"fewear diagnose: {cause} x{factor:.4g}: forward run in {seconds:.1f} s",
-                      file=progress, flush=True)
-        return report
-
-    believed_m = predict_for(tried[0])(1.0)
+    believed_m = _predictor(model, measured, tried[0])(1.0)
     folds = held_out_folds(measured, settings.profile_blocks)
     rule = settings.acceptance.rule(len(tried))
-    trials = []
-    for cause in tried:
-        trial = try_cause(cause, measured, believed_m, predict_for(cause), folds, settings,
-                          report_for(cause))
-        trials.append(replace(trial, accepted=rule.accepts(trial.evidence)))
+    trials = [replace(trial, accepted=rule.accepts(trial.evidence)) for trial in side_by_side(
+        fitted_cause, [(cause, measured, believed_m, model, folds, settings, progress)
+                       for cause in tried])]
     causes = tuple(trial.cause for trial in sorted(trials, key=lambda trial: -trial.evidence.gain)
                    if trial.accepted)
     return ScarDiagnosis(measured, settings, believed_m, "; ".join(text for _, text in folds),
                          tuple(trials), causes, untestable, tuple(_fit_notes(trials, settings)),
                          time.perf_counter() - start)
+
+
+def fitted_cause(cause: str, measured: MeasuredScar, believed_m: np.ndarray, model, folds,
+                 settings: ScarDiagnoseSettings, progress: bool) -> CauseTrial:
+    """:func:`try_cause` of ``cause`` with ``model``'s forward runs, a progress line per run on
+    this process's stderr when ``progress``: one cause's whole fit, a call that
+    :func:`diagnose_scar` hands to a worker process."""
+    return try_cause(cause, measured, believed_m, _predictor(model, measured, cause), folds,
+                     settings, _reporter(cause) if progress else None)
+
+
+def _predictor(model, measured: MeasuredScar, cause: str):
+    """``predict(factor)``: the model's depths at every measured point (m), one forward run."""
+    profiles = len(measured.names)
+    return lambda factor: np.tile(model.depth_on(measured.x_m, cause, factor), profiles)
+
+
+def _reporter(cause: str):
+    """``report(factor, seconds)``: a forward run's progress line on stderr."""
+    def report(factor, seconds):
+        print(f"fewear diagnose: {cause} x{factor:.4g}: forward run in {seconds:.1f} s",
+              file=sys.stderr, flush=True)
+    return report
 
 
 def _fit_notes(trials, settings: ScarDiagnoseSettings) -> list[str]:

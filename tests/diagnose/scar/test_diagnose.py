@@ -19,7 +19,7 @@ import pytest
 
 from fewear.cli import main
 from fewear.data import BLOCK_ON_RING_CRUZADO2010_CSV, STANDIN_PIN_ON_DISC_CSV
-from fewear.diagnose.scar.diagnose import diagnose_scar
+from fewear.diagnose.scar.diagnose import diagnose_scar, fitted_cause, held_out_folds
 from fewear.diagnose.scar.measured import MeasuredScar, read_measured_scar
 from fewear.diagnose.scar.settings import ScarDiagnoseSettings
 from tests.diagnose.shared_keys import assert_shared_keys
@@ -122,13 +122,44 @@ def test_fit_converges_on_an_analytic_model_and_says_when_it_does_not():
     measured = MeasuredScar("analytic", x_m, model.depth_on(x_m, "", 1.37)[None, :],
                             ("profile",))
     settings = ScarDiagnoseSettings.default()
-    diagnosis = diagnose_scar(measured, model, settings, progress=None)
+    diagnosis = diagnose_scar(measured, model, settings, progress=False)
     trial = diagnosis.trials[0]
     assert trial.fit.factor == pytest.approx(1.37, rel=settings.factor_tolerance)
     assert trial.converged and diagnosis.notes == ()
     short = diagnose_scar(measured, model,
-                          dataclasses.replace(settings, max_forward_runs=1), progress=None)
+                          dataclasses.replace(settings, max_forward_runs=1), progress=False)
     assert any("NOT converged after 1 forward runs" in note for note in short.notes)
+
+
+class TwoCauseScar(PowerLawScar):
+    """:class:`PowerLawScar` with a second cause: the cylinder's factor widens the scar as
+    factor^(1/5) and makes it shallower as factor^(-1/5) (its area kept)."""
+
+    def depth_on(self, x_m, cause, factor):
+        if cause == "wear_coefficient":
+            return super().depth_on(x_m, cause, factor)
+        half_width, depth = 1.3e-3 * factor ** 0.2, 44e-6 * factor ** -0.2
+        return np.maximum(depth * (1.0 - (x_m / half_width) ** 2), 0.0)
+
+
+def test_causes_fitted_side_by_side_are_each_the_fit_alone():
+    """The two causes' fits run in worker processes (two cores) are the fits run here one
+    after the other: the same factors run, the same fitted factors to the bit."""
+    x_m = np.linspace(-2e-3, 2e-3, 201)
+    model = TwoCauseScar()
+    measured = MeasuredScar("analytic", x_m,
+                            model.depth_on(x_m, "cylinder_wear_coefficient", 1.25)[None, :],
+                            ("profile",))
+    settings = ScarDiagnoseSettings.default()
+    diagnosis = diagnose_scar(measured, model, settings, progress=False)
+    folds = held_out_folds(measured, settings.profile_blocks)
+    assert [trial.cause for trial in diagnosis.trials] == list(settings.candidates)
+    for trial in diagnosis.trials:
+        alone = fitted_cause(trial.cause, measured, diagnosis.believed_m, model, folds,
+                             settings, False)
+        assert trial.factors_run == alone.factors_run
+        assert (trial.fit, trial.fold_fits) == (alone.fit, alone.fold_fits)
+    assert diagnosis.trials[1].fit.factor == pytest.approx(1.25, rel=settings.factor_tolerance)
 
 
 BAD_FILES = [
