@@ -33,6 +33,7 @@ def run_case(out, *launcher, case="tests.contact.flat_mpi_case"):
     return np.load(out)
 
 
+@pytest.mark.slow  # 14 s; the wear loop's and the bushing contact's two-rank tests stay by default
 @pytest.mark.mpi
 def test_two_ranks_press_the_flat_as_serial(tmp_path):
     mpirun = mpirun_or_skip()

@@ -135,6 +135,7 @@ def test_pressure_falls_from_hertz_to_the_conformal_scars(coarse_runs):
     assert 0.9 * mean < last.max_pressure_Pa < 2.0 * mean
 
 
+@pytest.mark.slow  # the fretting block's equality test keeps the flat's Newton step by default
 def test_newton_steps_by_the_elastic_factorisation_are_the_stiffness_factorisations(
         coarse_runs, monkeypatch):
     """The coarse 15-step run, its Newton directions by K_el factorised once per wear step and

@@ -26,6 +26,7 @@ def run_case(out, *launcher):
     return np.load(out)
 
 
+@pytest.mark.slow  # the wear loop's two-rank test moves and re-meshes on two ranks by default
 @pytest.mark.mpi
 def test_two_ranks_move_and_remesh_as_serial(tmp_path):
     mpirun = mpirun_or_skip()

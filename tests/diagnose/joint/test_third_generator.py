@@ -228,6 +228,7 @@ def test_centre_offset_is_removed_on_the_unworn_arcs():
 
 # --- data sets (forward runs of the rigid believed model: seconds each) -----------------------
 
+@pytest.mark.slow  # 12 s of forward runs; the fourth generator's files parse by default
 def test_files_parse_with_the_reader(tmp_path):
     data = gen.write_data_set("none", gen.data_set_seed("none", 0), tmp_path)
     assert data.believed_toml.read_text() == gen.BELIEVED_TOML

@@ -143,6 +143,7 @@ def test_missing_variables_are_reported_not_invented(tmp_path):
     assert np.isfinite(summary["baseline"]["held_out_error"])
 
 
+@pytest.mark.slow  # the pin-on-disc diagnosis on two ranks; the serial command tests stay
 @pytest.mark.mpi
 def test_two_ranks_diagnose_tribometer_data_once(running_in_csv, outputs, tmp_path):
     """`mpirun -n 2 fewear diagnose` on a pin-on-disc table: the serial diagnosis runs on rank 0
