@@ -15,12 +15,12 @@ def compile_kernels(report=None) -> None:
     (:func:`fewear.mbd.slider_crank.compile_dynamics`) and the contact's
     (:func:`fewear.contact.condensed_newton.compile_contact`). ``report(text)``, if given, is
     told first when the cache holds no compiled code (the first run after a change of the
-    sources compiles for about a minute), so that the user is not left without a word; with no
-    cache that can be written (:func:`fewear.jit.choose_cache_dir`), every run compiles."""
+    sources compiles for one to a few minutes), so that the user is not left without a word;
+    with no cache that can be written (:func:`fewear.jit.choose_cache_dir`), every run compiles."""
     cache = numba.config.CACHE_DIR
     if report is not None and not (cache and holds_compiled_code(cache)):
         report("compiling the dynamics and contact kernels (" + (
-            "once after a change of fewear's sources, about a minute; later runs load them)"
-            if cache else "about a minute, on every run: no cache folder can be written)"))
+            "once after a change of fewear's sources, one to a few minutes; later runs load them)"
+            if cache else "one to a few minutes, on every run: no cache folder can be written)"))
     compile_dynamics()
     compile_contact()
