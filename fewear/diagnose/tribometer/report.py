@@ -260,6 +260,10 @@ def extended_toml(diagnosis: Diagnosis, s: dict[str, Any]) -> str:
               f"{s['held_out_error']['extended']:.3g} (gain {s['gain']:.0%}).\n"
               "# The extension is the shape cause; k(p, v) carries the level causes.\n"
               "# Use it as the [wear] section of a fewear config (see `fewear config`).\n\n")
+    if "normal_load_N" not in s["variables_measured"]:
+        header += ("# NOT IN m^2/N: the data held no normal_load_N, so V / (p s) was fitted and\n"
+                   "# k(p, v) below is k times the pins' apparent contact area A (m^2); divide\n"
+                   "# its level by A before using it, or diagnose again with normal_load_N.\n\n")
     return header + wear_section_toml(diagnosis.extended_section)
 
 

@@ -121,12 +121,17 @@ def test_a_table_without_normal_load_says_its_k_is_not_checked_nor_k(tmp_path, c
     """Pressures, no loads: k = V / (F s) cannot be computed (the fitted level is k A, here
     volumes 1e9 too small passed without a word and k A was written as k)."""
     path = write_table(tmp_path / "pressures.csv", 2e-13, scale=1e-9, force_column="pressure_Pa")
-    status, err, _ = diagnose(capsys, path, tmp_path)
+    status, err, out = diagnose(capsys, path, tmp_path)
     assert status == 0
     (warning,) = [line for line in err.splitlines() if "warning:" in line]
     assert ("no normal_load_N column: the wear coefficient k = V / (F s) cannot be computed"
             in warning)
     assert "k times the pins' apparent contact area A (F = p A), not k in m^2/N" in warning
+    # the file a user would load says so too; a table with loads writes no such line
+    assert "# NOT IN m^2/N" in (out / "extended_wear.toml").read_text()
+    status, _, with_loads = diagnose(capsys, write_table(tmp_path / "loads.csv", 2e-13),
+                                     tmp_path / "loads")
+    assert status == 0 and "NOT IN" not in (with_loads / "extended_wear.toml").read_text()
 
 
 def test_k_from_pressures_and_a_contact_area_is_checked(tmp_path):
