@@ -150,9 +150,10 @@ class FlatMeshSettings:
         any meshing: the message gives the estimated cells and memory, and the bound."""
         from fewear.io.limits import MAX_FLAT_MESH_CELLS, flat_mesh_memory_bytes, memory
 
-        along = 2.0 * self.contact_zone_half_width_m / self.contact_element_size_m
-        cells = (along + 2 * self.side_element_count) * self.depth_element_count
-        largest_along = MAX_FLAT_MESH_CELLS / self.depth_element_count - 2 * self.side_element_count
+        cells = ((self.contact_element_count() + 2 * self.side_element_count)
+                 * self.depth_element_count)
+        largest_along = 2 * math.floor(
+            (MAX_FLAT_MESH_CELLS / self.depth_element_count - 2 * self.side_element_count) / 2)
         smallest_size = (f"contact_element_size_m >= "
                          f"{2.0 * self.contact_zone_half_width_m / largest_along * 1.001:.3g} m"
                          if largest_along >= 2 else "fewer side or depth elements")
