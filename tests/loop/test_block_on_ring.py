@@ -143,13 +143,9 @@ def test_newton_steps_by_the_elastic_factorisation_are_the_stiffness_factorisati
     K = K_el + J factorised at every Newton step (the bushing's): the same scar to 1e-9 of its
     depth, the same contact in every step."""
     import fewear.loop.flat_wear
-    from fewear.contact.flat import FlatContactSolver
-    from fewear.contact.solver import BushingContactSolver
+    from tests.loop.test_fretting_wear import stiffness_factorised_solver
 
-    class StiffnessFactorised(FlatContactSolver):
-        _bordered_step = BushingContactSolver._bordered_step
-
-    monkeypatch.setattr(fewear.loop.flat_wear, "FlatContactSolver", StiffnessFactorised)
+    monkeypatch.setattr(fewear.loop.flat_wear, "FlatContactSolver", stiffness_factorised_solver())
     reference, fast = run(COARSE_ELEMENT_M, 15), coarse_runs[15]
     depth = reference.state.depth_m
     assert np.abs(fast.state.depth_m - depth).max() < 1e-9 * depth.max()

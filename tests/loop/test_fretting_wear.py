@@ -74,6 +74,18 @@ def test_the_scar_is_a_symmetric_u(run):
     assert 2 * STROKE_M < width < 0.4e-3
 
 
+def stiffness_factorised_solver():
+    """The flat's solver with the bushing's Newton direction (K = K_el + J factorised at every
+    Newton step): the reference of the flat's own (K_el once per geometry, Woodbury)."""
+    from fewear.contact.flat import FlatContactSolver
+    from fewear.contact.solver import BushingContactSolver
+
+    class StiffnessFactorised(FlatContactSolver):
+        _bordered_step = BushingContactSolver._bordered_step
+
+    return StiffnessFactorised
+
+
 def test_newton_steps_by_the_elastic_factorisation_are_the_stiffness_factorisations(
         monkeypatch):
     """The flat's Newton directions by K_el factorised once per geometry and the Woodbury
@@ -83,10 +95,6 @@ def test_newton_steps_by_the_elastic_factorisation_are_the_stiffness_factorisati
     Newton iterations and tangential forces."""
     import fewear.loop.fretting
     from fewear.contact.flat import FlatContactSolver
-    from fewear.contact.solver import BushingContactSolver
-
-    class StiffnessFactorised(FlatContactSolver):
-        _bordered_step = BushingContactSolver._bordered_step
 
     geometry = FlatGeometry(0.006, 2e-3, 1e-3, LENGTH_M, 6e-6)
     problem = FlatContactProblem(geometry, BushingMaterial(100e9, 0.3),
@@ -94,7 +102,7 @@ def test_newton_steps_by_the_elastic_factorisation_are_the_stiffness_factorisati
                                  ContactSettings(friction_coefficient=FRICTION))
     settings = FrettingWearSettings(FORCE_N, STROKE_M, 8, 1000, 1000, K_M2_N, K_CYLINDER_M2_N)
     runs = []
-    for solver in (FlatContactSolver, StiffnessFactorised):
+    for solver in (FlatContactSolver, stiffness_factorised_solver()):
         monkeypatch.setattr(fewear.loop.fretting, "FlatContactSolver", solver)
         runs.append(fewear.loop.fretting.run_fretting_wear(problem, settings))
     fast, reference = runs
