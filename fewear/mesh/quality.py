@@ -131,8 +131,7 @@ class QualityMeter:
         jacobian = self._jacobians()
         det = _determinants(jacobian) * self.orientation[:, None]
         scaled = det.min(axis=1) / np.abs(det).max(axis=1)
-        column_lengths = np.linalg.norm(jacobian, axis=2)
-        angle_sine = det / (column_lengths[:, :, 0] * column_lengths[:, :, 1])
+        angle_sine = det / (_column_length(jacobian, 0) * _column_length(jacobian, 1))
         motion = np.linalg.norm(self.mesh.geometry.x[self.bore_nodes, :2] - self.reference_xy,
                                 axis=2)
         ratio = motion.max(axis=1) / self.row_height_m
@@ -148,6 +147,13 @@ def _determinants(jacobian: np.ndarray) -> np.ndarray:
     """det J of 2x2 matrices (..., 2, 2) in closed form (``np.linalg.det`` factorises each by
     LAPACK: 9 ms per mesh of the default bushing against well under 1 ms)."""
     return jacobian[..., 0, 0] * jacobian[..., 1, 1] - jacobian[..., 0, 1] * jacobian[..., 1, 0]
+
+
+def _column_length(jacobian: np.ndarray, column: int) -> np.ndarray:
+    """|J e_column| of 2x2 matrices (..., 2, 2), as ``np.linalg.norm(jacobian, axis=-2)`` gives
+    it to the bit (the root of the two squares' sum), without its generic reduction over a
+    strided axis (5 ms per mesh of the default bushing against 0.1 ms)."""
+    return np.sqrt(jacobian[..., 0, column] ** 2 + jacobian[..., 1, column] ** 2)
 
 
 def _extreme(values: np.ndarray, reduce, empty: float) -> float:
