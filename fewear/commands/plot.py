@@ -16,10 +16,12 @@ from pathlib import Path
 import numpy as np
 
 from fewear.errors import FewearInputError
+from fewear.loop.outputs import MAX_WEAR_PNG, PROFILES_PNG
 from fewear.plot.worn_bushing import (
     FIGURE,
     VTK_BIQUADRATIC_QUAD,
     common_view,
+    ensemble_members,
     last_block,
     panels,
 )
@@ -28,6 +30,8 @@ from fewear.plot.worn_bushing import (
 def main(args) -> int:
     folder = Path(args.folder)
     layout = panels(folder, getattr(args, "joint", None))
+    members = ensemble_members(folder)
+    which = "" if members == 1 else f", member 0 of {members} (the configured start)"
     import pyvista
     import vtk
 
@@ -52,9 +56,14 @@ def main(args) -> int:
             plotter.subplot(row, column)
             plotter.add_mesh(grid, scalars="wear depth (um)", cmap="viridis", clim=clim,
                              scalar_bar_args={"fmt": "%.1f"})
-            plotter.add_text(f"{case}, joint {joint}, {cycles:,.0f} cycles, motion x{scale:g}",
-                             font_size=10)
+            plotter.add_text(f"{case}, joint {joint}{which}, {cycles:,.0f} cycles, "
+                             f"motion x{scale:g}", font_size=10)
             plotter.view_xy()
+    if members > 1:
+        print(f"fewear plot: {folder} holds an ensemble of {members} members: the bushing "
+              f"drawn is member 0's (the configured start); the members' mean with its sd band "
+              f"and range is in {PROFILES_PNG} and {MAX_WEAR_PNG} (their figures in "
+              "wear_profile_ensemble.csv, max_wear_ensemble.csv)")
     if not off_screen:
         plotter.show()
         return 0

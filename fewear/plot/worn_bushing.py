@@ -5,6 +5,7 @@ colour scale from zero (``fewear plot``, :mod:`fewear.commands.plot`, draws it i
 
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 
@@ -116,3 +117,13 @@ def panels(folder: Path, joint: str | None = None) -> dict:
         found = {joint: found[joint]}
     return found
 
+
+def ensemble_members(folder: Path) -> int:
+    """The members of the run in ``folder`` (its ``summary.json``'s ensemble), 1 for a single
+    run or a summary that cannot be read: an ensemble's mesh files are member 0's (the
+    configured start), its figures and CSVs hold the members' mean and spread."""
+    try:
+        summary = json.loads((folder / "summary.json").read_text())
+        return int(summary.get("ensemble", {}).get("members", 1))
+    except (OSError, ValueError, TypeError, AttributeError):
+        return 1

@@ -233,3 +233,20 @@ def test_the_members_start_the_drivers_further_on():
         base.mechanism.drivers[0].body, 0.0, 0.0, (0.0, 0.02, 0.05), (0.0, 0.1, 0.0)),))
     with pytest.raises(FewearInputError, match="follows a table"):
         adapter._started_later(tabulated, 1.0)
+
+
+def test_fewear_plot_of_an_ensemble_says_whose_bushing_it_draws(ensemble):
+    """The mesh files of an ensemble are member 0's: `fewear plot` says so and names the figures
+    of the members' mean and spread (its own process: PyVista, off screen)."""
+    import os
+    import subprocess
+    import sys
+
+    process = subprocess.run([sys.executable, "-m", "fewear.cli", "plot", str(ensemble)],
+                             capture_output=True, text=True, timeout=300,
+                             env={**os.environ, "PYVISTA_OFF_SCREEN": "true"})
+    assert process.returncode == 0, process.stderr
+    said = process.stdout
+    assert f"an ensemble of {MEMBERS} members" in said and "member 0's" in said
+    assert all(name in said for name in ("wear_profiles.png", "max_wear.png"))
+    assert (ensemble / "worn_bushing.png").stat().st_size > 10_000
