@@ -1,13 +1,12 @@
 """One wear block of a case's clearance joints (stages 1-5 of the flowchart in :mod:`fewear.loop`),
-and the blocks of a case until its total cycles: the slider-crank's one joint
-(:func:`run_block`, :func:`predict_case`), or every joint of a mechanism worn together on one
-dynamics (:func:`predict_joints`)."""
+and the blocks of a case until its total cycles (:func:`predict_joints`): every joint of a
+mechanism worn together on one dynamics, the paper's slider-crank's one joint among them."""
 
 from __future__ import annotations
 
 import math
 import time
-from concurrent.futures import Executor, Future, ThreadPoolExecutor
+from concurrent.futures import ThreadPoolExecutor
 from contextlib import contextmanager
 from dataclasses import dataclass, replace
 
@@ -35,36 +34,14 @@ def smoothed_block_wear(per_cycle: CycleSliding, state: WearState, extension, cy
                       cycles, smoothing_width_rad=width_rad)
 
 
-def block_dynamics(rod: str, inputs: RunInputs, state: WearState, mechanism):
-    """Stage 1 of a block of the slider-crank's one joint: the clearance-joint dynamics of
-    ``rod`` on the worn clearance of ``state``, warm-started from ``mechanism`` (None: the ideal
-    mechanism, settling ``[mechanism] settling_cycles``; else ``warm_settling_cycles``). Returns
-    (the :func:`fewear.mbd.slider_crank.simulate` result, its wall time in s); a mechanism the
-    integrator cannot carry is a :class:`FewearInputError` (run ahead in a thread, its future
-    raises it when its block comes)."""
-    from fewear.mbd.slider_crank import UNINTEGRABLE_HINT, simulate
-
-    loop = inputs.loop
-    crank = replace(inputs.dynamics.crank, rod=rod, joint="clearance",
-                    recorded_cycles=loop.recorded_cycles_per_block,
-                    settling_cycles=(inputs.dynamics.crank.settling_cycles
-                                     if mechanism is None else loop.warm_settling_cycles))
-    geometry = inputs.contact.geometry
-    joint = replace(inputs.dynamics.joint,
-                    profile=state.clearance_profile(geometry.inner_radius_m,
-                                                    geometry.pin_radius_m))
-    with _dynamics_failure(f"{rod} rod", state, {"": inputs}, UNINTEGRABLE_HINT):
-        start = time.perf_counter()
-        result = simulate(replace(inputs.dynamics, crank=crank, joint=joint), start=mechanism)
-    return result, time.perf_counter() - start
-
-
 def mechanism_dynamics(case: str, dynamics, joints: dict, states: dict, mechanism):
     """Stage 1 of a block of a mechanism's clearance joints (:mod:`fewear.loop.mechanism_adapter`):
     one run of the dynamics of ``case`` (its typed inputs ``dynamics``) with every joint on the
     worn clearance of its wear state (``states``: joint name -> :class:`WearState`; ``joints``:
-    joint name -> its :class:`RunInputs`), warm-started as :func:`block_dynamics`. Returns ((joint
-    name -> history, summary, final state), wall time in s)."""
+    joint name -> its :class:`RunInputs`), warm-started from ``mechanism`` (None: the assembled
+    mechanism, settling the mechanism's own settling cycles; else ``[wear_loop]
+    warm_settling_cycles``). Returns ((joint name -> history, summary, final state), wall time
+    in s); a mechanism the integrator cannot carry is a :class:`FewearInputError`."""
     from fewear.loop import mechanism_adapter as adapter
 
     loop = next(iter(joints.values())).loop
@@ -122,36 +99,24 @@ class JointRun:
     case: CaseProgress
 
 
-def run_block(rod: str, inputs: RunInputs, bushing, case: CaseProgress,
-              added_depth_per_cycle=None, dynamics: Future | None = None,
-              ahead: Executor | None = None) -> Future | None:
-    """One wear block of the slider-crank's one joint, ``case`` updated in place: stage 1 (the
-    dynamics on the worn clearance, :func:`block_dynamics`), then :func:`wear_block`.
-    ``added_depth_per_cycle`` (history, state) -> depth per cycle (m, per bore node), optional:
-    a wear source of another law added to each step's impact wear (a given source of the step,
-    like it).
+def run_block(config: dict, joint: JointRun, added_depth_per_cycle=None) -> None:
+    """One wear block of the one clearance joint of ``config``'s first case (its rod model, or
+    the mechanism file's variable body's model), ``joint``'s progress updated in place: stage 1
+    (:func:`mechanism_dynamics` on the joint's worn clearance, from the case's last mechanism
+    state), then :func:`wear_block`. For a caller that changes the config between blocks (a
+    hidden effect switched on as the run goes); ``added_depth_per_cycle`` (history, state) ->
+    depth per cycle (m, per bore node): a wear source of another law added to each wear step's
+    impact wear."""
+    from fewear.loop import mechanism_adapter as adapter
 
-    ``dynamics``: this block's stage 1 already under way (the future of :func:`block_dynamics`,
-    as returned by the previous block), else it runs here. ``ahead``: an executor on which the
-    next block's stage 1 is started as soon as this block's last wear step is known, beside its
-    mesh stage; its future is returned (None without ``ahead`` or after the last block). The
-    dynamics depend only on the wear state and the mechanism's last state, so the result is the
-    same either way."""
-    if dynamics is None:
-        (history, _, mechanism), seconds = block_dynamics(rod, inputs, case.state,
-                                                           case.mechanism)
-    else:
-        (history, _, mechanism), seconds = dynamics.result()
-    following = []
-
-    def start_next(worn: dict) -> None:
-        if ahead is not None:
-            following.append(ahead.submit(block_dynamics, rod, inputs, worn[rod], mechanism))
-
-    added = None if added_depth_per_cycle is None else {rod: added_depth_per_cycle}
-    wear_block({rod: JointRun(f"{rod} rod", inputs, bushing, case)}, {rod: history}, mechanism,
-               seconds, start_next, added)
-    return following[0] if following else None
+    case = config["wear_loop"]["rod_models"][0]
+    name = next(iter(adapter.joint_sections(config)))
+    (histories, _, mechanism), seconds = mechanism_dynamics(
+        case, adapter.dynamics_inputs(config, case), {name: joint.inputs},
+        {name: joint.case.state}, joint.case.mechanism)
+    wear_block({name: joint}, histories, mechanism, seconds,
+               added_depth_per_cycle=None if added_depth_per_cycle is None
+               else {name: added_depth_per_cycle})
 
 
 def wear_block(joints: dict, histories: dict, mechanism, dynamics_s: float,
@@ -346,27 +311,17 @@ def restored_bushing(inputs: RunInputs, case: CaseProgress, comm):
     return bushing
 
 
-def predict_case(rod: str, inputs: RunInputs, bushing, case: CaseProgress, after_block) -> None:
-    """Wear blocks of the slider-crank's one joint until ``total_cycles``; ``after_block(case)``
-    runs after each (checkpoint, progress). Each block's dynamics runs in a thread from the
-    moment the previous block's wear is known, beside that block's mesh stage and
-    ``after_block`` (:func:`run_block`; the compiled dynamics release the interpreter lock): on a
-    free core the mesh stage costs no wall time. Stage times then overlap."""
-    with ThreadPoolExecutor(max_workers=1, thread_name_prefix=f"fewear-{rod}-dynamics") as ahead:
-        following = None
-        while case.state.cycles < inputs.loop.total_cycles:
-            following = run_block(rod, inputs, bushing, case, dynamics=following, ahead=ahead)
-            after_block(case)
-
-
 def predict_joints(label: str, joints: dict, simulate_block, after_block, ranks=None) -> None:
     """Wear blocks of every joint of a case (joint name -> :class:`JointRun`, in step) until
     ``total_cycles``; ``after_block()`` runs after each (checkpoint, progress).
     ``simulate_block(states, mechanism)``: stage 1 for every joint's wear state (joint name ->
     :class:`WearState`) from the mechanism's last state, returning ((joint name -> history,
-    summary, final state), wall time in s); it runs in a thread ahead, as in
-    :func:`predict_case`. ``ranks``: a :class:`fewear.loop.joint_ranks.JointRanks` when the
-    case's joints are split among its ranks (``joints`` this rank's only)."""
+    summary, final state), wall time in s); it runs in a thread from the moment the previous
+    block's wear is known, beside that block's mesh stage and ``after_block`` (the compiled
+    dynamics release the interpreter lock; the dynamics depend only on the wear states and the
+    mechanism's last state, so the result is the same). ``ranks``: a
+    :class:`fewear.loop.joint_ranks.JointRanks` when the case's joints are split among its ranks
+    (``joints`` this rank's only)."""
     first = next(iter(joints.values()))
     share = dict if ranks is None else ranks.all_states
     with ThreadPoolExecutor(max_workers=1, thread_name_prefix=f"fewear-{label}-dynamics") as ahead:

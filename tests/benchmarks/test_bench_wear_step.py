@@ -20,15 +20,16 @@ explicit steps well inside their stability limit have no such linearisation. REA
 import math
 import os
 import time
-from concurrent.futures import Future
 from dataclasses import replace
 
 import pytest
 from mpi4py import MPI
 
 from fewear.io.config import load_config
-from fewear.loop.block import block_dynamics, new_bushing, new_case, run_block
+from fewear.loop import mechanism_adapter as adapter
+from fewear.loop.block import JointRun, mechanism_dynamics, new_bushing, new_case, wear_block
 from fewear.loop.settings import run_inputs_from_config, run_sections
+from fewear.mbd.slider_crank import CLEARANCE_JOINT
 from fewear.wear.extrapolation import ExtrapolationSettings
 
 pytestmark = pytest.mark.benchmark
@@ -36,12 +37,6 @@ CYCLES = int(os.environ.get("FEWEAR_BENCH_WEAR_STEP_CYCLES", "50000"))
 BOUNDS = (0.0625, 0.03125, 0.015625, 0.0078125)
 FIXED_STEP_CYCLES = (160, 400)
 REFERENCE_STEP_CYCLES = 40
-
-
-def done(result) -> Future:
-    future = Future()
-    future.set_result(result)
-    return future
 
 
 def step_settings(inputs, total_cycles: int, bound: float | None = None,
@@ -57,11 +52,14 @@ def step_settings(inputs, total_cycles: int, bound: float | None = None,
     return replace(inputs, loop=replace(loop, total_cycles=total_cycles, wear_steps_per_block=1))
 
 
-def wear_to(inputs, bushing, case, history) -> float:
-    """Wear ``case`` to ``inputs``' total cycles on ``history``; the wall time (s)."""
+def wear_to(inputs, bushing, case, dynamics) -> float:
+    """Wear ``case`` to ``inputs``' total cycles on the first block's ``dynamics`` (histories,
+    summary, final mechanism, wall time) every block; the wall time (s)."""
+    (histories, _, mechanism), seconds = dynamics
     start = time.perf_counter()
     while case.state.cycles < inputs.loop.total_cycles:
-        run_block("rigid", inputs, bushing, case, dynamics=done(history))
+        wear_block({CLEARANCE_JOINT: JointRun("rigid rod", inputs, bushing, case)}, histories,
+                   mechanism, seconds)
     return time.perf_counter() - start
 
 
@@ -71,10 +69,12 @@ def fresh(inputs):
 
 
 def test_wear_step_convergence_on_one_history():
-    inputs = run_inputs_from_config(load_config(None, run_sections()))
+    config = load_config(None, run_sections())
+    inputs = run_inputs_from_config(config)
     radius = inputs.contact.geometry.inner_radius_m
     bushing, case = fresh(inputs)
-    history = block_dynamics("rigid", inputs, case.state, None)
+    history = mechanism_dynamics("rigid", adapter.dynamics_inputs(config, "rigid"),
+                                 {CLEARANCE_JOINT: inputs}, {CLEARANCE_JOINT: case.state}, None)
     runs = {}
     for label, kwargs in [*((f"linearised, f = {f:g}", {"bound": f}) for f in BOUNDS),
                           *((f"linearised, A = {a}", {"step_cycles": a, "linearised": True})

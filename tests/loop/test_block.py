@@ -1,7 +1,6 @@
-"""A wear block with several wear steps (fewear.loop.block.run_block): the steps are the blocks
+"""A wear block with several wear steps (fewear.loop.block.wear_block): the steps are the blocks
 they replace, with the dynamics run once."""
 
-from concurrent.futures import Future
 from dataclasses import replace
 
 import numpy as np
@@ -10,28 +9,50 @@ from mpi4py import MPI
 
 from fewear.diagnose.joint.forward import wear_step_ends
 from fewear.io.config import load_config
-from fewear.loop.block import block_dynamics, new_bushing, new_case, run_block
+from fewear.loop import mechanism_adapter as adapter
+from fewear.loop.block import (
+    JointRun,
+    mechanism_dynamics,
+    new_bushing,
+    new_case,
+    run_block,
+    wear_block,
+)
 from fewear.loop.checkpoint import Checkpoint
 from fewear.loop.settings import run_inputs_from_config, run_sections
+from fewear.mbd.slider_crank import CLEARANCE_JOINT
 from tests.loop.test_wear_loop import write_config
 
 
-def done(result) -> Future:
-    future = Future()
-    future.set_result(result)
-    return future
-
-
 @pytest.fixture(scope="module")
-def small_inputs(tmp_path_factory):
+def small_config(tmp_path_factory):
     """The small case of tests/loop/test_wear_loop.py: rigid rod, 40 load steps, A = 2000 per
     step."""
     config = load_config(write_config(tmp_path_factory.mktemp("block")), run_sections())
     config["wear_loop"]["total_cycles"] = 7000
-    return run_inputs_from_config(config)
+    return config
 
 
-def test_wear_steps_of_one_block_are_the_blocks_they_replace_on_its_history(small_inputs,
+@pytest.fixture(scope="module")
+def small_inputs(small_config):
+    return run_inputs_from_config(small_config)
+
+
+def first_dynamics(config, inputs, state):
+    """The rigid case's first block of dynamics on ``state``'s bore (its histories, summary,
+    final mechanism, wall time)."""
+    return mechanism_dynamics("rigid", adapter.dynamics_inputs(config, "rigid"),
+                              {CLEARANCE_JOINT: inputs}, {CLEARANCE_JOINT: state}, None)
+
+
+def block_on(dynamics, joint: JointRun) -> None:
+    """One wear block of ``joint`` on the given ``dynamics`` (as :func:`first_dynamics`)."""
+    (histories, _, mechanism), seconds = dynamics
+    wear_block({CLEARANCE_JOINT: joint}, histories, mechanism, seconds)
+
+
+def test_wear_steps_of_one_block_are_the_blocks_they_replace_on_its_history(small_config,
+                                                                             small_inputs,
                                                                              tmp_path):
     """Three wear steps on one recorded history leave the bore (depth to the last bit), the
     cycles and the mesh where three blocks given that same history leave them; the steps count
@@ -43,10 +64,10 @@ def test_wear_steps_of_one_block_are_the_blocks_they_replace_on_its_history(smal
     for name, inputs in (("steps", stepped), ("blocks", small_inputs)):
         bushing = new_bushing(inputs, MPI.COMM_SELF)
         case = new_case(bushing)
-        history = block_dynamics("rigid", inputs, case.state, None)
+        dynamics = first_dynamics(small_config, inputs, case.state)
         blocks = 3 if name == "blocks" else 1
         for _ in range(blocks):
-            run_block("rigid", inputs, bushing, case, dynamics=done(history))
+            block_on(dynamics, JointRun("rigid rod", inputs, bushing, case))
         cases[name] = (case, bushing)
     (steps, stepped_bushing), (blocks, block_bushing) = cases["steps"], cases["blocks"]
     assert steps.state.cycles == blocks.state.cycles == 6000
@@ -71,7 +92,7 @@ def test_wear_steps_of_one_block_are_the_blocks_they_replace_on_its_history(smal
     loaded, = checkpoint.load(["rigid"], ["rod_slider"])["rigid"]["rod_slider"].records
     np.testing.assert_array_equal(loaded.inner_cycles, inner.inner_cycles)
     np.testing.assert_array_equal(loaded.inner_depth_m, inner.inner_depth_m)
-    run_block("rigid", stepped, stepped_bushing, steps)
+    run_block(small_config, JointRun("rigid rod", stepped, stepped_bushing, steps))
     assert (steps.state.cycles, steps.records[-1].block_cycles, steps.state.blocks) == (7000, 1000,
                                                                                         2)
 
@@ -90,13 +111,12 @@ def test_wear_steps_per_block_outside_1_to_64_is_an_input_error(tmp_path, capsys
 
 @pytest.mark.parametrize("penetration_m, says", [
     (8.6e-6, "may get past it"), (4.2e-3, "jammed it into its worn pocket")])
-def test_a_collapsed_block_says_whether_the_pin_jammed(small_inputs, monkeypatch,
+def test_a_collapsed_block_says_whether_the_pin_jammed(small_config, small_inputs, monkeypatch,
                                                        penetration_m, says):
     """The wear loop's error on a collapsed step size tells a pin pressed in elastically (the
     undamped rod's 8.6 um: settings may get past it) from one pushed deeper than the radial
     clearance, 0.5 mm (a rigid rod's 4.2 mm at 79 MN, seen after 399,753 cycles: a jam, which
     no setting mends)."""
-    import fewear.mbd.slider_crank as slider_crank
     from fewear.errors import FewearInputError
     from fewear.mbd.integrator import StepSizeCollapse
     from fewear.wear.state import WearState
@@ -105,8 +125,8 @@ def test_a_collapsed_block_says_whether_the_pin_jammed(small_inputs, monkeypatch
         raise StepSizeCollapse("generalized-alpha: step size fell below min_step_s",
                                ((penetration_m, 7.9e7, 0.1),))
 
-    monkeypatch.setattr(slider_crank, "simulate", collapsing)
+    monkeypatch.setattr(adapter, "simulate", collapsing)
     worn = replace(WearState.unworn(np.linspace(0.0, 6.0, 48)), blocks=76, cycles=399_753)
     with pytest.raises(FewearInputError, match=says) as caught:
-        block_dynamics("rigid", small_inputs, worn, None)
+        first_dynamics(small_config, small_inputs, worn)
     assert "block 77 at 399,753 cycles" in str(caught.value)

@@ -1,7 +1,8 @@
 """Forward runs of the wear loop for the joint diagnosis: the worn bore against cycles.
 
-A run is :func:`fewear.loop.block.predict_case` for one rod model of a complete config (a model the
-user believes, or one with a cause switched on), without checkpoint or outputs. Its result, a
+A run is ``fewear run``'s wear loop (:func:`fewear.loop.block.predict_joints`) for one rod model of
+a complete config (a model the user believes, or one with a cause switched on), without checkpoint
+or outputs. Its result, a
 :class:`WearHistory`, holds the depth at the bore nodes after every wear step (a block's dynamics
 serve ``wear_steps_per_block`` of them); between steps the depth is interpolated linearly in cycles
 (the steps bound the depth increment, so this is the loop's own resolution). Runs are memoised by
@@ -123,30 +124,33 @@ def with_doubled_recorded_cycles(config: dict) -> dict:
 
 
 def simulate_wear(config: dict, label: str = "", comm=None) -> WearHistory:
-    """The wear loop of the config's (single) rod model up to its ``total_cycles``. A run that
+    """The wear loop of the config's (single) rod model up to its ``total_cycles``, as ``fewear
+    run`` makes it (:func:`fewear.loop.block.predict_joints` on the case's dynamics). A run that
     wears through the wall or whose contact fails ends there (``stopped`` says why)."""
     key = _key(config)
     if key in _RUNS:
         return _RUNS[key]
     from mpi4py import MPI
 
-    from fewear.loop.block import new_bushing, new_case, predict_case
-    from fewear.loop.settings import run_inputs_from_config
+    from fewear.loop.block import JointRun, new_bushing, new_case, predict_joints
+    from fewear.loop.plan import Member, run_plan
 
     comm = MPI.COMM_WORLD if comm is None else comm
-    inputs = run_inputs_from_config(config)
-    rod = inputs.loop.rod_models[0]
+    plan = run_plan(config)
+    rod, (name, inputs) = plan.cases[0], next(iter(plan.joints.items()))
     start = time.perf_counter()
     bushing = new_bushing(inputs, comm)
-    case = new_case(bushing)
+    joint = JointRun(f"{rod} rod", inputs, bushing, new_case(bushing))
     stopped = ""
     progress = _BlockProgress(label or rod, inputs.loop.total_cycles, comm.rank == 0)
     try:
-        predict_case(rod, inputs, bushing, case, progress)
+        predict_joints(rod, {name: joint}, plan.simulate_block(config, Member(rod)),
+                       lambda: progress(joint.case))
     except FewearInputError as exc:
         stopped = str(exc)
     finally:
         bushing.close()
+    case = joint.case
     if not case.records:
         raise FewearInputError(f"forward run {label or rod}: no wear block completed ({stopped})")
     state = case.state
@@ -268,25 +272,26 @@ def _key(config: dict) -> str:
 def cycle_on_worn_bore(config: dict, angle_rad: np.ndarray | None = None,
                        depth_m: np.ndarray | None = None, recorded_cycles: int = 1):
     """``recorded_cycles`` crank cycles of the config's rod model (after its settling cycles)
-    on the bore worn by ``depth_m`` at the node angles ``angle_rad`` (None: the unworn bore):
-    the :class:`fewear.mbd.history.JointHistory` the wear stage would see."""
+    on the bore worn by ``depth_m`` at the node angles ``angle_rad`` (None: the unworn bore, the
+    joint's nominal clearance): the :class:`fewear.mbd.history.JointHistory` the wear stage
+    would see (the case's dynamics of :mod:`fewear.loop.mechanism_adapter`)."""
     from dataclasses import replace
 
-    from fewear.loop.settings import run_inputs_from_config
-    from fewear.mbd.slider_crank import simulate
+    from fewear.loop import mechanism_adapter as adapter
+    from fewear.loop.plan import run_plan
     from fewear.wear.state import WearState
 
-    inputs = run_inputs_from_config(config)
-    crank = replace(inputs.dynamics.crank, rod=inputs.loop.rod_models[0], joint="clearance",
-                    recorded_cycles=recorded_cycles)
-    joint = inputs.dynamics.joint
+    plan = run_plan(config)
+    rod, (name, inputs) = plan.cases[0], next(iter(plan.joints.items()))
+    profiles = None
     if depth_m is not None:
         state = replace(WearState.unworn(angle_rad), depth_m=np.asarray(depth_m, dtype=float))
         geometry = inputs.contact.geometry
-        joint = replace(joint, profile=state.clearance_profile(geometry.inner_radius_m,
-                                                               geometry.pin_radius_m))
-    history, _, _ = simulate(replace(inputs.dynamics, crank=crank, joint=joint))
-    return history
+        profiles = {name: state.clearance_profile(geometry.inner_radius_m,
+                                                  geometry.pin_radius_m)}
+    histories, _, _ = adapter.simulate(adapter.block_inputs(
+        adapter.dynamics_inputs(config, rod), recorded_cycles, None), profiles=profiles)
+    return histories[name]
 
 
 def impact_measures_per_cycle(config: dict) -> dict[str, float]:

@@ -628,7 +628,7 @@ def true_history(believed: dict, params: dict, last_cycles: int, comm=None) -> W
     sized threshold and coefficient. With nothing hidden this is the believed forward run."""
     from mpi4py import MPI
 
-    from fewear.loop.block import new_bushing, new_case, restored_bushing, run_block
+    from fewear.loop.block import JointRun, new_bushing, new_case, restored_bushing, run_block
 
     comm = MPI.COMM_WORLD if comm is None else comm
     start = time.perf_counter()
@@ -650,7 +650,7 @@ def true_history(believed: dict, params: dict, last_cycles: int, comm=None) -> W
         rod = inputs.loop.rod_models[0]
         try:
             while case.state.cycles < end:
-                run_block(rod, inputs, bushing, case, source)
+                run_block(config, JointRun(f"{rod} rod", inputs, bushing, case), source)
         except FewearInputError as exc:
             stopped = str(exc)
             break

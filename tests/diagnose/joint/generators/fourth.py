@@ -650,7 +650,7 @@ def layered_run(config: dict, last_cycles: int, friction: dict | None = None,
         return _LAYERED[key]
     from mpi4py import MPI
 
-    from fewear.loop.block import new_bushing, new_case, restored_bushing, run_block
+    from fewear.loop.block import JointRun, new_bushing, new_case, restored_bushing, run_block
     from fewear.loop.settings import run_inputs_from_config
 
     comm = MPI.COMM_WORLD
@@ -670,7 +670,7 @@ def layered_run(config: dict, last_cycles: int, friction: dict | None = None,
         source = (_impact_depth_source(block_config, impact_volume_m3,
                                        inputs.loop.recorded_cycles_per_block, running_in)
                   if impact_volume_m3 > 0.0 else None)
-        run_block(rod, inputs, bushing, case, source)
+        run_block(block_config, JointRun(f"{rod} rod", inputs, bushing, case), source)
     state = case.state
     history = WearHistory(
         state.angle_rad.copy(), np.array([0.0] + [float(r.cycles) for r in case.records]),
