@@ -135,6 +135,17 @@ _S, _S0 = _invariant_matrices()
 # S_i z by gathering: each row of S_i has at most one non-zero entry, so (S_i z)_m = f * z[index].
 _SZ_INDEX = np.argmax(_S != 0.0, axis=2)
 _SZ_FACTOR = _S.max(axis=2)
+# Each entry (a, b) of the S_i belongs to one invariant at most: S_i[a, b] = _S_ENTRY[a, b] for
+# i = _S_INVARIANT[a, b] (-1: none), so sum_i x_i S_i[a, b] is one product.
+_S_INVARIANT = np.where((_S != 0.0).any(axis=0), np.argmax(_S != 0.0, axis=0), -1)
+_S_ENTRY = _S.sum(axis=0)
+# The invariants whose S_i have a non-zero row a (three each): (S_i z)_a is zero for the others.
+_INVARIANTS_OF_ROW = np.array([np.nonzero((_S[:, a, :] != 0.0).any(axis=1))[0] for a in range(6)])
+# The pattern of an element's strain operator B (6, 12) (AncfBeam._build_strain_operators): row a
+# of z = (t, d, k) holds node N's coordinate 4 N + _B_COLUMN_OFFSET[a] (t from r, d and k from
+# r_,y); column c of B has the rows _B_ROWS[c % 4] (t or d and k).
+_B_COLUMN_OFFSET = np.array([0, 1, 2, 3, 2, 3])
+_B_ROWS = np.array([[0, -1], [1, -1], [2, 4], [3, 5]])
 
 
 class AncfBeam:
@@ -364,12 +375,26 @@ def _matvec(A, x, out):
 
 
 @compiled
-def _vecmat(x, A, out):
-    """out = x^T A."""
-    out[:] = 0.0
-    for i in range(A.shape[0]):
-        for j in range(A.shape[1]):
-            out[j] += x[i] * A[i, j]
+def _strain_operator_times(B, x, out):
+    """out = B x for an element's strain operator B (6, 12): only its three entries a row
+    (_B_COLUMN_OFFSET), in the order of the dense product (the zeros add nothing)."""
+    for a in range(6):
+        total = 0.0
+        for node in range(3):
+            c = 4 * node + _B_COLUMN_OFFSET[a]
+            total += B[a, c] * x[c]
+        out[a] = total
+
+
+@compiled
+def _strain_operator_transposed_times(x, B, out):
+    """out = B^T x (12,) over the one or two entries of each column of B (_B_ROWS)."""
+    for c in range(12):
+        rows = _B_ROWS[c % 4]
+        total = x[rows[0]] * B[rows[0], c]
+        if rows[1] >= 0:
+            total += x[rows[1]] * B[rows[1], c]
+        out[c] = total
 
 
 @compiled
@@ -386,10 +411,10 @@ def _invariants(s_z, z, z_dot, s, s_rate):
 @compiled
 def _force_in_z(s_z, s_dot_z, stress, stress_rate, damping, beta, f_z):
     """f_z = sum_i [(H s)_i + (tau + beta) (H s')_i] S_i z + beta (H s)_i S_i z' (``damping`` =
-    tau + beta)."""
+    tau + beta), over the invariants whose row m is not zero (_INVARIANTS_OF_ROW)."""
     for m in range(6):
         total = 0.0
-        for i in range(6):
+        for i in _INVARIANTS_OF_ROW[m]:
             total += ((stress[i] + damping * stress_rate[i]) * s_z[i, m]
                       + beta * stress[i] * s_dot_z[i, m])
         f_z[m] = total
@@ -405,16 +430,18 @@ def _gather_invariant_rows(z, rows):
 
 @compiled
 def _add_projected(B, T, work, target):
-    """target += B^T T B for one point (B (6, 12), T (6, 6), target (12, 12); work (6, 12))."""
-    work[:] = 0.0
+    """target += B^T T B for one point (B (6, 12), T (6, 6), target (12, 12); work (6, 12)),
+    over the entries of B's pattern (_B_ROWS), each sum in the order of the dense product."""
     for a in range(6):
-        for b in range(6):
-            if T[a, b] != 0.0:
-                for c in range(12):
-                    work[a, c] += T[a, b] * B[b, c]
+        for c in range(12):
+            rows = _B_ROWS[c % 4]
+            total = T[a, rows[0]] * B[rows[0], c]
+            if rows[1] >= 0:
+                total += T[a, rows[1]] * B[rows[1], c]
+            work[a, c] = total
     for r in range(12):
-        for a in range(6):
-            if B[a, r] != 0.0:
+        for a in _B_ROWS[r % 4]:
+            if a >= 0:
                 for c in range(12):
                     target[r, c] += B[a, r] * work[a, c]
 
@@ -424,32 +451,33 @@ def _point_tangents(s_z, s_dot_z, stress, stress_rate, H, tau, beta, elastic, ra
     """Fill (G, R, M) in z (6, 6 each): the elastic tangent G = sum_i (H s)_i S_i + M with the
     material part M = (S z)^T H (S z), and the rate part R = (tau + beta) (sum_i (H s')_i S_i + X)
     + beta X^T with X = (H S z)^T (S z') (AncfBeam.internal_forces and
-    stiffness_proportional_forces). ``material`` holds H S z on entry."""
+    stiffness_proportional_forces). ``material`` holds H S z on entry. The sums run over the
+    non-zero terms only (_S_INVARIANT, _INVARIANTS_OF_ROW), in their order."""
     h_s_z = material
     for j in range(6):
         for b in range(6):
             total = 0.0
-            for i in range(6):
+            for i in _INVARIANTS_OF_ROW[b]:
                 total += H[j, i] * s_z[i, b]
             h_s_z[j, b] = total
     for a in range(6):
         for b in range(6):
             geometric, rate_geometric = 0.0, 0.0
-            for i in range(6):
-                geometric += stress[i] * _S[i, a, b]
-                rate_geometric += stress_rate[i] * _S[i, a, b]
+            if _S_INVARIANT[a, b] >= 0:
+                geometric = stress[_S_INVARIANT[a, b]] * _S_ENTRY[a, b]
+                rate_geometric = stress_rate[_S_INVARIANT[a, b]] * _S_ENTRY[a, b]
             material_ab, cross, cross_t = 0.0, 0.0, 0.0
-            for j in range(6):
+            for j in _INVARIANTS_OF_ROW[a]:
                 material_ab += s_z[j, a] * h_s_z[j, b]
-                cross += h_s_z[j, a] * s_dot_z[j, b]
                 cross_t += h_s_z[j, b] * s_dot_z[j, a]
+            for j in _INVARIANTS_OF_ROW[b]:
+                cross += h_s_z[j, a] * s_dot_z[j, b]
             elastic[a, b] = geometric + material_ab
             rate[a, b] = (tau + beta) * (rate_geometric + cross) + beta * cross_t
     for a in range(6):
         for b in range(6):
-            material[a, b] = elastic[a, b]
-            for i in range(6):
-                material[a, b] -= stress[i] * _S[i, a, b]
+            material[a, b] = elastic[a, b] - stress[_S_INVARIANT[a, b]] * _S_ENTRY[a, b] \
+                if _S_INVARIANT[a, b] >= 0 else elastic[a, b]
 
 
 @compiled
@@ -479,15 +507,15 @@ def add_beam_forces(q, qd, dofs, B, H, tau, beta, scale, jacobian, forces, d_dq,
         stiffness[:], rate[:], material[:] = 0.0, 0.0, 0.0
         for p in range(B.shape[1]):
             B_p, H_p = B[e, p], H[e, p]
-            _matvec(B_p, q_e, z)
-            _matvec(B_p, qd_e, z_dot)
+            _strain_operator_times(B_p, q_e, z)
+            _strain_operator_times(B_p, qd_e, z_dot)
             _gather_invariant_rows(z, s_z)
             _gather_invariant_rows(z_dot, s_dot_z)
             _invariants(s_z, z, z_dot, s, s_rate)
             _matvec(H_p, s, stress)
             _matvec(H_p, s_rate, stress_rate)
             _force_in_z(s_z, s_dot_z, stress, stress_rate, damping, beta[e], f_z)
-            _vecmat(f_z, B_p, f_e)
+            _strain_operator_transposed_times(f_z, B_p, f_e)
             for r in range(12):
                 forces[dofs_e[r]] += scale * f_e[r]
             if jacobian:

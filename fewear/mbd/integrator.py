@@ -240,8 +240,12 @@ def _collapse(data, Y, t: float, min_step_s: float) -> StepSizeCollapse:
 @compiled
 def lu_factor(A, pivots):
     """LU factors of A with partial pivoting, in place (Golub & Van Loan, Matrix Computations,
-    alg. 3.4.1: row k swapped with pivots[k]); False if A is singular."""
+    alg. 3.4.1: row k swapped with pivots[k]); False if A is singular. Each elimination updates
+    only the columns where the pivot row is not zero (and the rows where the multiplier is not):
+    the other entries would change by an exact zero, so the factors are those of the dense
+    elimination, found in a fraction of its work on the sparse iteration matrix."""
     size = A.shape[0]
+    columns = np.empty(size, dtype=np.int64)
     for k in range(size):
         pivot = k
         for i in range(k + 1, size):
@@ -253,13 +257,18 @@ def lu_factor(A, pivots):
         if pivot != k:
             for c in range(size):
                 A[k, c], A[pivot, c] = A[pivot, c], A[k, c]
+        count = 0
+        for c in range(k + 1, size):
+            if A[k, c] != 0.0:
+                columns[count] = c
+                count += 1
         inverse = 1.0 / A[k, k]
         for i in range(k + 1, size):
             A[i, k] *= inverse
             factor = A[i, k]
             if factor != 0.0:
-                for c in range(k + 1, size):
-                    A[i, c] -= factor * A[k, c]
+                for j in range(count):
+                    A[i, columns[j]] -= factor * A[k, columns[j]]
     return True
 
 
@@ -367,18 +376,26 @@ def _correct(Y1, lam1, update, bh2, x):
 
 
 @compiled
-def _newton(data, settings, t1, Y1, lam1, update, h, lu, pivots, newton, counts):
-    """Newton on (q, lambda) at t1 from the predicted Y1 (4, n), lam1 (in place): (converged,
-    the last Phi_q) (method notes: modified Newton)."""
+def _newton_arrays(n, m):
+    """The arrays :func:`_newton` fills: (Q, dQ/dq, dQ/dq', Phi, Phi_q, the Newton right-hand
+    side), made once per :func:`advance`."""
+    return (np.zeros(n), np.zeros((n, n)), np.zeros((n, n)), np.zeros(m), np.zeros((m, n)),
+            np.empty(n + m))
+
+
+@compiled
+def _newton(data, settings, t1, Y1, lam1, update, h, lu, pivots, newton, counts, arrays):
+    """Newton on (q, lambda) at t1 from the predicted Y1 (4, n), lam1 (in place), in the
+    ``arrays`` of :func:`_newton_arrays`: (converged, the last Phi_q) (method notes: modified
+    Newton)."""
     beta, tolerance = settings[3], settings[7]
     max_iterations, modified = settings[8], settings[11]
-    n, m = Y1.shape[1], lam1.size
+    n = Y1.shape[1]
     bh2 = beta * h * h
     full = not modified
     rebuild = full or newton[1] != 0.0 or h != newton[0]
     previous, first_full = math.inf, 1
-    Q, K, C = np.zeros(n), np.zeros((n, n)), np.zeros((n, n))
-    phi, jac, x = np.zeros(m), np.zeros((m, n)), np.empty(n + m)
+    Q, K, C, phi, jac, x = arrays
     for iteration in range(1, max_iterations + 1):
         system_forces(data, Y1[0], Y1[1], t1, rebuild, Q, K, C)
         constraint_values_and_jacobian(data.D, data.c0, data.c1, data.offset_rows,
@@ -443,6 +460,7 @@ def advance(data, settings, t, Y, lam, t_end, h, lu, pivots, newton, counts, tim
     steps of step_s without control or clearance joints)."""
     step_s, min_step_s, adaptive, project = settings[4], settings[5], settings[9], settings[10]
     controlled = adaptive and data.joints.memory.shape[0] > 0
+    arrays = _newton_arrays(Y.shape[1], lam.size)
     recorded = 0
     while t < t_end - 1e-14:
         if recorded == times.size and times.size > 0:
@@ -453,7 +471,7 @@ def advance(data, settings, t, Y, lam, t_end, h, lu, pivots, newton, counts, tim
         predictor, update = _predictor_and_update(settings, h)
         Y1, lam1 = predictor @ Y, lam.copy()
         accept, jac = _newton(data, settings, t + h, Y1, lam1, update, h, lu, pivots, newton,
-                              counts)
+                              counts, arrays)
         factor = 0.25
         if accept and controlled:
             accept, factor = _control(data, settings, Y, Y1, h)
