@@ -414,7 +414,8 @@ def _force_in_z(s_z, s_dot_z, stress, stress_rate, damping, beta, f_z):
     tau + beta), over the invariants whose row m is not zero (_INVARIANTS_OF_ROW)."""
     for m in range(6):
         total = 0.0
-        for i in _INVARIANTS_OF_ROW[m]:
+        for n in range(3):
+            i = _INVARIANTS_OF_ROW[m, n]
             total += ((stress[i] + damping * stress_rate[i]) * s_z[i, m]
                       + beta * stress[i] * s_dot_z[i, m])
         f_z[m] = total
@@ -431,19 +432,31 @@ def _gather_invariant_rows(z, rows):
 @compiled
 def _add_projected(B, T, work, target):
     """target += B^T T B for one point (B (6, 12), T (6, 6), target (12, 12); work (6, 12)),
-    over the entries of B's pattern (_B_ROWS), each sum in the order of the dense product."""
+    over the entries of B's pattern (_B_ROWS: column 4 N + k of node N has the row k, and for
+    the slopes k = 2, 3 the row k + 2 too), each sum in the order of the dense product."""
     for a in range(6):
-        for c in range(12):
-            rows = _B_ROWS[c % 4]
-            total = T[a, rows[0]] * B[rows[0], c]
-            if rows[1] >= 0:
-                total += T[a, rows[1]] * B[rows[1], c]
-            work[a, c] = total
+        for node in range(3):
+            c = 4 * node
+            work[a, c] = T[a, 0] * B[0, c]
+            work[a, c + 1] = T[a, 1] * B[1, c + 1]
+            work[a, c + 2] = T[a, 2] * B[2, c + 2] + T[a, 4] * B[4, c + 2]
+            work[a, c + 3] = T[a, 3] * B[3, c + 3] + T[a, 5] * B[5, c + 3]
     for r in range(12):
-        for a in _B_ROWS[r % 4]:
-            if a >= 0:
-                for c in range(12):
-                    target[r, c] += B[a, r] * work[a, c]
+        k = r % 4
+        factor = B[k, r]
+        for c in range(12):
+            target[r, c] += factor * work[k, c]
+        if k >= 2:
+            factor = B[k + 2, r]
+            for c in range(12):
+                target[r, c] += factor * work[k + 2, c]
+
+
+@compiled
+def _geometric_part(stress, a, b):
+    """sum_i stress_i S_i[a, b]: its one term (_S_INVARIANT), or zero."""
+    i = _S_INVARIANT[a, b]
+    return stress[i] * _S_ENTRY[a, b] if i >= 0 else 0.0
 
 
 @compiled
@@ -457,27 +470,25 @@ def _point_tangents(s_z, s_dot_z, stress, stress_rate, H, tau, beta, elastic, ra
     for j in range(6):
         for b in range(6):
             total = 0.0
-            for i in _INVARIANTS_OF_ROW[b]:
+            for n in range(3):
+                i = _INVARIANTS_OF_ROW[b, n]
                 total += H[j, i] * s_z[i, b]
             h_s_z[j, b] = total
     for a in range(6):
         for b in range(6):
-            geometric, rate_geometric = 0.0, 0.0
-            if _S_INVARIANT[a, b] >= 0:
-                geometric = stress[_S_INVARIANT[a, b]] * _S_ENTRY[a, b]
-                rate_geometric = stress_rate[_S_INVARIANT[a, b]] * _S_ENTRY[a, b]
+            geometric = _geometric_part(stress, a, b)
+            rate_geometric = _geometric_part(stress_rate, a, b)
             material_ab, cross, cross_t = 0.0, 0.0, 0.0
-            for j in _INVARIANTS_OF_ROW[a]:
+            for n in range(3):
+                j, k = _INVARIANTS_OF_ROW[a, n], _INVARIANTS_OF_ROW[b, n]
                 material_ab += s_z[j, a] * h_s_z[j, b]
                 cross_t += h_s_z[j, b] * s_dot_z[j, a]
-            for j in _INVARIANTS_OF_ROW[b]:
-                cross += h_s_z[j, a] * s_dot_z[j, b]
+                cross += h_s_z[k, a] * s_dot_z[k, b]
             elastic[a, b] = geometric + material_ab
             rate[a, b] = (tau + beta) * (rate_geometric + cross) + beta * cross_t
     for a in range(6):
         for b in range(6):
-            material[a, b] = elastic[a, b] - stress[_S_INVARIANT[a, b]] * _S_ENTRY[a, b] \
-                if _S_INVARIANT[a, b] >= 0 else elastic[a, b]
+            material[a, b] = elastic[a, b] - _geometric_part(stress, a, b)
 
 
 @compiled
