@@ -240,34 +240,38 @@ def _collapse(data, Y, t: float, min_step_s: float) -> StepSizeCollapse:
 @compiled
 def lu_factor(A, pivots):
     """LU factors of A with partial pivoting, in place (Golub & Van Loan, Matrix Computations,
-    alg. 3.4.1: row k swapped with pivots[k]); False if A is singular. Each elimination updates
-    only the columns where the pivot row is not zero (and the rows where the multiplier is not):
-    the other entries would change by an exact zero, so the factors are those of the dense
-    elimination, found in a fraction of its work on the sparse iteration matrix."""
+    alg. 3.4.1: row k swapped with pivots[k]); False if A is singular. Each elimination step
+    visits only the rows whose entry in the pivot column is not zero and the columns where the
+    pivot row is not: the other entries would change by an exact zero, so the factors are those
+    of the dense elimination, in a fraction of its work on the sparse iteration matrix."""
     size = A.shape[0]
-    columns = np.empty(size, dtype=np.int64)
+    rows, columns = np.empty(size, dtype=np.int64), np.empty(size, dtype=np.int64)
     for k in range(size):
-        pivot = k
+        pivot, n_rows = k, 0
         for i in range(k + 1, size):
-            if abs(A[i, k]) > abs(A[pivot, k]):
-                pivot = i
+            if A[i, k] != 0.0:
+                rows[n_rows] = i
+                n_rows += 1
+                if abs(A[i, k]) > abs(A[pivot, k]):
+                    pivot = i
         pivots[k] = pivot
         if A[pivot, k] == 0.0:
             return False
-        if pivot != k:
+        if pivot != k:  # row pivot, in the list, takes row k's entry (zero: a zero multiplier)
             for c in range(size):
                 A[k, c], A[pivot, c] = A[pivot, c], A[k, c]
-        count = 0
+        n_columns = 0
         for c in range(k + 1, size):
             if A[k, c] != 0.0:
-                columns[count] = c
-                count += 1
+                columns[n_columns] = c
+                n_columns += 1
         inverse = 1.0 / A[k, k]
-        for i in range(k + 1, size):
+        for r in range(n_rows):
+            i = rows[r]
             A[i, k] *= inverse
             factor = A[i, k]
             if factor != 0.0:
-                for j in range(count):
+                for j in range(n_columns):
                     A[i, columns[j]] -= factor * A[k, columns[j]]
     return True
 
