@@ -318,7 +318,7 @@ def _factorize(data, settings, q, lam, jac, K, C, h, lu, pivots):
     n, m = q.size, jac.shape[0]
     bh2 = beta * h * h
     mass_factor = (1.0 - alpha_m) / (1.0 - alpha_f)
-    lu[:] = 0.0
+    lu[n:, n:] = 0.0
     for r in range(n):
         for c in range(n):
             lu[r, c] = mass_factor * data.mass[r, c] - (gamma * h) * C[r, c] - bh2 * K[r, c]
@@ -351,13 +351,16 @@ def _project_velocities(data, jac, qd, t):
 
 
 @compiled
-def _scaled_residual(mass, qdd, jac, lam, Q, scale, out):
-    """out[:n] = beta h^2 (M q'' + Phi_q^T lambda - Q) (``scale`` = beta h^2)."""
+def _scaled_residual(data, qdd, jac, lam, Q, scale, out):
+    """out[:n] = beta h^2 (M q'' + Phi_q^T lambda - Q) (``scale`` = beta h^2); M q'' over the
+    non-zero entries of M (``data.mass_row_start``, ``mass_columns``), in the order of the dense
+    product."""
     n = qdd.size
     for r in range(n):
         total = -Q[r]
-        for c in range(n):
-            total += mass[r, c] * qdd[c]
+        for k in range(data.mass_row_start[r], data.mass_row_start[r + 1]):
+            c = data.mass_columns[k]
+            total += data.mass[r, c] * qdd[c]
         for c in range(lam.size):
             total += jac[c, r] * lam[c]
         out[r] = scale * total
@@ -405,7 +408,7 @@ def _newton(data, settings, t1, Y1, lam1, update, h, lu, pivots, newton, counts,
         constraint_values_and_jacobian(data.D, data.c0, data.c1, data.offset_rows,
                                        data.offset_columns, data.offset_u, Y1[0], t1, phi, jac)
         add_prescribed(data.drives, t1, 0, phi)
-        _scaled_residual(data.mass, Y1[2], jac, lam1, Q, bh2, x)
+        _scaled_residual(data, Y1[2], jac, lam1, Q, bh2, x)
         if rebuild:
             if not _factorize(data, settings, Y1[0], lam1, jac, K, C, h, lu, pivots):
                 return False, jac
