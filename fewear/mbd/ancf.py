@@ -433,20 +433,30 @@ def _gather_invariant_rows(z, rows):
 def _add_projected(B, T, work, target):
     """target += B^T T B for one point (B (6, 12), T (6, 6), target (12, 12); work (6, 12)),
     over the entries of B's pattern (_B_ROWS: column 4 N + k of node N has the row k, and for
-    the slopes k = 2, 3 the row k + 2 too), each sum in the order of the dense product."""
+    the slopes k = 2, 3 the row k + 2 too) and the rows of T that are not zero (at the nodal
+    points, whose energy is that of the thickness invariant alone, two of six), each sum in the
+    order of the dense product."""
+    active = 0  # bit a: row a of T is not zero
     for a in range(6):
-        for node in range(3):
-            c = 4 * node
-            work[a, c] = T[a, 0] * B[0, c]
-            work[a, c + 1] = T[a, 1] * B[1, c + 1]
-            work[a, c + 2] = T[a, 2] * B[2, c + 2] + T[a, 4] * B[4, c + 2]
-            work[a, c + 3] = T[a, 3] * B[3, c + 3] + T[a, 5] * B[5, c + 3]
+        for b in range(6):
+            if T[a, b] != 0.0:
+                active |= 1 << a
+                break
+    for a in range(6):
+        if active >> a & 1:
+            for node in range(3):
+                c = 4 * node
+                work[a, c] = T[a, 0] * B[0, c]
+                work[a, c + 1] = T[a, 1] * B[1, c + 1]
+                work[a, c + 2] = T[a, 2] * B[2, c + 2] + T[a, 4] * B[4, c + 2]
+                work[a, c + 3] = T[a, 3] * B[3, c + 3] + T[a, 5] * B[5, c + 3]
     for r in range(12):
         k = r % 4
-        factor = B[k, r]
-        for c in range(12):
-            target[r, c] += factor * work[k, c]
-        if k >= 2:
+        if active >> k & 1:
+            factor = B[k, r]
+            for c in range(12):
+                target[r, c] += factor * work[k, c]
+        if k >= 2 and active >> (k + 2) & 1:
             factor = B[k + 2, r]
             for c in range(12):
                 target[r, c] += factor * work[k + 2, c]
@@ -464,18 +474,37 @@ def _point_tangents(s_z, s_dot_z, stress, stress_rate, H, tau, beta, elastic, ra
     """Fill (G, R, M) in z (6, 6 each): the elastic tangent G = sum_i (H s)_i S_i + M with the
     material part M = (S z)^T H (S z), and the rate part R = (tau + beta) (sum_i (H s')_i S_i + X)
     + beta X^T with X = (H S z)^T (S z') (AncfBeam.internal_forces and
-    stiffness_proportional_forces). ``material`` holds H S z on entry. The sums run over the
-    non-zero terms only (_S_INVARIANT, _INVARIANTS_OF_ROW), in their order."""
+    stiffness_proportional_forces). ``material`` holds H S z on entry.
+
+    The sums run over their non-zero terms only (_S_INVARIANT, _INVARIANTS_OF_ROW), in their
+    order; an entry (a, b) is zero unless the rows a and b of the S_i of the point's invariants
+    (the rows of H not zero) are: at the nodal points, whose energy is that of the thickness
+    invariant alone, only the 2 x 2 block of d."""
+    invariants = 0  # bit i: row i of H is not zero
+    for i in range(6):
+        for k in range(6):
+            if H[i, k] != 0.0:
+                invariants |= 1 << i
+                break
+    rows = 0  # bit a: one of the point's invariants has a non-zero row a
+    for a in range(6):
+        for n in range(3):
+            if invariants >> _INVARIANTS_OF_ROW[a, n] & 1:
+                rows |= 1 << a
     h_s_z = material
     for j in range(6):
         for b in range(6):
             total = 0.0
-            for n in range(3):
-                i = _INVARIANTS_OF_ROW[b, n]
-                total += H[j, i] * s_z[i, b]
+            if invariants >> j & 1:
+                for n in range(3):
+                    i = _INVARIANTS_OF_ROW[b, n]
+                    total += H[j, i] * s_z[i, b]
             h_s_z[j, b] = total
     for a in range(6):
         for b in range(6):
+            if not (rows >> a & 1 and rows >> b & 1):
+                elastic[a, b], rate[a, b] = 0.0, 0.0
+                continue
             geometric = _geometric_part(stress, a, b)
             rate_geometric = _geometric_part(stress_rate, a, b)
             material_ab, cross, cross_t = 0.0, 0.0, 0.0
