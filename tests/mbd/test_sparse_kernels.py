@@ -1,7 +1,8 @@
 """The compiled kernels that sum only the non-zero terms of their products, against the dense
 formulas they replace, computed here with numpy: the ANCF strain operator's products, the point
-tangents and B^T T B, the LU of the iteration matrix (bit for bit against the dense elimination
-written out below), the Newton residual's M q'' and a clearance joint's coordinates as views."""
+tangents and B^T T B, the LU of the iteration matrix and its solve (bit for bit against the dense
+loops written out below), the Newton residual's M q'' and a clearance joint's coordinates as
+views."""
 
 import numpy as np
 import pytest
@@ -125,24 +126,42 @@ def sparse_kkt_matrix(n=30, m=5, band=6, seed=4):
     return np.block([[S, J.T], [J, np.zeros((m, m))]])
 
 
+def dense_substitution(factors, pivots, b):
+    """lu_solve's loops before they skipped zeros."""
+    b = b.copy()
+    size = b.size
+    for k in range(size):
+        b[[k, pivots[k]]] = b[[pivots[k], k]]
+    for i in range(size):
+        for c in range(i):
+            b[i] -= factors[i, c] * b[c]
+    for i in range(size - 1, -1, -1):
+        for c in range(i + 1, size):
+            b[i] -= factors[i, c] * b[c]
+        b[i] /= factors[i, i]
+    return b
+
+
 @pytest.mark.parametrize("seed", [4, 5, 6])
-def test_lu_factor_is_bit_for_bit_the_dense_elimination(seed):
+def test_lu_is_bit_for_bit_the_dense_elimination_and_substitution(seed):
     A = sparse_kkt_matrix(seed=seed)
     expected, expected_pivots = dense_elimination(A)
-    factors, pivots = A.copy(), np.zeros(A.shape[0], dtype=np.int64)
-    assert lu_factor(factors, pivots)
+    factors, structure = A.copy(), np.zeros((A.shape[0], A.shape[0] + 3), dtype=np.int64)
+    assert lu_factor(factors, structure)
     assert np.array_equal(factors, expected)
-    assert np.array_equal(pivots, expected_pivots)
+    assert np.array_equal(structure[:, 0], expected_pivots)
+    assert structure[:, 1:3].sum() < 0.6 * A.size  # the non-zeros it visits
     b = np.random.default_rng(seed).standard_normal(A.shape[0])
     x = b.copy()
-    lu_solve(factors, pivots, x)
+    lu_solve(factors, structure, x)
+    assert np.array_equal(x, dense_substitution(expected, expected_pivots, b))
     assert np.allclose(x, scipy.linalg.solve(A, b), rtol=1e-10, atol=0.0)
 
 
 def test_lu_factor_reports_a_singular_matrix():
     A = sparse_kkt_matrix()
     A[:, 3] = 0.0
-    assert not lu_factor(A, np.zeros(A.shape[0], dtype=np.int64))
+    assert not lu_factor(A, np.zeros((A.shape[0], A.shape[0] + 3), dtype=np.int64))
 
 
 def test_newton_residual_is_the_dense_formula():
