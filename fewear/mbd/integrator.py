@@ -151,8 +151,8 @@ class GeneralizedAlpha:
         self.settings = settings
         self.stats = RunStats()
         size = system.n_coordinates + system.n_constraints
-        # the LU factors of the last iteration matrix, the h they were built for and whether
-        # they have aged (method notes); the counters of RunStats
+        # the LU factors of the last iteration matrix and their structure (lu_factor), the h
+        # they were built for and whether they have aged (method notes); the counters of RunStats
         self._lu = np.zeros((size, size))
         self._structure = np.zeros((size, size + 3), dtype=np.int64)
         self._newton = np.array([math.nan, 1.0])
