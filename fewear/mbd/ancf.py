@@ -548,7 +548,8 @@ def add_beam_forces(q, qd, dofs, B, H, tau, beta, scale, jacobian, forces, d_dq,
         dofs_e, damping = dofs[e], tau[e] + beta[e]
         for r in range(12):
             q_e[r], qd_e[r] = q[dofs_e[r]], qd[dofs_e[r]]
-        stiffness[:], rate[:], material[:] = 0.0, 0.0, 0.0
+        if jacobian:
+            stiffness[:], rate[:], material[:] = 0.0, 0.0, 0.0
         for p in range(B.shape[1]):
             B_p, H_p = B[e, p], H[e, p]
             _strain_operator_times(B_p, q_e, z)
