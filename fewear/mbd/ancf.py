@@ -135,6 +135,17 @@ _S, _S0 = _invariant_matrices()
 # S_i z by gathering: each row of S_i has at most one non-zero entry, so (S_i z)_m = f * z[index].
 _SZ_INDEX = np.argmax(_S != 0.0, axis=2)
 _SZ_FACTOR = _S.max(axis=2)
+# Each entry (a, b) of the S_i belongs to one invariant at most: S_i[a, b] = _S_ENTRY[a, b] for
+# i = _S_INVARIANT[a, b] (-1: none), so sum_i x_i S_i[a, b] is one product.
+_S_INVARIANT = np.where((_S != 0.0).any(axis=0), np.argmax(_S != 0.0, axis=0), -1)
+_S_ENTRY = _S.sum(axis=0)
+# The invariants whose S_i have a non-zero row a (three each): (S_i z)_a is zero for the others.
+_INVARIANTS_OF_ROW = np.array([np.nonzero((_S[:, a, :] != 0.0).any(axis=1))[0] for a in range(6)])
+# The pattern of an element's strain operator B (6, 12) (AncfBeam._build_strain_operators): row a
+# of z = (t, d, k) holds node N's coordinate 4 N + _B_COLUMN_OFFSET[a] (t from r, d and k from
+# r_,y); column c of B has the rows _B_ROWS[c % 4] (t or d and k).
+_B_COLUMN_OFFSET = np.array([0, 1, 2, 3, 2, 3])
+_B_ROWS = np.array([[0, -1], [1, -1], [2, 4], [3, 5]])
 
 
 class AncfBeam:
@@ -364,12 +375,26 @@ def _matvec(A, x, out):
 
 
 @compiled
-def _vecmat(x, A, out):
-    """out = x^T A."""
-    out[:] = 0.0
-    for i in range(A.shape[0]):
-        for j in range(A.shape[1]):
-            out[j] += x[i] * A[i, j]
+def _strain_operator_times(B, x, out):
+    """out = B x for an element's strain operator B (6, 12): only its three entries a row
+    (_B_COLUMN_OFFSET), in the order of the dense product (the zeros add nothing)."""
+    for a in range(6):
+        total = 0.0
+        for node in range(3):
+            c = 4 * node + _B_COLUMN_OFFSET[a]
+            total += B[a, c] * x[c]
+        out[a] = total
+
+
+@compiled
+def _strain_operator_transposed_times(x, B, out):
+    """out = B^T x (12,) over the one or two entries of each column of B (_B_ROWS)."""
+    for c in range(12):
+        rows = _B_ROWS[c % 4]
+        total = x[rows[0]] * B[rows[0], c]
+        if rows[1] >= 0:
+            total += x[rows[1]] * B[rows[1], c]
+        out[c] = total
 
 
 @compiled
@@ -386,10 +411,11 @@ def _invariants(s_z, z, z_dot, s, s_rate):
 @compiled
 def _force_in_z(s_z, s_dot_z, stress, stress_rate, damping, beta, f_z):
     """f_z = sum_i [(H s)_i + (tau + beta) (H s')_i] S_i z + beta (H s)_i S_i z' (``damping`` =
-    tau + beta)."""
+    tau + beta), over the invariants whose row m is not zero (_INVARIANTS_OF_ROW)."""
     for m in range(6):
         total = 0.0
-        for i in range(6):
+        for n in range(3):
+            i = _INVARIANTS_OF_ROW[m, n]
             total += ((stress[i] + damping * stress_rate[i]) * s_z[i, m]
                       + beta * stress[i] * s_dot_z[i, m])
         f_z[m] = total
@@ -405,18 +431,42 @@ def _gather_invariant_rows(z, rows):
 
 @compiled
 def _add_projected(B, T, work, target):
-    """target += B^T T B for one point (B (6, 12), T (6, 6), target (12, 12); work (6, 12))."""
-    work[:] = 0.0
+    """target += B^T T B for one point (B (6, 12), T (6, 6), target (12, 12); work (6, 12)),
+    over the entries of B's pattern (_B_ROWS: column 4 N + k of node N has the row k, and for
+    the slopes k = 2, 3 the row k + 2 too) and the rows of T that are not zero (at the nodal
+    points, whose energy is that of the thickness invariant alone, two of six), each sum in the
+    order of the dense product."""
+    active = 0  # bit a: row a of T is not zero
     for a in range(6):
         for b in range(6):
             if T[a, b] != 0.0:
-                for c in range(12):
-                    work[a, c] += T[a, b] * B[b, c]
+                active |= 1 << a
+                break
+    for a in range(6):
+        if active >> a & 1:
+            for node in range(3):
+                c = 4 * node
+                work[a, c] = T[a, 0] * B[0, c]
+                work[a, c + 1] = T[a, 1] * B[1, c + 1]
+                work[a, c + 2] = T[a, 2] * B[2, c + 2] + T[a, 4] * B[4, c + 2]
+                work[a, c + 3] = T[a, 3] * B[3, c + 3] + T[a, 5] * B[5, c + 3]
     for r in range(12):
-        for a in range(6):
-            if B[a, r] != 0.0:
-                for c in range(12):
-                    target[r, c] += B[a, r] * work[a, c]
+        k = r % 4
+        if active >> k & 1:
+            factor = B[k, r]
+            for c in range(12):
+                target[r, c] += factor * work[k, c]
+        if k >= 2 and active >> (k + 2) & 1:
+            factor = B[k + 2, r]
+            for c in range(12):
+                target[r, c] += factor * work[k + 2, c]
+
+
+@compiled
+def _geometric_part(stress, a, b):
+    """sum_i stress_i S_i[a, b]: its one term (_S_INVARIANT), or zero."""
+    i = _S_INVARIANT[a, b]
+    return stress[i] * _S_ENTRY[a, b] if i >= 0 else 0.0
 
 
 @compiled
@@ -424,32 +474,50 @@ def _point_tangents(s_z, s_dot_z, stress, stress_rate, H, tau, beta, elastic, ra
     """Fill (G, R, M) in z (6, 6 each): the elastic tangent G = sum_i (H s)_i S_i + M with the
     material part M = (S z)^T H (S z), and the rate part R = (tau + beta) (sum_i (H s')_i S_i + X)
     + beta X^T with X = (H S z)^T (S z') (AncfBeam.internal_forces and
-    stiffness_proportional_forces). ``material`` holds H S z on entry."""
+    stiffness_proportional_forces). ``material`` holds H S z on entry.
+
+    The sums run over their non-zero terms only (_S_INVARIANT, _INVARIANTS_OF_ROW), in their
+    order; an entry (a, b) is zero unless the rows a and b of the S_i of the point's invariants
+    (the rows of H not zero) are: at the nodal points, whose energy is that of the thickness
+    invariant alone, only the 2 x 2 block of d."""
+    invariants = 0  # bit i: row i of H is not zero
+    for i in range(6):
+        for k in range(6):
+            if H[i, k] != 0.0:
+                invariants |= 1 << i
+                break
+    rows = 0  # bit a: one of the point's invariants has a non-zero row a
+    for a in range(6):
+        for n in range(3):
+            if invariants >> _INVARIANTS_OF_ROW[a, n] & 1:
+                rows |= 1 << a
     h_s_z = material
     for j in range(6):
         for b in range(6):
             total = 0.0
-            for i in range(6):
-                total += H[j, i] * s_z[i, b]
+            if invariants >> j & 1:
+                for n in range(3):
+                    i = _INVARIANTS_OF_ROW[b, n]
+                    total += H[j, i] * s_z[i, b]
             h_s_z[j, b] = total
     for a in range(6):
         for b in range(6):
-            geometric, rate_geometric = 0.0, 0.0
-            for i in range(6):
-                geometric += stress[i] * _S[i, a, b]
-                rate_geometric += stress_rate[i] * _S[i, a, b]
+            if not (rows >> a & 1 and rows >> b & 1):
+                elastic[a, b], rate[a, b] = 0.0, 0.0
+                continue
+            geometric = _geometric_part(stress, a, b)
+            rate_geometric = _geometric_part(stress_rate, a, b)
             material_ab, cross, cross_t = 0.0, 0.0, 0.0
-            for j in range(6):
+            for n in range(3):
+                j, k = _INVARIANTS_OF_ROW[a, n], _INVARIANTS_OF_ROW[b, n]
                 material_ab += s_z[j, a] * h_s_z[j, b]
-                cross += h_s_z[j, a] * s_dot_z[j, b]
                 cross_t += h_s_z[j, b] * s_dot_z[j, a]
+                cross += h_s_z[k, a] * s_dot_z[k, b]
             elastic[a, b] = geometric + material_ab
             rate[a, b] = (tau + beta) * (rate_geometric + cross) + beta * cross_t
     for a in range(6):
         for b in range(6):
-            material[a, b] = elastic[a, b]
-            for i in range(6):
-                material[a, b] -= stress[i] * _S[i, a, b]
+            material[a, b] = elastic[a, b] - _geometric_part(stress, a, b)
 
 
 @compiled
@@ -464,30 +532,35 @@ def add_beam_forces(q, qd, dofs, B, H, tau, beta, scale, jacobian, forces, d_dq,
     sum_i [(H s)_i + (tau + beta) (H s')_i] a_i + beta (H s)_i b_i (K q' = dF_el/dt formed without
     assembling K), the element forces are B^T of it. dF/dq = B^T (G + R) B,
     dF/dq' = B^T (beta G + tau M) B (:func:`_point_tangents`)."""
-    q_e, qd_e, f_e = np.empty(12), np.empty(12), np.empty(12)
-    z, z_dot, s, s_rate, stress, stress_rate, f_z = (np.empty(6), np.empty(6), np.empty(6),
-                                                     np.empty(6), np.empty(6), np.empty(6),
-                                                     np.empty(6))
-    s_z, s_dot_z = np.empty((6, 6)), np.empty((6, 6))
-    elastic_z, rate_z, material_z, work = (np.empty((6, 6)), np.empty((6, 6)), np.empty((6, 6)),
-                                           np.empty((6, 12)))
-    stiffness, rate, material = np.empty((12, 12)), np.empty((12, 12)), np.empty((12, 12))
+    # the work arrays as rows of five allocations (nineteen cost about 1 us a call)
+    element_vectors, point_vectors = np.empty((3, 12)), np.empty((7, 6))
+    point_matrices, element_matrices = np.empty((5, 6, 6)), np.empty((3, 12, 12))
+    q_e, qd_e, f_e = element_vectors[0], element_vectors[1], element_vectors[2]
+    z, z_dot, s, s_rate, stress, stress_rate, f_z = (
+        point_vectors[0], point_vectors[1], point_vectors[2], point_vectors[3], point_vectors[4],
+        point_vectors[5], point_vectors[6])
+    s_z, s_dot_z, elastic_z, rate_z, material_z = (
+        point_matrices[0], point_matrices[1], point_matrices[2], point_matrices[3],
+        point_matrices[4])
+    work = np.empty((6, 12))
+    stiffness, rate, material = element_matrices[0], element_matrices[1], element_matrices[2]
     for e in range(dofs.shape[0]):
         dofs_e, damping = dofs[e], tau[e] + beta[e]
         for r in range(12):
             q_e[r], qd_e[r] = q[dofs_e[r]], qd[dofs_e[r]]
-        stiffness[:], rate[:], material[:] = 0.0, 0.0, 0.0
+        if jacobian:
+            stiffness[:], rate[:], material[:] = 0.0, 0.0, 0.0
         for p in range(B.shape[1]):
             B_p, H_p = B[e, p], H[e, p]
-            _matvec(B_p, q_e, z)
-            _matvec(B_p, qd_e, z_dot)
+            _strain_operator_times(B_p, q_e, z)
+            _strain_operator_times(B_p, qd_e, z_dot)
             _gather_invariant_rows(z, s_z)
             _gather_invariant_rows(z_dot, s_dot_z)
             _invariants(s_z, z, z_dot, s, s_rate)
             _matvec(H_p, s, stress)
             _matvec(H_p, s_rate, stress_rate)
             _force_in_z(s_z, s_dot_z, stress, stress_rate, damping, beta[e], f_z)
-            _vecmat(f_z, B_p, f_e)
+            _strain_operator_transposed_times(f_z, B_p, f_e)
             for r in range(12):
                 forces[dofs_e[r]] += scale * f_e[r]
             if jacobian:

@@ -69,6 +69,10 @@ def joint_data(joints, global_indices: bool = True) -> JointData:
         data.bushing_kind[j], data.bushing_offset[j] = joint.bushing.kind, joint.bushing.offset
         k = len(joint.indices)
         data.n_pin[j], data.n_coordinates[j] = POINT_COORDINATES[joint.pin.kind], k
+        for point in (joint.pin, joint.bushing):
+            if np.any(np.diff(point.indices) != 1):
+                raise ValueError(f"a clearance joint's point with coordinates {point.indices} "
+                                 "apart in q (_local_coordinates takes each point's as a slice)")
         data.indices[j, :k] = joint.indices if global_indices else np.arange(k)
         data.radii_m[j] = joint.pin_radius, joint.bushing_radius
         power_law, parameters, table = joint.law.kernel_data
@@ -136,12 +140,12 @@ def _profile(data, j, theta):
 
 @compiled
 def _local_coordinates(data, j, q):
-    """(pin coordinates, bushing coordinates) of joint j gathered from q."""
-    k, n_pin = data.n_coordinates[j], data.n_pin[j]
-    local = np.empty(k)
-    for i in range(k):
-        local[i] = q[data.indices[j, i]]
-    return local[:n_pin], local[n_pin:]
+    """(pin coordinates, bushing coordinates) of joint j: views of q, each point's coordinates
+    being consecutive (checked by :func:`joint_data`)."""
+    n_pin, n_bushing = data.n_pin[j], data.n_coordinates[j] - data.n_pin[j]
+    first_pin, first_bushing = data.indices[j, 0], data.indices[j, n_pin]
+    return (q[first_pin:first_pin + n_pin],
+            q[first_bushing:first_bushing + n_bushing])
 
 
 @compiled

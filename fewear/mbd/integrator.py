@@ -151,9 +151,10 @@ class GeneralizedAlpha:
         self.settings = settings
         self.stats = RunStats()
         size = system.n_coordinates + system.n_constraints
-        # the LU factors of the last iteration matrix, the h they were built for and whether
-        # they have aged (method notes); the counters of RunStats
-        self._lu, self._pivots = np.zeros((size, size)), np.zeros(size, dtype=np.int64)
+        # the LU factors of the last iteration matrix and their structure (lu_factor), the h
+        # they were built for and whether they have aged (method notes); the counters of RunStats
+        self._lu = np.zeros((size, size))
+        self._structure = np.zeros((size, size + 3), dtype=np.int64)
         self._newton = np.array([math.nan, 1.0])
         self._counts = np.array([0.0, 0.0, 0.0, 0.0, math.inf])
 
@@ -194,7 +195,7 @@ class GeneralizedAlpha:
             buffers = (np.empty(rows), np.empty(rows), np.empty((rows, 4, n)), np.empty((rows, m)),
                        np.empty((rows, joints, 3)))
             status, t, h, count = advance(sys_.data, st.kernel_data, t, Y, lam, t_end, h,
-                                          self._lu, self._pivots, self._newton, self._counts,
+                                          self._lu, self._structure, self._newton, self._counts,
                                           *buffers)
             chunks.append([buffer[:count] for buffer in buffers])
             if status != BUFFER_FULL:
@@ -238,45 +239,72 @@ def _collapse(data, Y, t: float, min_step_s: float) -> StepSizeCollapse:
 
 # -- compiled -------------------------------------------------------------------------------------
 @compiled
-def lu_factor(A, pivots):
+def lu_factor(A, structure):
     """LU factors of A with partial pivoting, in place (Golub & Van Loan, Matrix Computations,
-    alg. 3.4.1: row k swapped with pivots[k]); False if A is singular."""
+    alg. 3.4.1: row k swapped with ``structure[k, 0]``); False if A is singular.
+
+    Each elimination step visits only the rows whose entry in the pivot column is not zero and
+    the columns where the pivot row is not: the other entries would change by an exact zero, so
+    the factors are those of the dense elimination, in a fraction of its work on the sparse
+    iteration matrix. ``structure`` (size, size + 3) keeps for :func:`lu_solve` each row k's
+    (pivot row, count of non-zeros in U, count in L, the columns of those of U, then of L)."""
     size = A.shape[0]
+    rows = np.empty(size, dtype=np.int64)
     for k in range(size):
-        pivot = k
+        pivot, n_rows = k, 0
         for i in range(k + 1, size):
-            if abs(A[i, k]) > abs(A[pivot, k]):
-                pivot = i
-        pivots[k] = pivot
+            if A[i, k] != 0.0:
+                rows[n_rows] = i
+                n_rows += 1
+                if abs(A[i, k]) > abs(A[pivot, k]):
+                    pivot = i
+        structure[k, 0] = pivot
         if A[pivot, k] == 0.0:
             return False
-        if pivot != k:
+        if pivot != k:  # row pivot, in the list, takes row k's entry (zero: a zero multiplier)
             for c in range(size):
                 A[k, c], A[pivot, c] = A[pivot, c], A[k, c]
+        n_columns = 0  # row k of U is final from here on
+        for c in range(k + 1, size):
+            if A[k, c] != 0.0:
+                structure[k, 3 + n_columns] = c
+                n_columns += 1
+        structure[k, 1] = n_columns
         inverse = 1.0 / A[k, k]
-        for i in range(k + 1, size):
+        for r in range(n_rows):
+            i = rows[r]
             A[i, k] *= inverse
             factor = A[i, k]
             if factor != 0.0:
-                for c in range(k + 1, size):
-                    A[i, c] -= factor * A[k, c]
+                for j in range(3, 3 + n_columns):
+                    A[i, structure[k, j]] -= factor * A[k, structure[k, j]]
+    for i in range(size):  # the rows of L, final once the last swap is done
+        start, n_lower = 3 + structure[i, 1], 0
+        for c in range(i):
+            if A[i, c] != 0.0:
+                structure[i, start + n_lower] = c
+                n_lower += 1
+        structure[i, 2] = n_lower
     return True
 
 
 @compiled
-def lu_solve(LU, pivots, b):
-    """Solve A x = b in place of b with the factors of :func:`lu_factor`."""
+def lu_solve(LU, structure, b):
+    """Solve A x = b in place of b with the factors and ``structure`` of :func:`lu_factor`
+    (forward and back substitution over the non-zero entries, in the order of the dense
+    loops)."""
     size = LU.shape[0]
     for k in range(size):
-        p = pivots[k]
+        p = structure[k, 0]
         if p != k:
             b[k], b[p] = b[p], b[k]
     for i in range(size):
-        for c in range(i):
-            b[i] -= LU[i, c] * b[c]
+        start = 3 + structure[i, 1]
+        for j in range(start, start + structure[i, 2]):
+            b[i] -= LU[i, structure[i, j]] * b[structure[i, j]]
     for i in range(size - 1, -1, -1):
-        for c in range(i + 1, size):
-            b[i] -= LU[i, c] * b[c]
+        for j in range(3, 3 + structure[i, 1]):
+            b[i] -= LU[i, structure[i, j]] * b[structure[i, j]]
         b[i] /= LU[i, i]
 
 
@@ -298,14 +326,14 @@ def _predictor_and_update(settings, h):
 
 
 @compiled
-def _factorize(data, settings, q, lam, jac, K, C, h, lu, pivots):
+def _factorize(data, settings, q, lam, jac, K, C, h, lu, structure):
     """LU of [[beta h^2 S_t, Phi_q^T], [Phi_q, 0]] (method notes) into ``lu``; False if
     singular."""
     alpha_m, alpha_f, gamma, beta = settings[0], settings[1], settings[2], settings[3]
     n, m = q.size, jac.shape[0]
     bh2 = beta * h * h
     mass_factor = (1.0 - alpha_m) / (1.0 - alpha_f)
-    lu[:] = 0.0
+    lu[n:, n:] = 0.0
     for r in range(n):
         for c in range(n):
             lu[r, c] = mass_factor * data.mass[r, c] - (gamma * h) * C[r, c] - bh2 * K[r, c]
@@ -317,7 +345,7 @@ def _factorize(data, settings, q, lam, jac, K, C, h, lu, pivots):
         for c in range(m):
             lu[r, n + c] = jac[c, r]
             lu[n + c, r] = jac[c, r]
-    return lu_factor(lu, pivots)
+    return lu_factor(lu, structure)
 
 
 @compiled
@@ -329,22 +357,25 @@ def _project_velocities(data, jac, qd, t):
     schur = weighted @ jac.T
     mu = jac @ qd + data.c1
     add_prescribed(data.drives, t, 1, mu)
-    pivots = np.zeros(mu.size, dtype=np.int64)
-    if not lu_factor(schur, pivots):
+    structure = np.zeros((mu.size, mu.size + 3), dtype=np.int64)
+    if not lu_factor(schur, structure):
         return False
-    lu_solve(schur, pivots, mu)
+    lu_solve(schur, structure, mu)
     qd -= mu @ weighted
     return True
 
 
 @compiled
-def _scaled_residual(mass, qdd, jac, lam, Q, scale, out):
-    """out[:n] = beta h^2 (M q'' + Phi_q^T lambda - Q) (``scale`` = beta h^2)."""
+def _scaled_residual(data, qdd, jac, lam, Q, scale, out):
+    """out[:n] = beta h^2 (M q'' + Phi_q^T lambda - Q) (``scale`` = beta h^2); M q'' over the
+    non-zero entries of M (``data.mass_row_start``, ``mass_columns``), in the order of the dense
+    product."""
     n = qdd.size
     for r in range(n):
         total = -Q[r]
-        for c in range(n):
-            total += mass[r, c] * qdd[c]
+        for k in range(data.mass_row_start[r], data.mass_row_start[r + 1]):
+            c = data.mass_columns[k]
+            total += data.mass[r, c] * qdd[c]
         for c in range(lam.size):
             total += jac[c, r] * lam[c]
         out[r] = scale * total
@@ -367,31 +398,39 @@ def _correct(Y1, lam1, update, bh2, x):
 
 
 @compiled
-def _newton(data, settings, t1, Y1, lam1, update, h, lu, pivots, newton, counts):
-    """Newton on (q, lambda) at t1 from the predicted Y1 (4, n), lam1 (in place): (converged,
-    the last Phi_q) (method notes: modified Newton)."""
+def _newton_arrays(n, m):
+    """The arrays :func:`_newton` fills: (Q, dQ/dq, dQ/dq', Phi, Phi_q, the Newton right-hand
+    side), made once per :func:`advance`."""
+    return (np.zeros(n), np.zeros((n, n)), np.zeros((n, n)), np.zeros(m), np.zeros((m, n)),
+            np.empty(n + m))
+
+
+@compiled
+def _newton(data, settings, t1, Y1, lam1, update, h, lu, structure, newton, counts, arrays):
+    """Newton on (q, lambda) at t1 from the predicted Y1 (4, n), lam1 (in place), in the
+    ``arrays`` of :func:`_newton_arrays`: (converged, the last Phi_q) (method notes: modified
+    Newton)."""
     beta, tolerance = settings[3], settings[7]
     max_iterations, modified = settings[8], settings[11]
-    n, m = Y1.shape[1], lam1.size
+    n = Y1.shape[1]
     bh2 = beta * h * h
     full = not modified
     rebuild = full or newton[1] != 0.0 or h != newton[0]
     previous, first_full = math.inf, 1
-    Q, K, C = np.zeros(n), np.zeros((n, n)), np.zeros((n, n))
-    phi, jac, x = np.zeros(m), np.zeros((m, n)), np.empty(n + m)
+    Q, K, C, phi, jac, x = arrays
     for iteration in range(1, max_iterations + 1):
         system_forces(data, Y1[0], Y1[1], t1, rebuild, Q, K, C)
         constraint_values_and_jacobian(data.D, data.c0, data.c1, data.offset_rows,
                                        data.offset_columns, data.offset_u, Y1[0], t1, phi, jac)
         add_prescribed(data.drives, t1, 0, phi)
-        _scaled_residual(data.mass, Y1[2], jac, lam1, Q, bh2, x)
+        _scaled_residual(data, Y1[2], jac, lam1, Q, bh2, x)
         if rebuild:
-            if not _factorize(data, settings, Y1[0], lam1, jac, K, C, h, lu, pivots):
+            if not _factorize(data, settings, Y1[0], lam1, jac, K, C, h, lu, structure):
                 return False, jac
             newton[0] = h
             counts[3] += 1
         x[n:] = phi
-        lu_solve(lu, pivots, x)
+        lu_solve(lu, structure, x)
         size = _correct(Y1, lam1, update, bh2, x)
         counts[2] += 1
         if not math.isfinite(size):
@@ -432,7 +471,7 @@ def _control(data, settings, Y, Y1, h):
 
 
 @compiled
-def advance(data, settings, t, Y, lam, t_end, h, lu, pivots, newton, counts, times, steps,
+def advance(data, settings, t, Y, lam, t_end, h, lu, structure, newton, counts, times, steps,
             rows_Y, rows_lam, rows_memory):
     """Step from (t, Y = (q, q', q'', a), lambda) (updated in place) towards t_end; record each
     accepted step in the row buffers while they last. Returns (status, t, next h, rows recorded).
@@ -443,6 +482,7 @@ def advance(data, settings, t, Y, lam, t_end, h, lu, pivots, newton, counts, tim
     steps of step_s without control or clearance joints)."""
     step_s, min_step_s, adaptive, project = settings[4], settings[5], settings[9], settings[10]
     controlled = adaptive and data.joints.memory.shape[0] > 0
+    arrays = _newton_arrays(Y.shape[1], lam.size)
     recorded = 0
     while t < t_end - 1e-14:
         if recorded == times.size and times.size > 0:
@@ -452,8 +492,8 @@ def advance(data, settings, t, Y, lam, t_end, h, lu, pivots, newton, counts, tim
             h = t_end - t
         predictor, update = _predictor_and_update(settings, h)
         Y1, lam1 = predictor @ Y, lam.copy()
-        accept, jac = _newton(data, settings, t + h, Y1, lam1, update, h, lu, pivots, newton,
-                              counts)
+        accept, jac = _newton(data, settings, t + h, Y1, lam1, update, h, lu, structure, newton,
+                              counts, arrays)
         factor = 0.25
         if accept and controlled:
             accept, factor = _control(data, settings, Y, Y1, h)

@@ -29,6 +29,7 @@ from fewear.mbd.constraints import ConstraintSet
 
 SystemData = namedtuple("SystemData", [
     "mass", "inverse_mass", "gravity_forces",  # (n, n), (n, n), (n,)
+    "mass_row_start", "mass_columns",  # the non-zero entries of M by rows (n + 1,), (nnz,)
     "beam_dofs", "beam_B", "beam_H", "beam_tau", "beam_beta",  # ancf.add_beam_forces (all beams)
     "D", "c0", "c1", "offset_rows", "offset_columns", "offset_u",  # constraints.py
     "drives",  # constraints.Drives (tabulated drivers)
@@ -101,7 +102,9 @@ class MultibodySystem:
         joints = joint_data(self.force_elements)
         for j, element in enumerate(self.force_elements):
             element.share_memory(joints.memory[j:j + 1])
+        rows, columns = np.nonzero(self.mass)  # row by row, the columns ascending
         self.data = SystemData(self.mass, self.inverse_mass, self.gravity_forces,
+                               np.searchsorted(rows, np.arange(n + 1)), columns,
                                *self._beam_arrays(), *self.constraint_set.kernel_data,
                                self.constraint_set.drives, joints)
         return self
