@@ -305,8 +305,11 @@ def inverse_block(factor: PETSc.Mat, dofs: np.ndarray, comm,
     the host that lists them transposed (row j: the entries A^-1[i, j]), and overwrites its values;
     PETSc 3.18 calls this ``MatMumpsGetInverseTranspose``, which petsc4py 3.18 does not wrap. It is
     called here through ctypes, on the PETSc library petsc4py's extension module is linked with.
-    Its cost grows with the columns."""
+    Its cost grows with the columns. It leaves MUMPS in its solve mode as it found it (sparse
+    right-hand sides, centralised solution and selected inverse off again: PETSc's solves on
+    several ranks need the distributed solution they factorised for)."""
     columns = dofs if columns is None else columns
+    solve_mode = {icntl: factor.getMumpsIcntl(icntl) for icntl in (20, 21, 30)}
     n = factor.getSize()[0]
     host = comm.rank == 0
     local = n if host else 0  # the host holds all rows and columns of the pattern
@@ -320,6 +323,8 @@ def inverse_block(factor: PETSc.Mat, dofs: np.ndarray, comm,
     _petsc_call("MatMumpsGetInverseTranspose", factor, pattern)
     block = pattern.getValuesCSR()[2].reshape(columns.size, dofs.size).T if host else None
     pattern.destroy()
+    for icntl, value in solve_mode.items():
+        factor.setMumpsIcntl(icntl, value)
     return comm.bcast(block, root=0)
 
 

@@ -207,8 +207,8 @@ class FlatContactSolver:
         """K_el factorised (once per geometry) and the block of G = N K_el^-1 N^T on the top
         nodes within 1.2 times the contact's reach in x (and two elements), again whenever the
         contact outgrows them (the selected inverse grows with the entries it computes: the
-        rows of every top node cost five times the time); on a new geometry the displacements
-        of the forces as they are (:meth:`_displace`)."""
+        rows of every top node cost five times the time); on a new geometry the covered nodes'
+        displacements of the forces as they are, U = G g (the forces act there)."""
         reach = 1.2 * self._reach_m + 2.0 * self.problem.mesh.contact_element_size_m
         covered = np.abs(self.bore.points[:, 0]) <= reach
         if self._factorised and np.all(self._covered[covered] == 1.0):
@@ -223,19 +223,20 @@ class FlatContactSolver:
         N = self._evaluation[rows]
         columns = np.unique(N.indices)
         N = N[:, columns]
-        factor = self._ksp.getPC().getFactorMatrix()
-        block = inverse_block(factor, self._top_dof_ids[columns], self.comm)
-        factor.setMumpsIcntl(30, 0)  # the selected inverse's mode off: solves again
+        block = inverse_block(self._ksp.getPC().getFactorMatrix(), self._top_dof_ids[columns],
+                              self.comm)
         H = self._compliance_columns
         H[:] = 0.0
         H[np.ix_(rows, rows)] = N @ (N @ block).T  # G symmetric: H = G^T = G
         self._covered[:] = covered
-        if new_geometry:
-            self._displace()
+        if new_geometry:  # the covered nodes' U = G g; the others' U the last solve's
+            support = np.flatnonzero(self._g)
+            self._U[rows] = self._g[support] @ H[np.ix_(support, rows)]
 
     def _displace(self) -> None:
         """U = N K_el^-1 N^T g at every top node (one solve with K_el): the displacements of
-        the present forces, where the Newton has G only on the covered nodes."""
+        the present forces, where the Newton has G only on the covered nodes and the others'
+        displacements of the last solve."""
         rhs, solution = self._K_elastic.createVecs()
         values = self._evaluation.T @ self._g
         if self.comm.rank == 0:
@@ -254,7 +255,7 @@ class FlatContactSolver:
     def _outgrown_x_m(self) -> float:
         """The largest |x| of a node outside the covered ones that the cylinder penetrates with
         every node's displacement as the present forces make it (:meth:`_displace`), 0 if
-        none: the Newton saw the uncovered nodes' displacements of the last solve's forces."""
+        none: the Newton saw the uncovered nodes' displacements of the last solve (geometry)."""
         self._displace()
         deformed = self._points + self._U.reshape(-1, 2) - self.pin_centre_m
         penetrating = ((np.hypot(deformed[:, 0], deformed[:, 1]) < self._constants[RADIUS])
