@@ -71,6 +71,12 @@ STICK_TOLERANCE = 1e-9
 # |tau| = mu p to rounding).
 STICK_MARGIN = 1e-9
 
+# The compliance G is computed on the top nodes within this many contact elements beyond the
+# farthest node the contact loaded so far (:meth:`FlatContactSolver._prepare`): a block-on-ring
+# scar widens by about one element a wear step, a fretting contact not at all after the first
+# stroke; one outgrown costs a selected inverse and the solve again.
+COVER_ELEMENTS = 4
+
 
 class FrictionalStep(NamedTuple):
     """One frictional step on the flat (:meth:`FlatContactSolver.solve_tangential_force`,
@@ -205,11 +211,11 @@ class FlatContactSolver:
 
     def _prepare(self) -> None:
         """K_el factorised (once per geometry) and the block of G = N K_el^-1 N^T on the top
-        nodes within 1.2 times the contact's reach in x (and two elements), again whenever the
+        nodes within ``COVER_ELEMENTS`` elements of the contact's reach in x, again whenever the
         contact outgrows them (the selected inverse grows with the entries it computes: the
         rows of every top node cost five times the time); on a new geometry the covered nodes'
         displacements of the forces as they are, U = G g (the forces act there)."""
-        reach = 1.2 * self._reach_m + 2.0 * self.problem.mesh.contact_element_size_m
+        reach = self._reach_m + COVER_ELEMENTS * self.problem.mesh.contact_element_size_m
         covered = np.abs(self.bore.points[:, 0]) <= reach
         if self._factorised and np.all(self._covered[covered] == 1.0):
             return
