@@ -171,7 +171,7 @@ class FlatContactSolver:
     operations = flat_newton  # functions of newton_state (compiled into the solves)
     newton_algorithm = flat_newton.newton_algorithm
 
-    _compliance_columns = _state_array(0, "G (2n, 2n) on the covered nodes (else 0), m per N/m")
+    _compliance = _state_array(0, "G (2n, 2n) on the covered nodes (else 0), m per N/m")
     _g = _state_array(1, "the nodal forces on the flat g (2n,), N/m")
     _U = _state_array(2, "the nodal displacements U = G g (2n,), m")
     pin_centre_m = _state_array(3, "the cylinder's centre c (2,), m")
@@ -179,7 +179,7 @@ class FlatContactSolver:
     weights_m = _state_array(5, "the top nodes' weights (n,), m")
     _constants = _state_array(6, "the constants of fewear.contact.flat_newton")
     _history = _state_array(7, "the frictional step's start (fewear.contact.flat_newton)")
-    _covered = _state_array(8, "1 at the nodes whose columns of G are computed, else 0")
+    _covered = _state_array(8, "1 at the nodes whose block of G is computed, else 0")
 
     def release(self) -> None:
         """Drop the Newton iteration's reference back to this solver (a cycle)."""
@@ -231,13 +231,13 @@ class FlatContactSolver:
         N = N[:, columns]
         block = inverse_block(self._ksp.getPC().getFactorMatrix(), self._top_dof_ids[columns],
                               self.comm)
-        H = self._compliance_columns
-        H[:] = 0.0
-        H[np.ix_(rows, rows)] = N @ (N @ block).T  # G symmetric: H = G^T = G
+        G = self._compliance
+        G[:] = 0.0
+        G[np.ix_(rows, rows)] = N @ (N @ block).T
         self._covered[:] = covered
         if new_geometry:  # the covered nodes' U = G g; the others' U the last solve's
             support = np.flatnonzero(self._g)
-            self._U[rows] = self._g[support] @ H[np.ix_(support, rows)]
+            self._U[rows] = self._g[support] @ G[np.ix_(support, rows)]
 
     def _displace(self) -> None:
         """U = N K_el^-1 N^T g at every top node (one solve with K_el): the displacements of

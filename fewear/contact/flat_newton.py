@@ -4,12 +4,12 @@ the flat condensed onto its top (:mod:`fewear.contact.flat`'s method) and the
 :class:`fewear.contact.newton.NewtonOperations` on its state, with the coupled Newton and the
 solve on the cylinder's ray of :mod:`fewear.contact.newton` compiled on them.
 
-The state (:func:`new_state`) is a tuple of arrays: H = G^T (2n, 2n), G the top's nodal
-compliance with only the columns of the covered nodes filled (row j of H is column j of G), the
-nodal forces on the flat g (2n,), the nodal displacements U = G g (2n,), the cylinder's centre c
-(2,), the top nodes X lowered by the cylinder's wear (n, 2), their weights w (n,), the constants
-(``CONSTANTS``), the history of the frictional step (``history_parts``: tau_0 (n,), U_0 (2n,),
-c_0 (2,), the frozen pressure (n,)) and the covered nodes (n,), 1 or 0. The operations update it
+The state (:func:`new_state`) is a tuple of arrays: the top's nodal compliance G (2n, 2n) on the
+covered nodes (their rows and columns; zero elsewhere), the nodal forces on the flat g (2n,), the
+nodal displacements U = G g (2n,), the cylinder's centre c (2,), the top nodes X lowered by the
+cylinder's wear (n, 2), their weights w (n,), the constants (``CONSTANTS``), the history of the
+frictional step (``history_parts``: tau_0 (n,), U_0 (2n,), c_0 (2,), the frozen pressure (n,))
+and the covered nodes (n,), 1 or 0. The operations update it
 in place. This module does not import DOLFINx.
 """
 
@@ -140,7 +140,7 @@ def linearised_tractions(points: np.ndarray, U: np.ndarray, centre: np.ndarray,
 
 
 @compiled
-def newton_step(H: np.ndarray, g: np.ndarray, U: np.ndarray, f: np.ndarray,
+def newton_step(G: np.ndarray, g: np.ndarray, U: np.ndarray, f: np.ndarray,
                 jacobian: np.ndarray, active: np.ndarray, basis: np.ndarray, load: np.ndarray,
                 prescribed: np.ndarray):
     """One Newton step on the active nodes A with the centre's update dc = p + basis z
@@ -151,7 +151,7 @@ def newton_step(H: np.ndarray, g: np.ndarray, U: np.ndarray, f: np.ndarray,
 
     J_a = df_a/dd (:func:`tractions`); the elastic flat's equations condensed onto the top, the
     step of the whole field's Newton (K_el + J) du = -(K_el u + r) to rounding. Returns
-    dg = g' - g (g' zero off A), dU = G dg (the columns of G on the support) and dc."""
+    dg = g' - g (g' zero off A), dU = G dg (G symmetric: its rows on the support) and dc."""
     m, k = active.size, basis.shape[1]
     system = np.zeros((2 * m + k, 2 * m + k))
     rhs = np.empty(2 * m + k)
@@ -163,8 +163,8 @@ def newton_step(H: np.ndarray, g: np.ndarray, U: np.ndarray, f: np.ndarray,
             for b in range(m):
                 for j in range(2):
                     column = 2 * active[b] + j
-                    system[row, 2 * b + j] -= (jacobian[q, i, 0] * H[column, 2 * q]
-                                               + jacobian[q, i, 1] * H[column, 2 * q + 1])
+                    system[row, 2 * b + j] -= (jacobian[q, i, 0] * G[column, 2 * q]
+                                               + jacobian[q, i, 1] * G[column, 2 * q + 1])
             for c in range(k):
                 system[row, 2 * m + c] = (jacobian[q, i, 0] * basis[0, c]
                                           + jacobian[q, i, 1] * basis[1, c])
@@ -180,7 +180,7 @@ def newton_step(H: np.ndarray, g: np.ndarray, U: np.ndarray, f: np.ndarray,
             dg[2 * active[a] + i] += solution[2 * a + i]
     dU = np.zeros(dg.size)
     for row in np.flatnonzero(dg):
-        dU += dg[row] * H[row]
+        dU += dg[row] * G[row]
     dc = prescribed.copy()
     for c in range(k):
         dc += basis[:, c] * solution[2 * m + c]
@@ -205,7 +205,7 @@ def new_state(nodes: int) -> tuple:
 def linearise(state, load):
     """The tractions at the state (``linear``: f, df/dd, |d|, A); the cylinder's residual
     (N/m) and the active length (m)."""
-    H, g, U, centre, points, weights, constants, history, covered = state
+    G, g, U, centre, points, weights, constants, history, covered = state
     return linearised_tractions(points, U.reshape(-1, 2), centre, weights, constants, history,
                                 load)
 
@@ -213,9 +213,9 @@ def linearise(state, load):
 @register_jitable
 def newton_direction(state, linear, pin_residual, load, basis):
     """One Newton step (:func:`newton_step`), the centre's x moved to the prescribed one where
-    there is one. An active node outside the covered ones (its column of G not computed) sets
+    there is one. An active node outside the covered ones (its part of G not computed) sets
     the state's ``OUTGROWN_X`` to its |x|: the caller computes those columns and solves again."""
-    H, g, U, centre, points, weights, constants, history, covered = state
+    G, g, U, centre, points, weights, constants, history, covered = state
     f, jacobian, distance, active = linear
     for q in active:
         if covered[q] == 0.0:
@@ -223,7 +223,7 @@ def newton_direction(state, linear, pin_residual, load, basis):
     prescribed = np.zeros(2)
     if not math.isnan(constants[TARGET_X]):
         prescribed[0] = constants[TARGET_X] - centre[0]
-    dg, dU, dc = newton_step(H, g, U.reshape(-1, 2), f, jacobian, active, basis, load,
+    dg, dU, dc = newton_step(G, g, U.reshape(-1, 2), f, jacobian, active, basis, load,
                              prescribed)
     return (dg, dU), dc
 
@@ -232,7 +232,7 @@ def newton_direction(state, linear, pin_residual, load, basis):
 def begin_line_search(state, linear, update, dc, pin_residual):
     """Slope of Pi along (dg, dU, dc), (g - f) . dU + (sum f - F/L) . dc (J/m); the elastic
     energy 1/2 g.G g along the line, 1/2 g.U + s g.dU + s^2/2 dg.dU; the base (g, U)."""
-    H, g, U, centre, points, weights, constants, history, covered = state
+    G, g, U, centre, points, weights, constants, history, covered = state
     dg, dU = update
     slope = np.dot(g - linear[0].reshape(-1), dU) + np.dot(pin_residual, dc)
     elastic = np.array([0.5 * np.dot(g, U), np.dot(g, dU), 0.5 * np.dot(dg, dU)])
@@ -263,20 +263,20 @@ solve_on_ray_on_state = algorithm.solve_on_ray
 
 
 @compiled
-def run_coupled_newton(H, g, U, centre, points, weights, constants, history, covered, settings,
+def run_coupled_newton(G, g, U, centre, points, weights, constants, history, covered, settings,
                        load, direction, basis, max_iterations):
     """:func:`fewear.contact.newton.coupled_newton` on the state of these arrays, compiled
     (the arrays apart: :func:`fewear.contact.condensed_newton.run_newton_solve`)."""
-    return coupled_newton_on_state((H, g, U, centre, points, weights, constants, history,
+    return coupled_newton_on_state((G, g, U, centre, points, weights, constants, history,
                                     covered), NewtonSettings(*settings), load, direction, basis,
                                    max_iterations)
 
 
 @compiled
-def run_solve_on_ray(H, g, U, centre, points, weights, constants, history, covered, settings,
+def run_solve_on_ray(G, g, U, centre, points, weights, constants, history, covered, settings,
                      load, a, max_iterations):
     """:func:`fewear.contact.newton.solve_on_ray` on the state of these arrays, compiled."""
-    return solve_on_ray_on_state((H, g, U, centre, points, weights, constants, history,
+    return solve_on_ray_on_state((G, g, U, centre, points, weights, constants, history,
                                   covered), NewtonSettings(*settings), load, a, max_iterations)
 
 
