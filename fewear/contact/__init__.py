@@ -8,8 +8,9 @@
   :mod:`fewear.contact.newton_kernels`, its compiled kernels on the bore nodes.
 - :mod:`fewear.contact.admissible`: the forces the model can carry; ``ContactLoadError``.
 - :mod:`fewear.contact.solver`: ``BushingContactSolver``, the full Newton solve in DOLFINx.
-- :mod:`fewear.contact.flat`: ``FlatContactSolver``, the same solver for a rigid cylinder pressed
-  on an elastic flat (normal force, frictionless).
+- :mod:`fewear.contact.flat`: ``FlatContactSolver``, the same contact for a rigid cylinder pressed
+  on an elastic flat (normal force, fretting steps with Coulomb friction), the flat condensed onto
+  its top and the Newton compiled (:mod:`fewear.contact.flat_newton`).
 - :mod:`fewear.contact.condensed`: ``CondensedBushingContact``, the same answer from the bushing
   condensed onto its bore (the fast path for the wear loop).
 """

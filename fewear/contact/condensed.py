@@ -110,54 +110,17 @@ class CondensedBushingContact:
         self.newton.geometry_changed()
 
     def _bore_dofs(self):
-        """Local indices (unrolled) of the S2 dofs on the bore, their columns in the gathered,
-        sorted list of global dof numbers, and that list."""
+        """:func:`contact_dofs` of the bore."""
         solver = self.solver
-        V = solver.V
-        tdim = solver.mesh.topology.dim
-        blocks = fem.locate_dofs_topological(V, tdim - 1, solver.facet_tags.find(BORE_TAG))
-        global_blocks = V.dofmap.index_map.local_to_global(blocks)
-        local = np.concatenate([2 * blocks, 2 * blocks + 1])
-        global_ids = np.concatenate([2 * global_blocks, 2 * global_blocks + 1])
-        all_ids = np.unique(np.concatenate(self.comm.allgather(global_ids)))
-        return local, np.searchsorted(all_ids, global_ids), all_ids
+        return contact_dofs(solver.V, solver.mesh, solver.facet_tags, self.comm)
 
     def _nodal_evaluation(self) -> np.ndarray:
-        """N_local (2 n_local_nodes, n_columns): the S2 basis functions of the bore dofs at the
-        local bore nodes, rows (node, direction). A bore node is a node of the 9-node geometry, so
-        it sits at a fixed reference point X_k of its cell (a vertex or an edge midpoint: the
-        coordinate element's k-th point) and, the S2 element being mapped by the identity
-        (phi_j(x(X)) = phi_j(X)), its row holds the reference basis phi_j(X_k) of the cell's dofs.
-        The basis is tabulated once at the 9 points, so N costs no point search and does not
-        change when the mesh moves. Only the bore dofs' basis functions are kept: the others vanish
-        on the bore (the trace of an H1 element on a facet is spanned by the facet's dofs)."""
-        solver, bore = self.solver, self.solver.bore
-        local_dofs, columns, all_ids = self._dofs
-        index_map = solver.V.dofmap.index_map
-        column = np.full(2 * (index_map.size_local + index_map.num_ghosts), -1)
-        column[local_dofs] = columns
-        basis = reference_basis_at_geometry_nodes(solver.mesh, solver.V)
-        geometry = solver.mesh.geometry.dofmap
-        table = np.zeros((2 * bore.local_nodes.size, all_ids.size))
-        for row, (node, cell) in enumerate(zip(bore.local_nodes, bore.local_node_cells)):
-            values = basis[np.flatnonzero(geometry.links(cell) == node)[0]]
-            for direction in range(2):
-                cell_columns = column[2 * solver.V.dofmap.cell_dofs(cell) + direction]
-                on_bore = cell_columns >= 0
-                table[2 * row + direction, cell_columns[on_bore]] = values[on_bore]
-        return table
+        """:func:`nodal_evaluation` at the local bore nodes."""
+        return nodal_evaluation(self.solver.V, self.solver.mesh, self.solver.bore, self._dofs)
 
     def _gathered_evaluation(self) -> np.ndarray:
-        """N (2n, n_columns) in the gathered node order, the same on every rank."""
-        bore = self.solver.bore
-        n_columns = self._dofs[2].size
-        rows = (2 * bore.local_index[:, None] + np.arange(2)[None, :]).reshape(-1)
-        local = np.zeros((2 * bore.global_ids.size, n_columns))
-        local[rows] = self._table
-        count = np.zeros(2 * bore.global_ids.size)
-        count[rows] = 1.0
-        return (self.comm.allreduce(local, op=MPI.SUM)
-                / self.comm.allreduce(count, op=MPI.SUM)[:, None])
+        """:func:`gathered_evaluation` of the bore."""
+        return gathered_evaluation(self.solver.bore, self._table, self._dofs[2].size, self.comm)
 
     def _nodal_compliance(self) -> np.ndarray:
         """G = N (K^-1)_BB N^T with K the clamped elastic stiffness and B the bore dofs (N is
@@ -271,6 +234,57 @@ class CondensedBushingContact:
         return condensed_newton.turn_state(self.newton_state, angle_rad)
 
 
+def contact_dofs(V, mesh, facet_tags, comm):
+    """Local indices (unrolled) of the S2 dofs on the contact surface (``CONTACT_TAG``, the
+    bushing's bore or the flat's top), their columns in the gathered, sorted list of global dof
+    numbers, and that list."""
+    tdim = mesh.topology.dim
+    blocks = fem.locate_dofs_topological(V, tdim - 1, facet_tags.find(BORE_TAG))
+    global_blocks = V.dofmap.index_map.local_to_global(blocks)
+    local = np.concatenate([2 * blocks, 2 * blocks + 1])
+    global_ids = np.concatenate([2 * global_blocks, 2 * global_blocks + 1])
+    all_ids = np.unique(np.concatenate(comm.allgather(global_ids)))
+    return local, np.searchsorted(all_ids, global_ids), all_ids
+
+
+def nodal_evaluation(V, mesh, bore, dofs) -> np.ndarray:
+    """N_local (2 n_local_nodes, n_columns): the S2 basis functions of the contact surface's
+    dofs (``dofs``: :func:`contact_dofs`) at the local nodes of ``bore``
+    (:class:`fewear.mesh.bore.BoreNodes`), rows (node, direction). A bore node is a node of the
+    9-node geometry, so it sits at a fixed reference point X_k of its cell (a vertex or an edge
+    midpoint: the coordinate element's k-th point) and, the S2 element being mapped by the
+    identity (phi_j(x(X)) = phi_j(X)), its row holds the reference basis phi_j(X_k) of the
+    cell's dofs. The basis is tabulated once at the 9 points, so N costs no point search and
+    does not change when the mesh moves. Only the surface dofs' basis functions are kept: the
+    others vanish on it (the trace of an H1 element on a facet is spanned by the facet's
+    dofs)."""
+    local_dofs, columns, all_ids = dofs
+    index_map = V.dofmap.index_map
+    column = np.full(2 * (index_map.size_local + index_map.num_ghosts), -1)
+    column[local_dofs] = columns
+    basis = reference_basis_at_geometry_nodes(mesh, V)
+    geometry = mesh.geometry.dofmap
+    table = np.zeros((2 * bore.local_nodes.size, all_ids.size))
+    for row, (node, cell) in enumerate(zip(bore.local_nodes, bore.local_node_cells)):
+        values = basis[np.flatnonzero(geometry.links(cell) == node)[0]]
+        for direction in range(2):
+            cell_columns = column[2 * V.dofmap.cell_dofs(cell) + direction]
+            on_bore = cell_columns >= 0
+            table[2 * row + direction, cell_columns[on_bore]] = values[on_bore]
+    return table
+
+
+def gathered_evaluation(bore, table: np.ndarray, n_columns: int, comm) -> np.ndarray:
+    """N (2n, n_columns) in the gathered node order of ``bore``, the same on every rank, from
+    each rank's :func:`nodal_evaluation` ``table``."""
+    rows = (2 * bore.local_index[:, None] + np.arange(2)[None, :]).reshape(-1)
+    local = np.zeros((2 * bore.global_ids.size, n_columns))
+    local[rows] = table
+    count = np.zeros(2 * bore.global_ids.size)
+    count[rows] = 1.0
+    return comm.allreduce(local, op=MPI.SUM) / comm.allreduce(count, op=MPI.SUM)[:, None]
+
+
 def reference_basis_at_geometry_nodes(mesh, V) -> np.ndarray:
     """phi_j(X_k) (k, j): the reference basis of V's scalar element (the Basix element FFCx
     compiles V's forms with) at the reference points X_k of the coordinate element's nodes, in
@@ -282,26 +296,46 @@ def reference_basis_at_geometry_nodes(mesh, V) -> np.ndarray:
     return element.tabulate(0, nodes.points)[0, :, :, 0]
 
 
+# MUMPS' blocking factor of the selected inverse's right-hand sides (ICNTL(27); its default
+# -32 takes blocks of 32): blocks of 128 computed the 646 columns of the default block on ring's
+# contact zone in 0.6 times the time (and its lower triangle in 0.6 times that of the whole).
+INVERSE_RHS_BLOCK = 128
+
+
 def inverse_block(factor: PETSc.Mat, dofs: np.ndarray, comm) -> np.ndarray:
-    """The dense block (A^-1)[dofs, dofs] of a MUMPS-factorised A, the same on every rank.
+    """The dense block (A^-1)[dofs, dofs] of a MUMPS-factorised symmetric A (``dofs`` sorted),
+    the same on every rank: its lower triangle computed, mirrored.
 
     MUMPS computes selected entries of A^-1 (ICNTL(30)) from the sparsity pattern of a matrix on
     the host that lists them transposed (row j: the entries A^-1[i, j]), and overwrites its values;
     PETSc 3.18 calls this ``MatMumpsGetInverseTranspose``, which petsc4py 3.18 does not wrap. It is
-    called here through ctypes, on the PETSc library petsc4py's extension module is linked with."""
+    called here through ctypes, on the PETSc library petsc4py's extension module is linked with.
+    MUMPS is left in its solve mode as it was found (sparse right-hand sides, centralised solution
+    and selected inverse off again: PETSc's solves on several ranks need the distributed solution
+    they factorised for)."""
+    solve_mode = {icntl: factor.getMumpsIcntl(icntl) for icntl in (20, 21, 27, 30)}
+    factor.setMumpsIcntl(27, INVERSE_RHS_BLOCK)
     n = factor.getSize()[0]
     host = comm.rank == 0
     local = n if host else 0  # the host holds all rows and columns of the pattern
+    column, row = np.tril_indices(dofs.size)  # pattern row dofs[column] lists dofs[row <= column]
     counts = np.zeros(local, dtype=PETSc.IntType)
     if host:
-        counts[dofs] = dofs.size
+        counts[dofs] = np.arange(1, dofs.size + 1)
     indptr = np.concatenate([[0], np.cumsum(counts)]).astype(PETSc.IntType)
-    indices = np.tile(dofs, dofs.size if host else 0).astype(PETSc.IntType)
+    indices = (dofs[row] if host else np.zeros(0)).astype(PETSc.IntType)
     pattern = PETSc.Mat().createAIJ(((local, n), (local, n)), comm=comm,
                                     csr=(indptr, indices, np.zeros(indices.size)))
     _petsc_call("MatMumpsGetInverseTranspose", factor, pattern)
-    block = pattern.getValuesCSR()[2].reshape(dofs.size, dofs.size).T if host else None
+    block = None
+    if host:
+        block = np.empty((dofs.size, dofs.size))
+        values = pattern.getValuesCSR()[2]
+        block[row, column] = values
+        block[column, row] = values
     pattern.destroy()
+    for icntl, value in solve_mode.items():
+        factor.setMumpsIcntl(icntl, value)
     return comm.bcast(block, root=0)
 
 

@@ -1,11 +1,14 @@
-"""A rigid cylinder pressed on an elastic flat, in the bushing's contact solver (DOLFINx, PETSc).
+"""A rigid cylinder pressed on an elastic flat (DOLFINx, PETSc), condensed onto the flat's top.
 
 The flat's rectangle (plane strain, Q8, bottom clamped) under a rigid cylinder with the penalty
-contact of :mod:`fewear.contact.solver`: normal load by force control along a ray, frictional
-(fretting) steps under tangential force or shift with Coulomb's law by return mapping, a worn
-cylinder seen through the gap, and the implicit Archard step as a wear compliance in series.
-Admissible loads by Hertz line contact (Johnson, *Contact Mechanics*, 1985, sec. 4.3).
-Method notes: docs/contact.md.
+contact of :mod:`fewear.contact.solver` at the top's nodes: normal load by force control along a
+ray, frictional (fretting) steps under tangential force or shift with Coulomb's law by return
+mapping, a worn cylinder seen through the gap, and the implicit Archard step as a wear compliance
+in series. The elastic flat enters as the top's nodal compliance G = N K_el^-1 N^T (one
+factorisation of K_el per geometry, MUMPS selected inverse), as the bushing's fast path does
+(:mod:`fewear.contact.condensed`); the contact Newton of :mod:`fewear.contact.newton` runs
+compiled on the top's nodes (:mod:`fewear.contact.flat_newton`). Admissible loads by Hertz line
+contact (Johnson, *Contact Mechanics*, 1985, sec. 4.3). Method notes: docs/contact.md.
 """
 
 from __future__ import annotations
@@ -16,21 +19,38 @@ from dataclasses import replace
 from typing import NamedTuple
 
 import numpy as np
-import ufl
 from dolfinx import fem
-from dolfinx.mesh import compute_midpoints
+from dolfinx.fem import petsc as fem_petsc
 from mpi4py import MPI
 from petsc4py import PETSc
-from scipy import linalg
+from scipy import sparse
 
-from fewear.contact.condensed import inverse_block
-from fewear.contact.newton import ContactNotConverged, newton_settings, specialised
+from fewear.contact import flat_newton
+from fewear.contact.condensed import (
+    contact_dofs,
+    gathered_evaluation,
+    inverse_block,
+    nodal_evaluation,
+)
+from fewear.contact.flat_newton import (
+    FRICTION,
+    FROZEN,
+    OUTGROWN_X,
+    PENALTY,
+    RADIUS,
+    STICK,
+    TANGENTIAL,
+    TARGET_X,
+    history_parts,
+    tractions,
+)
+from fewear.contact.newton import ContactNewton, ContactNotConverged, newton_settings
 from fewear.contact.params import FlatContactProblem
 from fewear.contact.result import ContactResult
-from fewear.contact.solver import BushingContactSolver
+from fewear.contact.solver import elastic_stiffness_form, nodal_result
 from fewear.errors import FewearInputError
+from fewear.mesh.bore import BoreNodes, bore_node_weights
 from fewear.mesh.flat import flat_mesh
-from fewear.mesh.tags import CONTACT_TAG
 
 PRESS_DIRECTION = np.array([0.0, -1.0])  # the cylinder's ray and the normal force's direction
 BOTH_MOVES = np.eye(2)                      # force control of Q and P: the centre free
@@ -50,6 +70,12 @@ STICK_TOLERANCE = 1e-9
 # A node in contact sticks where |tau| < mu p by more than this fraction (the slipping ones have
 # |tau| = mu p to rounding).
 STICK_MARGIN = 1e-9
+
+# The compliance G is computed on the top nodes within this many contact elements beyond the
+# farthest node the contact loaded so far (:meth:`FlatContactSolver._prepare`): a block-on-ring
+# scar widens by about one element a wear step, a fretting contact not at all after the first
+# stroke; one outgrown costs a selected inverse and the solve again.
+COVER_ELEMENTS = 4
 
 
 class FrictionalStep(NamedTuple):
@@ -94,96 +120,183 @@ def checked_normal_force(normal_force_N) -> float:
     return value
 
 
-class FlatContactSolver(BushingContactSolver):
-    """The rigid cylinder on the elastic flat (method notes): the bushing's solver on the
-    flat's mesh and problem, solved with the cylinder on its ray; frictional steps after it
-    (method notes).
+def _state_array(index: int, doc: str) -> property:
+    """A read-only attribute that is the ``index``-th array of ``newton_state``."""
+    return property(lambda self: self.newton_state[index], doc=doc)
+
+
+class FlatContactSolver:
+    """The rigid cylinder on the elastic flat (method notes), solved on the top's nodes with
+    the flat condensed onto them; frictional steps after a normal solve (method notes).
 
     ``problem``: the :class:`FlatContactProblem`; ``comm``: MPI communicator; ``mesh_data``: an
     existing ``(mesh, cell_tags, facet_tags)`` from :func:`fewear.mesh.flat.flat_mesh` (built
-    from the problem when omitted). ``bore`` holds the flat's top nodes, sorted by x.
+    from the problem when omitted). ``bore`` holds the flat's top nodes
+    (:class:`fewear.mesh.bore.BoreNodes`), sorted by x; ``weights_m`` their weights (m);
+    ``pin_centre_m`` the cylinder's centre (m); ``last_result`` the last solve's
+    :class:`ContactResult`. Call :meth:`update_geometry` after the mesh moved.
     """
 
     def __init__(self, problem: FlatContactProblem, comm=MPI.COMM_WORLD, mesh_data=None):
         if mesh_data is None:
             mesh_data = flat_mesh(problem.geometry, problem.mesh, comm)
-        super().__init__(problem, comm, mesh_data)
-
-    # -- Coulomb friction: the forms ----------------------------------------------------------
-    def _build_forms(self) -> None:
-        """The bushing's forms, with the shear of :meth:`contact_traction`; its history (the
-        step's start) in degree-2 Lagrange functions, whose values at the top's nodes are the
-        values at the contact integral's Gauss-Lobatto points, and the centre as a constant."""
-        msh = self.mesh
-        self.coulomb = fem.Constant(msh, PETSc.ScalarType(0.0))  # mu in a frictional step
-        self.tangential_penalty = fem.Constant(
-            msh, PETSc.ScalarType(self.problem.penalty_stiffness_Pa_per_m()))
-        shear_space = fem.FunctionSpace(msh, ("Q", 2))
-        self.shear_before = fem.Function(shear_space, name="shear_before_Pa")
-        self._shear_now = fem.Function(shear_space)
-        self.displacement_before = fem.Function(fem.VectorFunctionSpace(msh, ("Q", 2)))
-        self.centre_before = fem.Constant(msh, np.zeros(2, dtype=PETSc.ScalarType))
-        self.frozen = fem.Constant(msh, PETSc.ScalarType(0.0))  # 1: the pressure frozen
-        self.frozen_pressure = fem.Function(shear_space, name="frozen_pressure_Pa")
-        self._centre_x_target_m: float | None = None  # displacement control of the centre's x
+        self.problem, self.comm = problem, comm
+        self.mesh, self.cell_tags, self.facet_tags = mesh_data
+        self.V = fem.VectorFunctionSpace(self.mesh, ("S", 2))
+        self._a_elastic, self._bc = elastic_stiffness_form(self.V, problem.material,
+                                                           self.facet_tags)
+        self._K_elastic = fem_petsc.create_matrix(self._a_elastic)
+        self._ksp = self._make_cholesky_solver()
+        self.bore = BoreNodes(self.mesh, self.facet_tags, comm)
+        dofs = contact_dofs(self.V, self.mesh, self.facet_tags, comm)
+        # the top's global dof numbers, sorted: N's columns
+        self._top_dof_ids = dofs[2].astype(PETSc.IntType)
+        self._evaluation = sparse.csr_matrix(gathered_evaluation(
+            self.bore, nodal_evaluation(self.V, self.mesh, self.bore, dofs),
+            self._top_dof_ids.size, comm))  # N: a few nonzeros per row
+        self.newton_state = flat_newton.new_state(self.bore.points.shape[0])
+        constants = self.newton_state[6]
+        constants[RADIUS] = problem.indenter_radius_m
+        constants[PENALTY] = constants[TANGENTIAL] = problem.penalty_stiffness_Pa_per_m()
+        constants[STICK] = STICK_TOLERANCE
+        self.newton = ContactNewton(self)
+        self.last_result: ContactResult | None = None
         self.last_force_N = np.zeros(2)  # (Q, -P) at the end of the last solve or step (N)
-        self._loading_now = fem.Function(shear_space)
-        # the cylinder's worn depth under each point of the top, at the cylinder's position
-        self.cylinder_wear = fem.Function(shear_space, name="cylinder_wear_m")
         self._cylinder_profile: tuple[np.ndarray, np.ndarray] | None = None
         self._cylinder_wear_at_nodes: np.ndarray | None = None
-        self._elastic_factorised = False  # K_el of this geometry factorised in _ksp
-        self._covered = np.zeros(0, dtype=int)  # the top dofs (positions in _top_dofs) and
-        self._covered_compliance = np.zeros((0, 0))  # their (K_el^-1) block, this geometry's
-        self._reach_m = 0.0  # the largest |x| of a dof the contact coupled so far
-        super()._build_forms()
-        self._top_dofs, self._top_dof_abs_x_m = self._top_dofs_and_x()
-        deformed = ufl.SpatialCoordinate(msh) + self.displacement
-        points = shear_space.element.interpolation_points()
-        self._shear_expression = fem.Expression(self.shear(deformed), points)
-        self._pressure_expression = fem.Expression(self.contact_pressure(deformed), points)
-        self._loading_expression = fem.Expression(self.loading_pressure(deformed), points)
-        trial, bound = self._trial_shear(deformed)
-        sticking = ufl.And(ufl.gt(bound, 0.0), ufl.le(abs(trial), bound * (1.0 + STICK_TOLERANCE)))
-        self._stick_length = fem.form(ufl.conditional(sticking, 1.0, 0.0)
-                                      * self._ds(CONTACT_TAG))
+        self._reach_m = 0.0  # the largest |x| of a node the contact reached so far (m)
+        self.update_geometry()
 
-    def _top_dofs_and_x(self) -> tuple[np.ndarray, np.ndarray]:
-        """The displacement's dofs on the top (sorted, unrolled) and each one's |x| (m): the
-        least of its facets' midpoints' (an S2 edge dof is no point value)."""
-        facets = self.facet_tags.find(CONTACT_TAG)
-        midpoints = np.abs(compute_midpoints(self.mesh, self.mesh.topology.dim - 1, facets)[:, 0])
-        reach = {}
-        for facet, x in zip(facets, midpoints):
-            for block in fem.locate_dofs_topological(self.V, self.mesh.topology.dim - 1,
-                                                     np.array([facet], dtype=np.int32)):
-                reach[block] = min(reach.get(block, np.inf), x)
-        blocks = np.array(sorted(reach))
-        dofs = np.concatenate([2 * blocks, 2 * blocks + 1])
-        order = np.argsort(dofs)
-        x = np.concatenate([[reach[b] for b in blocks]] * 2)
-        return dofs[order].astype(PETSc.IntType), x[order]
+    # -- the state of the Newton (fewear.contact.flat_newton) ---------------------------------
+    operations = flat_newton  # functions of newton_state (compiled into the solves)
+    newton_algorithm = flat_newton.newton_algorithm
 
-    def contact_traction(self, deformed):
-        """UFL: T = p n + tau t, the cylinder's traction on the flat (Pa): the penalty pressure
-        and the shear tau of Coulomb's law (:meth:`shear`) along t = (-n_y, n_x)."""
-        n = self._normal(deformed)
-        return self.loading_pressure(deformed) * n + self.shear(deformed) * ufl.as_vector(
-            (-n[1], n[0]))
+    _compliance = _state_array(0, "G (2n, 2n) on the covered nodes (else 0), m per N/m")
+    _g = _state_array(1, "the nodal forces on the flat g (2n,), N/m")
+    _U = _state_array(2, "the nodal displacements U = G g (2n,), m")
+    pin_centre_m = _state_array(3, "the cylinder's centre c (2,), m")
+    _points = _state_array(4, "the top nodes lowered by the cylinder's wear (n, 2), m")
+    weights_m = _state_array(5, "the top nodes' weights (n,), m")
+    _constants = _state_array(6, "the constants of fewear.contact.flat_newton")
+    _history = _state_array(7, "the frictional step's start (fewear.contact.flat_newton)")
+    _covered = _state_array(8, "1 at the nodes whose block of G is computed, else 0")
 
-    def contact_pressure(self, deformed):
-        """UFL: the penalty pressure against the worn cylinder (:meth:`_against_worn_cylinder`)."""
-        return BushingContactSolver.contact_pressure(self, self._against_worn_cylinder(deformed))
+    def release(self) -> None:
+        """Drop the Newton iteration's reference back to this solver (a cycle)."""
+        self.newton = None
 
-    def _normal(self, deformed):
-        return BushingContactSolver._normal(self, self._against_worn_cylinder(deformed))
+    def _make_cholesky_solver(self) -> PETSc.KSP:
+        """MUMPS' LDL^T of the symmetric positive definite K_el (half the work of its LU)."""
+        ksp = PETSc.KSP().create(self.comm)
+        ksp.setType("preonly")
+        pc = ksp.getPC()
+        pc.setType("cholesky")
+        pc.setFactorSolverType("mumps")
+        return ksp
 
-    def _against_worn_cylinder(self, deformed):
-        """UFL: the flat's deformed point lowered by the cylinder's worn depth h_c above it
-        (:meth:`set_cylinder_wear`): the gap to the worn cylinder, |x + u - c| - (R - h_c) to
-        first order in h_c/R, is the gap of the lowered point to the circle."""
-        return deformed - ufl.as_vector((0.0, self.cylinder_wear))
+    def update_geometry(self) -> None:
+        """After the mesh moved: K_el re-assembled, the top's nodes and weights read again;
+        K_el factorised and the top's compliance computed at the next solve
+        (:meth:`_prepare`)."""
+        self._K_elastic.zeroEntries()
+        fem_petsc.assemble_matrix(self._K_elastic, self._a_elastic, bcs=[self._bc])
+        self._K_elastic.assemble()
+        self._K_elastic.setOption(PETSc.Mat.Option.SPD, True)
+        self._factorised = False
+        self._covered[:] = 0.0
+        self.bore.update_geometry()
+        self.weights_m[:] = bore_node_weights(self.mesh, self.bore)
+        self._points[:] = self.contact_points()
+        self.newton.geometry_changed()
 
+    def _prepare(self) -> None:
+        """K_el factorised (once per geometry) and the block of G = N K_el^-1 N^T on the top
+        nodes within ``COVER_ELEMENTS`` elements of the contact's reach in x, again whenever the
+        contact outgrows them (the selected inverse grows with the entries it computes: the
+        rows of every top node cost five times the time); on a new geometry the covered nodes'
+        displacements of the forces as they are, U = G g (the forces act there)."""
+        reach = self._reach_m + COVER_ELEMENTS * self.problem.mesh.contact_element_size_m
+        covered = np.abs(self.bore.points[:, 0]) <= reach
+        if self._factorised and np.all(self._covered[covered] == 1.0):
+            return
+        new_geometry = not self._factorised
+        if new_geometry:
+            self._ksp.setOperators(self._K_elastic)
+            self._ksp.setUp()
+            self._factorised = True
+        nodes = np.flatnonzero(covered)
+        rows = (2 * nodes[:, None] + np.arange(2)).reshape(-1)
+        N = self._evaluation[rows]
+        columns = np.unique(N.indices)
+        N = N[:, columns]
+        block = inverse_block(self._ksp.getPC().getFactorMatrix(), self._top_dof_ids[columns],
+                              self.comm)
+        G = self._compliance
+        G[:] = 0.0
+        G[np.ix_(rows, rows)] = N @ (N @ block).T
+        self._covered[:] = covered
+        if new_geometry:  # the covered nodes' U = G g; the others' U the last solve's
+            support = np.flatnonzero(self._g)
+            self._U[rows] = self._g[support] @ G[np.ix_(support, rows)]
+
+    def _displace(self) -> None:
+        """U = N K_el^-1 N^T g at every top node (one solve with K_el): the displacements of
+        the present forces, where the Newton has G only on the covered nodes and the others'
+        displacements of the last solve."""
+        rhs, solution = self._K_elastic.createVecs()
+        values = self._evaluation.T @ self._g
+        if self.comm.rank == 0:
+            rhs.setValues(self._top_dof_ids, values)
+        rhs.assemble()
+        self._ksp.solve(rhs, solution)
+        top = self._top_dof_ids
+        start, end = solution.getOwnershipRange()
+        owned = (top >= start) & (top < end)
+        at_top = np.zeros(top.size)
+        at_top[owned] = solution.array[top[owned] - start]
+        self._U[:] = self._evaluation @ self.comm.allreduce(at_top, op=MPI.SUM)
+        rhs.destroy()
+        solution.destroy()
+
+    def _outgrown_x_m(self) -> float:
+        """The largest |x| of a node outside the covered ones that the cylinder penetrates with
+        every node's displacement as the present forces make it (:meth:`_displace`), 0 if
+        none: the Newton saw the uncovered nodes' displacements of the last solve (geometry)."""
+        self._displace()
+        deformed = self._points + self._U.reshape(-1, 2) - self.pin_centre_m
+        penetrating = ((np.hypot(deformed[:, 0], deformed[:, 1]) < self._constants[RADIUS])
+                       & (self._covered == 0.0))
+        return float(np.abs(self.bore.points[penetrating, 0]).max(initial=0.0))
+
+    def _solved(self, run) -> int:
+        """``run()``, a Newton solve from the present state, with the compliance it needs
+        (:meth:`_prepare`): should the contact reach a node outside the covered ones (in the
+        Newton, or at its solution with every node's displacement), the state restored and the
+        solve run again on the wider cover. The reach grows to the nodes the converged contact
+        loads."""
+        start = self._g.copy(), self._U.copy(), self.pin_centre_m.copy()
+        while True:
+            self._prepare()
+            self._constants[OUTGROWN_X] = 0.0
+            try:
+                iterations, failure = run(), None
+            except ContactNotConverged as error:
+                iterations, failure = -1, error
+            outgrown = float(self._constants[OUTGROWN_X])
+            if outgrown == 0.0 and failure is None:
+                outgrown = self._outgrown_x_m()
+            if outgrown == 0.0:
+                break
+            self._g[:], self._U[:], self.pin_centre_m[:] = start
+            self._reach_m = max(self._reach_m, outgrown)
+        if failure is not None:
+            raise failure
+        loaded = np.flatnonzero(np.any(self._g.reshape(-1, 2) != 0.0, axis=1))
+        self._reach_m = max(self._reach_m,
+                            float(np.abs(self.bore.points[loaded, 0]).max(initial=0.0)))
+        return iterations
+
+    # -- the cylinder's wear ------------------------------------------------------------------
     def set_cylinder_wear(self, position_m: np.ndarray, depth_m: np.ndarray) -> None:
         """The cylinder's worn depth h_c (m, into the cylinder) at the positions s (m, along its
         bottom from below its centre, increasing), linear between them and 0 beyond; applied
@@ -193,182 +306,22 @@ class FlatContactSolver(BushingContactSolver):
                                   np.asarray(depth_m, dtype=float).copy())
 
     def _place_cylinder_wear(self, centre_x_m: float) -> None:
-        """The cylinder's wear under the top's points with its centre at x = ``centre_x_m``."""
-        if self._cylinder_profile is None:
-            return
-        position, depth = self._cylinder_profile
-        self.cylinder_wear.interpolate(
-            lambda x: np.interp(x[0] - centre_x_m, position, depth, left=0.0, right=0.0))
-        self.cylinder_wear.x.scatter_forward()
-        self._cylinder_wear_at_nodes = np.interp(self.bore.points[:, 0] - centre_x_m, position,
-                                                 depth, left=0.0, right=0.0)
+        """The cylinder's wear under the top's nodes with its centre at x = ``centre_x_m``: the
+        nodes the contact sees (:meth:`contact_points`)."""
+        if self._cylinder_profile is not None:
+            position, depth = self._cylinder_profile
+            self._cylinder_wear_at_nodes = np.interp(self.bore.points[:, 0] - centre_x_m,
+                                                     position, depth, left=0.0, right=0.0)
+        self._points[:] = self.contact_points()
 
     def contact_points(self) -> np.ndarray:
-        """The top's nodes lowered by the cylinder's wear above them (m;
-        :meth:`_against_worn_cylinder`), so that the Newton's nodal gaps are the forms'."""
+        """The top's nodes lowered by the cylinder's wear h_c above them (m): the gap to the
+        worn cylinder, |x + u - c| - (R - h_c) to first order in h_c/R, is the gap of the
+        lowered point to the circle."""
         if self._cylinder_wear_at_nodes is None:
             return self.bore.points
         return self.bore.points - np.column_stack(
             [np.zeros(self.bore.points.shape[0]), self._cylinder_wear_at_nodes])
-
-    def _result(self, force, rotation, iterations, displacement) -> ContactResult:
-        """The bushing's result; its y_m the top nodes' own (not lowered by the cylinder's
-        wear)."""
-        result = BushingContactSolver._result(self, force, rotation, iterations, displacement)
-        return replace(result, y_m=self.bore.points[:, 1].copy())
-
-    def loading_pressure(self, deformed):
-        """UFL: the pressure p (Pa) of the traction: the penalty law's, or in an uncoupled
-        frictional step (:attr:`frozen` = 1) the one frozen at its start,
-        :attr:`frozen_pressure`."""
-        pressure = self.contact_pressure(deformed)
-        return pressure + self.frozen * (self.frozen_pressure - pressure)
-
-    def shear(self, deformed):
-        """UFL: the shear tau (Pa) by the return mapping of a tangential penalty k_t and
-        Coulomb's law (Wriggers, *Computational Contact Mechanics*, 2006, sec. 5.2.2; Simo &
-        Hughes, *Computational Inelasticity*, 1998, ch. 1): with ds = t . ((u - u_0) - (c - c_0))
-        the tangential motion of the flat's point relative to the cylinder since the step's
-        start (u_0, c_0: :attr:`displacement_before`, :attr:`centre_before`) and tau_0 the shear
-        then (:attr:`shear_before`),
-
-            tau_trial = tau_0 - k_t ds,   tau = tau_trial if |tau_trial| <= mu p (stick),
-                                          else mu p sign(tau_trial) (slip).
-
-        The cylinder dragged along +x shears the flat along +x. mu = :attr:`coulomb`, 0
-        outside a frictional step: then tau = 0."""
-        trial, bound = self._trial_shear(deformed)
-        return ufl.conditional(ufl.le(abs(trial), bound * (1.0 + STICK_TOLERANCE)), trial,
-                               ufl.conditional(ufl.gt(trial, 0.0), bound, -bound))
-
-    def _trial_shear(self, deformed):
-        """UFL: tau_trial and the bound mu p of :meth:`shear` (Pa)."""
-        n = self._normal(deformed)
-        t = ufl.as_vector((-n[1], n[0]))
-        moved = (deformed - ufl.SpatialCoordinate(self.mesh) - self.displacement_before
-                 - (self.pin_centre - self.centre_before))
-        trial = self.shear_before - self.tangential_penalty * ufl.inner(t, moved)
-        return trial, self.coulomb * self.loading_pressure(deformed)
-
-    def frictionless(self) -> bool:
-        """Whether the present solve is without friction (the Newton's Armijo test on the
-        penalty potential, which the return mapping's slip has not)."""
-        return float(self.coulomb.value) == 0.0
-
-    def linearise(self, load: np.ndarray) -> tuple[np.ndarray, float, None]:
-        """The bushing's linearisation; in a frictional step the active length (m) counts the
-        sticking nodes' weights once more, so that the Newton's step cap
-        (:func:`fewear.contact.newton.step_cap`) halves when the stick set alternates as it
-        does when the contact set does: a node flipping between stick (tangential stiffness
-        k_t) and slip (none) made the full steps overshoot in a growing cycle (h = a/16). The
-        rounding level the active length sets in the stopping test is at most doubled."""
-        pin_residual, active, linear = BushingContactSolver.linearise(self, load)
-        if not self.frictionless():
-            active += self.comm.allreduce(fem.assemble_scalar(self._stick_length), op=MPI.SUM)
-        return pin_residual, active, linear
-
-    def newton_direction(self, linear, pin_residual, load, basis):
-        """The bushing's Newton direction; under displacement control of the centre's x
-        (:meth:`solve_tangential_shift`) with the move to the target x prescribed: the first
-        step from the last state is the linearised (stick) response to the whole move. Moving
-        the centre there before the Newton instead started it with every node slipping
-        (k_t |dx| > mu p already for |dx| ~ 1e-10 m), from which it cycled."""
-        if self._centre_x_target_m is None:
-            return self._bordered_step(pin_residual, basis)
-        move = np.array([self._centre_x_target_m - self.pin_centre_m[0], 0.0])
-        return self._bordered_step(pin_residual, basis, prescribed=move)
-
-    # -- the Newton direction: the elastic stiffness factorised once per geometry -------------
-    def update_geometry(self) -> None:
-        """The bushing's update after the mesh moved; the elastic factorisation and the top's
-        compliance (:meth:`_bordered_step`) made afresh at the next Newton step."""
-        self._elastic_factorised = False
-        self._covered = np.zeros(0, dtype=int)
-        super().update_geometry()
-
-    def _bordered_step(self, r_pin: np.ndarray, basis: np.ndarray,
-                       prescribed: np.ndarray | None = None):
-        """The bushing's Newton direction (:meth:`BushingContactSolver._bordered_step`, the same
-        to rounding), its solves with K = K_el + J by the Woodbury identity on the dofs A of the
-        top that the contact couples (J and the contact residual r vanish elsewhere): K_el
-        factorised once per geometry, with G = (K_el^-1)_AA (MUMPS selected inverse,
-        :meth:`_compliance_of`), instead of K at every Newton step. With t = (K_el^-1 b)_A,
-
-            K^-1 b = K_el^-1 (b - P_A z),   z = (I + J_AA G)^-1 J_AA t,
-
-        and, K_el u known, the step du = -u - K_el^-1 P_A v for a v on A: one sparse solve per
-        Newton step and a dense system of the contact's dofs (a fretting cycle's steps take
-        about 7 Newton steps on each geometry: docs/performance.md). On one process; on several
-        ranks the bushing's."""
-        if self.comm.size > 1:
-            return BushingContactSolver._bordered_step(self, r_pin, basis, prescribed)
-        top = self._top_dofs
-        J, r = self._J.getValues(top, top), self._r.array[top]
-        active = np.flatnonzero(np.any(J != 0.0, axis=0) | np.any(J != 0.0, axis=1) | (r != 0.0))
-        J, r, dofs = J[np.ix_(active, active)], r[active], top[active]
-        G = self._compliance_of(active)
-        factors = linalg.lu_factor(np.eye(active.size) + J @ G)
-
-        def through_contact(t):
-            """(K^-1 b)_A and z from t = (K_el^-1 b)_A."""
-            z = linalg.lu_solve(factors, J @ t)
-            return t - G @ z, z
-
-        u = self.displacement.x.array[:self._r.getLocalSize()]
-        uniform = [field.array[dofs] for field in self.uniform]
-        moved = [-(J @ e) for e in uniform]  # the right-hand sides -J E_i
-        pulled = [J.T @ e for e in uniform]  # J^T E_i
-        y0, z0 = through_contact(-u[dofs] - G @ r)  # K_el^-1 (K_el u + r) = u + K_el^-1 r
-        Y, Z = zip(*(through_contact(G @ rhs) for rhs in moved))
-        S = np.array([[pulled[i] @ Y[j] - uniform[i] @ moved[j] for j in range(2)]
-                      for i in range(2)])
-        rhs_c = -r_pin + np.array([pulled[i] @ y0 for i in range(2)])
-        if prescribed is None:
-            dc = basis @ np.linalg.solve(basis.T @ S @ basis, basis.T @ rhs_c)
-        else:
-            dc = prescribed + basis @ np.linalg.solve(basis.T @ S @ basis,
-                                                      basis.T @ (rhs_c - S @ prescribed))
-        rhs, solution = self._rhs[0], self._sol[0]
-        rhs.set(0.0)
-        rhs.array_w[dofs] = (r + z0 + dc[0] * (moved[0] - Z[0]) + dc[1] * (moved[1] - Z[1]))
-        self._ksp.solve(rhs, solution)
-        du = self._du.vector
-        du.array_w[:] = -u - solution.array
-        return du, dc
-
-    def _compliance_of(self, active: np.ndarray) -> np.ndarray:
-        """(K_el^-1)_AA for the top dofs at positions ``active`` of the top's, on this geometry:
-        K_el factorised at the first call (its pattern's analysis kept from the geometry
-        before), the block of its inverse computed for the top dofs within 1.2 times the
-        contact's reach in x (and two elements), again whenever the contact outgrows them: the
-        selected inverse grows with the dofs it covers (0.3 s for the whole top of the default
-        block on ring, whose scar reaches 83 % of its contact zone at the end)."""
-        if not self._elastic_factorised:
-            self._ksp.setOperators(self._K_elastic)
-            self._ksp.setUp()
-            self._elastic_factorised = True
-        self._reach_m = max(self._reach_m,
-                           float(self._top_dof_abs_x_m[active].max(initial=0.0)))
-        if not np.all(np.isin(active, self._covered)):
-            reach = 1.2 * self._reach_m + 2.0 * self.problem.mesh.contact_element_size_m
-            self._covered = np.flatnonzero(self._top_dof_abs_x_m <= reach)
-            factor = self._ksp.getPC().getFactorMatrix()
-            self._covered_compliance = inverse_block(factor, self._top_dofs[self._covered],
-                                                     self.comm)
-            factor.setMumpsIcntl(30, 0)  # the selected inverse's mode off: solves again
-        where = np.searchsorted(self._covered, active)
-        return self._covered_compliance[np.ix_(where, where)]
-
-    @property
-    def operations(self) -> type:
-        """The Newton's operations: the bushing's, with the flat's :meth:`frictionless`,
-        :meth:`linearise` and :meth:`newton_direction` (the bushing's specialised Newton binds
-        the base class's methods and would not see these)."""
-        return FlatContactSolver
-
-    @property
-    def newton_algorithm(self):
-        return FLAT_NEWTON
 
     # -- solving -------------------------------------------------------------------------------
     def solve(self, normal_force_N: float, wear_compliance_m_per_Pa: float = 0.0
@@ -382,29 +335,29 @@ class FlatContactSolver(BushingContactSolver):
         (:meth:`_series_penalty`); 0, the plain contact."""
         normal = checked_normal_force(normal_force_N)
         force = normal * PRESS_DIRECTION
-        self.friction.value = 0.0
         self._place_cylinder_wear(0.0)
         if normal == 0.0:
-            result = self._no_contact_result(force, 0.0)
+            result = self._no_contact_result(force)
             self._release_shear()
             return result
         with self._series_penalty(wear_compliance_m_per_Pa):
             try:
-                iterations = self.newton.solve_on_ray(
-                    force / self.problem.out_of_plane_length_m, PRESS_DIRECTION)
+                iterations = self._solved(lambda: self.newton.solve_on_ray(
+                    force / self.problem.out_of_plane_length_m, PRESS_DIRECTION))
             except ContactNotConverged:
                 self._refuse(force, "the contact Newton found no equilibrium")
-            result = self._equilibrium_result(force, 0.0, iterations)
+            result = self._equilibrium_result(force, iterations)
         self._release_shear()
         return result
 
     def solve_tangential_force(self, tangential_force_N: float, normal_force_N: float,
                                uncoupled: bool = False) -> FrictionalStep:
         """A frictional step to the forces (Q, -P) on the cylinder (N) from the last solve's
-        state, with Coulomb's law (:meth:`shear`, mu the problem's friction coefficient) and
-        the history of the steps since the last :meth:`solve`: force control of both, the
-        centre free. Cattaneo-Mindlin partial slip for 0 < Q < mu P after a :meth:`solve` of
-        P; Q >= mu P has no equilibrium under force control (the cylinder slides away).
+        state, with Coulomb's law (:func:`fewear.contact.flat_newton.tractions`, mu the
+        problem's friction coefficient) and the history of the steps since the last
+        :meth:`solve`: force control of both, the centre free. Cattaneo-Mindlin partial slip
+        for 0 < Q < mu P after a :meth:`solve` of P; Q >= mu P has no equilibrium under force
+        control (the cylinder slides away).
 
         ``uncoupled``: a PROTOTYPE of the tangential problem alone. The pressure is frozen at
         the last :meth:`solve`'s (the normal traction and Coulomb's bound; the penalty law off)
@@ -436,7 +389,10 @@ class FlatContactSolver(BushingContactSolver):
         """A frictional step with the cylinder's centre moved to x = ``centre_x_m`` (m,
         prescribed) under the normal force P (N, force control), from the last solve's state as
         :meth:`solve_tangential_force`; Q (the step's ``tangential_force_N``) is the
-        reaction. The result's ``applied_force_N`` is (Q, -P).
+        reaction. The result's ``applied_force_N`` is (Q, -P). The Newton's first step is the
+        linearised (stick) response to the whole move: moving the centre there before the
+        Newton instead started it with every node slipping (k_t |dx| > mu p already for
+        |dx| ~ 1e-10 m), from which it cycled.
 
         ``wear_compliance_m_per_Pa``: c >= 0, the step's wear solved implicitly as in
         :meth:`solve` (the penalty law with c in series; the caller moves the top by c p
@@ -444,24 +400,28 @@ class FlatContactSolver(BushingContactSolver):
         force = np.array([0.0, -checked_normal_force(normal_force_N)])
 
         def shifted(centre_x_m: np.ndarray) -> FrictionalStep:
-            self._centre_x_target_m = float(centre_x_m[0])
-            self._place_cylinder_wear(self._centre_x_target_m)
+            self._constants[TARGET_X] = float(centre_x_m[0])
+            self._place_cylinder_wear(float(centre_x_m[0]))
             try:
                 with self._series_penalty(wear_compliance_m_per_Pa):
                     step = self._frictional_step(force, VERTICAL_MOVES)
             finally:
-                self._centre_x_target_m = None
+                self._constants[TARGET_X] = math.nan
             applied = np.array([step.tangential_force_N, force[1]])
             return step._replace(contact=replace(step.contact, applied_force_N=applied))
 
         try:
-            return self._in_halves(shifted, self.centre_before.value[:1].copy(),
+            return self._in_halves(shifted, self._centre_before()[:1].copy(),
                                    np.array([float(centre_x_m)]), STEP_HALVINGS)
         except ContactNotConverged:
             self.newton.reset()
             raise FewearInputError(
                 f"cylinder shifted to x = {centre_x_m:g} m under P = {-force[1]:g} N: the "
                 "frictional Newton found no equilibrium; solve P afresh") from None
+
+    def _centre_before(self) -> np.ndarray:
+        """The centre at the frictional step's start, c_0 (m; a view of the history)."""
+        return history_parts(self._history, self.bore.points.shape[0])[2]
 
     def _in_halves(self, step, start: np.ndarray, end: np.ndarray, halvings: int
                    ) -> FrictionalStep:
@@ -475,14 +435,13 @@ class FlatContactSolver(BushingContactSolver):
         (Mindlin's solution depends on the final load alone). The split step's result is the
         second half's, its Coulomb slip the two halves' sum (the whole step's, as Archard needs
         it: :mod:`fewear.loop.fretting`)."""
-        centre, displacement = self.pin_centre_m.copy(), self.displacement.x.array.copy()
+        state = self._g.copy(), self._U.copy(), self.pin_centre_m.copy()
         try:
             return step(end)
         except ContactNotConverged:
             if halvings == 0:
                 raise
-            self.displacement.x.array[:] = displacement
-            self.place_pin(centre)
+            self._g[:], self._U[:], self.pin_centre_m[:] = state
             middle = 0.5 * (start + end)
             first = self._in_halves(step, start, middle, halvings - 1)
             second = self._in_halves(step, middle, end, halvings - 1)
@@ -498,37 +457,40 @@ class FlatContactSolver(BushingContactSolver):
         if not np.any(self.pin_centre_m):
             raise FewearInputError("a frictional step needs the cylinder pressed on the flat "
                                    "first (solve the normal force P > 0)")
-        self.coulomb.value = self.problem.contact.friction_coefficient
-        self.frozen.value = float(frozen)
+        constants = self._constants
+        constants[FRICTION] = self.problem.contact.friction_coefficient
+        constants[FROZEN] = float(frozen)
         try:
-            iterations = self.newton.solve_from_here(
+            iterations = self._solved(lambda: self.newton.solve_from_here(
                 force / self.problem.out_of_plane_length_m, PRESS_DIRECTION, basis,
-                "in a frictional step")
-            result = self._equilibrium_result(force, 0.0, iterations)
+                "in a frictional step"))
+            result = self._equilibrium_result(force, iterations)
             return self._close_step(result)
         finally:
-            self.coulomb.value = 0.0
-            self.frozen.value = 0.0
+            constants[FRICTION] = constants[FROZEN] = 0.0
+
+    def _tractions(self):
+        """:func:`fewear.contact.flat_newton.tractions` at the present state."""
+        return tractions(self._points, self._U.reshape(-1, 2), self.pin_centre_m,
+                         self.weights_m, self._constants, self._history)
 
     def _close_step(self, result: ContactResult) -> FrictionalStep:
         """The converged step (:class:`FrictionalStep`): the nodal pressure of the traction,
-        shear tau (Pa) and Coulomb slip |ds + (tau - tau_0)/k_t| (m, 0 off contact;
-        :meth:`shear`'s notation); then its end becomes the history."""
-        shear_before = self._at_bore_nodes(self.shear_before)[:, 0]
-        relative = (self.nodal_displacement() - self._at_bore_nodes(self.displacement_before)
-                    - (self.pin_centre_m - self.centre_before.value))
-        normal = (self.bore.points + self.nodal_displacement() - self.pin_centre_m)
+        shear tau (Pa) and Coulomb slip |ds + (tau - tau_0)/k_t| (m, 0 off contact; ds the
+        tangential motion of the node relative to the centre since the step's start, along
+        the tangent of its own (not lowered) point); then its end becomes the history."""
+        shear_before, U_before, centre_before, _ = history_parts(
+            self._history, self.bore.points.shape[0])
+        displacement = self._U.reshape(-1, 2)
+        relative = (displacement - U_before.reshape(-1, 2)
+                    - (self.pin_centre_m - centre_before))
+        normal = self.bore.points + displacement - self.pin_centre_m
         normal /= np.hypot(normal[:, 0], normal[:, 1])[:, None]
         moved = -normal[:, 1] * relative[:, 0] + normal[:, 0] * relative[:, 1]
-        for function, expression in ((self._shear_now, self._shear_expression),
-                                     (self._loading_now, self._loading_expression)):
-            function.interpolate(expression)
-            function.x.scatter_forward()
-        shear = self._at_bore_nodes(self._shear_now)[:, 0]
-        pressure = self._at_bore_nodes(self._loading_now)[:, 0]
+        pressure, shear = (array.copy() for array in self._tractions()[4:6])
         slip = np.where(pressure > 0.0, np.abs(
-            moved + (shear - shear_before) / float(self.tangential_penalty.value)), 0.0)
-        self.shear_before.x.array[:] = self._shear_now.x.array
+            moved + (shear - shear_before) / self._constants[TANGENTIAL]), 0.0)
+        shear_before[:] = shear
         self._hold_state()
         self.last_force_N = result.resultant_force_N.copy()
         bound = self.problem.contact.friction_coefficient * pressure
@@ -537,24 +499,25 @@ class FlatContactSolver(BushingContactSolver):
                               sticking, float(result.resultant_force_N[0]))
 
     def _release_shear(self) -> None:
-        """No shear; the present state the history of the next frictional step, its pressure
-        the frozen one of an uncoupled step."""
-        self.shear_before.x.array[:] = 0.0
+        """No shear; the present state the history of the next frictional step, its penalty
+        pressure the frozen one of an uncoupled step."""
+        shear_before, _, _, frozen_pressure = history_parts(self._history,
+                                                            self.bore.points.shape[0])
+        shear_before[:] = 0.0
         self.last_force_N = self.last_result.applied_force_N.copy()
-        self.frozen_pressure.interpolate(self._pressure_expression)
-        self.frozen_pressure.x.scatter_forward()
+        frozen_pressure[:] = self._tractions()[3]
         self._hold_state()
 
     def _hold_state(self) -> None:
         """The present displacement and centre as the next step's start."""
-        self.displacement_before.interpolate(self.displacement)
-        self.displacement_before.x.scatter_forward()
-        self.centre_before.value = self.pin_centre_m
+        _, U_before, centre_before, _ = history_parts(self._history, self.bore.points.shape[0])
+        U_before[:] = self._U
+        centre_before[:] = self.pin_centre_m
 
     @contextmanager
     def _series_penalty(self, compliance_m_per_Pa: float):
         """Within the ``with`` block the penalty is k' = 1 / (1/k + c) for the compliance c
-        (m/Pa): in the weak form, the Newton's constants and the nodal pressures (the problem's
+        (m/Pa): in the tractions, the Newton's constants and the nodal pressures (the problem's
         penalty factor scaled by k'/k); the problem as given afterwards."""
         if not (math.isfinite(compliance_m_per_Pa) and compliance_m_per_Pa >= 0.0):
             raise FewearInputError(f"wear compliance = {compliance_m_per_Pa!r} m/Pa: expected "
@@ -567,16 +530,48 @@ class FlatContactSolver(BushingContactSolver):
         series = 1.0 / (1.0 / penalty + compliance_m_per_Pa)
         self.problem = replace(problem, contact=replace(
             problem.contact, penalty_factor=problem.contact.penalty_factor * series / penalty))
-        self.penalty.value = series
+        self._constants[PENALTY] = series
         self.newton.settings = newton_settings(self.problem)
         try:
             yield
         finally:
             self.problem = problem
-            self.penalty.value = penalty
+            self._constants[PENALTY] = penalty
             self.newton.settings = newton_settings(problem)
 
-    def _inadmissible(self, result: ContactResult, displacement: np.ndarray) -> str | None:
+    # -- results -------------------------------------------------------------------------------
+    def _equilibrium_result(self, force: np.ndarray, iterations: int) -> ContactResult:
+        """The :class:`ContactResult` of the converged state under ``force`` (N): the nodal
+        penalty law (:func:`fewear.contact.solver.nodal_result`) with the resultant of the
+        nodal forces and of their pressure part (N), y_m the top nodes' own (not lowered);
+        refused (:meth:`_refuse`) if :meth:`_inadmissible` gives a reason."""
+        f, _, _, penalty_pressure, _, _, _ = self._tractions()
+        length = self.problem.out_of_plane_length_m
+        normal = (self.weights_m * penalty_pressure)[:, None] * (
+            self._points + self._U.reshape(-1, 2) - self.pin_centre_m)
+        normal /= np.hypot(*(self._points + self._U.reshape(-1, 2) - self.pin_centre_m).T
+                           )[:, None]
+        result = nodal_result(self.problem, self.contact_points(), self.bore.angles,
+                              self._U.reshape(-1, 2), self.pin_centre_m, force,
+                              length * f.sum(axis=0), length * normal.sum(axis=0), 0.0,
+                              iterations)
+        result = replace(result, y_m=self.bore.points[:, 1].copy())
+        reason = self._inadmissible(result)
+        if reason is not None:
+            self._refuse(force, reason)
+        self.last_result = result
+        return result
+
+    def _no_contact_result(self, force: np.ndarray) -> ContactResult:
+        """The result of no force: no displacement, the centre at the origin."""
+        self.newton.reset()
+        zeros = np.zeros((self.bore.points.shape[0], 2))
+        self.last_result = replace(nodal_result(
+            self.problem, self.contact_points(), self.bore.angles, zeros, self.pin_centre_m,
+            force, np.zeros(2), np.zeros(2), 0.0, 0), y_m=self.bore.points[:, 1].copy())
+        return self.last_result
+
+    def _inadmissible(self, result: ContactResult) -> str | None:
         """Why the solution is not admissible (its loaded nodes reach the contact zone's edge
         x_c), or None."""
         loaded = np.abs(result.x_m[result.pressure_Pa > 0.0])
@@ -599,7 +594,3 @@ class FlatContactSolver(BushingContactSolver):
         x_c = problem.mesh.contact_zone_half_width_m
         return (problem.out_of_plane_length_m * math.pi * problem.material.plane_strain_modulus_Pa
                 * x_c**2 / (4.0 * problem.indenter_radius_m))
-
-
-FLAT_NEWTON = specialised(FlatContactSolver)
-"""The algorithm of :mod:`fewear.contact.newton` on the flat solver's methods."""

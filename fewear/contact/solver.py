@@ -75,6 +75,27 @@ def nodal_result(problem: ContactProblem, points: np.ndarray, angles: np.ndarray
     )
 
 
+def elastic_stiffness_form(V, material, facet_tags):
+    """The plane-strain linear elastic stiffness form of ``material`` on the vector space V
+    (Hooke's law by the Lame constants) and the clamping u = 0 on the facets tagged
+    ``CLAMPED_TAG``."""
+    E, ν = material.youngs_modulus_Pa, material.poisson_ratio
+    μ_lame = E / (2.0 * (1.0 + ν))
+    λ_lame = E * ν / ((1.0 + ν) * (1.0 - 2.0 * ν))
+
+    def ε(w):
+        return ufl.sym(ufl.grad(w))
+
+    def σ(w):
+        return 2.0 * μ_lame * ε(w) + λ_lame * ufl.tr(ε(w)) * ufl.Identity(2)
+
+    trial, test = ufl.TrialFunction(V), ufl.TestFunction(V)
+    clamped = facet_tags.find(CLAMPED_TAG)
+    clamped_dofs = fem.locate_dofs_topological(V, V.mesh.topology.dim - 1, clamped)
+    return (fem.form(ufl.inner(σ(trial), ε(test)) * ufl.dx),
+            fem.dirichletbc(fem.Function(V), clamped_dofs))
+
+
 class BushingContactSolver:
     """Full Newton solve of the pin-in-bushing penalty contact (see the method notes).
 
@@ -106,21 +127,9 @@ class BushingContactSolver:
         self.V = fem.VectorFunctionSpace(msh, ("S", 2))
         self.displacement = fem.Function(self.V, name="displacement")
         self._du = fem.Function(self.V)
-        E, ν = problem.material.youngs_modulus_Pa, problem.material.poisson_ratio
-        μ_lame = E / (2.0 * (1.0 + ν))
-        λ_lame = E * ν / ((1.0 + ν) * (1.0 - 2.0 * ν))
-
-        def ε(w):
-            return ufl.sym(ufl.grad(w))
-
-        def σ(w):
-            return 2.0 * μ_lame * ε(w) + λ_lame * ufl.tr(ε(w)) * ufl.Identity(2)
-
         trial, test = ufl.TrialFunction(self.V), ufl.TestFunction(self.V)
-        self._a_elastic = fem.form(ufl.inner(σ(trial), ε(test)) * ufl.dx)
-        outer = self.facet_tags.find(CLAMPED_TAG)
-        outer_dofs = fem.locate_dofs_topological(self.V, msh.topology.dim - 1, outer)
-        self._bc = fem.dirichletbc(fem.Function(self.V), outer_dofs)
+        self._a_elastic, self._bc = elastic_stiffness_form(self.V, problem.material,
+                                                           self.facet_tags)
 
         self.pin_centre = fem.Constant(msh, np.zeros(2, dtype=PETSc.ScalarType))
         self.penalty = fem.Constant(msh, PETSc.ScalarType(problem.penalty_stiffness_Pa_per_m()))

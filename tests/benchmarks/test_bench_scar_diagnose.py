@@ -1,7 +1,7 @@
 """`fewear diagnose` on the two published scars with the default (converged) scar models: the
 fitted k factor, its folds, the held-out RMS of the believed and the fitted model, p, effective
-observations, forward runs and wall time, printed (block on ring: 6 runs of about 15 s of CPU;
-fretting: 11 runs of about 32 s of CPU, the two causes' fits side by side; docs/performance.md).
+observations, forward runs and wall time, printed (block on ring: 6 runs of about 3.5 s of CPU;
+fretting: 11 runs of about 5 s of CPU, the two causes' fits side by side; docs/performance.md).
 
 Asserted: the verdict measured when the room was written (no cause named on either scar: the
 source's k predicts the held-out points as well as a fitted one) and that every fit converged.

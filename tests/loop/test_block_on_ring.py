@@ -135,30 +135,46 @@ def test_pressure_falls_from_hertz_to_the_conformal_scars(coarse_runs):
     assert 0.9 * mean < last.max_pressure_Pa < 2.0 * mean
 
 
-@pytest.mark.slow  # the fretting block's equality test keeps the flat's Newton step by default
-def test_newton_steps_by_the_elastic_factorisation_are_the_stiffness_factorisations(
-        coarse_runs, monkeypatch):
-    """The coarse 15-step run, its Newton directions by K_el factorised once per wear step and
-    the Woodbury identity on the contact's dofs (fewear.contact.flat), against the same run with
-    K = K_el + J factorised at every Newton step (the bushing's): the same scar to 1e-9 of its
-    depth, the same contact in every step."""
-    import fewear.loop.flat_wear
-    from tests.loop.test_fretting_wear import stiffness_factorised_solver
+# The coarse 15-step run by the flat's contact on the whole field, which the condensed contact
+# replaced (commit 54de567: K_el factorised once per wear step, the Newton steps by the Woodbury
+# identity on the contact's dofs, themselves equal to the steps by K_el + J factorised, the
+# bushing's): the depth at these x and the largest (m), the loaded half-width (m) and largest
+# nodal pressure (Pa) of every step.
+WHOLE_FIELD_X_M = np.linspace(-1.2e-3, 1.2e-3, 7)
+WHOLE_FIELD_DEPTH_M = np.array([
+    8.0445813062073763e-06, 2.8064340386555115e-05, 4.0067736154116568e-05,
+    4.4067378716019255e-05, 4.0067736154109081e-05, 2.8064340386555277e-05,
+    8.0445813062067580e-06])
+WHOLE_FIELD_MAX_DEPTH_M = 4.40673787160245e-05
+WHOLE_FIELD_HALF_WIDTH_NODES = [10, 13, 15, 17, 18, 19, 20, 21, 22, 23, 23, 24, 25, 25, 26]
+WHOLE_FIELD_PRESSURE_PA = [
+    15080669.685825162, 8852944.458435602, 7440543.888851515, 6678689.827694664,
+    6062614.287229857, 5705658.228056437, 5404004.6118996665, 5137085.416686888,
+    4932058.35608326, 4781591.5702768, 4579375.197152055, 4463360.534490369, 4341492.220137719,
+    4222062.639418694, 4124888.069478999]
 
-    monkeypatch.setattr(fewear.loop.flat_wear, "FlatContactSolver", stiffness_factorised_solver())
-    reference, fast = run(COARSE_ELEMENT_M, 15), coarse_runs[15]
-    depth = reference.state.depth_m
-    assert np.abs(fast.state.depth_m - depth).max() < 1e-9 * depth.max()
-    assert [step.contact_half_width_m for step in fast.steps] == [
-        step.contact_half_width_m for step in reference.steps]
+
+def test_the_condensed_contact_wears_as_the_whole_fields_did(coarse_runs):
+    """The coarse 15-step run by the flat condensed onto its top (fewear.contact.flat) against
+    the same run by the whole field's Newton it replaced (the figures above): the same scar to
+    1e-9 of its depth, the same contact in every step (its half-width in node spacings of
+    50 um, its largest pressure to 1e-9)."""
+    fast = coarse_runs[15]
+    tolerance = 1e-9 * WHOLE_FIELD_MAX_DEPTH_M
+    assert np.abs(fast.state.depth_at(WHOLE_FIELD_X_M) - WHOLE_FIELD_DEPTH_M).max() < tolerance
+    assert abs(fast.state.depth_m.max() - WHOLE_FIELD_MAX_DEPTH_M) < tolerance
+    spacing = 0.5 * COARSE_ELEMENT_M
+    assert [round(step.contact_half_width_m / spacing) for step in fast.steps] == (
+        WHOLE_FIELD_HALF_WIDTH_NODES)
     assert [step.max_pressure_Pa for step in fast.steps] == pytest.approx(
-        [step.max_pressure_Pa for step in reference.steps], rel=1e-9)
+        WHOLE_FIELD_PRESSURE_PA, rel=1e-9)
 
 
 def test_series_compliance_is_a_softer_penalty_and_is_undone():
     """solve with the wear compliance c: p = <-g>_+ / (1/k + c) at the nodes; afterwards the
     solver's problem and penalty are as given and the plain solve repeats."""
     from fewear.contact.flat import FlatContactSolver
+    from fewear.contact.flat_newton import PENALTY
 
     solver = FlatContactSolver(block_on_ring_problem(COARSE_ELEMENT_M))
     plain = solver.solve(FORCE_N)
@@ -171,7 +187,7 @@ def test_series_compliance_is_a_softer_penalty_and_is_undone():
     assert worn.force_balance_rel_error < 1e-8
     assert np.count_nonzero(worn.pressure_Pa) > 5 * np.count_nonzero(plain.pressure_Pa)
     assert solver.problem.penalty_stiffness_Pa_per_m() == penalty
-    assert float(solver.penalty.value) == penalty
+    assert solver.newton_state[6][PENALTY] == penalty
     np.testing.assert_allclose(solver.solve(FORCE_N).pressure_Pa, plain.pressure_Pa,
                                rtol=1e-8, atol=1e-8 * plain.max_pressure_Pa)
     for bad in (-1e-12, math.inf):
