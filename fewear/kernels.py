@@ -6,14 +6,16 @@ from __future__ import annotations
 import numba
 
 from fewear.contact.condensed_newton import compile_contact
+from fewear.contact.flat_newton import compile_flat
 from fewear.jit import holds_compiled_code
 from fewear.mbd.slider_crank import compile_dynamics
 
 
 def compile_kernels(report=None) -> None:
     """Compile, or load from the cache, the kernels of a wear run: the dynamics'
-    (:func:`fewear.mbd.slider_crank.compile_dynamics`) and the contact's
-    (:func:`fewear.contact.condensed_newton.compile_contact`). ``report(text)``, if given, is
+    (:func:`fewear.mbd.slider_crank.compile_dynamics`), the bushing's contact
+    (:func:`fewear.contact.condensed_newton.compile_contact`) and the flat's of a scar
+    (:func:`fewear.contact.flat_newton.compile_flat`). ``report(text)``, if given, is
     told first when the cache holds no compiled code (the first run after a change of the
     sources compiles for one to a few minutes), so that the user is not left without a word;
     with no cache that can be written (:func:`fewear.jit.choose_cache_dir`), every run compiles."""
@@ -24,3 +26,4 @@ def compile_kernels(report=None) -> None:
             if cache else "one to a few minutes, on every run: no cache folder can be written)"))
     compile_dynamics()
     compile_contact()
+    compile_flat()

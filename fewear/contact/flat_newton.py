@@ -295,3 +295,26 @@ def solve_on_ray(state, settings, load, a, max_iterations) -> int:
 # the flat's algorithm: its two solves compiled, the rest as Python on the operations
 newton_algorithm = types.SimpleNamespace(**{**vars(algorithm), "coupled_newton": coupled_newton,
                                             "solve_on_ray": solve_on_ray})
+
+
+def compile_flat() -> None:
+    """Compile, or load from numba's cache (:mod:`fewear.jit`), the flat's two solves: each
+    called once on a small top (33 nodes 6 um below a cylinder of radius 6 mm centred at the
+    origin, as the flat's solver places them), pressed and then pulled sideways with friction,
+    with the argument types of a solve, so that a scar run after the set-up loads them instead
+    of compiling them (about 20 s) without a word."""
+    from fewear.contact.newton_kernels import compile_shared_kernels
+
+    settings = compile_shared_kernels()[-1]
+    nodes = 33
+    state = new_state(nodes)
+    G, _, _, _, points, weights, constants, _, covered = state
+    constants[RADIUS], constants[FRICTION], constants[STICK] = 6e-3, 0.1, 1e-9
+    constants[PENALTY] = constants[TANGENTIAL] = 1e18
+    points[:, 0] = np.linspace(-5e-4, 5e-4, nodes)
+    points[:, 1] = -(constants[RADIUS] + 6e-6)
+    weights[:], covered[:] = 1e-3 / (nodes - 1), 1.0
+    G[:] = 1e-12 * np.eye(2 * nodes)
+    down = np.array([0.0, -1.0])  # the cylinder's ray and the normal force's direction
+    solve_on_ray(state, settings, 1e5 * down, down, 2)
+    coupled_newton(state, settings, np.array([1e3, -1e5]), down, np.eye(2), 2)

@@ -273,3 +273,19 @@ def test_a_uniformly_worn_cylinder_presses_as_the_unworn_one_lowered():
     step = solver.solve_tangential_shift(3e-6, FORCE_N)
     assert not np.any(step.sticking)
     assert step.contact.pin_centre_m[1] < unworn.pin_centre_m[1] - 0.9 * worn_depth
+
+
+def test_compile_flat_covers_the_argument_types_of_the_flats_solves(study):
+    """compile_flat (run by the set-up) calls the flat's kernels with the argument types of its
+    solves: after it and the study's normal and frictional solves, no kernel of
+    fewear.contact.flat_newton holds a second signature (a scar run would compile that one)."""
+    from numba.core.registry import CPUDispatcher
+
+    from fewear.contact import flat_newton
+
+    flat_newton.compile_flat()
+    signatures = {name: len(kernel.signatures) for name, kernel in vars(flat_newton).items()
+                  if isinstance(kernel, CPUDispatcher) and kernel.signatures}
+    # the solves' callees are compiled into them, without signatures of their own
+    assert signatures["run_coupled_newton"] == signatures["run_solve_on_ray"] == 1
+    assert max(signatures.values()) == 1
