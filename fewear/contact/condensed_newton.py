@@ -30,7 +30,11 @@ from fewear.contact.newton_kernels import (
     gaps,
     pairwise_sum,
 )
-from fewear.contact.sensitivity import pressure_sensitivity, summed_sensitivity
+from fewear.contact.sensitivity import (
+    compliance_blocks,
+    pressure_sensitivity,
+    summed_sensitivity,
+)
 from fewear.jit import compiled
 
 # The state is turned with the load only where the bore nodes that carry the turned forces lie
@@ -156,6 +160,59 @@ def linearised_forces(points: np.ndarray, U: np.ndarray, centre: np.ndarray, pin
 
 
 @compiled
+def _projected_blocks(out: np.ndarray, G_xx: np.ndarray, G_xy: np.ndarray, G_yx: np.ndarray,
+                      G_yy: np.ndarray, d_x: np.ndarray, d_y: np.ndarray, n_x: float, n_y: float,
+                      stiffness: float) -> None:
+    """out_b = s n . (G_b d_b) for the 2x2 blocks G_b = [[G_xx, G_xy], [G_yx, G_yy]]_b and the
+    directions d_b: a loop over arrays passed in, which numba vectorises (the same loop over
+    arrays of the caller's is not)."""
+    for b in range(out.size):
+        out[b] = stiffness * (n_x * (G_xx[b] * d_x[b] + G_xy[b] * d_y[b])
+                              + n_y * (G_yx[b] * d_x[b] + G_yy[b] * d_y[b]))
+
+
+@compiled
+def _subtract_scaled(total: np.ndarray, scale: float, values: np.ndarray) -> None:
+    """total -= values * scale, elementwise (vectorised: see :func:`_projected_blocks`)."""
+    for i in range(total.size):
+        total[i] = total[i] - values[i] * scale
+
+
+@compiled
+def _add_scaled(total: np.ndarray, scale: float, values: np.ndarray) -> None:
+    """total += scale * values, elementwise (vectorised: see :func:`_projected_blocks`)."""
+    for i in range(total.size):
+        total[i] = total[i] + scale * values[i]
+
+
+@compiled
+def _add_scaled_rows(total: np.ndarray, s0: float, g0: np.ndarray, s1: float, g1: np.ndarray,
+                     s2: float, g2: np.ndarray, s3: float, g3: np.ndarray) -> None:
+    """total += s0 g0 + s1 g1 + s2 g2 + s3 g3, added one after the other to each entry (the
+    sums of four passes of ``total += s g``, in one pass; vectorised)."""
+    for j in range(total.size):
+        total[j] = (((total[j] + s0 * g0[j]) + s1 * g1[j]) + s2 * g2[j]) + s3 * g3[j]
+
+
+@compiled
+def support_product(dg: np.ndarray, compliance: np.ndarray) -> np.ndarray:
+    """G dg from the rows of G on the support of dg (G symmetric): the sum of dg_r G_r over the
+    rows r with dg_r != 0 in increasing r, each entry summed in that order; four rows per pass
+    over the result (a pass per row reads and writes the result as often as the rows)."""
+    rows = np.flatnonzero(dg)
+    total = np.zeros(dg.size)
+    first = 0
+    while first + 4 <= rows.size:
+        r0, r1, r2, r3 = rows[first], rows[first + 1], rows[first + 2], rows[first + 3]
+        _add_scaled_rows(total, dg[r0], compliance[r0], dg[r1], compliance[r1], dg[r2],
+                         compliance[r2], dg[r3], compliance[r3])
+        first += 4
+    for row in rows[first:]:
+        _add_scaled(total, dg[row], compliance[row])
+    return total
+
+
+@compiled
 def newton_step(compliance: np.ndarray, g: np.ndarray, U: np.ndarray, f: np.ndarray,
                 normal: np.ndarray, distance: np.ndarray, active: np.ndarray,
                 weights_m: np.ndarray, penalty: float, friction_value: float, basis: np.ndarray,
@@ -176,43 +233,53 @@ def newton_step(compliance: np.ndarray, g: np.ndarray, U: np.ndarray, f: np.ndar
     a system of |A| + k unknowns in place of the 2|A| + k of the full blocks, whose dense solve
     is the step's dearest part. It converges to the same solution (at a linear rate where the
     full step converges quadratically: a few more, far cheaper steps). Returns the updates
-    dg = g' - g of the nodal forces (g' zero off A), dU = G dg (only the rows of G on the old
-    and new support, G symmetric) and dc."""
+    dg = g' - g of the nodal forces (g' zero off A), dU = G dg (:func:`support_product`) and
+    dc."""
     m, k = active.size, basis.shape[1]
-    traction, sliding = np.empty((m, 2)), np.empty((m, 2))
-    slide = np.empty((m, k))  # h_a t_a . basis_c
+    traction_x, traction_y = np.empty(m), np.empty(m)
+    sliding_x, sliding_y = np.empty(m), np.empty(m)
+    slide = np.empty((k, m))  # h_a t_a . basis_c
     for a in range(m):
         q = active[a]
         n_x, n_y = normal[q, 0], normal[q, 1]
-        traction[a, 0], traction[a, 1] = n_x - friction_value * n_y, n_y + friction_value * n_x
-        sliding[a, 0], sliding[a, 1] = -n_y - friction_value * n_x, n_x - friction_value * n_y
+        traction_x[a], traction_y[a] = n_x - friction_value * n_y, n_y + friction_value * n_x
+        sliding_x[a], sliding_y[a] = -n_y - friction_value * n_x, n_x - friction_value * n_y
         h = (f[q, 0] * n_x + f[q, 1] * n_y) / distance[q]
         for c in range(k):
-            slide[a, c] = h * (-n_y * basis[0, c] + n_x * basis[1, c])
+            slide[c, a] = h * (-n_y * basis[0, c] + n_x * basis[1, c])
     system = np.zeros((m + k, m + k))
     rhs = np.empty(m + k)
+    coupling = np.empty(m)  # s_a n_a . G_ab e_b of row a
+    turned = np.empty((m, m))  # [b, a]: s_a n_a . G_ab v_b
+    turned_row = np.empty(m)
+    G_xx, G_xy, G_yx, G_yy = np.empty(m), np.empty(m), np.empty(m), np.empty(m)
     for a in range(m):
         q = active[a]
         n_x, n_y = normal[q, 0], normal[q, 1]
         stiffness = weights_m[q] * penalty
+        compliance_blocks(G_xx, G_xy, G_yx, G_yy, compliance, q, active)
+        _projected_blocks(coupling, G_xx, G_xy, G_yx, G_yy, traction_x, traction_y, n_x, n_y,
+                          stiffness)
+        _projected_blocks(turned_row, G_xx, G_xy, G_yx, G_yy, sliding_x, sliding_y, n_x, n_y,
+                          stiffness)
         for b in range(m):
-            column = 2 * active[b]
-            G_xx, G_xy = compliance[2 * q, column], compliance[2 * q, column + 1]
-            G_yx, G_yy = compliance[2 * q + 1, column], compliance[2 * q + 1, column + 1]
-            coupling = (n_x * (G_xx * traction[b, 0] + G_xy * traction[b, 1])
-                        + n_y * (G_yx * traction[b, 0] + G_yy * traction[b, 1]))
-            system[a, b] = (1.0 if a == b else 0.0) + stiffness * coupling
-            turned = (n_x * (G_xx * sliding[b, 0] + G_xy * sliding[b, 1])
-                      + n_y * (G_yx * sliding[b, 0] + G_yy * sliding[b, 1]))
-            for c in range(k):
-                system[a, m + c] -= stiffness * turned * slide[b, c]
-        for c in range(k):
-            system[a, m + c] -= stiffness * (n_x * basis[0, c] + n_y * basis[1, c])
-            system[m + c, a] = traction[a, 0] * basis[0, c] + traction[a, 1] * basis[1, c]
-            for d in range(k):
-                system[m + c, m + d] -= (sliding[a, 0] * basis[0, c]
-                                         + sliding[a, 1] * basis[1, c]) * slide[a, d]
+            system[a, b] = (1.0 if a == b else 0.0) + coupling[b]
+            turned[b, a] = turned_row[b]
         rhs[a] = f[q, 0] * n_x + f[q, 1] * n_y + stiffness * (n_x * U[q, 0] + n_y * U[q, 1])
+    border = np.empty(m)  # - sum_b s_a n_a . G_ab v_b slide_bc, summed over b in turn
+    for c in range(k):
+        border[:] = 0.0
+        for b in range(m):
+            _subtract_scaled(border, slide[c, b], turned[b])
+        for a in range(m):
+            q = active[a]
+            stiffness = weights_m[q] * penalty
+            system[a, m + c] = border[a] - stiffness * (normal[q, 0] * basis[0, c]
+                                                        + normal[q, 1] * basis[1, c])
+            system[m + c, a] = traction_x[a] * basis[0, c] + traction_y[a] * basis[1, c]
+            for d in range(k):
+                system[m + c, m + d] -= (sliding_x[a] * basis[0, c]
+                                         + sliding_y[a] * basis[1, c]) * slide[d, a]
     for c in range(k):
         rhs[m + c] = basis[0, c] * load[0] + basis[1, c] * load[1]
     solution = np.linalg.solve(system, rhs)
@@ -220,12 +287,10 @@ def newton_step(compliance: np.ndarray, g: np.ndarray, U: np.ndarray, f: np.ndar
     for a in range(m):
         turn = 0.0
         for c in range(k):
-            turn += slide[a, c] * solution[m + c]
-        for i in range(2):
-            dg[2 * active[a] + i] += solution[a] * traction[a, i] - turn * sliding[a, i]
-    dU = np.zeros(dg.size)
-    for row in np.flatnonzero(dg):  # G symmetric: dU = sum of its rows on the support
-        dU += dg[row] * compliance[row]
+            turn += slide[c, a] * solution[m + c]
+        dg[2 * active[a]] += solution[a] * traction_x[a] - turn * sliding_x[a]
+        dg[2 * active[a] + 1] += solution[a] * traction_y[a] - turn * sliding_y[a]
+    dU = support_product(dg, compliance)
     dc = np.zeros(2)
     for c in range(k):
         dc += basis[:, c] * solution[m + c]

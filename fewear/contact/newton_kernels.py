@@ -40,6 +40,11 @@ WEDGE_MIN_SINE = 0.05
 
 # Nodes within R_p (1 + this) of the pin centre touch it in the vertex walk (support_vertex).
 VERTEX_TOLERANCE = 1e-11
+# ... which passes over the nodes whose circle misses the arc to the nearest intersection found
+# by more than this angle (rad): above the rounding of the intersections' angles (acos loses
+# up to sqrt(eps) ~ 1.5e-8 rad for circles that just touch) and of the pin's distance to its
+# node (VERTEX_TOLERANCE).
+ARC_MARGIN_RAD = 1e-6
 
 # Line search: smallest step tried, Armijo constant, and how far below the first
 # contact-keeping step the Armijo backtracking may go.
@@ -201,6 +206,10 @@ def support_vertex(points: np.ndarray, direction: np.ndarray,
     sense that increases c . d and leads away from the other touched nodes (the one that
     increases it most), up to the first other circle it meets; repeat until no touched node
     offers such a sense. c . d grows at every vertex, so the walk ends, at the vertex sought.
+    The arc from c by the angle s about the node lies within R_p s of c, so a circle about a
+    node X_q with ||X_q - c| - R_p| > R_p s meets it nowhere: once an intersection at angle s
+    is found, such nodes are passed over (with ``ARC_MARGIN_RAD`` for the rounding of the
+    angles), their angles spared; the nearest nodes, looked at first, bound s soonest.
     """
     centre = first_touch_centre(points, np.zeros(2), direction, pin_radius)
     for _ in range(points.shape[0]):
@@ -213,7 +222,11 @@ def support_vertex(points: np.ndarray, direction: np.ndarray,
         # the intersections of this node's circle with the others', as angles about the node
         α = math.atan2(centre[1] - points[node, 1], centre[0] - points[node, 0])
         step = np.inf
-        for q in range(points.shape[0]):
+        n = points.shape[0]
+        for order in range(n):  # the nodes from this one outward along the bore
+            q = (node + (order + 1) // 2 * (1 if order % 2 else -1)) % n
+            if abs(distance[q] - pin_radius) > pin_radius * (step + ARC_MARGIN_RAD):
+                continue  # its circle misses the arc to the nearest intersection so far
             chord_x, chord_y = points[q, 0] - points[node, 0], points[q, 1] - points[node, 1]
             chord = math.hypot(chord_x, chord_y)
             if 0.0 < chord < 2.0 * pin_radius:

@@ -28,6 +28,31 @@ EPSILON = float(np.finfo(float).eps)  # machine epsilon: NumPy's rcond=None is e
 
 
 @compiled
+def compliance_blocks(G_xx: np.ndarray, G_xy: np.ndarray, G_yx: np.ndarray, G_yy: np.ndarray,
+                      compliance: np.ndarray, node: int, active: np.ndarray) -> None:
+    """The 2x2 blocks G_ab (m per N/m) of the bore node ``node`` (a) and the nodes ``active``
+    (b) of the compliance G (2n, 2n), as four arrays over b: contiguous arrays for the
+    vectorised loops over b (:func:`_normal_blocks`)."""
+    row_x, row_y = 2 * node, 2 * node + 1
+    for b in range(active.size):
+        column = 2 * active[b]
+        G_xx[b], G_xy[b] = compliance[row_x, column], compliance[row_x, column + 1]
+        G_yx[b], G_yy[b] = compliance[row_y, column], compliance[row_y, column + 1]
+
+
+@compiled
+def _normal_blocks(out: np.ndarray, G_xx: np.ndarray, G_xy: np.ndarray, G_yx: np.ndarray,
+                   G_yy: np.ndarray, m_x: np.ndarray, m_y: np.ndarray, n_x: float,
+                   n_y: float) -> None:
+    """out_b = n . G_ab m_b, summed as sum_ij n_i G_ij m_j in the order of (i, j): a loop over
+    arrays passed in, which numba vectorises (the same loop over the caller's arrays it does
+    not)."""
+    for b in range(out.size):
+        out[b] = ((((0.0 + n_x * G_xx[b] * m_x[b]) + n_x * G_xy[b] * m_y[b])
+                   + n_y * G_yx[b] * m_x[b]) + n_y * G_yy[b] * m_y[b])
+
+
+@compiled
 def pressure_sensitivity(compliance: np.ndarray, weights_m: np.ndarray, points_m: np.ndarray,
                          pin_centre_m: np.ndarray, active: np.ndarray,
                          penalty_Pa_per_m: float) -> np.ndarray:
@@ -39,29 +64,27 @@ def pressure_sensitivity(compliance: np.ndarray, weights_m: np.ndarray, points_m
     every load step with slip of every wear step.
     """
     m = active.size
-    normal = np.empty((m, 2))
+    normal_x, normal_y = np.empty(m), np.empty(m)
     for a in range(m):
         d_x = points_m[active[a], 0] - pin_centre_m[0]
         d_y = points_m[active[a], 1] - pin_centre_m[1]
         length = math.sqrt(d_x * d_x + d_y * d_y)
-        normal[a, 0], normal[a, 1] = d_x / length, d_y / length
+        normal_x[a], normal_y[a] = d_x / length, d_y / length
     penalty = weights_m[active] * penalty_Pa_per_m
     mean_penalty = pairwise_sum(penalty) / m  # NumPy's mean, to the bit
     system = np.zeros((m + 2, m + 2))
     rhs = np.zeros((m + 2, m))
+    G_xx, G_xy, G_yx, G_yy = np.empty(m), np.empty(m), np.empty(m), np.empty(m)
+    normal_compliance = np.empty(m)  # n_a . G_ab n_b of row a
     for a in range(m):
-        row = 2 * active[a]
+        compliance_blocks(G_xx, G_xy, G_yx, G_yy, compliance, active[a], active)
+        _normal_blocks(normal_compliance, G_xx, G_xy, G_yx, G_yy, normal_x, normal_y,
+                       normal_x[a], normal_y[a])
         for b in range(m):
-            column = 2 * active[b]
-            normal_compliance = 0.0  # n_a . G_ab n_b
-            for i in range(2):
-                for j in range(2):
-                    normal_compliance += (normal[a, i] * compliance[row + i, column + j]
-                                          * normal[b, j])
-            system[a, b] = (1.0 if a == b else 0.0) + penalty[a] * normal_compliance
-        for i in range(2):
-            system[a, m + i] = -penalty[a] * normal[a, i]
-            system[m + i, a] = normal[a, i] * mean_penalty  # scaled like the rows above
+            system[a, b] = (1.0 if a == b else 0.0) + penalty[a] * normal_compliance[b]
+        system[a, m], system[a, m + 1] = -penalty[a] * normal_x[a], -penalty[a] * normal_y[a]
+        system[m, a] = normal_x[a] * mean_penalty  # scaled like the rows above
+        system[m + 1, a] = normal_y[a] * mean_penalty
         rhs[a, a] = -penalty[a]
     # with one or two nodes in contact the pin's sliding mode is free (the system is singular):
     # least squares, whose minimum-norm solution keeps it still; else an LU solve (the SVD of

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from fewear.contact.condensed_newton import zero_displacement
+from fewear.contact.condensed_newton import support_product, zero_displacement
 from fewear.contact.newton_kernels import pin_update, unit
 
 from .test_solver import N_THETA, coarse_problem, rotate
@@ -21,6 +21,18 @@ def test_pin_update_straight_below_a_node_spacing_and_turned_above():
     moved = pin_update(centre, large, spacing)
     assert np.linalg.norm(moved) == pytest.approx(5e-4 + radial, rel=1e-12)
     assert math.atan2(moved[1], moved[0]) == pytest.approx(0.3 + tangential / 5e-4, rel=1e-12)
+
+
+def test_support_product_sums_the_support_rows_one_after_the_other():
+    # nine rows: two passes of four and one row left over; the previous formula, row by row
+    rng = np.random.default_rng(3)
+    G = rng.standard_normal((40, 40))
+    dg = np.zeros(40)
+    dg[[0, 3, 4, 5, 9, 10, 11, 17, 39]] = rng.standard_normal(9)
+    expected = np.zeros(40)
+    for row in np.flatnonzero(dg):
+        expected += dg[row] * G[row]
+    np.testing.assert_array_equal(support_product(dg, G), expected)
 
 
 @pytest.fixture(scope="module")
