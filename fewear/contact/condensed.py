@@ -35,6 +35,7 @@ from fewear.contact.solver import (
     checked_rotation,
     nodal_result,
 )
+from fewear.linalg import direct_solver
 from fewear.mesh.bore import bore_node_weights
 from fewear.mesh.bushing import BORE_TAG
 
@@ -130,7 +131,7 @@ class CondensedBushingContact:
         right-hand sides computes the whole of K^-1 N^T and costs about 5 times as much. N, with
         at most 3 nonzeros per row, multiplies as a sparse matrix."""
         solver = self.solver
-        ksp = solver._make_lu_solver()
+        ksp = direct_solver(self.comm)
         ksp.setOperators(solver._K_elastic)
         ksp.setUp()
         inverse = inverse_block(ksp.getPC().getFactorMatrix(), self._dofs[2], self.comm)

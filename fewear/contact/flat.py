@@ -49,6 +49,7 @@ from fewear.contact.params import FlatContactProblem
 from fewear.contact.result import ContactResult
 from fewear.contact.solver import elastic_stiffness_form, nodal_result
 from fewear.errors import FewearInputError
+from fewear.linalg import direct_solver
 from fewear.mesh.bore import BoreNodes, bore_node_weights
 from fewear.mesh.flat import flat_mesh
 
@@ -146,7 +147,7 @@ class FlatContactSolver:
         self._a_elastic, self._bc = elastic_stiffness_form(self.V, problem.material,
                                                            self.facet_tags)
         self._K_elastic = fem_petsc.create_matrix(self._a_elastic)
-        self._ksp = self._make_cholesky_solver()
+        self._ksp = direct_solver(self.comm, "cholesky")  # K_el is SPD
         self.bore = BoreNodes(self.mesh, self.facet_tags, comm)
         dofs = contact_dofs(self.V, self.mesh, self.facet_tags, comm)
         # the top's global dof numbers, sorted: N's columns
@@ -184,15 +185,6 @@ class FlatContactSolver:
     def release(self) -> None:
         """Drop the Newton iteration's reference back to this solver (a cycle)."""
         self.newton = None
-
-    def _make_cholesky_solver(self) -> PETSc.KSP:
-        """MUMPS' LDL^T of the symmetric positive definite K_el (half the work of its LU)."""
-        ksp = PETSc.KSP().create(self.comm)
-        ksp.setType("preonly")
-        pc = ksp.getPC()
-        pc.setType("cholesky")
-        pc.setFactorSolverType("mumps")
-        return ksp
 
     def update_geometry(self) -> None:
         """After the mesh moved: K_el re-assembled, the top's nodes and weights read again;

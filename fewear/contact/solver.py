@@ -33,6 +33,7 @@ from fewear.contact.newton_kernels import LineData, gaps
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.errors import FewearInputError
+from fewear.linalg import direct_solver
 from fewear.mesh.bore import BoreNodes, bore_node_weights
 from fewear.mesh.bushing import bushing_mesh
 from fewear.mesh.tags import CLAMPED_TAG, CONTACT_TAG
@@ -115,7 +116,7 @@ class BushingContactSolver:
         self.mesh, self.cell_tags, self.facet_tags = mesh_data
         self._build_forms()
         self.bore = BoreNodes(self.mesh, self.facet_tags, comm)
-        self._ksp = self._make_lu_solver()
+        self._ksp = direct_solver(self.comm)
         self.pin_centre_m = np.zeros(2)
         self.newton = ContactNewton(self)
         self.last_result: ContactResult | None = None
@@ -204,14 +205,6 @@ class BushingContactSolver:
                                              * self._ds(CONTACT_TAG))
         return self._cosine_law_load
 
-    def _make_lu_solver(self) -> PETSc.KSP:
-        ksp = PETSc.KSP().create(self.comm)
-        ksp.setType("preonly")
-        pc = ksp.getPC()
-        pc.setType("lu")
-        pc.setFactorSolverType("mumps")
-        return ksp
-
     def release(self) -> None:
         """Drop the Newton iteration's reference back to this solver (a cycle): see
         :meth:`fewear.contact.condensed.CondensedBushingContact.release`."""
@@ -292,7 +285,7 @@ class BushingContactSolver:
         fem_petsc.assemble_vector(rhs, form)
         rhs.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
         rhs.array_w[self._bc_local] = 0.0
-        ksp = self._make_lu_solver()
+        ksp = direct_solver(self.comm)
         ksp.setOperators(self._K_elastic)
         unit_response = fem.Function(self.V)
         ksp.solve(rhs, unit_response.vector)

@@ -430,18 +430,25 @@ def _gather_invariant_rows(z, rows):
 
 
 @compiled
+def _nonzero_rows(matrix) -> int:
+    """The rows of the 6 x 6 ``matrix`` that hold a non-zero entry, as bits (bit a: row a)."""
+    rows = 0
+    for a in range(6):
+        for b in range(6):
+            if matrix[a, b] != 0.0:
+                rows |= 1 << a
+                break
+    return rows
+
+
+@compiled
 def _add_projected(B, T, work, target):
     """target += B^T T B for one point (B (6, 12), T (6, 6), target (12, 12); work (6, 12)),
     over the entries of B's pattern (_B_ROWS: column 4 N + k of node N has the row k, and for
     the slopes k = 2, 3 the row k + 2 too) and the rows of T that are not zero (at the nodal
     points, whose energy is that of the thickness invariant alone, two of six), each sum in the
     order of the dense product."""
-    active = 0  # bit a: row a of T is not zero
-    for a in range(6):
-        for b in range(6):
-            if T[a, b] != 0.0:
-                active |= 1 << a
-                break
+    active = _nonzero_rows(T)  # bit a: row a of T is not zero
     for a in range(6):
         if active >> a & 1:
             for node in range(3):
@@ -480,12 +487,7 @@ def _point_tangents(s_z, s_dot_z, stress, stress_rate, H, tau, beta, elastic, ra
     order; an entry (a, b) is zero unless the rows a and b of the S_i of the point's invariants
     (the rows of H not zero) are: at the nodal points, whose energy is that of the thickness
     invariant alone, only the 2 x 2 block of d."""
-    invariants = 0  # bit i: row i of H is not zero
-    for i in range(6):
-        for k in range(6):
-            if H[i, k] != 0.0:
-                invariants |= 1 << i
-                break
+    invariants = _nonzero_rows(H)  # bit i: row i of H is not zero
     rows = 0  # bit a: one of the point's invariants has a non-zero row a
     for a in range(6):
         for n in range(3):

@@ -17,8 +17,8 @@ import ufl
 from dolfinx import fem
 from dolfinx.fem import petsc as fem_petsc
 from mpi4py import MPI
-from petsc4py import PETSc
 
+from fewear.linalg import direct_solver
 from fewear.mesh.bushing import BORE_TAG, OUTER_TAG
 from fewear.mesh.profile import polar_angle
 from fewear.mesh.quality import MeshQuality, QualityMeter
@@ -70,7 +70,12 @@ class BoreMotion:
         self._operator.assemble()
         constrained = fem_petsc.assemble_matrix(form, bcs=[boundary])
         constrained.assemble()
-        self.solver = direct_solver(self.mesh.comm)
+        # PETSc's own LU on one rank: its solves take 1 ms on the default bushing against
+        # MUMPS's 8 ms (its factorisation 0.05 s dearer, once per mesh); the constrained
+        # operator is symmetric positive definite (identity rows and columns on the boundary),
+        # so LU without pivoting is stable
+        comm = self.mesh.comm
+        self.solver = direct_solver(comm, package="petsc" if comm.size == 1 else "mumps")
         self.solver.setOperators(constrained)
         self.solver.setUp()
         self._prescribed = fem.Function(self.space)
@@ -136,24 +141,6 @@ class BoreMotion:
             max_displacement_m=comm.allreduce(_max_norm(x[:, :2] - before), op=MPI.MAX),
             quality=self.quality_meter.measure(),
         )
-
-
-def direct_solver(comm) -> PETSc.KSP:
-    """An LU solver for the extension operator, whose factors serve every move of a mesh: on one
-    rank PETSc's own sparse LU in nested-dissection order, whose triangular solves take 1 ms
-    on the default bushing against MUMPS's 8 ms (a factorisation 0.1 s dearer, once per mesh);
-    MUMPS across ranks. The constrained operator is symmetric positive definite (identity rows
-    and columns on the boundary), so LU without pivoting is stable."""
-    solver = PETSc.KSP().create(comm)
-    solver.setType("preonly")
-    factor = solver.getPC()
-    factor.setType("lu")
-    if comm.size == 1:
-        factor.setFactorSolverType("petsc")
-        factor.setFactorOrdering("nd")
-    else:
-        factor.setFactorSolverType("mumps")
-    return solver
 
 
 def elastic_extension_form(space, poisson_ratio: float):
