@@ -111,8 +111,8 @@ error follows the wear step, not how often the dynamics are renewed: on the test
 rigid model, at 4,300-16,100 cycles against f = 0.00098 with one step per block, f = 0.0039 with
 1, 4 and 8 steps per block (73, 17 and 9 blocks) was 0.72, 0.47 and 0.75 um off, f = 0.00195
 with 4 and 8 (32 and 16 blocks) 0.29 and 0.28 um, at 7.1, 2.9, 1.7, 3.9 and 2.7 s a run (the
-runs' own spread 0.3 um). 8 is also ``[wear_loop] wear_steps_per_block``'s default (within 0.2 %
-of renewing the dynamics at every step, ``fewear/defaults/run.toml``)."""
+runs' own spread 0.3 um). A config with more steps per block keeps them (the default has 16:
+``fewear/defaults/run.toml``)."""
 
 
 def with_doubled_recorded_cycles(config: dict) -> dict:
