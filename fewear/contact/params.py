@@ -45,15 +45,16 @@ class ContactSettings:
       E' = E/(1-nu^2) the plane-strain modulus and h the bore element size; the contact pressure
       is p = k <-g>_+ for a gap g (m).
     - ``friction_coefficient`` (-): Coulomb mu; the tangential traction is mu*p when friction is on.
-    - ``newton_tolerance`` (-): Newton stops when the update of pin centre and displacement is
-      below this fraction of the clearance and the residual is below it relative to the force.
+    - ``newton_tolerance`` (-): Newton stops when the last update of the pin centre is below
+      this fraction of the penetration (of the displacement: 1000 times it) and the pin is in
+      force balance (:func:`fewear.contact.newton_kernels.converged`).
     - ``newton_max_iterations``: more iterations (in the contact-angle fallback) refuse the
       force (:class:`fewear.contact.admissible.ContactLoadError`).
     """
 
     penalty_factor: float = 100.0
     friction_coefficient: float = 0.1
-    newton_tolerance: float = 1e-11
+    newton_tolerance: float = 1e-4
     newton_max_iterations: int = 60
 
     def __post_init__(self) -> None:
