@@ -25,8 +25,14 @@ from fewear.contact.admissible import (
     cosine_law_nodal_forces,
     displacement_limit_m,
 )
-from fewear.contact.condensed_newton import equilibrium_fields, new_state, nodal_forces
-from fewear.contact.newton import ContactNewton, ContactNotConverged, contact_direction
+from fewear.contact.condensed_newton import (
+    equilibrium_fields,
+    new_state,
+    nodal_forces,
+    run_load_steps,
+)
+from fewear.contact.newton import ContactNewton, ContactNotConverged
+from fewear.contact.newton_kernels import contact_direction
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.contact.solver import (
@@ -183,6 +189,49 @@ class CondensedBushingContact:
             pressure_Pa=pressure, gap_m=gap, slip_m=slip, pin_centre_m=self.pin_centre_m.copy(),
             applied_force_N=force.copy(), resultant_force_N=L * force_sum,
             newton_iterations=int(iterations), normal_force_N=L * normal_sum)
+
+    def solve_run(self, forces_N: np.ndarray, rotations_rad: np.ndarray, friction: bool,
+                  first: int, node_order: np.ndarray | None = None,
+                  node_angles_rad: np.ndarray | None = None) -> tuple[list, Exception | None]:
+        """The load steps ``first``, ``first`` + 1, ... of ``forces_N`` (steps, 2), N, with
+        their rotation increments ``rotations_rad`` (steps,), each as :meth:`solve` solves it,
+        in one compiled call (:func:`fewear.contact.condensed_newton.run_load_steps`): their
+        results, up to the first step :meth:`solve` would refuse, and that refusal
+        (:class:`ContactLoadError`, the state reset as after it), or None when all were
+        solved."""
+        forces = np.ascontiguousarray(forces_N, dtype=float)
+        rotations = np.asarray(rotations_rad, dtype=float)
+        for row in np.flatnonzero(~np.isfinite(forces).all(axis=1) | ~np.isfinite(rotations)):
+            checked_force(forces[row])  # the same message as solve's
+            checked_rotation(rotations[row])
+        problem = self.problem
+        friction_values = (problem.contact.friction_coefficient * np.sign(rotations) if friction
+                           else np.zeros(rotations.size))
+        n, steps = self.points.shape[0], forces.shape[0]
+        order = np.arange(n) if node_order is None else np.ascontiguousarray(node_order)
+        fields, centres = np.empty((steps, 5, n)), np.empty((steps, 2))
+        sums, iterations = np.empty((steps, 2, 2)), np.zeros(steps, dtype=np.int64)
+        L = problem.geometry.width_m
+        stop, largest = run_load_steps(
+            *self.newton_state, self.newton.memory, tuple(self.newton.settings), forces, L,
+            friction_values, problem.indenter_radius_m * np.abs(rotations), order,
+            displacement_limit_m(problem), problem.contact.newton_max_iterations, first, fields,
+            centres, sums, iterations)
+        angles = self._angles_in(order, node_angles_rad)
+        results = [ContactResult(
+            angle_rad=angles.copy(), x_m=fields[s, 0], y_m=fields[s, 1],
+            pressure_Pa=fields[s, 2], gap_m=fields[s, 3], slip_m=fields[s, 4],
+            pin_centre_m=centres[s], applied_force_N=forces[s].copy(),
+            resultant_force_N=L * sums[s, 0], newton_iterations=int(iterations[s]),
+            normal_force_N=L * sums[s, 1]) for s in range(first, stop)]
+        if stop == steps:
+            return results, None
+        reason = ("the contact Newton found no equilibrium" if iterations[stop] < 0
+                  else beyond_small_displacements(problem, largest))
+        try:
+            self._refuse(forces[stop], reason)
+        except ContactLoadError as refusal:
+            return results, refusal
 
     def _angles_in(self, order: np.ndarray, angles_rad: np.ndarray | None) -> np.ndarray:
         """The result's ``angle_rad``: a copy of ``angles_rad``, else the nodes' in ``order``."""

@@ -27,6 +27,7 @@ from fewear.contact.newton_kernels import (
     LineData,
     NewtonSettings,
     compile_shared_kernels,
+    contact_direction,
     gaps,
     pairwise_sum,
 )
@@ -448,6 +449,58 @@ def run_newton_solve(compliance, g, U, centre, points, weights, constants, memor
                                  NewtonSettings(*settings), load, direction, max_iterations)
 
 
+@compiled
+def run_load_steps(compliance, g, U, centre, points, weights, constants, memory, settings,
+                   forces_N, width_m, friction_values, slips_m, order, limit_m, max_iterations,
+                   first, fields, centres, sums, iterations):
+    """The load steps ``first``, ``first`` + 1, ... of ``forces_N`` (steps, 2) in turn, each as
+    :meth:`fewear.contact.condensed.CondensedBushingContact.solve` solves one, with the step's
+    signed friction coefficient ``friction_values`` and slip ``slips_m`` (m), in one compiled
+    call (the Python around a solve cost a fifth of its time): a zero force resets the state
+    (no displacement, the pin centred, the next solve cold); else the whole solve of
+    :mod:`fewear.contact.newton` for F/L (L = ``width_m``) and :func:`equilibrium_fields`.
+    Step s writes ``fields[s]`` (5, n), ``centres[s]`` (2,), ``sums[s]`` (the sums of the
+    nodal forces and of their pressure part, (2, 2), N/m) and ``iterations[s]``. Stops at the
+    first step whose solve fails (its count, negative, in ``iterations``) or whose largest
+    displacement reaches ``limit_m``, with the state reset as after a refused step, and returns
+    (that step, its largest displacement (m; 0 for a failed solve)); (steps, 0) when all are
+    solved."""
+    state = (compliance, g, U, centre, points, weights, constants)
+    newton_settings = NewtonSettings(*settings)
+    for s in range(first, forces_N.shape[0]):
+        force = forces_N[s]
+        constants[2] = friction_values[s]
+        count = 0
+        if force[0] == 0.0 and force[1] == 0.0:
+            _reset(state, memory)
+        else:
+            count = newton_solve_on_state(state, memory, newton_settings, force / width_m,
+                                          contact_direction(force, friction_values[s]),
+                                          max_iterations)
+            if count < 0:
+                iterations[s] = count
+                _reset(state, memory)
+                return s, 0.0
+        nodal, force_sum, normal_sum, largest = equilibrium_fields(
+            points, U.reshape(-1, 2), centre, constants[1], constants[0], constants[2], weights,
+            slips_m[s], order, limit_m)
+        fields[s], sums[s, 0], sums[s, 1] = nodal, force_sum, normal_sum
+        if not largest < limit_m:
+            _reset(state, memory)
+            return s, largest
+        centres[s] = centre
+        iterations[s] = count
+    return forces_N.shape[0], 0.0
+
+
+@register_jitable
+def _reset(state, memory):
+    """No displacement, the pin centred, the next solve cold (``ContactNewton.reset``)."""
+    zero_displacement(state)
+    place_pin(state, np.zeros(2))
+    memory[0], memory[1] = math.nan, math.nan
+
+
 def newton_solve(state, memory, settings, load, direction, max_iterations) -> int:
     """:func:`run_newton_solve` on ``state``; ``settings`` a :class:`NewtonSettings`."""
     return run_newton_solve(*state, memory, tuple(settings), load, direction, max_iterations)
@@ -478,6 +531,10 @@ def compile_contact() -> None:
     state = new_state(np.eye(2 * size), points, weights, penalty, pin_radius)
     direction = load / math.sqrt(load @ load)
     newton_solve(state, new_memory(), settings, load, direction, 2)
+    steps = np.array([[0.0, 0.0], load])
+    run_load_steps(*state, new_memory(), tuple(settings), steps, 1.0, np.zeros(2), np.zeros(2),
+                   np.arange(size), 1.0, 2, 0, np.empty((2, 5, size)), np.empty((2, 2)),
+                   np.empty((2, 2, 2)), np.empty(2, dtype=np.int64))
     pressure_sensitivity(np.eye(2 * size), weights, points, centre, np.arange(3), penalty)
     steps = np.ones((2, size))
     summed_sensitivity(np.eye(2 * size), weights, points, penalty, np.arange(size), steps, steps,

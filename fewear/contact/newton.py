@@ -154,13 +154,6 @@ def newton_settings(problem) -> NewtonSettings:
                           surface.radius_m, surface.element_size_m, surface.node_spacing_rad)
 
 
-def contact_direction(force: np.ndarray, friction_value: float) -> np.ndarray:
-    """Expected direction of the contact arc's centre: F turned by -atan(mu s), since the
-    traction p (n + mu s t) of a narrow arc around n has the direction of n turned by
-    atan(mu s)."""
-    return unit(math.atan2(force[1], force[0]) - math.atan(friction_value))
-
-
 # -- the algorithm, written once (templates bound to a discretisation by specialised()) ----------
 discretisation: Any = None  # the operations the templates run on: bound by specialised()
 

@@ -79,6 +79,14 @@ def unit(angle: float) -> np.ndarray:
 
 
 @compiled
+def contact_direction(force: np.ndarray, friction_value: float) -> np.ndarray:
+    """Expected direction of the contact arc's centre: F turned by -atan(mu s), since the
+    traction p (n + mu s t) of a narrow arc around n has the direction of n turned by
+    atan(mu s)."""
+    return unit(math.atan2(force[1], force[0]) - math.atan(friction_value))
+
+
+@compiled
 def norm(vector: np.ndarray) -> float:
     """The Euclidean length sqrt(v . v) of a short vector: ``np.linalg.norm`` without its
     overhead (and so, unlike ``math.hypot``, to the same bits)."""
@@ -440,6 +448,7 @@ def compile_shared_kernels():
     direction = unit(-0.5 * math.pi)
     load = 10.0 * direction
     norm(load)
+    contact_direction(load, 0.1)
     corner, pair, _ = free_corner(points, direction, pin_radius)
     wedge_press(points, corner, pair, direction, 10.0, penalty, weights)
     centre = first_touch_centre(points, np.zeros(2), direction, pin_radius) + 0.01 * direction

@@ -26,10 +26,9 @@ from fewear.contact.admissible import (
 from fewear.contact.newton import (
     ContactNewton,
     ContactNotConverged,
-    contact_direction,
     specialised,
 )
-from fewear.contact.newton_kernels import LineData, gaps
+from fewear.contact.newton_kernels import LineData, contact_direction, gaps
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.errors import FewearInputError

@@ -115,20 +115,40 @@ class WornBushing:
         traction still finds no equilibrium, it is solved without it (the traction tilts the
         pressure field by atan(mu), 5.7 deg for mu = 0.1), counted in ``frictionless_steps``
         and reported; a step that fails without friction too is an error."""
+        try:
+            return self.contact.solve(force_N, rotation_increment_rad, friction, self._order,
+                                      self.angles)
+        except ContactLoadError:
+            return self._retried(force_N, rotation_increment_rad, friction)
+
+    def solve_run(self, forces_N: np.ndarray, rotations_rad: np.ndarray, friction: bool,
+                  first: int) -> tuple[list, Exception | None]:
+        """:meth:`CondensedBushingContact.solve_run` from the load step ``first`` (one compiled
+        call for the steps it solves), the step it stops at retried as :meth:`solve` retries
+        it: the results of the steps solved, and the refusal of the next (or None)."""
+        results, refusal = self.contact.solve_run(forces_N, rotations_rad, friction, first,
+                                                  self._order, self.angles)
+        if refusal is None:
+            return results, None
+        step = first + len(results)
+        try:
+            results.append(self._retried(forces_N[step], rotations_rad[step], friction))
+        except ContactLoadError as again:
+            return results, again
+        return results, None
+
+    def _retried(self, force_N, rotation_increment_rad: float,
+                 friction: bool) -> ContactResult:
+        """The retries of :meth:`solve` after its first try was refused (the state reset)."""
         order, angles = self._order, self.angles
+        self.counts.contact_retries += 1
         try:
             return self.contact.solve(force_N, rotation_increment_rad, friction, order, angles)
         except ContactLoadError:
-            self.counts.contact_retries += 1
-            try:
-                return self.contact.solve(force_N, rotation_increment_rad, friction, order,
-                                          angles)
-            except ContactLoadError:
-                if not friction:
-                    raise
-                self.counts.frictionless_steps += 1
-                return self.contact.solve(force_N, rotation_increment_rad, False, order,
-                                          angles)
+            if not friction:
+                raise
+            self.counts.frictionless_steps += 1
+            return self.contact.solve(force_N, rotation_increment_rad, False, order, angles)
 
     def depth_sensitivity(self, pressure_Pa: np.ndarray, slip_m: np.ndarray, k_m2_N: np.ndarray,
                           pin_centre_m: np.ndarray) -> np.ndarray:

@@ -4,6 +4,7 @@ Archard's law summed over the steps into what one crank cycle does at each bore 
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import partial
 
 import numpy as np
 from scipy.integrate import cumulative_trapezoid
@@ -218,16 +219,29 @@ def _solve_steps(contact_model, steps: LoadSteps, friction: bool) -> list:
     sum of |F| |rotation| (the load-slip product Archard's wear grows with)."""
     load_slip = np.linalg.norm(steps.force_N, axis=1) * np.abs(steps.rotation_rad)
     allowance = DROPPABLE_SHARE * load_slip.sum()
+    solve_run = getattr(contact_model, "solve_run", None) or partial(_solve_one, contact_model)
     results = []
-    for force, rotation, share in zip(steps.force_N, steps.rotation_rad, load_slip):
-        try:
-            results.append(contact_model.solve(force, rotation, friction=friction))
-        except ContactLoadError:
+    while len(results) < load_slip.size:
+        solved, refusal = solve_run(steps.force_N, steps.rotation_rad, friction, len(results))
+        results.extend(solved)
+        if refusal is not None:
+            share = load_slip[len(results)]
             if share > allowance:
-                raise
+                raise refusal
             allowance -= share
             results.append(None)
     return results
+
+
+def _solve_one(contact_model, forces_N: np.ndarray, rotations_rad: np.ndarray, friction: bool,
+               first: int) -> tuple[list, Exception | None]:
+    """The load step ``first`` by ``contact_model.solve``, in the form of a ``solve_run``
+    (:meth:`fewear.loop.bushing.WornBushing.solve_run`): its result, or its refusal."""
+    try:
+        return [contact_model.solve(forces_N[first], rotations_rad[first],
+                                    friction=friction)], None
+    except ContactLoadError as refusal:
+        return [], refusal
 
 
 def cycle_sliding(wear: CycleWear, steps: LoadSteps, cycles: int, friction_coefficient: float,

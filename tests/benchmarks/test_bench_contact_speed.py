@@ -42,16 +42,26 @@ COUNTER = textwrap.dedent('''
     counts = dict(contact_solves=0, contact_iterations=0, active_nodes=0, bore_nodes=0,
                   dynamics_steps=0, dynamics_iterations=0, factorizations=0, dynamics_size=0,
                   ale_moves=0, ale_nonzeros=0, elastic_dofs=0, exponential_flops=0)
-    solve = CondensedBushingContact.solve
-    def counted_solve(self, *args, **kwargs):
-        result = solve(self, *args, **kwargs)
+    def count(self, result):
         counts["contact_solves"] += 1
         counts["contact_iterations"] += result.newton_iterations
         counts["active_nodes"] += int(np.count_nonzero(result.pressure_Pa))
         counts["bore_nodes"] = result.pressure_Pa.size
         counts["elastic_dofs"] = self.solver.V.dofmap.index_map.size_global * 2
+    solve = CondensedBushingContact.solve
+    def counted_solve(self, *args, **kwargs):
+        result = solve(self, *args, **kwargs)
+        count(self, result)
         return result
     CondensedBushingContact.solve = counted_solve
+    solve_run = getattr(CondensedBushingContact, "solve_run", None)
+    if solve_run is not None:  # a tree that solves a cycle's load steps in one call
+        def counted_solve_run(self, *args, **kwargs):
+            results, refusal = solve_run(self, *args, **kwargs)
+            for result in results:
+                count(self, result)
+            return results, refusal
+        CondensedBushingContact.solve_run = counted_solve_run
     run = GeneralizedAlpha._run
     def counted_run(self, *args, **kwargs):
         before = self._counts.copy()

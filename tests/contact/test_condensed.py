@@ -82,6 +82,39 @@ def test_a_crank_cycle_of_loads_as_the_full_solve_in_a_handful_of_iterations():
     assert np.mean(iterations) < 5.5 and max(iterations) <= 12
 
 
+def test_a_run_of_load_steps_in_one_call_as_step_after_step(paths):
+    """solve_run (a cycle's load steps in one compiled call) gives each step's result to the bit
+    as solve does step after step, a zero force included; it stops at a force solve refuses,
+    with solve's refusal and the state reset as after it, and goes on from the next step."""
+    from fewear.contact.admissible import ContactLoadError
+
+    _, fast = paths
+    cycle = crank_cycle(24)
+    forces = np.array([force for force, _, _ in cycle])
+    rotations = np.array([rotation for _, rotation, _ in cycle])
+    forces[5] = 0.0
+    forces[14] = (3e11, -4e11)
+    fast.newton.reset()
+    stepwise = []
+    for force, rotation in zip(forces, rotations):
+        try:
+            stepwise.append(fast.solve(force, rotation, True))
+        except ContactLoadError as refusal:
+            stepwise.append(str(refusal))
+    fast.newton.reset()
+    before, refusal = fast.solve_run(forces, rotations, True, 0)
+    assert len(before) == 14 and str(refusal) == stepwise[14]
+    np.testing.assert_array_equal(fast.pin_centre_m, 0.0)
+    after, none = fast.solve_run(forces, rotations, True, 15)
+    assert none is None and len(after) == 9
+    for run, step in zip(before + after, stepwise[:14] + stepwise[15:]):
+        for name in ("angle_rad", "x_m", "y_m", "pressure_Pa", "gap_m", "slip_m", "pin_centre_m",
+                     "applied_force_N", "resultant_force_N", "normal_force_N"):
+            np.testing.assert_array_equal(getattr(run, name), getattr(step, name), err_msg=name)
+        assert run.newton_iterations == step.newton_iterations
+    assert before[5].max_pressure_Pa == 0.0 and before[6].max_pressure_Pa > 0.0
+
+
 def test_zero_force(paths):
     _, fast = paths
     fast.solve((100.0, 0.0))

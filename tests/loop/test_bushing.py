@@ -106,3 +106,43 @@ def test_moves_remeshes_and_close_leave_no_petsc_objects_behind(coarse_problem, 
         gc.enable()
     assert petsc_garbage_entries(comm, capfd) == 0
     comm.Free()
+
+
+def test_a_run_of_load_steps_retries_a_refused_step_as_solve_does(coarse_problem):
+    """solve_run (the load steps in one compiled call) gives what solve gives step after step on
+    a worn bore, nodes in the bushing's order: a force no retry can carry is tried warm, cold
+    and without friction, as solve tries it (one retry, one frictionless step counted), and
+    refused; the run goes on from the next step to the same results."""
+    from fewear.contact.admissible import ContactLoadError
+
+    angles = np.radians(np.arange(140.0, 230.0, 10.0))
+    forces = 3000.0 * np.column_stack([np.cos(angles), np.sin(angles)])
+    forces[4] = (3e11, -4e11)
+    rotations = np.full(angles.size, 0.01)
+    outcomes = []
+    for run in (False, True):
+        bushing = WornBushing(coarse_problem, MPI.COMM_WORLD)
+        theta = bushing.angles
+        depth = 0.4 * bushing.element_height_m * np.exp(-0.5 * ((theta - math.pi) / 0.3) ** 2)
+        bushing.move_to(dataclasses.replace(WearState.unworn(theta), depth_m=depth))
+        results = []
+        if run:
+            solved, refusal = bushing.solve_run(forces, rotations, True, 0)
+            rest, none = bushing.solve_run(forces, rotations, True, len(solved) + 1)
+            assert len(solved) == 4 and isinstance(refusal, ContactLoadError) and none is None
+            results = solved + [str(refusal)] + rest
+        else:
+            for force, rotation in zip(forces, rotations):
+                try:
+                    results.append(bushing.solve(force, rotation, friction=True))
+                except ContactLoadError as refused:
+                    results.append(str(refused))
+        assert (bushing.counts.contact_retries, bushing.counts.frictionless_steps) == (1, 1)
+        outcomes.append(results)
+    for step, run in zip(*outcomes):
+        if isinstance(step, str):
+            assert run == step
+        else:
+            np.testing.assert_array_equal(run.pressure_Pa, step.pressure_Pa)
+            np.testing.assert_array_equal(run.angle_rad, step.angle_rad)
+            np.testing.assert_array_equal(run.pin_centre_m, step.pin_centre_m)
