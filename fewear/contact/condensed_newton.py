@@ -56,7 +56,7 @@ def nodal_forces(points: np.ndarray, U: np.ndarray, centre: np.ndarray, pin_radi
     for q in range(size):
         d_x = points[q, 0] + U[q, 0] - centre[0]
         d_y = points[q, 1] + U[q, 1] - centre[1]
-        r[q] = math.hypot(d_x, d_y)
+        r[q] = math.sqrt(d_x * d_x + d_y * d_y)  # the C library's hypot: twice the time
         normal[q, 0], normal[q, 1] = d_x / r[q], d_y / r[q]
         p[q] = penalty * max(pin_radius - r[q], 0.0)
         wp = weights_m[q] * p[q]

@@ -180,7 +180,8 @@ def gaps(points: np.ndarray, centre: np.ndarray, pin_radius: float) -> np.ndarra
     contact."""
     result = np.empty(points.shape[0])
     for q in range(points.shape[0]):
-        result[q] = math.hypot(points[q, 0] - centre[0], points[q, 1] - centre[1]) - pin_radius
+        d_x, d_y = points[q, 0] - centre[0], points[q, 1] - centre[1]
+        result[q] = math.sqrt(d_x * d_x + d_y * d_y) - pin_radius  # as nodal_forces
     return result
 
 

@@ -64,7 +64,7 @@ def nodal_result(problem: ContactProblem, points: np.ndarray, angles: np.ndarray
                  iterations: int) -> ContactResult:
     """Evaluate the penalty law at the bore nodes and pack the :class:`ContactResult`."""
     deformed = points + nodal_displacement - pin_centre
-    gap = np.hypot(deformed[:, 0], deformed[:, 1]) - problem.indenter_radius_m
+    gap = np.sqrt(deformed[:, 0] ** 2 + deformed[:, 1] ** 2) - problem.indenter_radius_m
     pressure = problem.penalty_stiffness_Pa_per_m() * np.maximum(-gap, 0.0)
     slip = np.where(pressure > 0.0, problem.indenter_radius_m * abs(rotation), 0.0)
     return ContactResult(
