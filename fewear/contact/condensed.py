@@ -10,7 +10,6 @@ Both paths converge to the same solution. Method notes: docs/contact.md.
 from __future__ import annotations
 
 import ctypes
-from dataclasses import replace
 
 import numpy as np
 from dolfinx import fem
@@ -26,20 +25,17 @@ from fewear.contact.admissible import (
     displacement_limit_m,
 )
 from fewear.contact.condensed_newton import (
-    equilibrium_fields,
     new_state,
     nodal_forces,
     run_load_steps,
 )
-from fewear.contact.newton import ContactNewton, ContactNotConverged
-from fewear.contact.newton_kernels import contact_direction
+from fewear.contact.newton import ContactNewton
 from fewear.contact.params import ContactProblem
 from fewear.contact.result import ContactResult
 from fewear.contact.solver import (
     BushingContactSolver,
     checked_force,
     checked_rotation,
-    nodal_result,
 )
 from fewear.linalg import direct_solver
 from fewear.mesh.bore import bore_node_weights
@@ -155,54 +151,25 @@ class CondensedBushingContact:
         angles in that order)."""
         force = checked_force(force_N)
         rotation = checked_rotation(rotation_increment_rad)
-        friction_value = (self.problem.contact.friction_coefficient * np.sign(rotation)
-                          if friction else 0.0)
-        self._friction_value = friction_value
-        n = self.points.shape[0]
-        order = np.arange(n) if node_order is None else node_order
-        if force[0] == 0.0 and force[1] == 0.0:
-            self.newton.reset()
-            result = nodal_result(self.problem, self.points, self.angles, np.zeros((n, 2)),
-                                  self.pin_centre_m, force, np.zeros(2), np.zeros(2), rotation,
-                                  0)
-            return replace(result, angle_rad=self._angles_in(order, node_angles_rad),
-                           x_m=result.x_m[order], y_m=result.y_m[order],
-                           pressure_Pa=result.pressure_Pa[order], gap_m=result.gap_m[order],
-                           slip_m=result.slip_m[order])
-        L = self.problem.geometry.width_m
-        direction = contact_direction(force, friction_value)
-        try:
-            iterations = self.newton.solve(force / L, direction)
-        except ContactNotConverged:
-            self._refuse(force, "the contact Newton found no equilibrium")
-        fields, force_sum, normal_sum, largest = equilibrium_fields(
-            self.points, self._U.reshape(n, 2), self.pin_centre_m,
-            self.problem.geometry.pin_radius_m, self._k, friction_value, self.weights_m,
-            self.problem.indenter_radius_m * abs(rotation), order,
-            displacement_limit_m(self.problem))
-        reason = beyond_small_displacements(self.problem, largest)
-        if reason is not None:
-            self._refuse(force, reason)
-        x, y, pressure, gap, slip = fields
-        return ContactResult(
-            angle_rad=self._angles_in(order, node_angles_rad), x_m=x, y_m=y,
-            pressure_Pa=pressure, gap_m=gap, slip_m=slip, pin_centre_m=self.pin_centre_m.copy(),
-            applied_force_N=force.copy(), resultant_force_N=L * force_sum,
-            newton_iterations=int(iterations), normal_force_N=L * normal_sum)
+        results, refusal = self.solve_run(force[None, :], np.array([rotation]), friction, 0,
+                                          node_order, node_angles_rad)
+        if refusal is not None:
+            raise refusal
+        return results[0]
 
     def solve_run(self, forces_N: np.ndarray, rotations_rad: np.ndarray, friction: bool,
                   first: int, node_order: np.ndarray | None = None,
                   node_angles_rad: np.ndarray | None = None) -> tuple[list, Exception | None]:
         """The load steps ``first``, ``first`` + 1, ... of ``forces_N`` (steps, 2), N, with
-        their rotation increments ``rotations_rad`` (steps,), each as :meth:`solve` solves it,
-        in one compiled call (:func:`fewear.contact.condensed_newton.run_load_steps`): their
-        results, up to the first step :meth:`solve` would refuse, and that refusal
+        their rotation increments ``rotations_rad`` (steps,), in turn, in one compiled call
+        (:func:`fewear.contact.condensed_newton.run_load_steps`; :meth:`solve` is one step of
+        it): their results, up to the first step refused, and that refusal
         (:class:`ContactLoadError`, the state reset as after it), or None when all were
         solved."""
         forces = np.ascontiguousarray(forces_N, dtype=float)
         rotations = np.asarray(rotations_rad, dtype=float)
         for row in np.flatnonzero(~np.isfinite(forces).all(axis=1) | ~np.isfinite(rotations)):
-            checked_force(forces[row])  # the same message as solve's
+            checked_force(forces[row])  # the messages of a single solve
             checked_rotation(rotations[row])
         problem = self.problem
         friction_values = (problem.contact.friction_coefficient * np.sign(rotations) if friction
@@ -274,10 +241,6 @@ class CondensedBushingContact:
     def _friction_value(self) -> float:
         """mu s of the present solve (signed by the slip; 0 without friction)."""
         return self.newton_state[6][2]
-
-    @_friction_value.setter
-    def _friction_value(self, value: float) -> None:
-        self.newton_state[6][2] = value
 
     def turn_state(self, angle_rad: float) -> bool:
         """:func:`fewear.contact.condensed_newton.turn_state` on this operator's state."""

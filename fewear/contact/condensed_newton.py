@@ -453,8 +453,8 @@ def run_newton_solve(compliance, g, U, centre, points, weights, constants, memor
 def run_load_steps(compliance, g, U, centre, points, weights, constants, memory, settings,
                    forces_N, width_m, friction_values, slips_m, order, limit_m, max_iterations,
                    first, fields, centres, sums, iterations):
-    """The load steps ``first``, ``first`` + 1, ... of ``forces_N`` (steps, 2) in turn, each as
-    :meth:`fewear.contact.condensed.CondensedBushingContact.solve` solves one, with the step's
+    """The load steps ``first``, ``first`` + 1, ... of ``forces_N`` (steps, 2) in turn
+    (:meth:`fewear.contact.condensed.CondensedBushingContact.solve_run`), with the step's
     signed friction coefficient ``friction_values`` and slip ``slips_m`` (m), in one compiled
     call (the Python around a solve cost a fifth of its time): a zero force resets the state
     (no displacement, the pin centred, the next solve cold); else the whole solve of
