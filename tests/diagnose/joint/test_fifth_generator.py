@@ -209,8 +209,9 @@ def test_impact_wear_is_taken_from_the_running_mechanism(believed, monkeypatch):
     """Started from its ideal state the mechanism goes through a start-up transient; the cycles
     the impact source takes its impacts from are those of the same motion continued past
     :data:`IMPACT_SETTLING_CYCLES`, not the cycles right after the config's own two settling
-    ones. How often the running orbit impacts is not asserted: the clearance joint is chaotic,
-    and which orbit it settles into depends on the machine's rounding."""
+    ones. How often either motion impacts is not asserted: the clearance joint is chaotic, and
+    which orbit it follows depends on the rounding (the start-up's cycles held 0 to 14 impacts
+    over rounding-level changes of the integrator's Newton)."""
     from fewear.wear.state import WearState
 
     config = gen.truth_config(believed, {"causes": []}, 12000)
@@ -219,7 +220,6 @@ def test_impact_wear_is_taken_from_the_running_mechanism(believed, monkeypatch):
     assert config["mechanism"]["settling_cycles"] == 2
     start_up, period = gen.joint_history_on(config, state.angle_rad, state.depth_m,
                                             gen.IMPACT_SAMPLE_CYCLES)
-    assert len(start_up.impact_episodes()) >= 3
     through, _ = gen.joint_history_on(config, state.angle_rad, state.depth_m,
                                       gen.IMPACT_SETTLING_CYCLES - 2 + gen.IMPACT_SAMPLE_CYCLES)
     seen = []
@@ -234,6 +234,9 @@ def test_impact_wear_is_taken_from_the_running_mechanism(believed, monkeypatch):
                                         "reference_volume_m3": 1e-13, "half_width_deg": 6.0})
     depth = source(None, state)
     (running,) = seen
+    size = min(start_up.time_s.size, running.time_s.size)  # another motion than the start-up's
+    assert not np.allclose(start_up.reaction_force_N[:size], running.reaction_force_N[:size],
+                           rtol=1e-3)
     assert gen.IMPACT_SETTLING_CYCLES == 12
     assert running.time_s[0] == pytest.approx(gen.IMPACT_SETTLING_CYCLES * period)
     assert running.time_s[-1] == pytest.approx(
