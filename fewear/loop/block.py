@@ -152,11 +152,15 @@ def wear_block(joints: dict, histories: dict, mechanism, dynamics_s: float,
                 histories[name], loop.load_steps_per_cycle * loop.recorded_cycles_per_block,
                 joint.inputs.joint.law, joint.inputs.impact_law)
     added = added_depth_per_cycle or {}
+    previous = {name: None for name in joints}  # each joint's last (A_j, peak) in this block
     for step in range(loop.wear_steps_per_block):
         error, proposed, worn = None, {}, {}
         try:
             proposed = {name: joint_wear_step(joint, histories[name], steps[name],
-                                              added.get(name)) for name, joint in joints.items()}
+                                              added.get(name), previous[name])
+                        for name, joint in joints.items()}
+            previous = {name: (proposal.cycles, float(proposal.increment_m.max()))
+                        for name, proposal in proposed.items()}
         except FewearInputError as exc:
             if ranks is None:
                 raise
@@ -246,12 +250,14 @@ class WearProposal:
         return worn
 
 
-def joint_wear_step(joint: JointRun, history, steps, added_depth_per_cycle=None
-                    ) -> WearProposal:
+def joint_wear_step(joint: JointRun, history, steps, added_depth_per_cycle=None,
+                    previous: tuple[int, float] | None = None) -> WearProposal:
     """Stages 2-4 of one wear step of a joint on the bore of its state: the contact at every load
     step of ``steps`` (cut from ``history``), Archard's law summed into one crank cycle, and the
-    step's A_j cycles extrapolated (:func:`fewear.wear.extrapolation.extrapolate_block`); the
-    stage times added to the joint's."""
+    step's A_j cycles extrapolated (:func:`fewear.wear.extrapolation.extrapolate_block`, its
+    search started from the ``previous`` step's (A_j, peak increment) of the block, if any: a
+    block's steps depend only on the block, so a resumed run repeats them); the stage times
+    added to the joint's."""
     inputs, bushing, state = joint.inputs, joint.bushing, joint.case.state
     loop, times = inputs.loop, joint.case.stage_wall_time_s
     with timed(times, "contact"):
@@ -277,7 +283,7 @@ def joint_wear_step(joint: JointRun, history, steps, added_depth_per_cycle=None
             loop.extrapolation,
             lambda cycles: smoothed_block_wear(per_cycle, state, inputs.extension, cycles,
                                                math.radians(loop.wear_smoothing_width_deg)),
-            bushing.element_height_m, loop.total_cycles - state.cycles)
+            bushing.element_height_m, loop.total_cycles - state.cycles, previous)
     return WearProposal(state, cycles, increment, sliding, per_cycle, wear,
                         float((per_cycle.depth_m + per_cycle.impact_depth_m).max()))
 

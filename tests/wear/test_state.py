@@ -149,6 +149,33 @@ def test_adaptive_search_fills_the_bound_of_awkward_increments(peak_at):
     assert increment_for.calls <= MAX_TRIALS
 
 
+@pytest.mark.parametrize("previous_rate_factor, most_calls", [
+    (1.0, 1),  # the same rate as the previous step: its block, scaled, fills the bound at once
+    (1.08, 1),  # the rate fell by 8 %: the first trial still fills 80-100 % of the bound
+    (3.0, 3),  # the rate fell to a third: up from the first trial
+    (0.2, 3),  # the rate grew fivefold: down from it
+])
+def test_adaptive_search_from_the_previous_steps_block(previous_rate_factor, most_calls):
+    """Given the previous wear step's (A_j, peak), the search starts where that step's rate
+    reaches 0.95 f h_e: with the rate unchanged (or changed by less than the band [0.8, 1]
+    allows) one trial fills the bound; a rate that changed by several times is found within a
+    few trials, up or down, and the block returned fills at least 80 % of the bound, as from
+    the cap."""
+    settings = ExtrapolationSettings(mode="adaptive", max_factor=50000.0,
+                                     max_depth_increment_fraction=0.1)
+    limit = 0.1 * 1e-4
+    rate = limit / 3000.0  # this step's peak per cycle: the bound at A = 3,000
+    increment_for = counted(lambda cycles: (np.array([rate * cycles]),))
+    previous_cycles = 2000
+    previous = (previous_cycles, previous_rate_factor * rate * previous_cycles)
+    cycles, increment = extrapolate_block(settings, increment_for, 1e-4, 400000, previous)
+    assert 0.8 * limit <= increment[0] <= limit
+    assert increment_for.calls <= most_calls
+    near_cap = extrapolate_block(settings, counted(lambda cycles: (np.array([rate * cycles]),)),
+                                 1e-4, 2500, (2000, 1e-30))  # a rate 1e-25 of the step's
+    assert near_cap[0] == 2500  # capped by the cycles remaining
+
+
 def test_adaptive_search_returns_the_largest_block_within_the_bound():
     """A peak that jumps from half the bound to twice it beyond 1,000 cycles: every later trial
     overshoots, and the block returned is the largest found within the bound, not the last
