@@ -1,6 +1,6 @@
 """`fewear diagnose` on the two published scars with the default (converged) scar models: the
 fitted k factor, its folds, the held-out RMS of the believed and the fitted model, p, effective
-observations, forward runs and wall time, printed (block on ring: 6 runs of about 3.5 s of CPU;
+observations, forward runs and wall time, printed (block on ring: 6 runs of about 2.2 s of CPU;
 fretting: 11 runs of about 5 s of CPU, the two causes' fits side by side; docs/performance.md).
 
 Asserted: the verdict measured when the room was written (no cause named on either scar: the
