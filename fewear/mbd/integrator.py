@@ -26,10 +26,6 @@ from fewear.mbd.constraints import (
 from fewear.mbd.system import system_forces
 
 REUSE_CONTRACTION = 0.25  # modified Newton: rebuild when |dq| shrinks by less than this
-# The step control keeps h where it could grow by at most this factor, so that modified Newton
-# keeps its factors (RADAU5 keeps h for growth within [1, 1.2]: Hairer & Wanner, Solving ODEs II,
-# sec. IV.8); on the paper's worn flexible rod a third fewer factorisations, 6 % more steps.
-KEEP_STEP_GROWTH = 1.25
 RECORD_CHUNK = 4096  # recorded steps per call of the compiled loop
 # advance's status: reached t_end, the record buffer is full, the step fell below min_step_s,
 # the velocity projection met dependent constraint rows
@@ -442,15 +438,12 @@ def _newton(data, settings, t1, Y1, lam1, update, h, lu, structure, newton, coun
         if size < tolerance:
             newton[1] = 1.0 if iteration > 2 else 0.0
             return True, jac
-        if full and rebuild and iteration >= first_full + 2 and size > 0.5 * previous:
+        if not full and size > REUSE_CONTRACTION * previous:
+            full, first_full = True, iteration + 1  # the reused matrix is too far off
+        elif full and iteration >= first_full + 2 and size > 0.5 * previous:
             return False, jac  # not contracting (e.g. cycling in and out of contact): shorter step
-        if not rebuild and size > REUSE_CONTRACTION * previous:
-            if not full:
-                full, first_full = True, iteration + 1  # the reused matrix is too far off
-            rebuild = True  # rebuilt at the next iterate, then kept while it contracts
-        else:
-            rebuild = not modified
         previous = size
+        rebuild = full
     return False, jac
 
 
@@ -460,8 +453,7 @@ def _control(data, settings, Y, Y1, h):
 
     Rejects a step that enters contact deeper than the gap tolerance (retry aimed, by the
     secant on the gap, at half the tolerance) or whose local error estimate exceeds it; the
-    next step grows with the error like h^3, by at most 2x, and not at all where it could grow
-    by at most ``KEEP_STEP_GROWTH``."""
+    next step grows with the error like h^3, by at most 2x."""
     tol = settings[6]
     factor = 2.0
     for j in range(data.joints.memory.shape[0]):
@@ -475,10 +467,7 @@ def _control(data, settings, Y, Y1, h):
             return False, max(0.1, 0.8 * (tol / error_m) ** (1.0 / 3.0))
         if error_m > 0.0:
             factor = min(factor, 0.9 * (tol / error_m) ** (1.0 / 3.0))
-    factor = max(0.2, min(2.0, factor))
-    if 1.0 <= factor <= KEEP_STEP_GROWTH:
-        factor = 1.0  # h kept: the factorised iteration matrix (beta h^2 in it) stays valid
-    return True, factor
+    return True, max(0.2, min(2.0, factor))
 
 
 @compiled
