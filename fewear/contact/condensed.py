@@ -227,7 +227,7 @@ class CondensedBushingContact:
 
     # -- the discretisation for ContactNewton --------------------------------------------------
     operations = condensed_newton  # functions of newton_state (compiled)
-    newton_algorithm = condensed_newton.newton_algorithm  # the solve compiled
+    newton_algorithm = condensed_newton.algorithm  # its solves run compiled in run_load_steps
 
     # the Newton state's arrays under their names (the state is their one holder: write into them)
     compliance = _state_array(0, "G (2n, 2n), m per N/m, rows/columns (node, direction)")

@@ -2,7 +2,7 @@
 nodal forces and their linearisation, the bordered Newton step of
 :mod:`fewear.contact.condensed` (whose module docstring gives the equations), and the path's
 :class:`fewear.contact.newton.NewtonOperations` on its state, with the whole solve of
-:mod:`fewear.contact.newton` compiled on them (:func:`run_newton_solve`).
+:mod:`fewear.contact.newton` compiled on them for a run of load steps (:func:`run_load_steps`).
 
 The state (:func:`new_state`) is a tuple of arrays: the bore compliance G (2n, 2n), the nodal
 forces g (2n,), the nodal displacements U = G g (2n,), the pin centre c (2,), the bore nodes
@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import math
 import sys
-import types
 
 import numpy as np
 from numba.extending import register_jitable
@@ -310,7 +309,7 @@ def new_state(compliance: np.ndarray, points: np.ndarray, weights_m: np.ndarray,
 
 # -- the operations of the contact Newton (fewear.contact.newton.NewtonOperations) ---------------
 # register_jitable: NumPy code when ContactNewton calls them from Python (numba would type the
-# state tuple at every call, slowly: see run_newton_solve), compiled into the solve.
+# state tuple at every call, slowly: see run_load_steps), compiled into the solve.
 @register_jitable
 def linearise(state, load):
     """Nodal forces, normals and distances at the state (``linear``: f, n, r, A); the pin
@@ -437,26 +436,16 @@ newton_solve_on_state = algorithm.newton_solve
 
 
 @compiled
-def run_newton_solve(compliance, g, U, centre, points, weights, constants, memory, settings,
-                     load, direction, max_iterations):
-    """The whole solve of :mod:`fewear.contact.newton` (:func:`fewear.contact.newton.
-    newton_solve`) on this module's operations, compiled, on the state of these arrays
-    (``settings`` a plain tuple of :class:`NewtonSettings`' fields). Called from Python with
-    the arrays apart: numba 0.56 types a tuple of more than four arrays, or a named tuple, in
-    Python at every call (its type cache keys them on more bytes than it keeps): 20-60 us, as
-    much as a Newton iteration."""
-    return newton_solve_on_state((compliance, g, U, centre, points, weights, constants), memory,
-                                 NewtonSettings(*settings), load, direction, max_iterations)
-
-
-@compiled
 def run_load_steps(compliance, g, U, centre, points, weights, constants, memory, settings,
                    forces_N, width_m, friction_values, slips_m, order, limit_m, max_iterations,
                    first, fields, centres, sums, iterations):
     """The load steps ``first``, ``first`` + 1, ... of ``forces_N`` (steps, 2) in turn
     (:meth:`fewear.contact.condensed.CondensedBushingContact.solve_run`), with the step's
     signed friction coefficient ``friction_values`` and slip ``slips_m`` (m), in one compiled
-    call (the Python around a solve cost a fifth of its time): a zero force resets the state
+    call (the Python around a solve cost a fifth of its time; the state's arrays apart: numba
+    0.56 types a tuple of more than four arrays, or a named tuple, in Python at every call, its
+    type cache keying them on more bytes than it keeps: 20-60 us, as much as a Newton
+    iteration): a zero force resets the state
     (no displacement, the pin centred, the next solve cold); else the whole solve of
     :mod:`fewear.contact.newton` for F/L (L = ``width_m``) and :func:`equilibrium_fields`.
     Step s writes ``fields[s]`` (5, n), ``centres[s]`` (2,), ``sums[s]`` (the sums of the
@@ -501,15 +490,6 @@ def _reset(state, memory):
     memory[0], memory[1] = math.nan, math.nan
 
 
-def newton_solve(state, memory, settings, load, direction, max_iterations) -> int:
-    """:func:`run_newton_solve` on ``state``; ``settings`` a :class:`NewtonSettings`."""
-    return run_newton_solve(*state, memory, tuple(settings), load, direction, max_iterations)
-
-
-# the condensed path's algorithm: the whole solve compiled, the rest as Python on the operations
-newton_algorithm = types.SimpleNamespace(**{**vars(algorithm), "newton_solve": newton_solve})
-
-
 def compile_contact() -> None:
     """Compile, or load from numba's cache (:mod:`fewear.jit`), the contact Newton's kernels:
     each called once on a small bore (16 nodes on a circle, the pin pressed into two) with the
@@ -529,8 +509,6 @@ def compile_contact() -> None:
                        np.arange(size), 1.0)
     turned_forces(g, points, U, centre, pin_radius, 2, 0.1, 0.1)
     state = new_state(np.eye(2 * size), points, weights, penalty, pin_radius)
-    direction = load / math.sqrt(load @ load)
-    newton_solve(state, new_memory(), settings, load, direction, 2)
     steps = np.array([[0.0, 0.0], load])
     run_load_steps(*state, new_memory(), tuple(settings), steps, 1.0, np.zeros(2), np.zeros(2),
                    np.arange(size), 1.0, 2, 0, np.empty((2, 5, size)), np.empty((2, 2)),

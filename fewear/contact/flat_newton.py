@@ -266,7 +266,7 @@ solve_on_ray_on_state = algorithm.solve_on_ray
 def run_coupled_newton(G, g, U, centre, points, weights, constants, history, covered, settings,
                        load, direction, basis, max_iterations):
     """:func:`fewear.contact.newton.coupled_newton` on the state of these arrays, compiled
-    (the arrays apart: :func:`fewear.contact.condensed_newton.run_newton_solve`)."""
+    (the arrays apart: :func:`fewear.contact.condensed_newton.run_load_steps`)."""
     return coupled_newton_on_state((G, g, U, centre, points, weights, constants, history,
                                     covered), NewtonSettings(*settings), load, direction, basis,
                                    max_iterations)
