@@ -27,3 +27,13 @@ def compile_kernels(report=None) -> None:
     compile_dynamics()
     compile_contact()
     compile_flat()
+
+
+def compile_kernels_unless_cached(report=None) -> None:
+    """:func:`compile_kernels` where the cache holds no compiled code for these sources yet, so
+    that the worker processes or ranks started afterwards load the kernels instead of all
+    compiling them at once; nothing where it does: each worker loads what it uses, and loading
+    them here as well held the run's start back by about 2 s."""
+    cache = numba.config.CACHE_DIR
+    if not (cache and holds_compiled_code(cache)):
+        compile_kernels(report)

@@ -8,6 +8,7 @@ import types
 
 import numba
 
+from fewear import kernels
 from fewear.jit import WARNED, holds_compiled_code
 from fewear.kernels import compile_kernels
 
@@ -27,6 +28,19 @@ def test_a_warm_cache_compiles_without_a_word():
     said = []
     compile_kernels(said.append)
     assert holds_compiled_code(numba.config.CACHE_DIR) and said == []
+
+
+def test_a_run_compiles_before_its_workers_only_into_an_empty_cache(tmp_path, monkeypatch):
+    """An empty cache: compiled (and announced) once before the workers start; a filled one:
+    nothing there, each worker loads what it uses."""
+    compiles = []
+    monkeypatch.setattr(kernels, "compile_kernels", compiles.append)
+    monkeypatch.setattr(numba.config, "CACHE_DIR", str(tmp_path))
+    kernels.compile_kernels_unless_cached("report")
+    assert compiles == ["report"]
+    (tmp_path / "newton.norm-245.py311.nbi").write_bytes(b"index")
+    kernels.compile_kernels_unless_cached("report")
+    assert compiles == ["report"]
 
 
 def blocked(tmp_path):

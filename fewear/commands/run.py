@@ -142,11 +142,11 @@ def _in_processes(members, config: dict, out_dir, resumed: dict, jobs: int) -> d
     """The members in ``jobs`` worker processes (:func:`fewear.parallel.worker_pool`), each
     taking the next member when it is free; a worker's error stops the others at once (their
     checkpoints stay)."""
-    from fewear.kernels import compile_kernels
+    from fewear.kernels import compile_kernels_unless_cached
     from fewear.parallel import worker_pool
 
     cases = {}
-    compile_kernels(_say)  # once here, not in every worker at once on an empty cache
+    compile_kernels_unless_cached(_say)  # here, not in every worker at once on an empty cache
     with worker_pool(jobs) as pool:
         results = [pool.apply_async(_run_in_worker, (member, config, out_dir, {
             member: resumed[member]} if member in resumed else {})) for member in members]
@@ -160,10 +160,10 @@ def _on_ranks(members, config: dict, out_dir, resumed: dict, world) -> dict:
     members gathered on rank 0 (the other ranks get an empty dict). An input error in one
     group is raised on every rank, after the other groups have finished."""
     import fewear.contact.condensed  # noqa: F401 (PETSc starts on every rank, collectively)
-    from fewear.kernels import compile_kernels
+    from fewear.kernels import compile_kernels_unless_cached
 
-    if world.rank == 0:
-        compile_kernels(_say)  # the other ranks then load it instead of compiling it at once
+    if world.rank == 0:  # the other ranks then load the kernels instead of compiling them at once
+        compile_kernels_unless_cached(_say)
     world.Barrier()
     groups = min(world.size, len(members))
     color = world.rank % groups
