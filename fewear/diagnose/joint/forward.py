@@ -201,14 +201,14 @@ def simulate_wears(requests: list[tuple[dict, str]]) -> list[WearHistory]:
     first (:func:`expected_cost`: a worker that takes the next run as it finishes one then ends
     the batch on short runs, not one core on a long run while the other idles), then all from
     the memo. Serial under ``mpirun`` (the ranks share each run) or on one core."""
-    from fewear.kernels import compile_kernels
+    from fewear.kernels import compile_kernels_unless_cached
     from fewear.parallel import side_by_side
 
     missing = sorted({_key(config): (config, label) for config, label in requests
                       if _key(config) not in _RUNS}.values(),
                      key=lambda request: _handed_out_before(request[0]))
-    # compiled once here, not in every worker at once on an empty cache
-    histories = side_by_side(simulate_wear, missing, prepare=compile_kernels)
+    # compiled once here, not in every worker at once, on an empty cache
+    histories = side_by_side(simulate_wear, missing, prepare=compile_kernels_unless_cached)
     _RUNS.update({_key(config): history for (config, _), history in zip(missing, histories)})
     return [_RUNS[_key(config)] for config, _ in requests]
 
