@@ -102,8 +102,10 @@ class CondensedBushingContact:
         if keep_compliance:
             position = np.argsort(node_ids)[np.searchsorted(node_ids, bore.global_ids,
                                                             sorter=np.argsort(node_ids))]
-            rows = (2 * position[:, None] + np.arange(2)[None, :]).reshape(-1)
-            compliance = self.compliance[np.ix_(rows, rows)]
+            compliance = self.compliance  # the nodes in the same order: G as it is
+            if np.any(position != np.arange(position.size)):
+                rows = (2 * position[:, None] + np.arange(2)[None, :]).reshape(-1)
+                compliance = compliance[np.ix_(rows, rows)]
         else:
             compliance = self._nodal_compliance()
         self.newton_state = new_state(compliance, bore.points.copy(),
