@@ -186,7 +186,7 @@ def wear_block(joints: dict, histories: dict, mechanism, dynamics_s: float,
                 start_next(worn)
         for name, joint in joints.items():
             with timed(joint.case.stage_wall_time_s, "mesh"):
-                joint.bushing.move_to(worn[name])
+                joint.bushing.move_to(worn[name], interior=last)
             joint.case.state = worn[name]
             joint.case.counts.dropped_steps += proposed[name].wear.dropped_steps
             peaks[name] = [max(peaks[name][0], float(proposed[name].wear.pressure_Pa.max())),

@@ -57,6 +57,7 @@ class BoreMotion:
         self.bore_dofs = fem.locate_dofs_topological(self.space, fdim, facet_tags.find(BORE_TAG))
         self.outer_dofs = fem.locate_dofs_topological(self.space, fdim, facet_tags.find(OUTER_TAG))
         self.made_xy = mesh.geometry.x[:, :2].copy()
+        self._bore_total = None  # the bore dofs' displacement from the mesh as made, once moved
         self._factorise(elastic_extension_form(self.space, poisson_ratio))
         self.quality_meter = QualityMeter(mesh, facet_tags)
 
@@ -114,16 +115,25 @@ class BoreMotion:
         return self._move(self._radial_displacement(
             lambda angle, radius: np.asarray(radius_m(angle), dtype=float) - radius))
 
-    def _move(self, bore: np.ndarray) -> BoreMove:
-        """Move the bore dofs by ``bore`` (this move, (n, 2)) and every node to X_0 + d, d the
-        extension of the bore's total displacement D_b from the mesh as made: A d = b with
-        b = -A D_b off the boundary (the lifting of the prescribed values) and D_b, 0 on it."""
+    def move_bore_to(self, radius_m: Callable[[np.ndarray], np.ndarray]) -> float:
+        """Move the bore nodes alone onto r = ``radius_m(theta)`` (m), as :meth:`move_to` moves
+        them, and leave the interior where it is until :meth:`extend_interior`; return the
+        largest bore motion ratio since the mesh was made (all ranks): for a caller that reads
+        only the bore between moves."""
+        self._move_bore(self._radial_displacement(
+            lambda angle, radius: np.asarray(radius_m(angle), dtype=float) - radius))
+        return self.quality_meter.bore_motion_ratio()
+
+    def extend_interior(self) -> MeshQuality:
+        """Every node to X_0 + d, d the elastic extension of the bore's displacement from the
+        mesh as made (the interior as a :meth:`move` to the bore's present place puts it); the
+        mesh's quality after."""
         x = self.mesh.geometry.x
-        before = x[:, :2].copy()
-        bore_nodes = self.dof_node[self.bore_dofs]
-        total = before[bore_nodes] - self.made_xy[bore_nodes] + bore
+        if self._bore_total is None:  # never moved here: the bore as it was put (a restore)
+            bore_nodes = self.dof_node[self.bore_dofs]
+            self._bore_total = x[bore_nodes, :2] - self.made_xy[bore_nodes]
         prescribed = self._prescribed.x.array.reshape(-1, 2)
-        prescribed[self.bore_dofs] = total
+        prescribed[self.bore_dofs] = self._bore_total
         self._operator.mult(self._prescribed.vector, self._rhs)
         self._rhs.scale(-1.0)
         rhs = self._rhs.array_w.reshape(-1, 2)
@@ -133,13 +143,31 @@ class BoreMotion:
         self._displacement.x.scatter_forward()
         displacement = self._displacement.x.array.reshape(-1, 2).copy()
         displacement[self.outer_dofs] = 0.0
-        displacement[self.bore_dofs] = total
+        displacement[self.bore_dofs] = self._bore_total
         x[:, :2] = self.made_xy + displacement[self.node_dof]
+        return self.quality_meter.measure()
+
+    def _move_bore(self, bore: np.ndarray) -> None:
+        """Move the bore dofs by ``bore`` (this move, (n, 2)): X_0 + D_b, D_b their total
+        displacement from the mesh as made."""
+        x = self.mesh.geometry.x
+        bore_nodes = self.dof_node[self.bore_dofs]
+        self._bore_total = x[bore_nodes, :2] - self.made_xy[bore_nodes] + bore
+        x[bore_nodes, :2] = self.made_xy[bore_nodes] + self._bore_total
+
+    def _move(self, bore: np.ndarray) -> BoreMove:
+        """Move the bore dofs by ``bore`` (this move, (n, 2)) and every node to X_0 + d, d the
+        extension of the bore's total displacement D_b from the mesh as made: A d = b with
+        b = -A D_b off the boundary (the lifting of the prescribed values) and D_b, 0 on it."""
+        before = self.mesh.geometry.x[:, :2].copy()
+        self._move_bore(bore)
+        quality = self.extend_interior()
         comm = self.mesh.comm
         return BoreMove(
             max_bore_increment_m=comm.allreduce(_max_norm(bore), op=MPI.MAX),
-            max_displacement_m=comm.allreduce(_max_norm(x[:, :2] - before), op=MPI.MAX),
-            quality=self.quality_meter.measure(),
+            max_displacement_m=comm.allreduce(
+                _max_norm(self.mesh.geometry.x[:, :2] - before), op=MPI.MAX),
+            quality=quality,
         )
 
 

@@ -146,3 +146,25 @@ def test_a_run_of_load_steps_retries_a_refused_step_as_solve_does(coarse_problem
             np.testing.assert_array_equal(run.pressure_Pa, step.pressure_Pa)
             np.testing.assert_array_equal(run.angle_rad, step.angle_rad)
             np.testing.assert_array_equal(run.pin_centre_m, step.pin_centre_m)
+
+
+def test_moves_of_the_bore_alone_inside_a_block_change_nothing_the_run_sees(coarse_problem):
+    """With G kept per mesh, wear steps that move the bore alone (``interior=False``) and a
+    block's last move with the interior give the bushing every move with the interior gives:
+    the same nodes, contact and re-mesh (the bore's motion passes its limit on the third
+    state), to the bit."""
+    full = WornBushing(coarse_problem, MPI.COMM_WORLD, compliance_update="remesh")
+    lazy = WornBushing(coarse_problem, MPI.COMM_WORLD, compliance_update="remesh")
+    theta = full.angles
+    force = np.array([-3000.0, 500.0])
+    for step, fraction in enumerate((0.15, 0.3, 0.55, 0.7)):
+        depth = fraction * full.element_height_m * np.exp(-0.5 * ((theta - math.pi) / 0.3) ** 2)
+        state = dataclasses.replace(WearState.unworn(theta), depth_m=depth)
+        full.move_to(state)
+        lazy.move_to(state, interior=step == 3)
+        a, b = full.solve(force, 0.01, friction=True), lazy.solve(force, 0.01, friction=True)
+        np.testing.assert_array_equal(a.pressure_Pa, b.pressure_Pa)
+        np.testing.assert_array_equal(a.pin_centre_m, b.pin_centre_m)
+        assert lazy.counts.remeshes == full.counts.remeshes == (1 if step >= 2 else 0)
+    np.testing.assert_array_equal(lazy.mesh.geometry.x, full.mesh.geometry.x)
+    assert lazy.counts.ale_moves == full.counts.ale_moves == 4

@@ -131,3 +131,28 @@ def test_many_motions_leave_petsc_options_database_as_it_was():
     assert (solver.getType(), solver.getPC().getType()) == ("preonly", "lu")
     moved = motions[-1].move(lambda angle: np.full_like(angle, 1e-6))
     assert moved.max_bore_increment_m == pytest.approx(1e-6)
+
+
+def test_bore_alone_then_the_interior_puts_every_node_where_moves_do():
+    """Moving the bore nodes alone (``move_bore_to``) through three worn bores and then the
+    interior (``extend_interior``) leaves every node where three full moves (``move_to``) leave
+    it, to the bit: the extension is from the mesh as made. Between, the interior stays, the
+    bore is on r(theta), and the bore motion ratio is the full quality's."""
+    full, lazy = coarse_motion(), coarse_motion()
+    x_full, x_lazy = full.mesh.geometry.x, lazy.mesh.geometry.x
+    bore, outer = node_sets(lazy)
+    interior = np.setdiff1d(np.arange(x_lazy.shape[0]), np.concatenate([bore, outer]))
+    start = x_lazy.copy()
+    for depth_m in (1e-5, 4e-5, 7e-5):
+        def radius(angle, depth_m=depth_m):
+            return R_B + depth_m * (1.0 + np.cos(2.0 * angle))
+
+        report = full.move_to(radius)
+        ratio = lazy.move_bore_to(radius)
+        assert ratio == report.quality.max_bore_motion_ratio
+        np.testing.assert_array_equal(x_lazy[bore], x_full[bore])
+        np.testing.assert_array_equal(x_lazy[interior], start[interior])
+    quality = lazy.extend_interior()
+    np.testing.assert_array_equal(x_lazy, x_full)
+    assert quality == report.quality
+    assert np.abs(x_lazy[interior] - start[interior]).max() > 1e-6  # the interior did follow
