@@ -54,16 +54,15 @@ class BoreNodes:
         self.facet_nodes = np.array(nodes, dtype=np.int32).reshape(-1, 3)
         self.msh = msh
         self.comm = comm
+        self.local_nodes, first = np.unique(self.facet_nodes, return_index=True)
+        self.local_node_cells = self.cells[first // 3]
+        self._local_ids = np.asarray(msh.geometry.input_global_indices,
+                                     dtype=np.int64)[self.local_nodes]
         self.update_geometry()
 
     def update_geometry(self) -> None:
         """Re-read node coordinates (after the mesh moved) and rebuild the gathered node list."""
-        msh = self.msh
-        local_nodes, first = np.unique(self.facet_nodes, return_index=True)
-        self.local_nodes = local_nodes
-        self.local_node_cells = self.cells[first // 3]
-        ids = np.asarray(msh.geometry.input_global_indices, dtype=np.int64)[local_nodes]
-        xy = msh.geometry.x[local_nodes, :2]
+        ids, xy = self._local_ids, self.msh.geometry.x[self.local_nodes, :2]
         all_ids = np.concatenate(self.comm.allgather(ids))
         all_xy = np.concatenate(self.comm.allgather(xy)).reshape(-1, 2)
         unique_ids, first = np.unique(all_ids, return_index=True)
@@ -73,8 +72,9 @@ class BoreNodes:
         self.global_ids = unique_ids[order]
         self.points = points[order]
         self.angles = angles[order]
-        position = {gid: k for k, gid in enumerate(self.global_ids)}
-        self.local_index = np.array([position[g] for g in ids], dtype=np.int64)
+        position = np.empty_like(order)  # of each unique id in the angle order
+        position[order] = np.arange(order.size)
+        self.local_index = position[np.searchsorted(unique_ids, ids)]
 
     def gather(self, local_values: np.ndarray) -> np.ndarray:
         """Values at the local nodes (n_local, ...) -> the same on every rank in gathered order."""
@@ -97,11 +97,11 @@ def bore_node_weights(msh, bore) -> np.ndarray:
     d0 = np.linalg.norm(-3.0 * v0 - v1 + 4.0 * mid, axis=1)
     d1 = np.linalg.norm(v0 + 3.0 * v1 - 4.0 * mid, axis=1)
     dm = np.linalg.norm(v1 - v0, axis=1)
-    position = {node: k for k, node in enumerate(bore.local_nodes)}
     weights = np.zeros(bore.local_nodes.size)
     for column, values in ((0, d0 / 6.0), (1, d1 / 6.0), (2, 2.0 * dm / 3.0)):
-        for node, value in zip(bore.facet_nodes[:, column], values):
-            weights[position[node]] += value
+        # added facet after facet, as a loop would (np.add.at is unbuffered)
+        np.add.at(weights, np.searchsorted(bore.local_nodes, bore.facet_nodes[:, column]),
+                  values)
     total = np.zeros(bore.global_ids.size)
     total[bore.local_index] = weights
     return bore.comm.allreduce(total, op=MPI.SUM)
