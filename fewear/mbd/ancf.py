@@ -353,10 +353,11 @@ class AncfBeam:
     def kernel_data(self, tau_s: float, beta_s: float, first_index: int = 0):
         """(element coordinates (E, 12), B (E, points, 6, 12), H (E, points, 6, 6), tau (E,),
         beta (E,)): the arrays of :func:`add_beam_forces` for this beam at ``first_index`` of q."""
-        shape = (self.n_elements, *self._B.shape)
+        # np.repeat copies: a broadcast view of one element is contiguous but read-only, a
+        # type numba compiles the kernels for once more (tens of seconds on a first run)
         return (first_index + self._element_dofs,
-                np.ascontiguousarray(np.broadcast_to(self._B, shape)),
-                np.ascontiguousarray(np.broadcast_to(self._H, (self.n_elements, *self._H.shape))),
+                np.repeat(self._B[None], self.n_elements, axis=0),
+                np.repeat(self._H[None], self.n_elements, axis=0),
                 np.full(self.n_elements, float(tau_s)), np.full(self.n_elements, float(beta_s)))
 
 

@@ -28,6 +28,7 @@ import numpy as np
 
 from fewear.errors import FewearInputError
 from fewear.io.config import Config, load_config
+from fewear.mbd.contact import pin_reach_m
 from fewear.mbd.description import GROUND, Bar, Body, Driver, Joint, Mechanism, PointRef
 from fewear.mbd.history import JointHistory
 from fewear.mbd.integrator import GeneralizedAlpha, IntegratorSettings
@@ -275,7 +276,8 @@ def simulate_slider_crank(config: Config | None = None, rod: str | None = None,
 
 def compile_dynamics() -> None:
     """Compile, or load from numba's cache, every kernel a dynamics run calls (the same for any
-    mechanism: the arrays only change size) by a few steps of the default clearance mechanism;
+    mechanism: the arrays only change size) by a few steps of the default clearance mechanism,
+    and the worn clearance's :func:`fewear.mbd.contact.pin_reach_m`;
     worker processes started afterwards load the cached code instead of each compiling it
     (:mod:`fewear.jit`)."""
     inputs = dynamics_inputs_from_config(load_config(None, SECTIONS))
@@ -286,6 +288,8 @@ def compile_dynamics() -> None:
     state = integrator.initial_state(*model.initial_conditions())
     _, trajectory = integrator.run_recorded(state, state.t + 3 * settings.step_s)
     model.history(trajectory)
+    angles = np.linspace(0.0, 2.0 * math.pi, 8, endpoint=False)  # a wear run's worn clearance
+    pin_reach_m(angles, angles, np.full(8, 0.01), 0.0095)
 
 
 def simulate(inputs: DynamicsInputs, start: MechanismState | None = None,

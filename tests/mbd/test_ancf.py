@@ -343,3 +343,21 @@ def test_bad_beam_arguments_are_rejected():
         beam.shape_matrix(1.5)
     with pytest.raises(FewearInputError, match="node"):
         beam.node_index(5)
+
+
+def test_one_element_beam_uses_the_compiled_kernels_of_any_other():
+    """A beam of one element hands the kernels writable arrays as a beam of four does (a
+    broadcast view of one element is contiguous but read-only, and numba compiled every beam
+    kernel once more for it, tens of seconds on a first run): after the set-up's compile, its
+    forces and stiffness add no signature to add_beam_forces."""
+    from fewear.mbd import ancf
+    from fewear.mbd.slider_crank import compile_dynamics
+
+    compile_dynamics()
+    for n_elements in (1, 4):
+        beam = AncfBeam(1.0, n_elements, section(0.01))
+        _, B, H, _, _ = beam.kernel_data(0.0, 0.0)
+        assert B.flags.writeable and H.flags.writeable
+        q = beam.reference_coordinates(0.0, 0.0, 0.3)
+        beam.elastic_forces_and_stiffness(q)
+    assert len(ancf.add_beam_forces.signatures) == 1
