@@ -20,7 +20,7 @@ def compile_kernels(report=None) -> None:
     sources compiles for one to a few minutes), so that the user is not left without a word;
     with no cache that can be written (:func:`fewear.jit.choose_cache_dir`), every run compiles."""
     cache = numba.config.CACHE_DIR
-    if report is not None and not (cache and holds_compiled_code(cache)):
+    if report is not None and not _cached():
         report("compiling the dynamics and contact kernels (" + (
             "once after a change of fewear's sources, one to a few minutes; later runs load them)"
             if cache else "one to a few minutes, on every run: no cache folder can be written)"))
@@ -34,6 +34,11 @@ def compile_kernels_unless_cached(report=None) -> None:
     that the worker processes or ranks started afterwards load the kernels instead of all
     compiling them at once; nothing where it does: each worker loads what it uses, and loading
     them here as well held the run's start back by about 2 s."""
-    cache = numba.config.CACHE_DIR
-    if not (cache and holds_compiled_code(cache)):
+    if not _cached():
         compile_kernels(report)
+
+
+def _cached() -> bool:
+    """Whether numba's cache folder holds compiled code for these sources."""
+    cache = numba.config.CACHE_DIR
+    return bool(cache) and holds_compiled_code(cache)

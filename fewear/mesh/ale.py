@@ -112,17 +112,21 @@ class BoreMotion:
         """Move every bore node radially onto the bore r = ``radius_m(theta)`` (m), the interior
         by the elastic extension, the outer nodes not: :meth:`move` by r(theta) minus each
         node's radius now."""
-        return self._move(self._radial_displacement(
-            lambda angle, radius: np.asarray(radius_m(angle), dtype=float) - radius))
+        return self._move(self._displacement_onto(radius_m))
 
     def move_bore_to(self, radius_m: Callable[[np.ndarray], np.ndarray]) -> float:
         """Move the bore nodes alone onto r = ``radius_m(theta)`` (m), as :meth:`move_to` moves
         them, and leave the interior where it is until :meth:`extend_interior`; return the
         largest bore motion ratio since the mesh was made (all ranks): for a caller that reads
         only the bore between moves."""
-        self._move_bore(self._radial_displacement(
-            lambda angle, radius: np.asarray(radius_m(angle), dtype=float) - radius))
+        self._move_bore(self._displacement_onto(radius_m))
         return self.quality_meter.bore_motion_ratio()
+
+    def _displacement_onto(self, radius_m: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+        """The bore dofs' radial displacement (n, 2) onto r = ``radius_m(theta)`` (m) from where
+        they are now."""
+        return self._radial_displacement(
+            lambda angle, radius: np.asarray(radius_m(angle), dtype=float) - radius)
 
     def extend_interior(self) -> MeshQuality:
         """Every node to X_0 + d, d the elastic extension of the bore's displacement from the
